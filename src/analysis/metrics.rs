@@ -1,0 +1,200 @@
+//! Response quantities in the paper's style — peak relative displacement, peak, minimum
+//! and residual sliding, slip start and end, peak resistance, and for rocking bodies peak
+//! rotation, uplift and centre-of-mass motion — read off any trace.
+
+use std::collections::BTreeMap;
+
+use crate::trace::{Quantity, Trace, q};
+
+/// How a response quantity is read off its channel.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Reading {
+    /// Largest absolute value.
+    PeakAbs,
+    /// Largest value.
+    Max,
+    /// Smallest value.
+    Min,
+    /// Last value.
+    Last,
+    /// First time the slide rate exceeds the slip threshold.
+    SlipStart,
+    /// Last time the slide rate exceeds the slip threshold.
+    SlipEnd,
+    /// First time the channel reaches zero (no support in contact).
+    FirstZero,
+}
+
+/// A response quantity: key, label, the channel it reads and how.
+#[derive(Debug, Clone, Copy)]
+pub struct QuantityDef {
+    /// Key used in case tolerances.
+    pub key: &'static str,
+    /// Row label in reports.
+    pub label: &'static str,
+    /// Channel read.
+    pub channel: &'static Quantity,
+    /// How.
+    pub reading: Reading,
+}
+
+impl QuantityDef {
+    /// Whether the quantity is a time (s) rather than a value in the channel's unit.
+    pub fn is_time(&self) -> bool {
+        matches!(
+            self.reading,
+            Reading::SlipStart | Reading::SlipEnd | Reading::FirstZero
+        )
+    }
+    /// SI unit of the quantity.
+    pub fn unit(&self) -> &'static str {
+        if self.is_time() {
+            "s"
+        } else {
+            self.channel.unit
+        }
+    }
+    /// Display unit and factor from SI.
+    pub fn display(&self) -> (&'static str, f64) {
+        if self.is_time() {
+            ("s", 1.0)
+        } else {
+            self.channel.display
+        }
+    }
+}
+
+macro_rules! defs {
+    ($(($key:literal, $label:literal, $chan:expr, $reading:ident)),* $(,)?) => {
+        /// Every response quantity, in report row order.
+        pub static DEFS: &[QuantityDef] = &[
+            $(QuantityDef { key: $key, label: $label, channel: &$chan, reading: Reading::$reading }),*
+        ];
+        /// Keys of every response quantity.
+        pub static QUANTITY_KEYS: &[&str] = &[$($key),*];
+    };
+}
+
+defs![
+    (
+        "peak_relative_displacement",
+        "Peak relative displacement",
+        q::REL_DISP,
+        PeakAbs
+    ),
+    ("peak_sliding", "Peak sliding", q::SLIDE, Max),
+    ("min_sliding", "Minimum sliding", q::SLIDE, Min),
+    ("residual_sliding", "Residual sliding", q::SLIDE, Last),
+    ("slip_start", "Slip start", q::SLIDE, SlipStart),
+    ("slip_end", "Slip end", q::SLIDE, SlipEnd),
+    ("peak_resistance", "Peak resistance", q::RESISTANCE, PeakAbs),
+    ("peak_base_shear", "Peak base shear", q::BASE_SHEAR, PeakAbs),
+    ("peak_rotation", "Peak rotation", q::ROTATION, PeakAbs),
+    ("peak_uplift", "Peak uplift", q::UPLIFT, Max),
+    (
+        "first_liftoff",
+        "First full lift-off",
+        q::CONTACTS,
+        FirstZero
+    ),
+    ("peak_cm_x", "Peak CM horizontal", q::CM_X, PeakAbs),
+    ("max_cm_z", "Max CM vertical", q::CM_Z, Max),
+    ("min_cm_z", "Min CM vertical", q::CM_Z, Min),
+];
+
+/// The definition of a quantity key.
+pub fn quantity_def(key: &str) -> Option<&'static QuantityDef> {
+    DEFS.iter().find(|d| d.key == key)
+}
+
+/// Response quantities of one trace, by key (only those its channels allow).
+pub type Responses = BTreeMap<&'static str, f64>;
+
+/// Read every applicable response quantity off `trace`.
+pub fn responses(trace: &Trace) -> Responses {
+    let mut out = Responses::new();
+    for d in DEFS {
+        let Some(col) = trace.column(d.channel.key) else {
+            continue;
+        };
+        if col.is_empty() {
+            continue;
+        }
+        let value = match d.reading {
+            Reading::PeakAbs => Some(col.iter().fold(0.0_f64, |m, x| m.max(x.abs()))),
+            Reading::Max => Some(col.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
+            Reading::Min => Some(col.iter().copied().fold(f64::INFINITY, f64::min)),
+            Reading::Last => col.last().copied(),
+            Reading::SlipStart => slip_window(&trace.time, col).map(|w| w.0),
+            Reading::SlipEnd => slip_window(&trace.time, col).map(|w| w.1),
+            Reading::FirstZero => col.iter().position(|&c| c <= 0.0).map(|i| trace.time[i]),
+        };
+        if let Some(v) = value {
+            out.insert(d.key, v);
+        }
+    }
+    out
+}
+
+/// First and last instants of slipping, detected from the slip *rate* (never from
+/// |R| = Ru: an undamped oscillator that stopped sliding touches the limit every half
+/// period). A step slips when its slide increment exceeds 1e-3 of the largest increment
+/// of the run; the start is the beginning of the first slipping step, the end the end of
+/// the last.
+pub fn slip_window(time: &[f64], slide: &[f64]) -> Option<(f64, f64)> {
+    let rate = |i: usize| ((slide[i] - slide[i - 1]) / (time[i] - time[i - 1])).abs();
+    let peak = (1..slide.len()).map(rate).fold(0.0_f64, f64::max);
+    if !(peak > 0.0) {
+        return None;
+    }
+    let threshold = 1e-3 * peak;
+    let first = (1..slide.len()).find(|&i| rate(i) > threshold)?;
+    let last = (1..slide.len()).rev().find(|&i| rate(i) > threshold)?;
+    Some((time[first - 1], time[last]))
+}
+
+/// Discrepancy in percent, 100·(value/basis − 1) (the SAP2000 verification convention);
+/// `None` when the basis is zero.
+pub fn discrepancy_percent(value: f64, basis: f64) -> Option<f64> {
+    (basis != 0.0).then(|| 100.0 * (value / basis - 1.0))
+}
+
+/// Whole-history difference of channel `key` between a run and a basis sampled at the
+/// same times: (max |Δ|, RMS Δ), both normalised by the basis's peak |value|.
+pub fn history_difference(run: &Trace, basis: &Trace, key: &str) -> Option<(f64, f64)> {
+    let a = run.column(key)?;
+    let peak = basis
+        .column(key)?
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    if peak == 0.0 || run.is_empty() {
+        return None;
+    }
+    let (mut max, mut sum) = (0.0_f64, 0.0);
+    for (i, &t) in run.time.iter().enumerate() {
+        let b = basis.sample(key, t)?;
+        let d = a[i] - b;
+        max = max.max(d.abs());
+        sum += d * d;
+    }
+    Some((max / peak, (sum / run.len() as f64).sqrt() / peak))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slip_window_ignores_a_constant_slide() {
+        let t = [0.0, 0.1, 0.2, 0.3, 0.4];
+        assert_eq!(slip_window(&t, &[0.0; 5]), None);
+        let w = slip_window(&t, &[0.0, 0.0, 1.0, 2.0, 2.0]).unwrap();
+        assert_eq!(w, (0.1, 0.3));
+    }
+
+    #[test]
+    fn discrepancy_follows_the_sap2000_convention() {
+        assert!((discrepancy_percent(1.05, 1.0).unwrap() - 5.0).abs() < 1e-12);
+        assert_eq!(discrepancy_percent(1.0, 0.0), None);
+    }
+}

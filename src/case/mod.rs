@@ -1,0 +1,17 @@
+//! Case files: the TOML a user writes (`raw`), the validated scene every engine reads
+//! (`scene`), the excitations that drive it (`signal`), and loading with located errors
+//! (`load`). Engines never see TOML: they see [`Case`] and [`Scene`].
+
+mod load;
+mod locate;
+mod raw;
+mod scene;
+mod signal;
+
+pub use load::{discover, load_case, parse_case};
+pub use locate::Locator;
+pub use scene::{
+    Case, Contact, DoubleContact, EngineRequest, Excitation, Model, OptionValue, Oscillator,
+    RigidBlock, RockingBody, RunSettings, Scene, Tolerance, ToleranceBasis,
+};
+pub use signal::{Jump, Signal};

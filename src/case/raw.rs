@@ -1,0 +1,103 @@
+//! The raw form of a case file: mirrors the TOML one to one, every field optional where
+//! the file may omit it. Nothing here is checked beyond types; `load` turns it into a
+//! validated [`super::Case`].
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawCase {
+    pub name: Option<String>,
+    pub title: Option<String>,
+    pub source: Option<String>,
+    pub requirement: Option<String>,
+    pub model: RawModel,
+    pub excitation: RawExcitation,
+    pub run: RawRun,
+    #[serde(default)]
+    pub engines: BTreeMap<String, RawEngine>,
+    #[serde(default)]
+    pub tolerance: Vec<RawTolerance>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawModel {
+    pub kind: String,
+    pub mass: Option<f64>,
+    pub gravity: Option<f64>,
+    pub damping_ratio: Option<f64>,
+    // rocking body and rigid block geometry
+    pub cm_height: Option<f64>,
+    pub half_width: Option<f64>,
+    pub half_height: Option<f64>,
+    pub supports: Option<i64>,
+    pub rotational_inertia: Option<f64>,
+    pub mu: Option<f64>,
+    pub initial_tilt: Option<f64>,
+    pub contact: Option<RawContact>,
+    pub double: Option<RawDouble>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawContact {
+    pub kx: f64,
+    pub kz: f64,
+    pub mu: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawDouble {
+    pub kx1: f64,
+    pub kz1: f64,
+    pub mu1: f64,
+    pub kx2: f64,
+    pub kz2: f64,
+    pub mu2: f64,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawExcitation {
+    pub kind: String,
+    pub shape: Option<String>,
+    pub amplitude: Option<f64>,
+    pub omega: Option<f64>,
+    pub cycles: Option<f64>,
+    pub record: Option<String>,
+    pub record_unit: Option<String>,
+    pub scale_to_pga: Option<f64>,
+    pub polarity: Option<f64>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawRun {
+    pub duration: f64,
+    pub dt: f64,
+}
+
+/// An engine's section: `dt` and `variants` are common, every other key is an option the
+/// engine itself validates.
+#[derive(Debug, Deserialize)]
+pub struct RawEngine {
+    pub dt: Option<f64>,
+    pub variants: Option<Vec<String>>,
+    #[serde(flatten)]
+    pub options: BTreeMap<String, toml::Value>,
+}
+
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawTolerance {
+    pub quantity: String,
+    pub engine: Option<String>,
+    pub against: Option<String>,
+    pub percent: Option<f64>,
+    pub absolute: Option<f64>,
+    pub gate: Option<bool>,
+}

@@ -1,0 +1,124 @@
+//! Engines: the [`Engine`] interface every simulation method implements, the outcome of a
+//! run, and the registry. Engines depend on the scene (`case`) and the output format
+//! (`trace`) only — never on each other or on `reference` — so that a bug in one cannot
+//! hide in another.
+
+pub mod predictor_corrector;
+
+use crate::case::{Case, Scene};
+use crate::error::InputError;
+use crate::trace::Trace;
+
+/// Ids of every engine, as written in case files (`[engines.<id>]`).
+pub const ENGINE_IDS: &[&str] = &["predictor-corrector", "fe", "rapier"];
+
+/// Why an engine cannot represent a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NotApplicable(pub String);
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RunStatus {
+    /// Ran to the end of the case.
+    Completed,
+    /// The solution blew up (NaN/Inf or energy growth) at `time`.
+    Diverged {
+        /// Simulation time, s.
+        time: f64,
+        /// What was seen.
+        reason: String,
+    },
+    /// An iterative solver did not converge at `time`.
+    NotConverged {
+        /// Simulation time, s.
+        time: f64,
+        /// Residual and iteration count, in words.
+        reason: String,
+    },
+}
+
+impl RunStatus {
+    /// Whether the run reached the end.
+    pub fn completed(&self) -> bool {
+        matches!(self, RunStatus::Completed)
+    }
+    /// One-word label.
+    pub fn label(&self) -> &'static str {
+        match self {
+            RunStatus::Completed => "completed",
+            RunStatus::Diverged { .. } => "diverged",
+            RunStatus::NotConverged { .. } => "not converged",
+        }
+    }
+}
+
+impl std::fmt::Display for RunStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RunStatus::Completed => write!(f, "completed"),
+            RunStatus::Diverged { time, reason } => {
+                write!(f, "diverged at t = {time:.6} s: {reason}")
+            }
+            RunStatus::NotConverged { time, reason } => {
+                write!(f, "not converged at t = {time:.6} s: {reason}")
+            }
+        }
+    }
+}
+
+/// The outcome of one engine run: its trace, how it ended, and what it ran with.
+#[derive(Debug, Clone)]
+pub struct Run {
+    /// Engine id.
+    pub engine: &'static str,
+    /// Variant name.
+    pub variant: String,
+    /// Time step, s.
+    pub dt: f64,
+    /// Every setting that shaped the result, as (name, value) — recorded in all outputs.
+    pub settings: Vec<(String, String)>,
+    /// Deterministic counters (steps, iterations, cut-backs).
+    pub counters: Vec<(String, u64)>,
+    /// Things the engine measured about itself worth reporting (Eq. 9 change, eigenfrequencies).
+    pub findings: Vec<String>,
+    /// Time histories.
+    pub trace: Trace,
+    /// How it ended.
+    pub status: RunStatus,
+    /// Wall time of the run, s (filled by the caller; not part of the physics).
+    pub wall_seconds: f64,
+}
+
+impl Run {
+    /// `engine/variant`.
+    pub fn label(&self) -> String {
+        format!("{}/{}", self.engine, self.variant)
+    }
+}
+
+/// A simulation method.
+pub trait Engine: Send + Sync {
+    /// Id as in case files.
+    fn id(&self) -> &'static str;
+    /// One line saying what it is.
+    fn description(&self) -> &'static str;
+    /// The variants this engine can run for a scene, or why it cannot run it at all.
+    fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable>;
+    /// Problems with this engine's options in the case (located), checked at load time.
+    fn check_options(&self, case: &Case) -> Vec<InputError> {
+        let _ = case;
+        Vec::new()
+    }
+    /// Run one variant at time step `dt`. Divergence is a [`RunStatus`], never a panic.
+    fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError>;
+}
+
+/// Every engine, in report column order.
+pub fn all() -> Vec<Box<dyn Engine>> {
+    vec![Box::new(predictor_corrector::PredictorCorrector)]
+}
+
+/// Number of steps covering `duration` at `dt` (the last step may end past it by < dt/2).
+pub fn step_count(duration: f64, dt: f64) -> usize {
+    (duration / dt - 1e-9).ceil().max(1.0) as usize
+}

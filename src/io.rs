@@ -1,0 +1,20 @@
+//! Atomic output: every file is written to a temporary sibling and renamed into place, so
+//! a reader never sees a half-written report, trace or JUnit file.
+
+use std::io::Write;
+use std::path::Path;
+
+use crate::error::Error;
+
+/// Write `bytes` to `path` atomically, creating parent folders.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::io(dir, e))?;
+    tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;
+    tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
+    Ok(())
+}

@@ -1,0 +1,75 @@
+//! CSV traces: a header `time [s],force [N],...` (key and SI unit of each column), one row
+//! per recorded step, full f64 precision so a trace read back is bit-identical.
+
+use std::path::Path;
+
+use super::{Trace, q};
+use crate::error::{Error, InputError, InputErrors};
+use crate::io::write_atomically;
+
+/// Write `trace` to `path` atomically.
+pub fn write_csv(trace: &Trace, path: &Path) -> Result<(), Error> {
+    let mut buf = Vec::with_capacity(64 * trace.len());
+    {
+        let mut w = csv::Writer::from_writer(&mut buf);
+        let mut header = vec!["time [s]".to_string()];
+        header.extend(
+            trace
+                .channels
+                .iter()
+                .map(|c| format!("{} [{}]", c.key, c.unit)),
+        );
+        w.write_record(&header)
+            .map_err(|e| Error::Other(e.to_string()))?;
+        let mut row = Vec::with_capacity(header.len());
+        for i in 0..trace.len() {
+            row.clear();
+            row.push(format_f64(trace.time[i]));
+            row.extend(trace.columns.iter().map(|c| format_f64(c[i])));
+            w.write_record(&row)
+                .map_err(|e| Error::Other(e.to_string()))?;
+        }
+        w.flush().map_err(|e| Error::io(path, e))?;
+    }
+    write_atomically(path, &buf)
+}
+
+/// Shortest representation that reads back to the same f64.
+fn format_f64(x: f64) -> String {
+    format!("{x:?}")
+}
+
+/// Read a CSV trace written by [`write_csv`].
+pub fn read_csv(path: &Path) -> Result<Trace, InputErrors> {
+    let bad = |line: usize, reason: String| InputError::new(path, "", reason).at(line, 1);
+    let mut r = csv::Reader::from_path(path)
+        .map_err(|e| InputError::new(path, "", format!("cannot read: {e}")))?;
+    let headers = r
+        .headers()
+        .map_err(|e| bad(1, format!("bad header: {e}")))?
+        .clone();
+    let mut channels = Vec::new();
+    for (i, h) in headers.iter().enumerate().skip(1) {
+        let key = h.split(" [").next().unwrap_or(h);
+        let qty = q::by_key(key)
+            .ok_or_else(|| bad(1, format!("column {}: unknown quantity \"{key}\"", i + 1)))?;
+        channels.push(qty);
+    }
+    let mut trace = Trace::with_channels(&channels, 0);
+    let mut values = vec![0.0; channels.len()];
+    for (n, rec) in r.records().enumerate() {
+        let line = n + 2;
+        let rec = rec.map_err(|e| bad(line, e.to_string()))?;
+        let parse = |s: &str| {
+            s.trim()
+                .parse::<f64>()
+                .map_err(|_| bad(line, format!("\"{s}\" is not a number")))
+        };
+        let t = parse(rec.get(0).unwrap_or(""))?;
+        for (j, v) in values.iter_mut().enumerate() {
+            *v = parse(rec.get(j + 1).unwrap_or(""))?;
+        }
+        trace.push(t, &values);
+    }
+    Ok(trace)
+}

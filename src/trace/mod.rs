@@ -1,0 +1,87 @@
+//! Traces: the one output format every engine and reference writes. A trace is a table of
+//! time histories, one column per [`Quantity`] the scene has, in SI units; `csv` writes
+//! it for spreadsheet users.
+
+mod csv_file;
+mod quantity;
+
+pub use csv_file::{read_csv, write_csv};
+pub use quantity::{Quantity, q};
+
+/// Time histories of one run: `time` plus one column per channel, all the same length.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct Trace {
+    /// The quantities recorded, in column order (time excluded).
+    pub channels: Vec<&'static Quantity>,
+    /// Simulation time of each row, s.
+    pub time: Vec<f64>,
+    /// One column per channel.
+    pub columns: Vec<Vec<f64>>,
+}
+
+impl Trace {
+    /// An empty trace with room for `rows` rows, so recording never reallocates.
+    pub fn with_channels(channels: &[&'static Quantity], rows: usize) -> Self {
+        Self {
+            channels: channels.to_vec(),
+            time: Vec::with_capacity(rows),
+            columns: channels.iter().map(|_| Vec::with_capacity(rows)).collect(),
+        }
+    }
+
+    /// Append one row; `values` in channel order.
+    pub fn push(&mut self, t: f64, values: &[f64]) {
+        debug_assert_eq!(values.len(), self.columns.len());
+        self.time.push(t);
+        for (col, v) in self.columns.iter_mut().zip(values) {
+            col.push(*v);
+        }
+    }
+
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    /// Whether the trace has no rows.
+    pub fn is_empty(&self) -> bool {
+        self.time.is_empty()
+    }
+
+    /// The column of a quantity, by key.
+    pub fn column(&self, key: &str) -> Option<&[f64]> {
+        self.channels
+            .iter()
+            .position(|c| c.key == key)
+            .map(|i| self.columns[i].as_slice())
+    }
+
+    /// Whether the trace has a channel.
+    pub fn has(&self, key: &str) -> bool {
+        self.channels.iter().any(|c| c.key == key)
+    }
+
+    /// Value of a channel at time `t`, linearly interpolated (clamped at the ends).
+    pub fn sample(&self, key: &str, t: f64) -> Option<f64> {
+        let col = self.column(key)?;
+        let n = self.time.len();
+        if n == 0 {
+            return None;
+        }
+        let i = self.time.partition_point(|&x| x <= t);
+        Some(match i {
+            0 => col[0],
+            i if i >= n => col[n - 1],
+            i => {
+                let (t0, t1) = (self.time[i - 1], self.time[i]);
+                let f = if t1 > t0 { (t - t0) / (t1 - t0) } else { 0.0 };
+                col[i - 1] + f * (col[i] - col[i - 1])
+            }
+        })
+    }
+
+    /// Last row's time, s (0 when empty).
+    pub fn end_time(&self) -> f64 {
+        self.time.last().copied().unwrap_or(0.0)
+    }
+}

@@ -1,0 +1,215 @@
+//! The catalogue of recorded quantities: one key, label, SI unit and display unit each,
+//! shared by every engine so that columns mean the same thing whoever wrote them.
+
+/// A recorded quantity.
+#[derive(Debug, PartialEq)]
+pub struct Quantity {
+    /// Column key (`rel_disp`), stable: used in CSV headers, MCAP fields and tolerances.
+    pub key: &'static str,
+    /// Human label.
+    pub label: &'static str,
+    /// SI unit.
+    pub unit: &'static str,
+    /// The paper's display unit and the factor from SI to it.
+    pub display: (&'static str, f64),
+    /// One sentence on what it is and its sign convention.
+    pub doc: &'static str,
+}
+
+/// The quantities, by name.
+pub mod q {
+    use super::Quantity;
+
+    macro_rules! quantity {
+        ($name:ident, $key:literal, $label:literal, $unit:literal, $dunit:literal, $f:expr, $doc:literal) => {
+            #[doc = $doc]
+            pub static $name: Quantity = Quantity {
+                key: $key,
+                label: $label,
+                unit: $unit,
+                display: ($dunit, $f),
+                doc: $doc,
+            };
+        };
+    }
+
+    quantity!(
+        FORCE,
+        "force",
+        "Applied force F",
+        "N",
+        "kN",
+        1e-3,
+        "Horizontal force on the mass: M·a(t), or −M·ag(t) in relative coordinates."
+    );
+    quantity!(
+        RESISTANCE,
+        "resistance",
+        "Resistance R",
+        "N",
+        "kN",
+        1e-3,
+        "Horizontal base reaction on the structure (sum over supports), positive resisting positive displacement."
+    );
+    quantity!(
+        REL_DISP,
+        "rel_disp",
+        "Relative displacement x",
+        "m",
+        "mm",
+        1e3,
+        "Horizontal displacement of the mass (or of base point O) relative to the ground."
+    );
+    quantity!(
+        SLIDE,
+        "slide",
+        "Sliding xp",
+        "m",
+        "mm",
+        1e3,
+        "Accumulated slip of the base on the ground (mean over supports for a rocking body)."
+    );
+    quantity!(
+        SLIDE_SPREAD,
+        "slide_spread",
+        "Sliding spread",
+        "m",
+        "mm",
+        1e3,
+        "Largest minus smallest accumulated slip over the supports."
+    );
+    quantity!(
+        VEL,
+        "vel",
+        "Relative velocity v",
+        "m/s",
+        "mm/s",
+        1e3,
+        "Horizontal velocity of the mass relative to the ground."
+    );
+    quantity!(
+        ACC,
+        "acc",
+        "Relative acceleration a",
+        "m/s²",
+        "m/s²",
+        1.0,
+        "Horizontal acceleration of the mass relative to the ground."
+    );
+    quantity!(
+        GROUND_DISP,
+        "ground_disp",
+        "Ground displacement xg",
+        "m",
+        "mm",
+        1e3,
+        "Horizontal displacement of the ground."
+    );
+    quantity!(
+        CM_X,
+        "cm_x",
+        "Centre of mass, horizontal",
+        "m",
+        "mm",
+        1e3,
+        "Horizontal displacement of the centre of mass relative to the ground."
+    );
+    quantity!(
+        CM_Z,
+        "cm_z",
+        "Centre of mass, vertical",
+        "m",
+        "mm",
+        1e3,
+        "Vertical displacement of the centre of mass from its static position (up positive)."
+    );
+    quantity!(
+        ROTATION,
+        "rotation",
+        "Base rotation",
+        "rad",
+        "mrad",
+        1e3,
+        "Rotation of the base about the horizontal axis normal to the motion (counter-clockwise positive)."
+    );
+    quantity!(
+        UPLIFT,
+        "uplift",
+        "Peak support uplift",
+        "m",
+        "mm",
+        1e3,
+        "Largest gap opened between a support and the ground."
+    );
+    quantity!(
+        CONTACTS,
+        "contacts",
+        "Supports in contact",
+        "",
+        "",
+        1.0,
+        "Number of supports in compression."
+    );
+    quantity!(
+        BASE_SHEAR,
+        "base_shear",
+        "Base shear",
+        "N",
+        "kN",
+        1e-3,
+        "Sum of the tangential support forces on the structure."
+    );
+    quantity!(
+        NORMAL,
+        "normal",
+        "Normal force",
+        "N",
+        "kN",
+        1e-3,
+        "Sum of the normal support forces on the structure."
+    );
+    quantity!(
+        PC_CHANGE,
+        "pc_change",
+        "Eq. 9 change",
+        "",
+        "%",
+        100.0,
+        "Paper Eq. 9: (x_correct − x_predict)/x_correct of the step."
+    );
+    quantity!(
+        ENERGY_ERROR,
+        "energy_error",
+        "Energy balance error",
+        "J",
+        "kJ",
+        1e-3,
+        "Input work minus (kinetic + strain + friction + damping) energy."
+    );
+
+    /// Every quantity, for lookups by key.
+    pub static ALL: &[&Quantity] = &[
+        &FORCE,
+        &RESISTANCE,
+        &REL_DISP,
+        &SLIDE,
+        &SLIDE_SPREAD,
+        &VEL,
+        &ACC,
+        &GROUND_DISP,
+        &CM_X,
+        &CM_Z,
+        &ROTATION,
+        &UPLIFT,
+        &CONTACTS,
+        &BASE_SHEAR,
+        &NORMAL,
+        &PC_CHANGE,
+        &ENERGY_ERROR,
+    ];
+
+    /// The quantity with this key.
+    pub fn by_key(key: &str) -> Option<&'static Quantity> {
+        ALL.iter().copied().find(|q| q.key == key)
+    }
+}
