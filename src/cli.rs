@@ -41,6 +41,17 @@ pub enum Command {
         /// Case files or folders (default: `cases/`).
         cases: Vec<PathBuf>,
     },
+    /// Write a case's reference solution (exact or closed form) as a CSV trace.
+    Reference {
+        /// The case file.
+        case: PathBuf,
+        /// Sampling interval, s.
+        #[arg(long, default_value_t = 0.001)]
+        dt: f64,
+        /// Output CSV file.
+        #[arg(long, short)]
+        out: PathBuf,
+    },
     /// Run cases and gate on their tolerances: exit 1 if any gated check fails.
     Check {
         /// Case files or folders (default: `cases/`).
@@ -58,6 +69,7 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Run { cases, out }) => run(&cases, &out, cli.quiet, false),
         Some(Command::Check { cases, out }) => run(&cases, &out, cli.quiet, true),
         Some(Command::List { cases }) => list(&cases),
+        Some(Command::Reference { case, dt, out }) => write_reference(&case, dt, &out),
     };
     match result {
         Ok(code) => code,
@@ -195,5 +207,20 @@ fn list(args: &[PathBuf]) -> Result<ExitCode, Error> {
             Err(why) => println!("    {:<20} none — {why}", "reference"),
         }
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn write_reference(path: &Path, dt: f64, out: &Path) -> Result<ExitCode, Error> {
+    let case = load_case(path)?;
+    if !(dt > 0.0 && dt.is_finite()) {
+        return Err(Error::Other(format!("--dt must be positive, got {dt}")));
+    }
+    let solution = crate::reference::for_case(&case)
+        .map_err(|why| Error::Other(format!("{}: no reference: {why}", path.display())))?;
+    let n = crate::engine::step_count(case.run.duration, dt);
+    let times: Vec<f64> = (0..=n).map(|i| i as f64 * dt).collect();
+    let trace = crate::reference::sample(solution.as_ref(), &times);
+    crate::trace::write_csv(&trace, out)?;
+    println!("{}: {} → {}", case.name, solution.method(), out.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -144,7 +144,7 @@ pub fn responses(trace: &Trace) -> Responses {
 pub fn slip_window(time: &[f64], slide: &[f64]) -> Option<(f64, f64)> {
     let rate = |i: usize| ((slide[i] - slide[i - 1]) / (time[i] - time[i - 1])).abs();
     let peak = (1..slide.len()).map(rate).fold(0.0_f64, f64::max);
-    if !(peak > 0.0) {
+    if peak.is_nan() || peak <= 0.0 {
         return None;
     }
     let threshold = 1e-3 * peak;

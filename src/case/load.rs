@@ -82,7 +82,15 @@ pub fn discover(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
 
 fn syntax_error(path: &Path, text: &str, e: &toml::de::Error) -> InputErrors {
     let message = e.message().trim().to_string();
-    let field = field_from_message(&message);
+    let mut field = field_from_message(&message);
+    if let Some(span) = e.span() {
+        let table = Locator::new(path, text).table_at(span.start);
+        if !table.is_empty() && !field.is_empty() && !field.starts_with(&table) {
+            field = format!("{table}.{field}");
+        } else if field.is_empty() {
+            field = table;
+        }
+    }
     let mut err = InputError::new(path, field, message);
     if let Some(span) = e.span() {
         let (l, c) = line_col(text, span.start);
@@ -539,7 +547,7 @@ impl Rule {
         let body = match (self.lo, self.hi.is_infinite()) {
             (lo, true) if lo == f64::NEG_INFINITY => "a finite number".to_string(),
             (lo, true) if lo == 0.0 && self.lo_open => "positive and finite".to_string(),
-            (lo, true) if lo == 0.0 => {
+            (0.0, true) => {
                 if self.allow_inf {
                     "zero or positive (`inf` for no slip)".to_string()
                 } else {

@@ -42,6 +42,21 @@ impl Locator {
         }
     }
 
+    /// Dotted path of the deepest table whose span contains byte `offset` (for naming
+    /// the table of a parser error such as a missing field).
+    pub fn table_at(&self, offset: usize) -> String {
+        let (root, _) = DeTable::parse_recoverable(&self.text);
+        let mut tables = Vec::new();
+        collect_tables(root.get_ref(), "", &mut tables);
+        // the table whose header is the last one before `offset` and whose extent holds it
+        tables
+            .into_iter()
+            .filter(|(_, lo, hi)| *lo <= offset && offset < *hi)
+            .max_by_key(|(_, lo, _)| *lo)
+            .map(|(path, _, _)| path)
+            .unwrap_or_default()
+    }
+
     /// Byte offset of the value at `field`, or of its deepest existing ancestor.
     fn offset_of(&self, field: &str) -> Option<usize> {
         let root = DeTable::parse(&self.text).ok()?;
@@ -68,6 +83,39 @@ impl Locator {
         }
         best
     }
+}
+
+/// Every table under `table` as (dotted path, start of its header or first key, end of
+/// its last value).
+fn collect_tables(table: &DeTable, prefix: &str, out: &mut Vec<(String, usize, usize)>) -> usize {
+    let mut hi = 0;
+    for (k, v) in table.iter() {
+        let path = if prefix.is_empty() {
+            k.get_ref().to_string()
+        } else {
+            format!("{prefix}.{}", k.get_ref())
+        };
+        hi = hi.max(v.span().end);
+        match v.get_ref() {
+            DeValue::Table(t) => {
+                let end = collect_tables(t, &path, out).max(v.span().end);
+                out.push((path, v.span().start, end));
+                hi = hi.max(end);
+            }
+            DeValue::Array(items) => {
+                for (i, item) in items.iter().enumerate() {
+                    if let DeValue::Table(t) = item.get_ref() {
+                        let p = format!("{path}[{i}]");
+                        let end = collect_tables(t, &p, out).max(item.span().end);
+                        out.push((p, item.span().start, end));
+                        hi = hi.max(end);
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    hi
 }
 
 /// `a.b[2].c` → [("a", None), ("b", Some(2)), ("c", None)].

@@ -62,6 +62,7 @@ pub struct RawDouble {
 
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
+#[allow(dead_code)] // record fields: read once recorded motions are supported
 pub struct RawExcitation {
     pub kind: String,
     pub shape: Option<String>,

@@ -24,6 +24,9 @@ pub mod variant {
     /// Support displacement by the paper's Eq 12: effective ground displacement
     /// xg − xp, differentiated twice by finite differences.
     pub const EQ12: &str = "eq12";
+    /// Eq 12 with the slip counted once (only through xg-eff, the resistance curve not
+    /// shifted): what the paper's spreadsheet most plausibly did.
+    pub const EQ12_SLIP_ONCE: &str = "eq12-slip-once";
     /// Support motion as ground acceleration in relative coordinates (ground-velocity
     /// jumps applied as impulses): the consistent route.
     pub const GROUND_ACCEL: &str = "ground-accel";
@@ -50,7 +53,11 @@ impl Engine for PredictorCorrector {
         }
         Ok(match scene.excitation {
             Excitation::None | Excitation::MassAcceleration(_) => vec![variant::PAPER],
-            Excitation::GroundDisplacement(_) => vec![variant::EQ12, variant::GROUND_ACCEL],
+            Excitation::GroundDisplacement(_) => vec![
+                variant::EQ12,
+                variant::EQ12_SLIP_ONCE,
+                variant::GROUND_ACCEL,
+            ],
             Excitation::GroundAcceleration(_) => vec![variant::GROUND_ACCEL],
         })
     }
@@ -63,6 +70,7 @@ impl Engine for PredictorCorrector {
         };
         let route = match variant {
             variant::EQ12 => GroundRoute::Eq12,
+            variant::EQ12_SLIP_ONCE => GroundRoute::Eq12SlipOnce,
             _ => GroundRoute::GroundAcceleration,
         };
         let settings = PcSettings {

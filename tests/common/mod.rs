@@ -1,0 +1,29 @@
+//! Helpers shared by the integration tests.
+#![allow(dead_code)]
+
+use std::path::{Path, PathBuf};
+
+use rockslide::case::{Case, load_case, parse_case};
+
+/// Path of a file in the repository.
+pub fn repo(rel: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join(rel)
+}
+
+/// Load a shipped case.
+pub fn case(name: &str) -> Case {
+    load_case(&repo(&format!("cases/{name}.toml"))).expect("shipped case loads")
+}
+
+/// A shipped case with text replaced (`from` must occur).
+pub fn case_with(name: &str, from: &str, to: &str) -> Case {
+    let path = repo(&format!("cases/{name}.toml"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert!(text.contains(from), "{from:?} not in {name}");
+    parse_case(&path, &text.replace(from, to)).expect("modified case loads")
+}
+
+/// Observed order of accuracy between two errors at steps dt1 > dt2.
+pub fn order(e1: f64, e2: f64, dt1: f64, dt2: f64) -> f64 {
+    (e1 / e2).ln() / (dt1 / dt2).ln()
+}
