@@ -247,7 +247,10 @@ fn case_errors_name_the_record_file_and_line() {
     )
     .unwrap_err();
     let msg = e.to_string();
-    assert!(msg.contains("excitation.record_unit: is \"furlong\""), "{msg}");
+    assert!(
+        msg.contains("excitation.record_unit: is \"furlong\""),
+        "{msg}"
+    );
     // Sine-pulse fields alongside a record are rejected.
     let e = parse_case(
         &case_path,
@@ -267,6 +270,9 @@ fn shipped_record_cases_load() {
         let case = load_case(&records_dir().join(name)).unwrap();
         let s = case.scene.excitation.signal().unwrap();
         assert_eq!(s.peak(), 0.980665, "{name}");
-        assert!(case.run.duration > s.end(), "{name}: runs past the record's end");
+        assert!(
+            case.run.duration > s.end(),
+            "{name}: runs past the record's end"
+        );
     }
 }

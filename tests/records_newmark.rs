@@ -78,13 +78,23 @@ fn both_polarities_and_two_way_sliding() {
     assert!(s.normal > 0.0 && s.inverse > 0.0);
     // The inverted record's + pulse starts from rest at 2T·… and sees A for T then 0:
     // it is the rectangle case (to the sampling ramp, 2.5e-3 relative at dt = 1 ms, measured).
-    assert!((s.inverse - 0.06 * G).abs() / (0.06 * G) < 2.6e-3, "{}", s.inverse);
+    assert!(
+        (s.inverse - 0.06 * G).abs() / (0.06 * G) < 2.6e-3,
+        "{}",
+        s.inverse
+    );
     let table = s.table("square");
     assert!(table.contains("| normal |") && table.contains("| inverse |"));
-    assert!(table.contains(&format!("{:.3}", s.inverse * 100.0)), "cm column");
+    assert!(
+        table.contains(&format!("{:.3}", s.inverse * 100.0)),
+        "cm column"
+    );
     // Two-way on the normal record: slides + then − (the negative half exceeds ky the
     // other way once the block has stopped).
     let r = rigid_block(dt, &acc, ky, Sliding::TwoWay, 2.0);
     assert!(r.episodes >= 2, "{}", r.episodes);
-    assert!(r.residual() < s.normal, "two-way gives back some of the slide");
+    assert!(
+        r.residual() < s.normal,
+        "two-way gives back some of the slide"
+    );
 }
