@@ -4,6 +4,7 @@
 //! - rockslide shall reject every malformed record (wrong NPTS, non-numeric values, NaN,
 //!   non-increasing time, no samples) with a message naming the file and the line;
 //! - scaling to a stated PGA shall be exact.
+//!
 //! Source of the shipped records: cases/records/SOURCES.md.
 
 use std::path::{Path, PathBuf};

@@ -4,6 +4,7 @@
 //! - a study split with `--shard K/N` and merged shall give the same summary, byte for
 //!   byte, as the study run in one go;
 //! - a changed grid point (different hash) shall be rerun, a missing shard reported.
+//!
 //! Model: the paper's PEPO (cases/records/pepo-northridge.toml) under the Northridge record.
 
 use std::path::{Path, PathBuf};

@@ -305,7 +305,7 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
             format!("NPTS is {npts}, but must be a whole number of at least 1"),
         ));
     }
-    if !(dt > 0.0) {
+    if dt.is_nan() || dt <= 0.0 {
         return Err(at(
             path,
             4,

@@ -349,7 +349,7 @@ impl Grid {
 
     /// The friction coefficient a point runs with.
     pub fn mu(&self, p: &GridPoint) -> f64 {
-        p.mu.unwrap_or_else(|| match &self.base.scene.model {
+        p.mu.unwrap_or(match &self.base.scene.model {
             crate::case::Model::Oscillator(o) => o.contact.mu,
             crate::case::Model::RockingBody(r) => r.contact.mu,
             crate::case::Model::RigidBlock(b) => b.mu,
