@@ -60,6 +60,55 @@ pub enum Command {
         #[arg(long, short, default_value = "reports")]
         out: PathBuf,
     },
+    // --- records and studies (src/study; docs/records-and-studies.md) ---
+    /// Run a study grid: one model under many records / PGAs / μ / polarities, resumable.
+    Study {
+        /// The grid file (TOML).
+        grid: PathBuf,
+        /// Output folder (result files in `<out>/runs/`, summary beside them).
+        #[arg(long, short, default_value = "reports/study")]
+        out: PathBuf,
+        /// Run only shard K of N (0-based, e.g. `--shard $SLURM_ARRAY_TASK_ID/8`).
+        #[arg(long)]
+        shard: Option<String>,
+        /// Do not run: merge the results found in `--from` folders into `--out` (as study-merge).
+        #[arg(long)]
+        merge: bool,
+        /// With --merge: folders holding other shards' results.
+        #[arg(long)]
+        from: Vec<PathBuf>,
+    },
+    /// Merge the shards of a study into one summary.
+    StudyMerge {
+        /// The grid file the shards ran.
+        grid: PathBuf,
+        /// Output folder for the merged results and summary.
+        #[arg(long, short, default_value = "reports/study")]
+        out: PathBuf,
+        /// Folders holding shards' results (each with a `runs/` folder); `--out` is always searched.
+        #[arg(long)]
+        from: Vec<PathBuf>,
+    },
+    /// Newmark rigid-block sliding on a record, both polarities, in cm and m (SLAMMER style).
+    Newmark {
+        /// The record (.AT2 or two-column CSV).
+        record: PathBuf,
+        /// Yield acceleration(s), g.
+        #[arg(long, required = true, num_args = 1..)]
+        ky: Vec<f64>,
+        /// Unit of a CSV record: g, m/s2 or cm/s2.
+        #[arg(long)]
+        unit: Option<String>,
+        /// Scale the record to this PGA first, g.
+        #[arg(long)]
+        pga: Option<f64>,
+        /// Slide both ways (block on a level frictional base) instead of one way.
+        #[arg(long)]
+        two_way: bool,
+        /// Also write the table as CSV.
+        #[arg(long)]
+        csv: Option<PathBuf>,
+    },
 }
 
 /// Run the command line; returns the process exit code.
@@ -70,6 +119,31 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Check { cases, out }) => run(&cases, &out, cli.quiet, true),
         Some(Command::List { cases }) => list(&cases),
         Some(Command::Reference { case, dt, out }) => write_reference(&case, dt, &out),
+        Some(Command::Study {
+            grid,
+            out,
+            shard,
+            merge,
+            from,
+        }) => crate::study::cli_study(&grid, &out, shard.as_deref(), merge, &from, cli.quiet),
+        Some(Command::StudyMerge { grid, out, from }) => {
+            crate::study::cli_study(&grid, &out, None, true, &from, cli.quiet)
+        }
+        Some(Command::Newmark {
+            record,
+            ky,
+            unit,
+            pga,
+            two_way,
+            csv,
+        }) => crate::study::cli_newmark(crate::study::NewmarkArgs {
+            record,
+            ky,
+            unit,
+            pga,
+            two_way,
+            csv,
+        }),
     };
     match result {
         Ok(code) => code,

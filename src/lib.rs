@@ -14,7 +14,7 @@
 //! - [`reference`]: exact and closed-form solutions, sharing nothing with the engines.
 //! - [`trace`]: the output format (channels with units) and its CSV writer.
 //! - [`analysis`]: response quantities, discrepancies, tolerance checks.
-//! - [`suite`]: running a case; [`report`]: Markdown reports; [`cli`]: the commands.
+//! - [`study`]: many-run studies over records, PGAs and μ (sharded, resumable); [`suite`]: running a case; [`report`]: Markdown reports; [`cli`]: the commands.
 //!
 //! ## Glossary (paper symbols)
 //!
@@ -42,5 +42,6 @@ pub mod error;
 pub mod io;
 pub mod reference;
 pub mod report;
+pub mod study;
 pub mod suite;
 pub mod trace;

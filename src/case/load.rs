@@ -11,6 +11,7 @@ use super::locate::Locator;
 use super::raw::{
     RawCase, RawContact, RawDouble, RawEngine, RawExcitation, RawModel, RawTolerance,
 };
+use super::record::{AccelUnit, STANDARD_GRAVITY, read_record};
 use super::scene::*;
 use super::signal::Signal;
 use crate::error::{InputError, InputErrors, line_col};
@@ -290,11 +291,17 @@ impl Validator<'_> {
     }
 
     fn excitation(&mut self, e: &RawExcitation, case_path: &Path) -> Option<Excitation> {
-        let _ = case_path;
         if e.kind == "none" {
             return Some(Excitation::None);
         }
-        let signal = self.signal(e)?;
+        let signal = self.signal(e, case_path)?;
+        if e.record.is_some() && e.kind == "ground-displacement" {
+            self.fail(
+                "excitation.kind",
+                "a record is an acceleration history: use kind = \"ground-acceleration\" (or \"mass-acceleration\")",
+            );
+            return None;
+        }
         match e.kind.as_str() {
             "mass-acceleration" => Some(Excitation::MassAcceleration(signal)),
             "ground-displacement" => {
@@ -319,13 +326,18 @@ impl Validator<'_> {
         }
     }
 
-    fn signal(&mut self, e: &RawExcitation) -> Option<Signal> {
-        if e.record.is_some() {
-            self.fail(
-                "excitation.record",
-                "recorded ground motions are not supported by this build",
-            );
-            return None;
+    fn signal(&mut self, e: &RawExcitation, case_path: &Path) -> Option<Signal> {
+        if let Some(record) = &e.record {
+            return self.record_signal(e, record, case_path);
+        }
+        for (f, p) in [
+            ("excitation.record_unit", e.record_unit.is_some()),
+            ("excitation.scale_to_pga", e.scale_to_pga.is_some()),
+            ("excitation.polarity", e.polarity.is_some()),
+        ] {
+            if p {
+                self.fail(f, "applies only to a recorded excitation (`record`)");
+            }
         }
         match e.shape.as_deref() {
             Some("sine-pulse") => {
@@ -353,6 +365,117 @@ impl Validator<'_> {
                 None
             }
         }
+    }
+
+    /// The `record` branch: read the file (relative to the case file), convert to m/s²,
+    /// scale to the stated PGA and polarity. See [`super::record`] for the conventions.
+    fn record_signal(
+        &mut self,
+        e: &RawExcitation,
+        record: &str,
+        case_path: &Path,
+    ) -> Option<Signal> {
+        for (f, p) in [
+            ("excitation.shape", e.shape.is_some()),
+            ("excitation.amplitude", e.amplitude.is_some()),
+            ("excitation.omega", e.omega.is_some()),
+            ("excitation.cycles", e.cycles.is_some()),
+        ] {
+            if p {
+                self.fail(
+                    f,
+                    "does not apply to a recorded excitation (`record` is given)",
+                );
+            }
+        }
+        let unit = match e.record_unit.as_deref() {
+            None => None,
+            Some(u) => match AccelUnit::parse(u) {
+                Some(u) => Some(u),
+                None => {
+                    self.fail(
+                        "excitation.record_unit",
+                        format!(
+                            "is \"{u}\", but must be one of {}",
+                            quoted(AccelUnit::NAMES)
+                        ),
+                    );
+                    return None;
+                }
+            },
+        };
+        let polarity = match e.polarity {
+            None => 1.0,
+            Some(p) if p == 1.0 || p == -1.0 => p,
+            Some(p) => {
+                self.fail(
+                    "excitation.polarity",
+                    format!("is {p}, but must be 1 (as recorded) or -1 (inverted)"),
+                );
+                1.0
+            }
+        };
+        let target = match e.scale_to_pga {
+            None => None,
+            x => Some(self.number("excitation.scale_to_pga", x, Rule::positive("m/s²"))),
+        };
+        let dir = case_path.parent().unwrap_or(Path::new(""));
+        let path = dir.join(record);
+        let mut rec = match read_record(&path, unit) {
+            Ok(r) => r,
+            Err(errs) => {
+                // The record's own errors, located in the record file, under the case field.
+                for mut err in errs.0 {
+                    if err.field.is_empty() {
+                        err.field = "excitation.record".into();
+                    }
+                    self.errors.push(err);
+                }
+                return None;
+            }
+        };
+        let pga = rec.pga();
+        if pga == 0.0 {
+            self.fail(
+                "excitation.record",
+                format!("{}: every sample is zero", path.display()),
+            );
+            return None;
+        }
+        let scaling = match target {
+            Some(t) if t.is_finite() && t > 0.0 => {
+                let f = rec.scale_to_pga(t, polarity);
+                format!(
+                    ", scaled ×{f:.6} to PGA {t} m/s² ({:.4} g)",
+                    t / STANDARD_GRAVITY
+                )
+            }
+            _ => {
+                rec.scale(polarity);
+                format!(
+                    ", PGA {pga:.4} m/s² ({:.4} g) as recorded",
+                    pga / STANDARD_GRAVITY
+                )
+            }
+        };
+        let name = Path::new(record)
+            .file_name()
+            .map_or_else(|| record.to_string(), |n| n.to_string_lossy().into_owned());
+        let mut label = format!(
+            "{name}: {} samples × {} s in {}{scaling}, polarity {:+}",
+            rec.samples.len(),
+            rec.dt,
+            rec.unit.name(),
+            polarity
+        );
+        if !rec.note.is_empty() {
+            label.push_str(&format!(" ({})", rec.note));
+        }
+        Some(Signal::Record {
+            dt: rec.dt,
+            samples: rec.samples.into(),
+            label,
+        })
     }
 
     fn run(&mut self, duration: f64, dt: f64) -> RunSettings {

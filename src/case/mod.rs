@@ -1,10 +1,12 @@
 //! Case files: the TOML a user writes (`raw`), the validated scene every engine reads
-//! (`scene`), the excitations that drive it (`signal`), and loading with located errors
+//! (`scene`), the excitations that drive it (`signal`), recorded ground motions
+//! (`record`), and loading with located errors
 //! (`load`). Engines never see TOML: they see [`Case`] and [`Scene`].
 
 mod load;
 mod locate;
 mod raw;
+pub mod record;
 mod scene;
 mod signal;
 

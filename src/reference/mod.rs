@@ -4,6 +4,7 @@
 
 mod duhamel;
 mod epo_exact;
+pub mod newmark_record;
 mod root;
 
 pub use duhamel::Duhamel;
