@@ -49,6 +49,11 @@ pub enum Command {
         #[arg(long, short, default_value = "reports")]
         out: PathBuf,
     },
+    /// Check an MCAP trace and print its channels, metadata and attachments.
+    TraceInfo {
+        /// The `.mcap` file (`reports/<case>/<case>.mcap`).
+        file: PathBuf,
+    },
 }
 
 /// Run the command line; returns the process exit code.
@@ -58,6 +63,10 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Run { cases, out }) => run(&cases, &out, cli.quiet, false),
         Some(Command::Check { cases, out }) => run(&cases, &out, cli.quiet, true),
         Some(Command::List { cases }) => list(&cases),
+        Some(Command::TraceInfo { file }) => crate::trace::mcap_info(&file).map(|s| {
+            print!("{s}");
+            ExitCode::SUCCESS
+        }),
     };
     match result {
         Ok(code) => code,
