@@ -32,7 +32,10 @@ fn assert_clear_error(out: &Output, file: &Path) {
     let err = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "stderr: {err}");
     assert!(!err.contains("panicked"), "{err}");
-    assert!(err.starts_with(&format!("error: {}", file.display())), "{err}");
+    assert!(
+        err.starts_with(&format!("error: {}", file.display())),
+        "{err}"
+    );
     assert_eq!(err.trim_end().lines().count(), 1, "one line: {err}");
     assert!(out.stdout.is_empty());
 }
@@ -42,7 +45,11 @@ fn trace_info_describes_a_good_file() {
     let tmp = tempfile::tempdir().unwrap();
     let file = good_file(tmp.path());
     let out = rockslide(&["trace-info", file.to_str().unwrap()]);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("/predictor-corrector/paper/state"), "{text}");
     assert!(text.contains("/reference/state"));

@@ -36,7 +36,11 @@ fn assert_traces_equal(csv: &Trace, mcap: &Trace, what: &str) {
     for i in 0..csv.len() {
         assert!(same(csv.time[i], mcap.time[i]), "{what}: time row {i}");
     }
-    for (c, (a, b)) in csv.channels.iter().zip(csv.columns.iter().zip(&mcap.columns)) {
+    for (c, (a, b)) in csv
+        .channels
+        .iter()
+        .zip(csv.columns.iter().zip(&mcap.columns))
+    {
         for i in 0..a.len() {
             assert!(
                 same(a[i], b[i]),
@@ -99,12 +103,17 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
 
     // Schemas: jsonschema, units per field, only the trace's fields.
     for c in m.channels.iter().filter(|c| c.schema == "rockslide.State") {
-        assert_eq!((c.schema_encoding.as_str(), c.message_encoding.as_str()), ("jsonschema", "json"));
+        assert_eq!(
+            (c.schema_encoding.as_str(), c.message_encoding.as_str()),
+            ("jsonschema", "json")
+        );
     }
     let bytes = std::fs::read(&path).unwrap();
     let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
     for ch in summary.channels.values() {
-        let Some(s) = &ch.schema else { panic!("{} has no schema", ch.topic) };
+        let Some(s) = &ch.schema else {
+            panic!("{} has no schema", ch.topic)
+        };
         let schema: Value = serde_json::from_slice(&s.data).unwrap();
         if s.name != "rockslide.State" {
             assert_eq!(s.name, "foxglove.Log");
@@ -116,13 +125,30 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
         for (k, p) in props.iter().filter(|(k, _)| *k != "time") {
             let qty = q::by_key(k).unwrap();
             assert_eq!(p["unit"], qty.unit, "{k}");
-            assert!(p["description"].as_str().unwrap().contains(&format!("[{}]", if qty.unit.is_empty() { "dimensionless" } else { qty.unit })));
+            assert!(p["description"].as_str().unwrap().contains(&format!(
+                "[{}]",
+                if qty.unit.is_empty() {
+                    "dimensionless"
+                } else {
+                    qty.unit
+                }
+            )));
         }
     }
     // Chunked, zstd, indexed, with statistics.
     assert!(!summary.chunk_indexes.is_empty());
-    assert!(summary.chunk_indexes.iter().all(|c| c.compression == "zstd"));
-    assert!(summary.chunk_indexes.iter().all(|c| !c.message_index_offsets.is_empty()));
+    assert!(
+        summary
+            .chunk_indexes
+            .iter()
+            .all(|c| c.compression == "zstd")
+    );
+    assert!(
+        summary
+            .chunk_indexes
+            .iter()
+            .all(|c| !c.message_index_offsets.is_empty())
+    );
     let stats = summary.stats.as_ref().unwrap();
     assert_eq!(stats.message_count, m.message_count);
     assert_eq!(stats.attachment_count, 1);
@@ -149,10 +175,16 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
             assert_eq!(&run[&format!("setting.{k}")], v);
         }
     }
-    assert_eq!(m.metadata["reference"]["solution"], reference.solution.name());
+    assert_eq!(
+        m.metadata["reference"]["solution"],
+        reference.solution.name()
+    );
     assert_eq!(m.attachments.len(), 1);
     let (name, media, data) = &m.attachments[0];
-    assert_eq!((name.as_str(), media.as_str()), ("pepo-ground-disp.toml", "application/toml"));
+    assert_eq!(
+        (name.as_str(), media.as_str()),
+        ("pepo-ground-disp.toml", "application/toml")
+    );
     assert_eq!(data, text.as_bytes());
     assert!(!m.metadata.contains_key("scene3d"));
 }
@@ -245,7 +277,11 @@ fn apply(tf: &Value, p: [f64; 3]) -> [f64; 3] {
     // v' = v + 2w(u×v) + 2u×(u×v), u = (x, y, z)
     let u = [x, y, z];
     let cross = |a: [f64; 3], b: [f64; 3]| {
-        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
     };
     let c1 = cross(u, p);
     let c2 = cross(u, c1);
@@ -262,25 +298,66 @@ fn rocking_body_pose_and_scene_follow_the_trace() {
     // (clockwise lifts the left edge), while the ground moves: rigid-body kinematics,
     // CM relative to the pivot (−b, h) rotated by θ.
     let (b, h, w) = (0.5, 0.625, 1.0e6 * 9.81);
-    let chans = [&q::REL_DISP, &q::GROUND_DISP, &q::CM_X, &q::CM_Z, &q::ROTATION, &q::BASE_SHEAR, &q::NORMAL];
+    let chans = [
+        &q::REL_DISP,
+        &q::GROUND_DISP,
+        &q::CM_X,
+        &q::CM_Z,
+        &q::ROTATION,
+        &q::BASE_SHEAR,
+        &q::NORMAL,
+    ];
     let mut trace = Trace::with_channels(&chans, 101);
     for i in 0..=100 {
         let t = i as f64 * 0.0005;
         let th = -0.05 * (40.0 * t).sin().abs();
-        let (cx, cz) = (b - b * th.cos() - h * th.sin(), -b * th.sin() + h * th.cos());
+        let (cx, cz) = (
+            b - b * th.cos() - h * th.sin(),
+            -b * th.sin() + h * th.cos(),
+        );
         let ox = cx + h * th.sin(); // base centre O
-        trace.push(t, &[ox, 0.001 * (31.4 * t).sin(), cx, cz - h, th, 0.2 * w * (9.0 * t).cos(), w]);
+        trace.push(
+            t,
+            &[
+                ox,
+                0.001 * (31.4 * t).sin(),
+                cx,
+                cz - h,
+                th,
+                0.2 * w * (9.0 * t).cos(),
+                w,
+            ],
+        );
     }
     let c = case(ROCKING_CASE, "rocking-3d");
-    let result = result_with(c, vec![run("fe", "exact", trace.clone(), RunStatus::Completed)]);
+    let result = result_with(
+        c,
+        vec![run("fe", "exact", trace.clone(), RunStatus::Completed)],
+    );
     let out = tempfile::tempdir().unwrap();
     let dir = write_case_outputs(&result, out.path()).unwrap();
     let path = dir.join("rocking-3d.mcap");
     let m = read_mcap(&path).unwrap();
     assert_traces_equal(&trace, m.state("/fe/exact/state").unwrap(), "rocking");
     let topics: Vec<&str> = m.channels.iter().map(|c| c.topic.as_str()).collect();
-    assert_eq!(topics, ["/fe/exact/state", "/fe/exact/scene", "/fe/exact/forces", "/fe/exact/transform", "/log"]);
-    let schema_of = |t: &str| m.channels.iter().find(|c| c.topic == t).unwrap().schema.clone();
+    assert_eq!(
+        topics,
+        [
+            "/fe/exact/state",
+            "/fe/exact/scene",
+            "/fe/exact/forces",
+            "/fe/exact/transform",
+            "/log"
+        ]
+    );
+    let schema_of = |t: &str| {
+        m.channels
+            .iter()
+            .find(|c| c.topic == t)
+            .unwrap()
+            .schema
+            .clone()
+    };
     assert_eq!(schema_of("/fe/exact/scene"), "foxglove.SceneUpdate");
     assert_eq!(schema_of("/fe/exact/forces"), "foxglove.SceneUpdate");
     assert_eq!(schema_of("/fe/exact/transform"), "foxglove.FrameTransform");
@@ -295,14 +372,29 @@ fn rocking_body_pose_and_scene_follow_the_trace() {
     let body = ents.iter().find(|e| e["id"] == "body").unwrap();
     assert_eq!(body["frame_id"], "fe/exact/body");
     let size = &body["cubes"][0]["size"];
-    assert_eq!((size["x"].as_f64(), size["z"].as_f64()), (Some(2.0 * b), Some(2.0 * h)));
+    assert_eq!(
+        (size["x"].as_f64(), size["z"].as_f64()),
+        (Some(2.0 * b), Some(2.0 * h))
+    );
     assert_eq!(body["spheres"].as_array().unwrap().len(), 11);
-    assert!(ents.iter().any(|e| e["id"] == "datum" && e["frame_id"] == "world"));
+    assert!(
+        ents.iter()
+            .any(|e| e["id"] == "datum" && e["frame_id"] == "world")
+    );
 
     // Transforms: every row (0.5 ms < 1 ms period → every other row, plus the last).
-    let tfs: Vec<_> = msgs.iter().filter(|m| m.0 == "/fe/exact/transform").collect();
-    let bodies: Vec<_> = tfs.iter().filter(|m| m.3["child_frame_id"] == "fe/exact/body").collect();
-    let grounds: Vec<_> = tfs.iter().filter(|m| m.3["child_frame_id"] == "fe/exact/ground").collect();
+    let tfs: Vec<_> = msgs
+        .iter()
+        .filter(|m| m.0 == "/fe/exact/transform")
+        .collect();
+    let bodies: Vec<_> = tfs
+        .iter()
+        .filter(|m| m.3["child_frame_id"] == "fe/exact/body")
+        .collect();
+    let grounds: Vec<_> = tfs
+        .iter()
+        .filter(|m| m.3["child_frame_id"] == "fe/exact/ground")
+        .collect();
     assert_eq!(bodies.len(), 51);
     assert_eq!(grounds.len(), 51);
     for (bt, gt) in bodies.iter().zip(&grounds) {
@@ -310,17 +402,29 @@ fn rocking_body_pose_and_scene_follow_the_trace() {
         let i = (ns as f64 / 0.5e6).round() as usize;
         assert_eq!(bt.3["parent_frame_id"], "fe/exact/ground");
         assert_eq!(gt.3["parent_frame_id"], "world");
-        assert_eq!(gt.3["translation"]["x"].as_f64().unwrap(), trace.columns[1][i]);
+        assert_eq!(
+            gt.3["translation"]["x"].as_f64().unwrap(),
+            trace.columns[1][i]
+        );
         // The pivot corner (b, 0, −h) in the body frame stays at (b, 0, 0) on the ground;
         // the other corner is lifted by 2b·sin|θ|.
         let th = trace.columns[4][i];
         let pivot = apply(&bt.3, [b, 0.0, -h]);
         let other = apply(&bt.3, [-b, 0.0, -h]);
         // measured: |error| ≤ 2e-16 m (rounding of the quaternion products)
-        assert!((pivot[0] - b).abs() < 1e-12 && pivot[2].abs() < 1e-12, "pivot at {pivot:?}, θ = {th}");
-        assert!((other[2] - 2.0 * b * th.abs().sin()).abs() < 1e-12, "lifted corner {other:?}");
+        assert!(
+            (pivot[0] - b).abs() < 1e-12 && pivot[2].abs() < 1e-12,
+            "pivot at {pivot:?}, θ = {th}"
+        );
+        assert!(
+            (other[2] - 2.0 * b * th.abs().sin()).abs() < 1e-12,
+            "lifted corner {other:?}"
+        );
         let stamp = &bt.3["timestamp"];
-        assert_eq!(stamp["sec"].as_u64().unwrap() * 1_000_000_000 + stamp["nsec"].as_u64().unwrap(), ns);
+        assert_eq!(
+            stamp["sec"].as_u64().unwrap() * 1_000_000_000 + stamp["nsec"].as_u64().unwrap(),
+            ns
+        );
     }
     // Forces: the weight drawn as long as the CM is high, ending at O.
     let forces: Vec<_> = msgs.iter().filter(|m| m.0 == "/fe/exact/forces").collect();
@@ -328,10 +432,21 @@ fn rocking_body_pose_and_scene_follow_the_trace() {
     let arrows = forces[0].3["entities"][0]["arrows"].as_array().unwrap();
     assert_eq!(arrows.len(), 2);
     let len = |a: &Value| a["shaft_length"].as_f64().unwrap() + a["head_length"].as_f64().unwrap();
-    assert!((len(&arrows[0]) - h).abs() < 1e-12, "normal arrow length {}", len(&arrows[0]));
-    assert!((len(&arrows[1]) - 0.2 * h).abs() < 1e-12, "shear arrow length {}", len(&arrows[1]));
+    assert!(
+        (len(&arrows[0]) - h).abs() < 1e-12,
+        "normal arrow length {}",
+        len(&arrows[0])
+    );
+    assert!(
+        (len(&arrows[1]) - 0.2 * h).abs() < 1e-12,
+        "shear arrow length {}",
+        len(&arrows[1])
+    );
     let tail = &arrows[0]["pose"]["position"];
-    assert!((tail["z"].as_f64().unwrap() + h).abs() < 1e-12, "normal arrow ends at O");
+    assert!(
+        (tail["z"].as_f64().unwrap() + h).abs() < 1e-12,
+        "normal arrow ends at O"
+    );
     // The run's end in the log.
     let log: Vec<_> = msgs.iter().filter(|m| m.0 == "/log").collect();
     assert_eq!(log.len(), 1);
@@ -347,7 +462,15 @@ fn sliding_block_without_rotation_has_no_rotation_field() {
         trace.push(t, &[0.5 * 2.0 * t * t, 2.0 * t]);
     }
     let c = case(BLOCK_CASE, "block-3d");
-    let result = result_with(c, vec![run("rapier", "inertial", trace.clone(), RunStatus::Completed)]);
+    let result = result_with(
+        c,
+        vec![run(
+            "rapier",
+            "inertial",
+            trace.clone(),
+            RunStatus::Completed,
+        )],
+    );
     let out = tempfile::tempdir().unwrap();
     let dir = write_case_outputs(&result, out.path()).unwrap();
     let path = dir.join("block-3d.mcap");
@@ -355,20 +478,34 @@ fn sliding_block_without_rotation_has_no_rotation_field() {
     assert_traces_equal(&trace, m.state("/rapier/inertial/state").unwrap(), "block");
     let bytes = std::fs::read(&path).unwrap();
     let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
-    let state = summary.channels.values().find(|c| c.topic == "/rapier/inertial/state").unwrap();
+    let state = summary
+        .channels
+        .values()
+        .find(|c| c.topic == "/rapier/inertial/state")
+        .unwrap();
     let schema: Value = serde_json::from_slice(&state.schema.as_ref().unwrap().data).unwrap();
     let mut fields: Vec<&String> = schema["properties"].as_object().unwrap().keys().collect();
     fields.sort();
     assert_eq!(fields, ["cm_x", "time", "vel"]);
     // The body slides flat at the CM height: identity rotation, z = h.
     let msgs = messages(&path);
-    let last = msgs.iter().rev().find(|m| m.3["child_frame_id"] == "rapier/inertial/body").unwrap();
+    let last = msgs
+        .iter()
+        .rev()
+        .find(|m| m.3["child_frame_id"] == "rapier/inertial/body")
+        .unwrap();
     assert_eq!(last.2, 10_000_000);
     assert_eq!(last.3["rotation"]["w"], 1.0);
     assert_eq!(last.3["translation"]["z"], 0.8);
-    assert_eq!(last.3["translation"]["x"].as_f64().unwrap(), trace.columns[0][100]);
+    assert_eq!(
+        last.3["translation"]["x"].as_f64().unwrap(),
+        trace.columns[0][100]
+    );
     // No force channels in the trace: the forces entity has no arrows.
-    let f = msgs.iter().find(|m| m.0 == "/rapier/inertial/forces").unwrap();
+    let f = msgs
+        .iter()
+        .find(|m| m.0 == "/rapier/inertial/forces")
+        .unwrap();
     assert!(f.3["entities"][0]["arrows"].as_array().unwrap().is_empty());
 }
 
@@ -381,7 +518,10 @@ fn diverged_run_leaves_a_readable_file_with_the_reason() {
         trace.push(t, &[1e-3 * 10f64.powi(i), 0.01 * i as f64]);
     }
     trace.push(0.0035, &[f64::NAN, f64::INFINITY]);
-    let status = RunStatus::Diverged { time: 0.0035, reason: "NaN in the displacement".into() };
+    let status = RunStatus::Diverged {
+        time: 0.0035,
+        reason: "NaN in the displacement".into(),
+    };
     let ok = {
         let mut t = Trace::with_channels(&chans, 101);
         for i in 0..=100 {
@@ -411,10 +551,24 @@ fn diverged_run_leaves_a_readable_file_with_the_reason() {
     assert_eq!(m.metadata["run fe/small-rotation"]["status"], "completed");
     // The log says so at the stop time, as an error; the 3D view stops at the last finite row.
     let msgs = messages(&path);
-    let log: BTreeMap<u64, &Value> = msgs.iter().filter(|m| m.0 == "/log").map(|m| (m.2, &m.3)).collect();
+    let log: BTreeMap<u64, &Value> = msgs
+        .iter()
+        .filter(|m| m.0 == "/log")
+        .map(|m| (m.2, &m.3))
+        .collect();
     assert_eq!(log[&3_500_000]["level"], 4);
-    assert!(log[&3_500_000]["message"].as_str().unwrap().contains("NaN in the displacement"));
-    let last_tf = msgs.iter().filter(|m| m.0 == "/fe/exact/transform").map(|m| m.2).max().unwrap();
+    assert!(
+        log[&3_500_000]["message"]
+            .as_str()
+            .unwrap()
+            .contains("NaN in the displacement")
+    );
+    let last_tf = msgs
+        .iter()
+        .filter(|m| m.0 == "/fe/exact/transform")
+        .map(|m| m.2)
+        .max()
+        .unwrap();
     assert_eq!(last_tf, 3_000_000);
 }
 
@@ -427,7 +581,10 @@ fn same_case_gives_identical_bytes_apart_from_wall_time() {
     for i in 0..=10 {
         trace.push(i as f64 * 1e-3, &[0.1 * i as f64, 0.0]);
     }
-    let result = result_with(case(ROCKING_CASE, "det"), vec![run("fe", "exact", trace, RunStatus::Completed)]);
+    let result = result_with(
+        case(ROCKING_CASE, "det"),
+        vec![run("fe", "exact", trace, RunStatus::Completed)],
+    );
     let a = rockslide::trace::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
     let b = rockslide::trace::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
     assert_eq!(a, b);

@@ -69,8 +69,14 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
             "log_time",
             "simulation time in ns since t = 0 (publish time the same)".to_string(),
         ),
-        ("units", "SI; each state field's unit is in its schema".to_string()),
-        ("gate", if result.gate_passed() { "PASS" } else { "FAIL" }.to_string()),
+        (
+            "units",
+            "SI; each state field's unit is in its schema".to_string(),
+        ),
+        (
+            "gate",
+            if result.gate_passed() { "PASS" } else { "FAIL" }.to_string(),
+        ),
     ]);
     for (engine, why) in &result.not_applicable {
         head.insert(format!("not_applicable.{engine}"), why.clone());
@@ -150,15 +156,19 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
             ]),
         ));
     }
-    let file_name = c
-        .path
-        .file_name()
-        .map_or_else(|| format!("{}.toml", c.name), |f| f.to_string_lossy().into_owned());
+    let file_name = c.path.file_name().map_or_else(
+        || format!("{}.toml", c.name),
+        |f| f.to_string_lossy().into_owned(),
+    );
     TraceLog {
         runs,
         geometry,
         metadata,
-        attachments: vec![(file_name, "application/toml".to_string(), c.text.clone().into_bytes())],
+        attachments: vec![(
+            file_name,
+            "application/toml".to_string(),
+            c.text.clone().into_bytes(),
+        )],
     }
 }
 

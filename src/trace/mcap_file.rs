@@ -237,7 +237,11 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
     };
     let scene_schema = match &log.geometry {
         Some(_) => Some((
-            json_schema(&mut out, "foxglove.SceneUpdate", &scene3d::scene_update_schema())?,
+            json_schema(
+                &mut out,
+                "foxglove.SceneUpdate",
+                &scene3d::scene_update_schema(),
+            )?,
             json_schema(
                 &mut out,
                 "foxglove.FrameTransform",
@@ -282,7 +286,11 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
                         .add_channel(schema, &format!("/{}/{suffix}", run.label), "json", &none)
                         .map_err(mcap_error)
                 };
-                Some((ch(scene, "scene")?, ch(scene, "forces")?, ch(tf, "transform")?))
+                Some((
+                    ch(scene, "scene")?,
+                    ch(scene, "forces")?,
+                    ch(tf, "transform")?,
+                ))
             }
             _ => None,
         };
@@ -462,11 +470,9 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             messages: 0,
         });
     }
-    let stream = mcap::MessageStream::new_with_options(
-        bytes,
-        mcap::read::Options::ValidateChunkCrcs.into(),
-    )
-    .map_err(|e| damaged("header", &e))?;
+    let stream =
+        mcap::MessageStream::new_with_options(bytes, mcap::read::Options::ValidateChunkCrcs.into())
+            .map_err(|e| damaged("header", &e))?;
     let mut values = Vec::new();
     let (mut first, mut last) = (u64::MAX, 0u64);
     for m in stream {

@@ -158,7 +158,12 @@ fn color(c: [f64; 4]) -> Value {
 
 const IDENTITY: [f64; 4] = [0.0, 0.0, 0.0, 1.0];
 /// Arrow pointing +z (rotation −90° about +y maps +x to +z).
-const UP: [f64; 4] = [0.0, -std::f64::consts::FRAC_1_SQRT_2, 0.0, std::f64::consts::FRAC_1_SQRT_2];
+const UP: [f64; 4] = [
+    0.0,
+    -std::f64::consts::FRAC_1_SQRT_2,
+    0.0,
+    std::f64::consts::FRAC_1_SQRT_2,
+];
 /// Arrow pointing −x (180° about +z).
 const LEFT: [f64; 4] = [0.0, 0.0, 1.0, 0.0];
 
