@@ -165,8 +165,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let at = |list: &[(u64, Value)], ns: u64, child: Option<&str>| -> Value {
         list.iter()
-            .filter(|(t, v)| *t <= ns && child.is_none_or(|c| v["child_frame_id"] == c))
-            .next_back()
+            .rfind(|(t, v)| *t <= ns && child.is_none_or(|c| v["child_frame_id"] == c))
             .map(|(_, v)| v.clone())
             .unwrap()
     };
