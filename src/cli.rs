@@ -109,6 +109,11 @@ pub enum Command {
         #[arg(long)]
         csv: Option<PathBuf>,
     },
+    /// Check an MCAP trace and print its channels, metadata and attachments.
+    TraceInfo {
+        /// The `.mcap` file (`reports/<case>/<case>.mcap`).
+        file: PathBuf,
+    },
 }
 
 /// Run the command line; returns the process exit code.
@@ -143,6 +148,10 @@ pub fn main(cli: Cli) -> ExitCode {
             pga,
             two_way,
             csv,
+        }),
+        Some(Command::TraceInfo { file }) => crate::trace::mcap_info(&file).map(|s| {
+            print!("{s}");
+            ExitCode::SUCCESS
         }),
     };
     match result {

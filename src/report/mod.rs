@@ -1,9 +1,11 @@
 //! Reports: the paper-style tables of a case (Markdown), the suite summary, and writing
-//! every output of a case (traces, report) atomically under the output folder.
+//! every output of a case (CSV and MCAP traces, report) atomically under the output folder.
 
 mod markdown;
+mod mcap_log;
 
 pub use markdown::{case_markdown, suite_markdown};
+pub use mcap_log::{case_trace_log, git_commit, write_case_mcap};
 
 use std::path::{Path, PathBuf};
 
@@ -27,6 +29,7 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
             &dir.join(format!("reference-{}.csv", r.solution.name())),
         )?;
     }
+    write_case_mcap(result, &dir.join(format!("{}.mcap", result.case.name)))?;
     write_atomically(&dir.join("report.md"), case_markdown(result).as_bytes())?;
     Ok(dir)
 }

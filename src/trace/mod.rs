@@ -1,11 +1,18 @@
 //! Traces: the one output format every engine and reference writes. A trace is a table of
 //! time histories, one column per [`Quantity`] the scene has, in SI units; `csv` writes
-//! it for spreadsheet users.
+//! it for spreadsheet users; `mcap_file` logs every run of a case to one MCAP file for
+//! Foxglove, with a 3D view (`scene3d`) for scenes with geometry.
 
 mod csv_file;
+mod mcap_file;
 mod quantity;
+pub mod scene3d;
 
 pub use csv_file::{read_csv, write_csv};
+pub use mcap_file::{
+    LoggedRun, McapChannel, McapContents, SCENE_PERIOD_NS, STATE_SCHEMA, TraceLog, describe,
+    mcap_bytes, mcap_info, read_mcap, read_mcap_bytes, state_schema, write_mcap,
+};
 pub use quantity::{Quantity, q};
 
 /// Time histories of one run: `time` plus one column per channel, all the same length.

@@ -1,0 +1,580 @@
+//! MCAP traces: every run of a case in one MCAP file that Foxglove (or any MCAP reader)
+//! opens, plots and animates; and reading such a file back (`rockslide trace-info`, tests).
+//!
+//! Layout of a file (see docs/traces.md):
+//! - one channel per run, `/<label>/state` (`label` = `engine/variant` or `reference`),
+//!   schema `rockslide.State` (encoding `jsonschema`, each field's SI unit in `unit` and in
+//!   its description), messages `json`, one per trace row, with exactly the trace's fields;
+//! - for scenes with geometry: `/<label>/scene` and `/<label>/forces`
+//!   (`foxglove.SceneUpdate`) and `/<label>/transform` (`foxglove.FrameTransform`), see
+//!   [`super::scene3d`]; these are decimated to one message per [`SCENE_PERIOD_NS`];
+//! - `/log` (`foxglove.Log`): how each run ended, at the time it stopped;
+//! - metadata records (`rockslide`, `run <label>`, `reference`, `scene3d`) and attachments
+//!   (the case file).
+//!
+//! Message log time = publish time = simulation time in nanoseconds; messages of all
+//! channels are interleaved in time order so chunks are time-local. The file is written
+//! with `mcap::Writer`'s defaults (zstd chunks of 1 MiB, message, chunk, attachment and
+//! metadata indexes, statistics, summary, CRCs), in memory, then atomically renamed.
+//! Non-finite values (a diverged run's last row) are written as JSON `null` and read back
+//! as NaN: JSON has no NaN or infinity.
+
+use std::collections::BTreeMap;
+use std::fmt::Write as _;
+use std::io::Cursor;
+use std::path::Path;
+
+use mcap::records::{MessageHeader, Metadata};
+use mcap::{Attachment, Writer};
+use serde_json::{Value, json};
+
+use super::scene3d::{self, Geometry, Pose};
+use super::{Trace, q};
+use crate::error::{Error, InputError, InputErrors};
+use crate::io::write_atomically;
+
+/// Schema name of the per-run state channels.
+pub const STATE_SCHEMA: &str = "rockslide.State";
+/// Interval between 3D messages of a run, ns (1 ms of simulated time): enough for smooth
+/// playback, far fewer messages than steps.
+pub const SCENE_PERIOD_NS: u64 = 1_000_000;
+
+/// One run to log.
+#[derive(Debug, Clone)]
+pub struct LoggedRun<'a> {
+    /// `engine/variant` or `reference`: topics are `/<label>/state` etc.
+    pub label: String,
+    /// Its time histories.
+    pub trace: &'a Trace,
+    /// One-word status (`completed`, `diverged`, `not converged`).
+    pub status: String,
+    /// Time and reason when it stopped early.
+    pub stop: Option<(f64, String)>,
+    /// Its `run <label>` metadata record (settings, counters, ...).
+    pub metadata: BTreeMap<String, String>,
+}
+
+/// Everything one MCAP file holds.
+#[derive(Debug, Clone, Default)]
+pub struct TraceLog<'a> {
+    /// The runs, in channel order.
+    pub runs: Vec<LoggedRun<'a>>,
+    /// The scene's geometry, if it has one (then the 3D channels are written).
+    pub geometry: Option<Geometry>,
+    /// Metadata records, (name, key → value).
+    pub metadata: Vec<(String, BTreeMap<String, String>)>,
+    /// Attachments, (name, media type, bytes).
+    pub attachments: Vec<(String, String, Vec<u8>)>,
+}
+
+fn mcap_error(e: mcap::McapError) -> Error {
+    Error::Other(format!("writing MCAP: {e}"))
+}
+
+/// Write `log` to `path` atomically.
+pub fn write_mcap(log: &TraceLog, path: &Path) -> Result<(), Error> {
+    write_atomically(path, &mcap_bytes(log)?)
+}
+
+/// Log time of a simulation time, ns (non-finite or negative times clamp to `floor`).
+fn ns_of(t: f64, floor: u64) -> u64 {
+    if t.is_finite() && t >= 0.0 {
+        ((t * 1e9).round() as u64).max(floor)
+    } else {
+        floor
+    }
+}
+
+/// The JSON schema of a trace's state messages: exactly its fields, units included.
+pub fn state_schema(trace: &Trace) -> Value {
+    let mut props = serde_json::Map::new();
+    props.insert(
+        "time".into(),
+        json!({ "type": "number", "title": "Simulation time", "description": "Simulation time [s]", "unit": "s" }),
+    );
+    for c in &trace.channels {
+        let unit = if c.unit.is_empty() {
+            "dimensionless".to_string()
+        } else {
+            c.unit.to_string()
+        };
+        let display = if c.display.0.is_empty() || c.display.0 == c.unit {
+            String::new()
+        } else {
+            format!(" Display unit: {} (× {:e}).", c.display.0, c.display.1)
+        };
+        props.insert(
+            c.key.into(),
+            json!({
+                "type": ["number", "null"],
+                "title": c.label,
+                "description": format!("{} [{unit}].{display} null when not finite (NaN/Inf).", c.doc),
+                "unit": c.unit
+            }),
+        );
+    }
+    let required: Vec<&str> = std::iter::once("time")
+        .chain(trace.channels.iter().map(|c| c.key))
+        .collect();
+    json!({
+        "title": STATE_SCHEMA,
+        "description": "State of one run at one simulation instant, SI units (each field's `unit`). Message log time = simulation time in ns.",
+        "type": "object",
+        "properties": props,
+        "required": required,
+        "additionalProperties": false
+    })
+}
+
+/// Append `x` as JSON: shortest round-trip decimal, `null` when not finite.
+fn push_number(buf: &mut String, x: f64) {
+    if x.is_finite() {
+        let _ = write!(buf, "{x:?}");
+    } else {
+        buf.push_str("null");
+    }
+}
+
+/// The state message of row `i`, into `buf`.
+fn state_message(buf: &mut String, trace: &Trace, i: usize) {
+    buf.clear();
+    buf.push_str("{\"time\":");
+    push_number(buf, trace.time[i]);
+    for (c, col) in trace.channels.iter().zip(&trace.columns) {
+        buf.push_str(",\"");
+        buf.push_str(c.key); // keys are [a-z_]: no escaping needed
+        buf.push_str("\":");
+        push_number(buf, col[i]);
+    }
+    buf.push('}');
+}
+
+/// Channel ids of one run.
+struct RunChannels {
+    state: u16,
+    /// (scene, forces, transform) when the run is drawn in 3D.
+    view: Option<(u16, u16, u16)>,
+}
+
+/// A writer that numbers messages per channel.
+struct Out {
+    w: Writer<Cursor<Vec<u8>>>,
+    seq: BTreeMap<u16, u32>,
+}
+
+impl Out {
+    fn put(&mut self, channel_id: u16, ns: u64, data: &[u8]) -> Result<(), Error> {
+        let seq = self.seq.entry(channel_id).or_insert(0);
+        *seq += 1;
+        self.w
+            .write_to_known_channel(
+                &MessageHeader {
+                    channel_id,
+                    sequence: *seq,
+                    log_time: ns,
+                    publish_time: ns,
+                },
+                data,
+            )
+            .map_err(mcap_error)
+    }
+
+    fn put_json(&mut self, channel_id: u16, ns: u64, v: &Value) -> Result<(), Error> {
+        self.put(channel_id, ns, v.to_string().as_bytes())
+    }
+}
+
+/// The MCAP bytes of `log`.
+pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
+    let mut out = Out {
+        w: Writer::new(Cursor::new(Vec::new())).map_err(mcap_error)?,
+        seq: BTreeMap::new(),
+    };
+    for (name, media_type, data) in &log.attachments {
+        out.w
+            .attach(&Attachment {
+                log_time: 0,
+                create_time: 0,
+                name: name.clone(),
+                media_type: media_type.clone(),
+                data: data.as_slice().into(),
+            })
+            .map_err(mcap_error)?;
+    }
+    for (name, m) in &log.metadata {
+        out.w
+            .write_metadata(&Metadata {
+                name: name.clone(),
+                metadata: m.clone(),
+            })
+            .map_err(mcap_error)?;
+    }
+    let run_meta = |run: &LoggedRun, topic: &str| {
+        let mut m = run.metadata.clone();
+        m.insert("label".into(), run.label.clone());
+        m.insert("topic".into(), topic.into());
+        m.insert("status".into(), run.status.clone());
+        m.insert("rows".into(), run.trace.len().to_string());
+        m.insert("end_time_s".into(), format!("{:?}", run.trace.end_time()));
+        if let Some((t, reason)) = &run.stop {
+            m.insert("stop_time_s".into(), format!("{t:?}"));
+            m.insert("stop_reason".into(), reason.clone());
+        }
+        Metadata {
+            name: format!("run {}", run.label),
+            metadata: m,
+        }
+    };
+    for run in &log.runs {
+        let meta = run_meta(run, &format!("/{}/state", run.label));
+        out.w.write_metadata(&meta).map_err(mcap_error)?;
+    }
+
+    let json_schema = |out: &mut Out, name: &str, v: &Value| {
+        out.w
+            .add_schema(name, "jsonschema", v.to_string().as_bytes())
+            .map_err(mcap_error)
+    };
+    let scene_schema = match &log.geometry {
+        Some(_) => Some((
+            json_schema(
+                &mut out,
+                "foxglove.SceneUpdate",
+                &scene3d::scene_update_schema(),
+            )?,
+            json_schema(
+                &mut out,
+                "foxglove.FrameTransform",
+                &scene3d::frame_transform_schema(),
+            )?,
+        )),
+        None => None,
+    };
+    let log_schema = json_schema(&mut out, "foxglove.Log", &scene3d::log_schema())?;
+    let mut channels = Vec::with_capacity(log.runs.len());
+    for run in &log.runs {
+        let schema = json_schema(&mut out, STATE_SCHEMA, &state_schema(run.trace))?;
+        let mut meta = BTreeMap::new();
+        meta.insert("run".to_string(), run.label.clone());
+        meta.insert(
+            "fields".to_string(),
+            run.trace
+                .channels
+                .iter()
+                .map(|c| c.key)
+                .collect::<Vec<_>>()
+                .join(","),
+        );
+        meta.insert(
+            "units".to_string(),
+            run.trace
+                .channels
+                .iter()
+                .map(|c| c.unit)
+                .collect::<Vec<_>>()
+                .join(","),
+        );
+        let state = out
+            .w
+            .add_channel(schema, &format!("/{}/state", run.label), "json", &meta)
+            .map_err(mcap_error)?;
+        let view = match scene_schema {
+            Some((scene, tf)) if scene3d::drawable(run.trace) => {
+                let none = BTreeMap::new();
+                let mut ch = |schema: u16, suffix: &str| {
+                    out.w
+                        .add_channel(schema, &format!("/{}/{suffix}", run.label), "json", &none)
+                        .map_err(mcap_error)
+                };
+                Some((
+                    ch(scene, "scene")?,
+                    ch(scene, "forces")?,
+                    ch(tf, "transform")?,
+                ))
+            }
+            _ => None,
+        };
+        channels.push(RunChannels { state, view });
+    }
+    let log_channel = out
+        .w
+        .add_channel(log_schema, "/log", "json", &BTreeMap::new())
+        .map_err(mcap_error)?;
+
+    // Static scenes first, at t = 0.
+    if let Some(g) = &log.geometry {
+        let mut first = true;
+        for (lane, (run, ch)) in log.runs.iter().zip(&channels).enumerate() {
+            if let Some((scene, _, _)) = ch.view {
+                let mut s = scene3d::static_scene(g, lane, &run.label);
+                if first {
+                    if let Some(e) = s["entities"].as_array_mut() {
+                        e.push(scene3d::datum(g));
+                    }
+                    first = false;
+                }
+                out.put_json(scene, 0, &s)?;
+            }
+        }
+    }
+
+    // Interleave the runs' rows in time order (ties: run order).
+    let mut row = vec![0usize; log.runs.len()];
+    let mut last_ns = vec![0u64; log.runs.len()];
+    let mut next_view = vec![0u64; log.runs.len()];
+    let mut buf = String::with_capacity(512);
+    loop {
+        let next = (0..log.runs.len())
+            .filter(|&r| row[r] < log.runs[r].trace.len())
+            .min_by_key(|&r| ns_of(log.runs[r].trace.time[row[r]], last_ns[r]));
+        let Some(r) = next else { break };
+        let (run, ch, i) = (&log.runs[r], &channels[r], row[r]);
+        let ns = ns_of(run.trace.time[i], last_ns[r]);
+        last_ns[r] = ns;
+        state_message(&mut buf, run.trace, i);
+        out.put(ch.state, ns, buf.as_bytes())?;
+        let last_row = i + 1 == run.trace.len();
+        if let (Some((_, forces, tf)), Some(g)) = (ch.view, &log.geometry)
+            && (ns >= next_view[r] || last_row)
+            && let Some(p) = Pose::at(run.trace, i, g)
+        {
+            let lane_y = r as f64 * g.lane_spacing();
+            let ground = scene3d::ground_transform(ns, run.trace, i, lane_y, &run.label);
+            out.put_json(tf, ns, &ground)?;
+            out.put_json(tf, ns, &scene3d::body_transform(ns, &p, &run.label))?;
+            let f = scene3d::forces(run.trace, i, ns, g, &p, &run.label);
+            out.put_json(forces, ns, &f)?;
+            next_view[r] = ns + SCENE_PERIOD_NS;
+        }
+        if last_row {
+            let (level, text) = match &run.stop {
+                None => (2, format!("{}: {}", run.label, run.status)),
+                Some((t, reason)) => (
+                    4,
+                    format!("{}: {} at t = {t} s: {reason}", run.label, run.status),
+                ),
+            };
+            let at = run.stop.as_ref().map_or(ns, |(t, _)| ns_of(*t, ns));
+            out.put_json(log_channel, at, &scene3d::log(at, level, &run.label, &text))?;
+        }
+        row[r] += 1;
+    }
+    out.w.finish().map_err(mcap_error)?;
+    Ok(out.w.into_inner().into_inner())
+}
+
+/// One channel of an MCAP file, as read back.
+#[derive(Debug, Clone, PartialEq)]
+pub struct McapChannel {
+    /// Topic.
+    pub topic: String,
+    /// Schema name (empty: none).
+    pub schema: String,
+    /// Schema encoding.
+    pub schema_encoding: String,
+    /// Message encoding.
+    pub message_encoding: String,
+    /// Channel metadata.
+    pub metadata: BTreeMap<String, String>,
+    /// Number of messages read.
+    pub messages: u64,
+}
+
+/// An MCAP file read back and checked: channels, the state traces, metadata, attachments.
+#[derive(Debug, Clone, Default)]
+pub struct McapContents {
+    /// Number of messages read (checked against the summary's statistics).
+    pub message_count: u64,
+    /// First and last message log time, ns.
+    pub time_range: (u64, u64),
+    /// Every channel, by id order.
+    pub channels: Vec<McapChannel>,
+    /// The `rockslide.State` channels as traces, (topic, trace), in channel order.
+    pub states: Vec<(String, Trace)>,
+    /// Metadata records by name.
+    pub metadata: BTreeMap<String, BTreeMap<String, String>>,
+    /// Attachments: (name, media type, bytes).
+    pub attachments: Vec<(String, String, Vec<u8>)>,
+}
+
+impl McapContents {
+    /// The trace of a state topic (`/fe/double/state`).
+    pub fn state(&self, topic: &str) -> Option<&Trace> {
+        self.states.iter().find(|(t, _)| t == topic).map(|(_, t)| t)
+    }
+}
+
+/// Read and check an MCAP file: structure, CRCs, summary, every message's JSON; the
+/// state channels become traces. Any damage is one clear error naming the file.
+pub fn read_mcap(path: &Path) -> Result<McapContents, InputErrors> {
+    let bytes = std::fs::read(path)
+        .map_err(|e| InputError::new(path, "", format!("cannot read the MCAP file: {e}")))?;
+    read_mcap_bytes(path, &bytes)
+}
+
+/// [`read_mcap`] on bytes already in memory (`path` names them in messages).
+pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputErrors> {
+    let damaged = |what: &str, e: &dyn std::fmt::Display| {
+        InputError::new(
+            path,
+            "",
+            format!("not a readable MCAP file ({what}: {e}); it may be truncated or corrupt"),
+        )
+    };
+    let summary = mcap::read::Summary::read(bytes)
+        .map_err(|e| damaged("summary", &e))?
+        .ok_or_else(|| {
+            InputError::new(
+                path,
+                "",
+                "the MCAP file has no summary section (not written by rockslide, or cut short)",
+            )
+        })?;
+    let mut contents = McapContents::default();
+    let mut ids: Vec<u16> = summary.channels.keys().copied().collect();
+    ids.sort_unstable();
+    let mut index_of = BTreeMap::new();
+    let mut builders: BTreeMap<u16, (usize, Vec<&'static super::Quantity>)> = BTreeMap::new();
+    for id in ids {
+        let c = &summary.channels[&id];
+        let (schema, schema_encoding) = c
+            .schema
+            .as_ref()
+            .map_or((String::new(), String::new()), |s| {
+                (s.name.clone(), s.encoding.clone())
+            });
+        if schema == STATE_SCHEMA {
+            let fields = c.metadata.get("fields").map_or("", String::as_str);
+            let mut qs = Vec::new();
+            for key in fields.split(',').filter(|k| !k.is_empty()) {
+                qs.push(q::by_key(key).ok_or_else(|| {
+                    InputError::new(
+                        path,
+                        "",
+                        format!("channel {}: unknown quantity \"{key}\"", c.topic),
+                    )
+                })?);
+            }
+            builders.insert(id, (contents.states.len(), qs.clone()));
+            contents
+                .states
+                .push((c.topic.clone(), Trace::with_channels(&qs, 0)));
+        }
+        index_of.insert(id, contents.channels.len());
+        contents.channels.push(McapChannel {
+            topic: c.topic.clone(),
+            schema,
+            schema_encoding,
+            message_encoding: c.message_encoding.clone(),
+            metadata: c.metadata.clone(),
+            messages: 0,
+        });
+    }
+    let stream =
+        mcap::MessageStream::new_with_options(bytes, mcap::read::Options::ValidateChunkCrcs.into())
+            .map_err(|e| damaged("header", &e))?;
+    let mut values = Vec::new();
+    let (mut first, mut last) = (u64::MAX, 0u64);
+    for m in stream {
+        let m = m.map_err(|e| damaged("data", &e))?;
+        let id = m.channel.id;
+        let Some(&ci) = index_of.get(&id) else {
+            return Err(damaged("data", &format!("message on unknown channel {id}")).into());
+        };
+        contents.channels[ci].messages += 1;
+        contents.message_count += 1;
+        first = first.min(m.log_time);
+        last = last.max(m.log_time);
+        let bad = |e: &dyn std::fmt::Display| {
+            InputError::new(
+                path,
+                "",
+                format!(
+                    "channel {}, message {}: not valid JSON for its schema: {e}",
+                    m.channel.topic, m.sequence
+                ),
+            )
+        };
+        if let Some((si, qs)) = builders.get(&id) {
+            let obj: BTreeMap<String, Option<f64>> =
+                serde_json::from_slice(&m.data).map_err(|e| bad(&e))?;
+            let field = |k: &str| {
+                obj.get(k)
+                    .map(|v| v.unwrap_or(f64::NAN))
+                    .ok_or_else(|| bad(&format!("missing field \"{k}\"")))
+            };
+            let t = field("time")?;
+            values.clear();
+            for qty in qs {
+                values.push(field(qty.key)?);
+            }
+            contents.states[*si].1.push(t, &values);
+        } else if contents.channels[ci].message_encoding == "json" {
+            serde_json::from_slice::<serde::de::IgnoredAny>(&m.data).map_err(|e| bad(&e))?;
+        }
+    }
+    contents.time_range = if first <= last { (first, last) } else { (0, 0) };
+    if let Some(stats) = &summary.stats
+        && stats.message_count != contents.message_count
+    {
+        return Err(damaged(
+            "statistics",
+            &format!(
+                "{} messages read, {} in the summary",
+                contents.message_count, stats.message_count
+            ),
+        )
+        .into());
+    }
+    for idx in &summary.metadata_indexes {
+        let m = mcap::read::metadata(bytes, idx).map_err(|e| damaged("metadata", &e))?;
+        contents.metadata.insert(m.name, m.metadata);
+    }
+    for idx in &summary.attachment_indexes {
+        let a = mcap::read::attachment(bytes, idx).map_err(|e| damaged("attachment", &e))?;
+        contents
+            .attachments
+            .push((a.name, a.media_type, a.data.into_owned()));
+    }
+    Ok(contents)
+}
+
+/// A human summary of an MCAP file (`rockslide trace-info`): channels, time range,
+/// metadata, attachments.
+pub fn describe(contents: &McapContents) -> String {
+    let mut s = String::new();
+    let (t0, t1) = contents.time_range;
+    let _ = writeln!(
+        s,
+        "{} messages, simulation time {} s to {} s",
+        contents.message_count,
+        t0 as f64 * 1e-9,
+        t1 as f64 * 1e-9
+    );
+    let _ = writeln!(s, "channels:");
+    for c in &contents.channels {
+        let _ = writeln!(
+            s,
+            "  {:<44} {:<24} {:>8} msgs",
+            c.topic, c.schema, c.messages
+        );
+        if let Some(f) = c.metadata.get("fields") {
+            let _ = writeln!(s, "  {:<44} fields: time,{f}", "");
+        }
+    }
+    for (name, m) in &contents.metadata {
+        let _ = writeln!(s, "metadata \"{name}\":");
+        for (k, v) in m {
+            let _ = writeln!(s, "  {k} = {}", v.replace('\n', " "));
+        }
+    }
+    for (name, media, data) in &contents.attachments {
+        let _ = writeln!(s, "attachment {name} ({media}, {} bytes)", data.len());
+    }
+    s
+}
+
+/// Read an MCAP file and describe it (`rockslide trace-info`).
+pub fn mcap_info(path: &Path) -> Result<String, Error> {
+    Ok(describe(&read_mcap(path)?))
+}

@@ -1,0 +1,591 @@
+//! MCAP traces (issue 5; SPEC §3 "Traces").
+//!
+//! Requirements checked:
+//! - rockslide shall write one MCAP file per case run with one `json` channel per engine
+//!   run and for the reference, whose values read back equal the CSV trace bit for bit;
+//! - with JSON-schema encoding and each field's SI unit in the schema, log time =
+//!   simulation time in ns, zstd chunks, indexes and a summary;
+//! - only the fields the trace has (no rotation for a sliding-only oscillator, no 3D
+//!   channel for a scene without geometry);
+//! - for scenes with geometry, `foxglove.SceneUpdate`/`foxglove.FrameTransform` messages
+//!   whose transforms put the body where the trace says (checked against rigid-body
+//!   kinematics computed here, not by the writer's code);
+//! - the case file attached, engine settings, version and commit as metadata;
+//! - a diverged run still leaves a readable file with the reason recorded.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use rockslide::analysis::responses;
+use rockslide::case::{Case, load_case, parse_case};
+use rockslide::engine::{Run, RunStatus};
+use rockslide::report::write_case_outputs;
+use rockslide::suite::{CaseResult, run_case};
+use rockslide::trace::{Trace, q, read_csv, read_mcap};
+use serde_json::Value;
+
+/// Same f64, bit for bit; NaN and ±Inf are written as JSON null and read back as NaN.
+fn same(a: f64, b: f64) -> bool {
+    a.to_bits() == b.to_bits() || (!a.is_finite() && b.is_nan())
+}
+
+fn assert_traces_equal(csv: &Trace, mcap: &Trace, what: &str) {
+    let keys = |t: &Trace| t.channels.iter().map(|c| c.key).collect::<Vec<_>>();
+    assert_eq!(keys(csv), keys(mcap), "{what}: fields");
+    assert_eq!(csv.len(), mcap.len(), "{what}: rows");
+    for i in 0..csv.len() {
+        assert!(same(csv.time[i], mcap.time[i]), "{what}: time row {i}");
+    }
+    for (c, (a, b)) in csv
+        .channels
+        .iter()
+        .zip(csv.columns.iter().zip(&mcap.columns))
+    {
+        for i in 0..a.len() {
+            assert!(
+                same(a[i], b[i]),
+                "{what}: {} row {i}: csv {:e} mcap {:e}",
+                c.key,
+                a[i],
+                b[i]
+            );
+        }
+    }
+}
+
+/// Every message of a file: (topic, schema name, log time, JSON).
+fn messages(path: &Path) -> Vec<(String, String, u64, Value)> {
+    let bytes = std::fs::read(path).unwrap();
+    mcap::MessageStream::new(&bytes)
+        .unwrap()
+        .map(|m| {
+            let m = m.unwrap();
+            let schema = m.channel.schema.as_ref().unwrap().name.clone();
+            let v: Value = serde_json::from_slice(&m.data).unwrap();
+            (m.channel.topic.clone(), schema, m.log_time, v)
+        })
+        .collect()
+}
+
+#[test]
+fn pepo_case_mcap_reads_back_equal_to_csv() {
+    let case = load_case(Path::new("cases/pepo-ground-disp.toml")).unwrap();
+    let text = case.text.clone();
+    let result = run_case(case).unwrap();
+    let out = tempfile::tempdir().unwrap();
+    let dir = write_case_outputs(&result, out.path()).unwrap();
+    let path = dir.join("pepo-ground-disp.mcap");
+    let m = read_mcap(&path).unwrap();
+
+    // One state channel per run plus the reference, and the log; nothing 3D.
+    let topics: Vec<&str> = m.channels.iter().map(|c| c.topic.as_str()).collect();
+    let mut expected: Vec<String> = result
+        .runs
+        .iter()
+        .map(|r| format!("/{}/{}/state", r.engine, r.variant))
+        .collect();
+    expected.push("/reference/state".into());
+    expected.push("/log".into());
+    assert_eq!(topics, expected);
+    assert_eq!(result.runs.len(), 2, "eq12 and ground-accel variants");
+
+    // Values equal the CSV traces bit for bit.
+    for r in &result.runs {
+        let label = format!("{}-{}", r.engine, r.variant);
+        let csv = read_csv(&dir.join(format!("{label}.csv"))).unwrap();
+        let topic = format!("/{}/{}/state", r.engine, r.variant);
+        assert_traces_equal(&csv, m.state(&topic).unwrap(), &topic);
+        assert_traces_equal(&r.trace, m.state(&topic).unwrap(), &topic);
+    }
+    let reference = result.reference.as_ref().unwrap();
+    let csv = read_csv(&dir.join(format!("reference-{}.csv", reference.solution.name()))).unwrap();
+    assert_traces_equal(&csv, m.state("/reference/state").unwrap(), "reference");
+
+    // Schemas: jsonschema, units per field, only the trace's fields.
+    for c in m.channels.iter().filter(|c| c.schema == "rockslide.State") {
+        assert_eq!(
+            (c.schema_encoding.as_str(), c.message_encoding.as_str()),
+            ("jsonschema", "json")
+        );
+    }
+    let bytes = std::fs::read(&path).unwrap();
+    let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
+    for ch in summary.channels.values() {
+        let Some(s) = &ch.schema else {
+            panic!("{} has no schema", ch.topic)
+        };
+        let schema: Value = serde_json::from_slice(&s.data).unwrap();
+        if s.name != "rockslide.State" {
+            assert_eq!(s.name, "foxglove.Log");
+            continue;
+        }
+        let props = schema["properties"].as_object().unwrap();
+        assert!(!props.contains_key("rotation") && !props.contains_key("uplift"));
+        assert_eq!(props["time"]["unit"], "s");
+        for (k, p) in props.iter().filter(|(k, _)| *k != "time") {
+            let qty = q::by_key(k).unwrap();
+            assert_eq!(p["unit"], qty.unit, "{k}");
+            assert!(p["description"].as_str().unwrap().contains(&format!(
+                "[{}]",
+                if qty.unit.is_empty() {
+                    "dimensionless"
+                } else {
+                    qty.unit
+                }
+            )));
+        }
+    }
+    // Chunked, zstd, indexed, with statistics.
+    assert!(!summary.chunk_indexes.is_empty());
+    assert!(
+        summary
+            .chunk_indexes
+            .iter()
+            .all(|c| c.compression == "zstd")
+    );
+    assert!(
+        summary
+            .chunk_indexes
+            .iter()
+            .all(|c| !c.message_index_offsets.is_empty())
+    );
+    let stats = summary.stats.as_ref().unwrap();
+    assert_eq!(stats.message_count, m.message_count);
+    assert_eq!(stats.attachment_count, 1);
+    // Log time = simulation time in ns.
+    for (topic, _, ns, v) in messages(&path) {
+        if topic.ends_with("/state") {
+            let t = v["time"].as_f64().unwrap();
+            assert_eq!(ns, (t * 1e9).round() as u64, "{topic} at t = {t}");
+        }
+    }
+    assert_eq!(m.time_range, (0, 1_000_000_000));
+
+    // Metadata and attachment.
+    let head = &m.metadata["rockslide"];
+    assert_eq!(head["version"], env!("CARGO_PKG_VERSION"));
+    assert!(!head["commit"].is_empty());
+    assert_eq!(head["case"], "pepo-ground-disp");
+    assert_eq!(head["model"], "oscillator");
+    for r in &result.runs {
+        let run = &m.metadata[&format!("run {}", r.label())];
+        assert_eq!(run["status"], "completed");
+        assert_eq!(run["dt_s"], format!("{:?}", r.dt));
+        for (k, v) in &r.settings {
+            assert_eq!(&run[&format!("setting.{k}")], v);
+        }
+    }
+    assert_eq!(
+        m.metadata["reference"]["solution"],
+        reference.solution.name()
+    );
+    assert_eq!(m.attachments.len(), 1);
+    let (name, media, data) = &m.attachments[0];
+    assert_eq!(
+        (name.as_str(), media.as_str()),
+        ("pepo-ground-disp.toml", "application/toml")
+    );
+    assert_eq!(data, text.as_bytes());
+    assert!(!m.metadata.contains_key("scene3d"));
+}
+
+// ---------------------------------------------------------------------------------------
+// Scenes with geometry: traces built by hand (no rocking engine is needed to check the
+// 3D output), with motions whose geometry is known in closed form.
+
+const ROCKING_CASE: &str = r#"
+# Test-only RPEPO-like scene (SPEC §1.1), for the 3D view; units SI.
+title = "Rocking body, 3D view test"
+source = "SPEC §1.1 RPEPO geometry"
+requirement = "rockslide shall draw a body with geometry in Foxglove's 3D panel"
+[model]
+kind = "rocking-body"
+mass = 1.0e6          # kg
+gravity = 9.81        # m/s²
+cm_height = 0.625     # m
+half_width = 0.5      # m
+supports = 10
+[model.contact]
+kx = 2.4e9            # N/m
+kz = 3.94784e8        # N/m
+mu = 0.5
+[excitation]
+kind = "ground-displacement"
+shape = "sine-pulse"
+amplitude = 0.00099   # m
+omega = 31.41592653589793
+cycles = 5
+[run]
+duration = 0.05
+dt = 0.0005
+"#;
+
+const BLOCK_CASE: &str = r#"
+# Test-only Newmark sliding block (SPEC §1.2), for the 3D view; units SI.
+title = "Rigid block, 3D view test"
+source = "SPEC §1.2 rigid sliding block"
+requirement = "rockslide shall draw a sliding block without a rotation field"
+[model]
+kind = "rigid-block"
+mass = 1000.0         # kg
+gravity = 9.81        # m/s²
+half_width = 0.4      # m
+half_height = 0.8     # m
+mu = 0.3
+[excitation]
+kind = "none"
+[run]
+duration = 0.01
+dt = 0.0001
+"#;
+
+fn case(text: &str, name: &str) -> Case {
+    parse_case(Path::new(&format!("{name}.toml")), text).unwrap()
+}
+
+fn result_with(case: Case, runs: Vec<Run>) -> CaseResult {
+    CaseResult {
+        run_responses: runs.iter().map(|r| responses(&r.trace)).collect(),
+        history_errors: runs.iter().map(|_| None).collect(),
+        runs,
+        case,
+        not_applicable: Vec::new(),
+        reference: Err("none in this test".into()),
+        checks: Vec::new(),
+    }
+}
+
+fn run(engine: &'static str, variant: &str, trace: Trace, status: RunStatus) -> Run {
+    Run {
+        engine,
+        variant: variant.into(),
+        dt: 0.0005,
+        settings: vec![("integrator".into(), "test".into())],
+        counters: vec![("steps".into(), trace.len() as u64)],
+        findings: Vec::new(),
+        trace,
+        status,
+        wall_seconds: 0.0,
+    }
+}
+
+/// Apply a FrameTransform message to a point.
+fn apply(tf: &Value, p: [f64; 3]) -> [f64; 3] {
+    let (t, r) = (&tf["translation"], &tf["rotation"]);
+    let f = |v: &Value, k: &str| v[k].as_f64().unwrap();
+    let (x, y, z, w) = (f(r, "x"), f(r, "y"), f(r, "z"), f(r, "w"));
+    // v' = v + 2w(u×v) + 2u×(u×v), u = (x, y, z)
+    let u = [x, y, z];
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let c1 = cross(u, p);
+    let c2 = cross(u, c1);
+    [
+        p[0] + 2.0 * w * c1[0] + 2.0 * c2[0] + f(t, "x"),
+        p[1] + 2.0 * w * c1[1] + 2.0 * c2[1] + f(t, "y"),
+        p[2] + 2.0 * w * c1[2] + 2.0 * c2[2] + f(t, "z"),
+    ]
+}
+
+#[test]
+fn rocking_body_pose_and_scene_follow_the_trace() {
+    // Rocking about the right support (x = +b at ground level) by θ(t) = −0.05 sin(40t)
+    // (clockwise lifts the left edge), while the ground moves: rigid-body kinematics,
+    // CM relative to the pivot (−b, h) rotated by θ.
+    let (b, h, w) = (0.5, 0.625, 1.0e6 * 9.81);
+    let chans = [
+        &q::REL_DISP,
+        &q::GROUND_DISP,
+        &q::CM_X,
+        &q::CM_Z,
+        &q::ROTATION,
+        &q::BASE_SHEAR,
+        &q::NORMAL,
+    ];
+    let mut trace = Trace::with_channels(&chans, 101);
+    for i in 0..=100 {
+        let t = i as f64 * 0.0005;
+        let th = -0.05 * (40.0 * t).sin().abs();
+        let (cx, cz) = (
+            b - b * th.cos() - h * th.sin(),
+            -b * th.sin() + h * th.cos(),
+        );
+        let ox = cx + h * th.sin(); // base centre O
+        trace.push(
+            t,
+            &[
+                ox,
+                0.001 * (31.4 * t).sin(),
+                cx,
+                cz - h,
+                th,
+                0.2 * w * (9.0 * t).cos(),
+                w,
+            ],
+        );
+    }
+    let c = case(ROCKING_CASE, "rocking-3d");
+    let result = result_with(
+        c,
+        vec![run("fe", "exact", trace.clone(), RunStatus::Completed)],
+    );
+    let out = tempfile::tempdir().unwrap();
+    let dir = write_case_outputs(&result, out.path()).unwrap();
+    let path = dir.join("rocking-3d.mcap");
+    let m = read_mcap(&path).unwrap();
+    assert_traces_equal(&trace, m.state("/fe/exact/state").unwrap(), "rocking");
+    let topics: Vec<&str> = m.channels.iter().map(|c| c.topic.as_str()).collect();
+    assert_eq!(
+        topics,
+        [
+            "/fe/exact/state",
+            "/fe/exact/scene",
+            "/fe/exact/forces",
+            "/fe/exact/transform",
+            "/log"
+        ]
+    );
+    let schema_of = |t: &str| {
+        m.channels
+            .iter()
+            .find(|c| c.topic == t)
+            .unwrap()
+            .schema
+            .clone()
+    };
+    assert_eq!(schema_of("/fe/exact/scene"), "foxglove.SceneUpdate");
+    assert_eq!(schema_of("/fe/exact/forces"), "foxglove.SceneUpdate");
+    assert_eq!(schema_of("/fe/exact/transform"), "foxglove.FrameTransform");
+    assert!(m.metadata.contains_key("scene3d"));
+
+    let msgs = messages(&path);
+    // The static scene: ground, label and body (2b × depth × 2h box, 10 supports + CM).
+    let scene: Vec<_> = msgs.iter().filter(|m| m.0 == "/fe/exact/scene").collect();
+    assert_eq!(scene.len(), 1);
+    assert_eq!(scene[0].2, 0);
+    let ents = scene[0].3["entities"].as_array().unwrap();
+    let body = ents.iter().find(|e| e["id"] == "body").unwrap();
+    assert_eq!(body["frame_id"], "fe/exact/body");
+    let size = &body["cubes"][0]["size"];
+    assert_eq!(
+        (size["x"].as_f64(), size["z"].as_f64()),
+        (Some(2.0 * b), Some(2.0 * h))
+    );
+    assert_eq!(body["spheres"].as_array().unwrap().len(), 11);
+    assert!(
+        ents.iter()
+            .any(|e| e["id"] == "datum" && e["frame_id"] == "world")
+    );
+
+    // Transforms: every row (0.5 ms < 1 ms period → every other row, plus the last).
+    let tfs: Vec<_> = msgs
+        .iter()
+        .filter(|m| m.0 == "/fe/exact/transform")
+        .collect();
+    let bodies: Vec<_> = tfs
+        .iter()
+        .filter(|m| m.3["child_frame_id"] == "fe/exact/body")
+        .collect();
+    let grounds: Vec<_> = tfs
+        .iter()
+        .filter(|m| m.3["child_frame_id"] == "fe/exact/ground")
+        .collect();
+    assert_eq!(bodies.len(), 51);
+    assert_eq!(grounds.len(), 51);
+    for (bt, gt) in bodies.iter().zip(&grounds) {
+        let ns = bt.2;
+        let i = (ns as f64 / 0.5e6).round() as usize;
+        assert_eq!(bt.3["parent_frame_id"], "fe/exact/ground");
+        assert_eq!(gt.3["parent_frame_id"], "world");
+        assert_eq!(
+            gt.3["translation"]["x"].as_f64().unwrap(),
+            trace.columns[1][i]
+        );
+        // The pivot corner (b, 0, −h) in the body frame stays at (b, 0, 0) on the ground;
+        // the other corner is lifted by 2b·sin|θ|.
+        let th = trace.columns[4][i];
+        let pivot = apply(&bt.3, [b, 0.0, -h]);
+        let other = apply(&bt.3, [-b, 0.0, -h]);
+        // measured: |error| ≤ 2e-16 m (rounding of the quaternion products)
+        assert!(
+            (pivot[0] - b).abs() < 1e-12 && pivot[2].abs() < 1e-12,
+            "pivot at {pivot:?}, θ = {th}"
+        );
+        assert!(
+            (other[2] - 2.0 * b * th.abs().sin()).abs() < 1e-12,
+            "lifted corner {other:?}"
+        );
+        let stamp = &bt.3["timestamp"];
+        assert_eq!(
+            stamp["sec"].as_u64().unwrap() * 1_000_000_000 + stamp["nsec"].as_u64().unwrap(),
+            ns
+        );
+    }
+    // Forces: the weight drawn as long as the CM is high, ending at O.
+    let forces: Vec<_> = msgs.iter().filter(|m| m.0 == "/fe/exact/forces").collect();
+    assert_eq!(forces.len(), 51);
+    let arrows = forces[0].3["entities"][0]["arrows"].as_array().unwrap();
+    assert_eq!(arrows.len(), 2);
+    let len = |a: &Value| a["shaft_length"].as_f64().unwrap() + a["head_length"].as_f64().unwrap();
+    assert!(
+        (len(&arrows[0]) - h).abs() < 1e-12,
+        "normal arrow length {}",
+        len(&arrows[0])
+    );
+    assert!(
+        (len(&arrows[1]) - 0.2 * h).abs() < 1e-12,
+        "shear arrow length {}",
+        len(&arrows[1])
+    );
+    let tail = &arrows[0]["pose"]["position"];
+    assert!(
+        (tail["z"].as_f64().unwrap() + h).abs() < 1e-12,
+        "normal arrow ends at O"
+    );
+    // The run's end in the log.
+    let log: Vec<_> = msgs.iter().filter(|m| m.0 == "/log").collect();
+    assert_eq!(log.len(), 1);
+    assert_eq!(log[0].3["level"], 2);
+}
+
+#[test]
+fn sliding_block_without_rotation_has_no_rotation_field() {
+    let chans = [&q::CM_X, &q::VEL];
+    let mut trace = Trace::with_channels(&chans, 101);
+    for i in 0..=100 {
+        let t = i as f64 * 1e-4;
+        trace.push(t, &[0.5 * 2.0 * t * t, 2.0 * t]);
+    }
+    let c = case(BLOCK_CASE, "block-3d");
+    let result = result_with(
+        c,
+        vec![run(
+            "rapier",
+            "inertial",
+            trace.clone(),
+            RunStatus::Completed,
+        )],
+    );
+    let out = tempfile::tempdir().unwrap();
+    let dir = write_case_outputs(&result, out.path()).unwrap();
+    let path = dir.join("block-3d.mcap");
+    let m = read_mcap(&path).unwrap();
+    assert_traces_equal(&trace, m.state("/rapier/inertial/state").unwrap(), "block");
+    let bytes = std::fs::read(&path).unwrap();
+    let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
+    let state = summary
+        .channels
+        .values()
+        .find(|c| c.topic == "/rapier/inertial/state")
+        .unwrap();
+    let schema: Value = serde_json::from_slice(&state.schema.as_ref().unwrap().data).unwrap();
+    let mut fields: Vec<&String> = schema["properties"].as_object().unwrap().keys().collect();
+    fields.sort();
+    assert_eq!(fields, ["cm_x", "time", "vel"]);
+    // The body slides flat at the CM height: identity rotation, z = h.
+    let msgs = messages(&path);
+    let last = msgs
+        .iter()
+        .rev()
+        .find(|m| m.3["child_frame_id"] == "rapier/inertial/body")
+        .unwrap();
+    assert_eq!(last.2, 10_000_000);
+    assert_eq!(last.3["rotation"]["w"], 1.0);
+    assert_eq!(last.3["translation"]["z"], 0.8);
+    assert_eq!(
+        last.3["translation"]["x"].as_f64().unwrap(),
+        trace.columns[0][100]
+    );
+    // No force channels in the trace: the forces entity has no arrows.
+    let f = msgs
+        .iter()
+        .find(|m| m.0 == "/rapier/inertial/forces")
+        .unwrap();
+    assert!(f.3["entities"][0]["arrows"].as_array().unwrap().is_empty());
+}
+
+#[test]
+fn diverged_run_leaves_a_readable_file_with_the_reason() {
+    let chans = [&q::REL_DISP, &q::ROTATION];
+    let mut trace = Trace::with_channels(&chans, 8);
+    for i in 0..7 {
+        let t = i as f64 * 0.0005;
+        trace.push(t, &[1e-3 * 10f64.powi(i), 0.01 * i as f64]);
+    }
+    trace.push(0.0035, &[f64::NAN, f64::INFINITY]);
+    let status = RunStatus::Diverged {
+        time: 0.0035,
+        reason: "NaN in the displacement".into(),
+    };
+    let ok = {
+        let mut t = Trace::with_channels(&chans, 101);
+        for i in 0..=100 {
+            t.push(i as f64 * 0.0005, &[0.0, 0.0]);
+        }
+        t
+    };
+    let c = case(ROCKING_CASE, "diverged");
+    let result = result_with(
+        c,
+        vec![
+            run("fe", "exact", trace.clone(), status),
+            run("fe", "small-rotation", ok, RunStatus::Completed),
+        ],
+    );
+    let out = tempfile::tempdir().unwrap();
+    let dir = write_case_outputs(&result, out.path()).unwrap();
+    let path = dir.join("diverged.mcap");
+    let m = read_mcap(&path).unwrap();
+    let back = m.state("/fe/exact/state").unwrap();
+    assert_traces_equal(&trace, back, "diverged");
+    assert!(back.columns[0][7].is_nan() && back.columns[1][7].is_nan());
+    let meta = &m.metadata["run fe/exact"];
+    assert_eq!(meta["status"], "diverged");
+    assert_eq!(meta["stop_time_s"], "0.0035");
+    assert_eq!(meta["stop_reason"], "NaN in the displacement");
+    assert_eq!(m.metadata["run fe/small-rotation"]["status"], "completed");
+    // The log says so at the stop time, as an error; the 3D view stops at the last finite row.
+    let msgs = messages(&path);
+    let log: BTreeMap<u64, &Value> = msgs
+        .iter()
+        .filter(|m| m.0 == "/log")
+        .map(|m| (m.2, &m.3))
+        .collect();
+    assert_eq!(log[&3_500_000]["level"], 4);
+    assert!(
+        log[&3_500_000]["message"]
+            .as_str()
+            .unwrap()
+            .contains("NaN in the displacement")
+    );
+    let last_tf = msgs
+        .iter()
+        .filter(|m| m.0 == "/fe/exact/transform")
+        .map(|m| m.2)
+        .max()
+        .unwrap();
+    assert_eq!(last_tf, 3_000_000);
+}
+
+#[test]
+fn same_case_gives_identical_bytes_apart_from_wall_time() {
+    // Determinism: two writes of the same result are byte-identical (wall time is in the
+    // metadata; here it is fixed at 0).
+    let chans = [&q::CM_X, &q::ROTATION];
+    let mut trace = Trace::with_channels(&chans, 11);
+    for i in 0..=10 {
+        trace.push(i as f64 * 1e-3, &[0.1 * i as f64, 0.0]);
+    }
+    let result = result_with(
+        case(ROCKING_CASE, "det"),
+        vec![run("fe", "exact", trace, RunStatus::Completed)],
+    );
+    let a = rockslide::trace::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
+    let b = rockslide::trace::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
+    assert_eq!(a, b);
+}
