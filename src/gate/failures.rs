@@ -1,0 +1,95 @@
+//! Gate failures as values, each rendered as one line for logs.
+
+use std::fmt;
+
+use crate::analysis::{Check, Verdict};
+use crate::report::show_value;
+use crate::suite::CaseResult;
+
+/// One failed gated check.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    /// Case name.
+    pub case: String,
+    /// Quantity key.
+    pub quantity: String,
+    /// `run vs basis` (`predictor-corrector/paper vs reference`).
+    pub engines: String,
+    /// What was found, in words (`Δ -0.65 % (8.699 mm vs 8.756 mm)`).
+    pub value: String,
+    /// The tolerance in words (`≤ 0.1 %`).
+    pub tolerance: String,
+    /// Where the tolerance is in the case file (`cases/x.toml: tolerance[2]`).
+    pub field: String,
+    /// A gated tolerance that matched no run (rather than a check that failed).
+    pub checks_nothing: bool,
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "FAIL {}: {}: {}: {} (tolerance {}) [{}]",
+            self.case, self.quantity, self.engines, self.value, self.tolerance, self.field
+        )
+    }
+}
+
+/// What a check found, in words: the discrepancy and both values in display units.
+pub(crate) fn describe(c: &Check) -> String {
+    match (c.value, c.basis_value) {
+        (Some(v), Some(b)) => {
+            let both = format!(
+                "{} vs {} {}",
+                show_value(&c.quantity, v).0,
+                show_value(&c.quantity, b).0,
+                show_value(&c.quantity, b).1
+            );
+            match c.percent {
+                Some(p) => format!("Δ {p:+.3} % ({})", both.trim_end()),
+                None => format!("difference {:.4e} ({})", v - b, both.trim_end()),
+            }
+        }
+        (None, _) => "missing: the run has no value (did not complete or lacks the quantity)"
+            .to_string(),
+        (Some(_), None) => "missing: the basis has no value".to_string(),
+    }
+}
+
+/// Whether a check fails the gate.
+pub(crate) fn fails(c: &Check) -> bool {
+    c.gated && c.verdict != Verdict::Pass
+}
+
+/// Every gate failure of the results, in case and tolerance order.
+pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
+    let mut out = Vec::new();
+    for r in results {
+        let file = r.case.path.display().to_string();
+        for c in r.checks.iter().filter(|c| fails(c)) {
+            out.push(Failure {
+                case: r.case.name.clone(),
+                quantity: c.quantity.clone(),
+                engines: format!("{} vs {}", c.run, c.basis),
+                value: describe(c),
+                tolerance: c.limit.clone(),
+                field: format!("{file}: {}", c.field),
+                checks_nothing: false,
+            });
+        }
+        for t in r.case.tolerances.iter().filter(|t| t.gate) {
+            if r.checks.iter().all(|c| c.field != t.field) {
+                out.push(Failure {
+                    case: r.case.name.clone(),
+                    quantity: t.quantity.clone(),
+                    engines: t.runs.clone().unwrap_or_else(|| "any run".into()),
+                    value: "checks nothing: no run of this case matches the tolerance".into(),
+                    tolerance: "—".into(),
+                    field: format!("{file}: {}", t.field),
+                    checks_nothing: true,
+                });
+            }
+        }
+    }
+    out
+}
