@@ -47,12 +47,33 @@ pub(crate) fn describe(c: &Check) -> String {
             );
             match c.percent {
                 Some(p) => format!("Δ {p:+.3} % ({})", both.trim_end()),
-                None => format!("difference {:.4e} ({})", v - b, both.trim_end()),
+                None => {
+                    let (d, unit) = show_value(&c.quantity, v - b);
+                    format!("Δ {d} {unit} ({})", both.trim_end())
+                }
             }
         }
         (None, _) => "missing: the run has no value (did not complete or lacks the quantity)"
             .to_string(),
         (Some(_), None) => "missing: the basis has no value".to_string(),
+    }
+}
+
+/// The tolerance of a check in words with the quantity's display unit (`≤ 1 %`,
+/// `≤ 10.00 ms`-style absolute limits), read from the case's tolerance the check came from.
+pub fn limit_text(r: &CaseResult, c: &Check) -> String {
+    let Some(t) = r.case.tolerances.iter().find(|t| t.field == c.field) else {
+        return c.limit.clone();
+    };
+    let abs = t.absolute.map(|a| {
+        let (v, unit) = show_value(&c.quantity, a);
+        format!("≤ {v} {unit}").trim_end().to_string()
+    });
+    match (t.percent, abs) {
+        (Some(p), Some(a)) => format!("≤ {p} % or {a}"),
+        (Some(p), None) => format!("≤ {p} %"),
+        (None, Some(a)) => a,
+        (None, None) => c.limit.clone(),
     }
 }
 
@@ -72,7 +93,7 @@ pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
                 quantity: c.quantity.clone(),
                 engines: format!("{} vs {}", c.run, c.basis),
                 value: describe(c),
-                tolerance: c.limit.clone(),
+                tolerance: limit_text(r, c),
                 field: format!("{file}: {}", c.field),
                 checks_nothing: false,
             });

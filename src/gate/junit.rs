@@ -7,7 +7,7 @@ use std::path::Path;
 
 use quick_junit::{NonSuccessKind, Report, TestCase, TestCaseStatus, TestSuite};
 
-use super::failures::{describe, fails, failures};
+use super::failures::{describe, fails, failures, limit_text};
 use crate::analysis::Verdict;
 use crate::error::Error;
 use crate::io::write_atomically;
@@ -28,7 +28,7 @@ pub fn junit_report(results: &[CaseResult]) -> Report {
                 "{}: {} (tolerance {}) [{}]",
                 c.verdict.label(),
                 describe(c),
-                c.limit,
+                limit_text(r, c),
                 c.field
             );
             let status = if fails(c) {

@@ -154,7 +154,7 @@ fn checks_table(r: &CaseResult) -> Table {
                 .into(),
             display_unit(&ch.quantity).0.into(),
             pct(ch.percent).into(),
-            ch.limit.clone().into(),
+            gate::limit_text(r, ch).into(),
             (if ch.gated { "yes" } else { "no" }).into(),
             Cell::toned(ch.verdict.label(), tone_of(ch.verdict, ch.gated)),
         ]);

@@ -73,7 +73,7 @@ pub(crate) fn render(blocks: &[Block], figure_dir: &str) -> String {
             }
             Block::Table(t) => table(&mut s, t),
             Block::Figure { file, caption, .. } => {
-                let _ = writeln!(s, "![{caption}]({figure_dir}{file})\n\n*{caption}*\n");
+                let _ = writeln!(s, "![{file}]({figure_dir}{file})\n\n*{caption}*\n");
             }
             Block::Details { summary, text } => {
                 let _ = writeln!(

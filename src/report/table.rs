@@ -146,7 +146,7 @@ pub(crate) fn paper_table(r: &CaseResult) -> PaperTable {
             .collect();
         let mut limits: Vec<String> = Vec::new();
         for c in &checks {
-            let mut s = c.limit.clone();
+            let mut s = crate::gate::limit_text(r, c);
             if c.basis != "reference" {
                 s.push_str(&format!(" vs {}", c.basis));
             }
