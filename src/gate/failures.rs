@@ -3,6 +3,7 @@
 use std::fmt;
 
 use crate::analysis::{Check, Verdict};
+use crate::case::Tolerance;
 use crate::report::show_value;
 use crate::suite::CaseResult;
 
@@ -53,27 +54,34 @@ pub(crate) fn describe(c: &Check) -> String {
                 }
             }
         }
-        (None, _) => "missing: the run has no value (did not complete or lacks the quantity)"
-            .to_string(),
+        (None, _) => {
+            "missing: the run has no value (did not complete or lacks the quantity)".to_string()
+        }
         (Some(_), None) => "missing: the basis has no value".to_string(),
     }
 }
 
 /// The tolerance of a check in words with the quantity's display unit (`≤ 1 %`,
-/// `≤ 10.00 ms`-style absolute limits), read from the case's tolerance the check came from.
+/// `≤ 0.01000 s`), read from the case's tolerance the check came from.
 pub fn limit_text(r: &CaseResult, c: &Check) -> String {
-    let Some(t) = r.case.tolerances.iter().find(|t| t.field == c.field) else {
-        return c.limit.clone();
-    };
+    r.case
+        .tolerances
+        .iter()
+        .find(|t| t.field == c.field)
+        .map_or_else(|| c.limit.clone(), tolerance_words)
+}
+
+/// A tolerance in words, absolute limits in the quantity's display unit.
+fn tolerance_words(t: &Tolerance) -> String {
     let abs = t.absolute.map(|a| {
-        let (v, unit) = show_value(&c.quantity, a);
+        let (v, unit) = show_value(&t.quantity, a);
         format!("≤ {v} {unit}").trim_end().to_string()
     });
     match (t.percent, abs) {
         (Some(p), Some(a)) => format!("≤ {p} % or {a}"),
         (Some(p), None) => format!("≤ {p} %"),
         (None, Some(a)) => a,
-        (None, None) => c.limit.clone(),
+        (None, None) => "—".into(),
     }
 }
 
@@ -105,7 +113,7 @@ pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
                     quantity: t.quantity.clone(),
                     engines: t.runs.clone().unwrap_or_else(|| "any run".into()),
                     value: "checks nothing: no run of this case matches the tolerance".into(),
-                    tolerance: "—".into(),
+                    tolerance: tolerance_words(t),
                     field: format!("{file}: {}", t.field),
                     checks_nothing: true,
                 });

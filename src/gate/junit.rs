@@ -19,8 +19,14 @@ pub fn junit_report(results: &[CaseResult]) -> Report {
     let all = failures(results);
     for r in results {
         let mut suite = TestSuite::new(r.case.name.as_str());
-        suite.add_property(quick_junit::Property::new("case file", r.case.path.display().to_string()));
-        suite.add_property(quick_junit::Property::new("case sha256", r.case.sha256.as_str()));
+        suite.add_property(quick_junit::Property::new(
+            "case file",
+            r.case.path.display().to_string(),
+        ));
+        suite.add_property(quick_junit::Property::new(
+            "case sha256",
+            r.case.sha256.as_str(),
+        ));
         let class = format!("rockslide.{}", r.case.name);
         for c in &r.checks {
             let name = format!("{}: {} vs {}", c.quantity, c.run, c.basis);

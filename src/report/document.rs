@@ -148,7 +148,9 @@ fn checks_table(r: &CaseResult) -> Table {
             ch.quantity.clone().into(),
             ch.run.clone().into(),
             ch.basis.clone().into(),
-            ch.value.map_or("—".into(), |v| show(&ch.quantity, v)).into(),
+            ch.value
+                .map_or("—".into(), |v| show(&ch.quantity, v))
+                .into(),
             ch.basis_value
                 .map_or("—".into(), |v| show(&ch.quantity, v))
                 .into(),
@@ -361,13 +363,20 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance) -> Vec<Block> {
         });
     }
 
-    b.push(Block::Heading(2, "Runs: settings, counters, findings".into()));
+    b.push(Block::Heading(
+        2,
+        "Runs: settings, counters, findings".into(),
+    ));
     for run in &r.runs {
         b.push(Block::Heading(3, run.label()));
         let mut facts = vec![("status".to_string(), run.status.to_string())];
         facts.extend(run.settings.iter().cloned());
         facts.extend(run.counters.iter().map(|(k, v)| (k.clone(), v.to_string())));
-        facts.extend(run.findings.iter().map(|f| ("finding".to_string(), f.clone())));
+        facts.extend(
+            run.findings
+                .iter()
+                .map(|f| ("finding".to_string(), f.clone())),
+        );
         b.push(Block::Facts(facts));
     }
 
@@ -401,7 +410,14 @@ pub(crate) fn suite_document(results: &[CaseResult], prov: &Provenance) -> Vec<B
     }
     let mut t = Table {
         header: [
-            "Case", "Title", "Runs", "n/a", "Reference", "Checks", "Failed", "Gate",
+            "Case",
+            "Title",
+            "Runs",
+            "n/a",
+            "Reference",
+            "Checks",
+            "Failed",
+            "Gate",
         ]
         .map(String::from)
         .to_vec(),

@@ -247,10 +247,14 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
     out
 }
 
+/// One line of a figure: participant index, channel index, points.
+type Series = (usize, usize, Vec<(f64, f64)>);
+
 /// Draw one figure into an SVG string.
 fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -> String {
     let (unit, factor) = spec.channels[0].display;
-    let mut series: Vec<(usize, usize, Vec<(f64, f64)>)> = Vec::new();
+    // (participant, channel index, points)
+    let mut series: Vec<Series> = Vec::new();
     for &i in members {
         for (ci, c) in spec.channels.iter().enumerate() {
             let p = points(all[i].trace, c.key, factor);
@@ -269,17 +273,14 @@ fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -
             }
         }
     }
-    if !(y0 < y1) {
+    if y0.partial_cmp(&y1) != Some(std::cmp::Ordering::Less) {
         (y0, y1) = (y0.min(0.0) - 1.0, y1.max(0.0) + 1.0);
     }
     let pad = 0.05 * (y1 - y0);
     let (y0, y1) = (y0 - pad, y1 + pad);
     let t1 = if t1 > 0.0 { t1 } else { 1.0 };
-    let ylabel = if spec.channels.len() > 1 {
-        format!("[{unit}]")
-    } else {
-        format!("{} [{unit}]", spec.channels[0].label)
-    };
+    let names: Vec<&str> = spec.channels.iter().map(|c| c.label).collect();
+    let ylabel = format!("{} [{unit}]", names.join(", "));
 
     let mut svg = String::new();
     {
