@@ -140,6 +140,11 @@ fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Resul
     for f in &failures {
         eprintln!("{f}");
     }
+    if !quiet {
+        for f in gate::informative(&results) {
+            println!("{f}");
+        }
+    }
     let Some(junit) = junit else {
         return Ok(ExitCode::SUCCESS);
     };

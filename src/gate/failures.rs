@@ -7,7 +7,8 @@ use crate::case::Tolerance;
 use crate::report::show_value;
 use crate::suite::CaseResult;
 
-/// One failed gated check.
+/// One failed check: a gated one fails the gate; an informative one (`gate = false`) is
+/// only reported.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Failure {
     /// Case name.
@@ -24,14 +25,22 @@ pub struct Failure {
     pub field: String,
     /// A gated tolerance that matched no run (rather than a check that failed).
     pub checks_nothing: bool,
+    /// Whether the check is gated (informative failures come from [`informative`]).
+    pub gated: bool,
 }
 
 impl fmt::Display for Failure {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(
             f,
-            "FAIL {}: {}: {}: {} (tolerance {}) [{}]",
-            self.case, self.quantity, self.engines, self.value, self.tolerance, self.field
+            "{} {}: {}: {}: {} (tolerance {}) [{}]",
+            if self.gated { "FAIL" } else { "INFO" },
+            self.case,
+            self.quantity,
+            self.engines,
+            self.value,
+            self.tolerance,
+            self.field
         )
     }
 }
@@ -90,21 +99,40 @@ pub(crate) fn fails(c: &Check) -> bool {
     c.gated && c.verdict != Verdict::Pass
 }
 
-/// Every gate failure of the results, in case and tolerance order.
+fn failed_check(r: &CaseResult, c: &Check) -> Failure {
+    Failure {
+        case: r.case.name.clone(),
+        quantity: c.quantity.clone(),
+        engines: format!("{} vs {}", c.run, c.basis),
+        value: describe(c),
+        tolerance: limit_text(r, c),
+        field: format!("{}: {}", r.case.path.display(), c.field),
+        checks_nothing: false,
+        gated: c.gated,
+    }
+}
+
+/// Checks that are not gated and did not pass: findings to report, never gate failures
+/// (e.g. the paper's literal Eq 12 route against the exact solution). Lines start `INFO`.
+pub fn informative(results: &[CaseResult]) -> Vec<Failure> {
+    results
+        .iter()
+        .flat_map(|r| {
+            r.checks
+                .iter()
+                .filter(|c| !c.gated && c.verdict != Verdict::Pass)
+                .map(move |c| failed_check(r, c))
+        })
+        .collect()
+}
+
+/// Every gate failure of the results, in case and tolerance order. Lines start `FAIL`.
 pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
     let mut out = Vec::new();
     for r in results {
         let file = r.case.path.display().to_string();
         for c in r.checks.iter().filter(|c| fails(c)) {
-            out.push(Failure {
-                case: r.case.name.clone(),
-                quantity: c.quantity.clone(),
-                engines: format!("{} vs {}", c.run, c.basis),
-                value: describe(c),
-                tolerance: limit_text(r, c),
-                field: format!("{file}: {}", c.field),
-                checks_nothing: false,
-            });
+            out.push(failed_check(r, c));
         }
         for t in r.case.tolerances.iter().filter(|t| t.gate) {
             if r.checks.iter().all(|c| c.field != t.field) {
@@ -116,6 +144,7 @@ pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
                     tolerance: tolerance_words(t),
                     field: format!("{file}: {}", t.field),
                     checks_nothing: true,
+                    gated: true,
                 });
             }
         }

@@ -11,6 +11,6 @@ mod failures;
 mod junit;
 mod step_summary;
 
-pub use failures::{Failure, failures, limit_text};
+pub use failures::{Failure, failures, informative, limit_text};
 pub use junit::{junit_report, write_junit};
 pub use step_summary::write_step_summary;

@@ -104,9 +104,9 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
         }
         cells.push(row.tolerance.clone().into());
         let tone = match row.result.as_str() {
-            "PASS" => Tone::Pass,
-            "FAIL" | "MISSING" => Tone::Fail,
-            s if s.starts_with("info: ") && s != "info: PASS" => Tone::Warn,
+            "PASS" | "info: PASS" => Tone::Pass,
+            s if s.starts_with("FAIL") || s.starts_with("MISSING") => Tone::Fail,
+            s if s.starts_with("PASS (info: ") || s.starts_with("info: ") => Tone::Warn,
             _ => Tone::Plain,
         };
         cells.push(Cell::toned(row.result.clone(), tone));
@@ -322,6 +322,13 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance) -> Vec<Block> {
     if !lines.is_empty() {
         b.push(Block::List(lines));
     }
+    let notes = gate::informative(std::slice::from_ref(r));
+    if !notes.is_empty() {
+        b.push(Block::Para(
+            "Informative findings — checks outside their tolerance that are not gated (a known property of a method, reported rather than failed):".into(),
+        ));
+        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
+    }
 
     b.push(Block::Heading(2, "Response quantities".into()));
     let (table, notes) = response_table(r);
@@ -396,7 +403,7 @@ pub(crate) fn suite_document(results: &[CaseResult], prov: &Provenance) -> Vec<B
     b.push(Block::Verdict {
         passed: all.is_empty(),
         text: format!(
-            "{} cases, {} gated checks, {} failures",
+            "{} cases, {} gated checks, {} gate failures",
             results.len(),
             results
                 .iter()
@@ -408,6 +415,13 @@ pub(crate) fn suite_document(results: &[CaseResult], prov: &Provenance) -> Vec<B
     if !all.is_empty() {
         b.push(Block::List(all.iter().map(|f| f.to_string()).collect()));
     }
+    let notes = gate::informative(results);
+    if !notes.is_empty() {
+        b.push(Block::Para(
+            "Informative findings (not gated):".into(),
+        ));
+        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
+    }
     let mut t = Table {
         header: [
             "Case",
@@ -417,11 +431,12 @@ pub(crate) fn suite_document(results: &[CaseResult], prov: &Provenance) -> Vec<B
             "Reference",
             "Checks",
             "Failed",
+            "Informative fails",
             "Gate",
         ]
         .map(String::from)
         .to_vec(),
-        numeric: vec![false, false, true, false, false, true, true, false],
+        numeric: vec![false, false, true, false, false, true, true, true, false],
         rows: Vec::new(),
     };
     for r in results {
@@ -442,6 +457,7 @@ pub(crate) fn suite_document(results: &[CaseResult], prov: &Provenance) -> Vec<B
             ),
             Cell::plain(r.checks.len().to_string()),
             Cell::plain(failed.to_string()),
+            Cell::plain(gate::informative(std::slice::from_ref(r)).len().to_string()),
             if failed == 0 {
                 Cell::toned("PASS", Tone::Pass)
             } else {

@@ -74,6 +74,11 @@ fn cell(s: &mut String, c: &Cell, numeric: bool) {
 }
 
 fn table(s: &mut String, t: &Table) {
+    debug_assert!(
+        t.rows.iter().all(|r| r.len() == t.header.len()) && t.numeric.len() == t.header.len(),
+        "table rows must match the header: {:?}",
+        t.header
+    );
     s.push_str("<table>\n<thead><tr>");
     for h in &t.header {
         let _ = write!(s, "<th>{}</th>", esc(h));

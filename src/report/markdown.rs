@@ -22,6 +22,11 @@ fn cell(c: &Cell) -> String {
 }
 
 fn table(s: &mut String, t: &Table) {
+    debug_assert!(
+        t.rows.iter().all(|r| r.len() == t.header.len()) && t.numeric.len() == t.header.len(),
+        "table rows must match the header: {:?}",
+        t.header
+    );
     let _ = writeln!(
         s,
         "| {} |",

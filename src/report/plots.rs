@@ -346,3 +346,37 @@ fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -
     }
     svg
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_traces_are_reduced_but_keep_their_extremes() {
+        // 100 001 samples of sin(2π·7t) + a spike: reduced to ≤ MAX_POINTS points, and
+        // the global max (the spike, 3.0) and min (−1.0 at the troughs) survive exactly.
+        let n = 100_001;
+        let mut t = Trace::with_channels(&[&q::REL_DISP], n);
+        for i in 0..n {
+            let x = i as f64 / (n - 1) as f64;
+            let v = if i == 54_321 {
+                3.0
+            } else {
+                (2.0 * std::f64::consts::PI * 7.0 * x).sin()
+            };
+            t.push(x, &[v]);
+        }
+        let p = points(&t, "rel_disp", 1e3);
+        assert!(p.len() <= MAX_POINTS, "{}", p.len());
+        let max = p.iter().map(|x| x.1).fold(f64::MIN, f64::max);
+        let min = p.iter().map(|x| x.1).fold(f64::MAX, f64::min);
+        assert_eq!(max, 3.0e3);
+        let exact_min = t
+            .column("rel_disp")
+            .unwrap()
+            .iter()
+            .fold(f64::MAX, |m, &v| m.min(v));
+        assert_eq!(min, exact_min * 1e3);
+        assert!(p.windows(2).all(|w| w[0].0 <= w[1].0), "time order kept");
+    }
+}

@@ -158,9 +158,11 @@ pub(crate) fn paper_table(r: &CaseResult) -> PaperTable {
             }
         }
         let gated: Vec<&Check> = checks.iter().copied().filter(|c| c.gated).collect();
-        let result = match (worst(&gated), worst(&checks)) {
-            (Some(v), _) => v.label().to_string(),
-            (None, Some(v)) => format!("info: {}", v.label()),
+        let informative: Vec<&Check> = checks.iter().copied().filter(|c| !c.gated).collect();
+        let result = match (worst(&gated), worst(&informative)) {
+            (Some(v), Some(Verdict::Pass) | None) => v.label().to_string(),
+            (Some(v), Some(i)) => format!("{} (info: {})", v.label(), i.label()),
+            (None, Some(i)) => format!("info: {}", i.label()),
             (None, None) => "—".into(),
         };
         rows.push(Row {
