@@ -82,9 +82,12 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
                 Column::Run(_) => {
                     let c = &row.cells[k];
                     k += 1;
-                    cells.push(Cell::plain(
-                        c.value.map_or("—".into(), |v| show(row.key, v)),
-                    ));
+                    let value = c.value.map_or("—".into(), |v| show(row.key, v));
+                    cells.push(match (t.reference.is_some(), c.mark) {
+                        // Without a reference, checks are against other runs: mark the value.
+                        (false, Some((v, g))) => Cell::toned(value + mark(v, g), tone_of(v, g)),
+                        _ => Cell::plain(value),
+                    });
                     if t.reference.is_some() {
                         let mut text = pct(c.percent);
                         let tone = match c.mark {
@@ -417,9 +420,7 @@ pub(crate) fn suite_document(results: &[CaseResult], prov: &Provenance) -> Vec<B
     }
     let notes = gate::informative(results);
     if !notes.is_empty() {
-        b.push(Block::Para(
-            "Informative findings (not gated):".into(),
-        ));
+        b.push(Block::Para("Informative findings (not gated):".into()));
         b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
     }
     let mut t = Table {

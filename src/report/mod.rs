@@ -86,3 +86,6 @@ pub fn write_suite_outputs(results: &[CaseResult], out: &Path) -> Result<PathBuf
     write_atomically(&out.join("summary.csv"), &summary_csv(results)?)?;
     Ok(html)
 }
+
+#[cfg(test)]
+mod tests;
