@@ -131,9 +131,9 @@ fn a_missing_case_file_exits_2() {
 
 #[test]
 fn passing_tolerances_exit_0_and_report_zero_failures() {
-    // The shipped linear SDOF case: three gated checks, all within tolerance.
+    // The linear SDOF, predictor-corrector only: three gated checks, all within tolerance.
     let dir = tempfile::tempdir().unwrap();
-    let o = check(&["cases/linear-sdof.toml"], dir.path(), None);
+    let o = check(&["tests/data/within-tolerance.toml"], dir.path(), None);
     assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
     assert!(!stderr(&o).contains("FAIL"));
     let xml = std::fs::read_to_string(dir.path().join("junit.xml")).unwrap();
