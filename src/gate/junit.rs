@@ -16,6 +16,7 @@ use crate::suite::CaseResult;
 /// The JUnit report of a checked suite.
 pub fn junit_report(results: &[CaseResult]) -> Report {
     let mut report = Report::new("rockslide check");
+    report.set_timestamp(chrono::Utc::now().fixed_offset());
     let all = failures(results);
     for r in results {
         let mut suite = TestSuite::new(r.case.name.as_str());
@@ -50,6 +51,11 @@ pub fn junit_report(results: &[CaseResult]) -> Report {
             };
             let mut tc = TestCase::new(name, status);
             tc.set_classname(class.as_str());
+            if let Some(run) = r.runs.iter().find(|x| x.label() == c.run) {
+                tc.set_time(std::time::Duration::from_secs_f64(
+                    run.wall_seconds.max(0.0),
+                ));
+            }
             tc.set_system_out(what);
             suite.add_test_case(tc);
         }

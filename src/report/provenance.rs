@@ -44,7 +44,8 @@ impl Provenance {
         }
     }
 
-    /// (name, value) lines for a case: the process facts plus the case's own.
+    /// (name, value) lines for a case: the process facts plus the case's own and every
+    /// run's engine settings.
     pub fn lines(&self, r: &CaseResult) -> Vec<(String, String)> {
         let c = &r.case;
         let mut v = vec![
@@ -60,6 +61,14 @@ impl Provenance {
         match &r.reference {
             Ok(x) => v.push(("reference".into(), x.solution.method())),
             Err(why) => v.push(("reference".into(), format!("none — {why}"))),
+        }
+        for run in &r.runs {
+            let settings: Vec<String> = run
+                .settings
+                .iter()
+                .map(|(k, v)| format!("{k} = {v}"))
+                .collect();
+            v.push((format!("settings {}", run.label()), settings.join("; ")));
         }
         v.extend([
             ("machine".into(), self.machine()),
