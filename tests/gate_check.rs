@@ -140,3 +140,22 @@ fn passing_tolerances_exit_0_and_report_zero_failures() {
     let (declared, cases, failures, _) = junit_counts(&xml);
     assert_eq!((declared, cases, failures), (3, 3, 0), "{xml}");
 }
+
+#[test]
+fn the_suite_summary_is_appended_to_the_github_step_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let summary = dir.path().join("step-summary.md");
+    std::fs::write(&summary, "earlier step\n").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("GITHUB_STEP_SUMMARY", &summary)
+        .args(["check", "tests/data/too-tight.toml", "--quiet", "--out"])
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let text = std::fs::read_to_string(&summary).unwrap();
+    assert!(text.starts_with("earlier step\n"), "appended, not replaced");
+    assert!(text.contains("**Gate: FAIL**"), "{text}");
+    assert!(text.contains("- FAIL too-tight: peak_relative_displacement:"), "{text}");
+}
