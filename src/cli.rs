@@ -9,8 +9,8 @@ use clap::{Parser, Subcommand};
 use crate::case::{discover, load_case};
 use crate::engine;
 use crate::error::{Error, InputErrors};
-use crate::io::write_atomically;
-use crate::report::{suite_markdown, write_case_outputs};
+use crate::gate;
+use crate::report::{write_case_outputs, write_suite_outputs};
 use crate::suite::{CaseResult, plan, run_case};
 
 /// Cross-code verification of seismic sliding and rocking.
@@ -52,13 +52,18 @@ pub enum Command {
         #[arg(long, short)]
         out: PathBuf,
     },
-    /// Run cases and gate on their tolerances: exit 1 if any gated check fails.
+    /// Run cases and gate on their tolerances: exit 0 when every gated check passes, 1 when
+    /// any fails (one line per failure on stderr), 2 on bad input. Writes the reports and
+    /// JUnit XML.
     Check {
         /// Case files or folders (default: `cases/`).
         cases: Vec<PathBuf>,
         /// Output folder for reports and traces.
         #[arg(long, short, default_value = "reports")]
         out: PathBuf,
+        /// JUnit XML file for CI systems (default: `<out>/junit.xml`, i.e. `reports/junit.xml`).
+        #[arg(long)]
+        junit: Option<PathBuf>,
     },
     // --- records and studies (src/study; docs/records-and-studies.md) ---
     /// Run a study grid: one model under many records / PGAs / μ / polarities, resumable.
@@ -119,9 +124,12 @@ pub enum Command {
 /// Run the command line; returns the process exit code.
 pub fn main(cli: Cli) -> ExitCode {
     let result = match cli.command {
-        None => run(&[], Path::new("reports"), cli.quiet, false),
-        Some(Command::Run { cases, out }) => run(&cases, &out, cli.quiet, false),
-        Some(Command::Check { cases, out }) => run(&cases, &out, cli.quiet, true),
+        None => run(&[], Path::new("reports"), cli.quiet, None),
+        Some(Command::Run { cases, out }) => run(&cases, &out, cli.quiet, None),
+        Some(Command::Check { cases, out, junit }) => {
+            let junit = junit.unwrap_or_else(|| out.join("junit.xml"));
+            run(&cases, &out, cli.quiet, Some(&junit))
+        }
         Some(Command::List { cases }) => list(&cases),
         Some(Command::Reference { case, dt, out }) => write_reference(&case, dt, &out),
         Some(Command::Study {
@@ -198,7 +206,9 @@ fn load_all(paths: &[PathBuf]) -> Result<Vec<crate::case::Case>, Error> {
     }
 }
 
-fn run(args: &[PathBuf], out: &Path, quiet: bool, gate: bool) -> Result<ExitCode, Error> {
+/// Run the cases, write every report; with `junit` (the `check` command), also write the
+/// JUnit XML and return exit code 1 when the gate fails.
+fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Result<ExitCode, Error> {
     let cases = load_all(&case_paths(args)?)?;
     let engines = engine::all();
     for c in &cases {
@@ -210,49 +220,45 @@ fn run(args: &[PathBuf], out: &Path, quiet: bool, gate: bool) -> Result<ExitCode
         let result = run_case(case)?;
         let dir = write_case_outputs(&result, out)?;
         if !quiet {
+            let passed = gate::failures(std::slice::from_ref(&result)).is_empty();
             println!(
                 "{name}: {} runs, gate {} → {}",
                 result.runs.len(),
-                if result.gate_passed() { "PASS" } else { "FAIL" },
-                dir.join("report.md").display()
+                if passed { "PASS" } else { "FAIL" },
+                dir.join("report.html").display()
             );
         }
         results.push(result);
     }
-    write_atomically(&out.join("summary.md"), suite_markdown(&results).as_bytes())?;
-    let failures: Vec<String> = results
-        .iter()
-        .flat_map(|r| {
-            r.checks
-                .iter()
-                .filter(|c| c.gated && c.verdict != crate::analysis::Verdict::Pass)
-                .map(move |c| {
-                    format!(
-                        "FAIL {}: {} of {} against {}: {} (tolerance {}) [{}]",
-                        r.case.name,
-                        c.quantity,
-                        c.run,
-                        c.basis,
-                        c.percent.map_or_else(
-                            || match (c.value, c.basis_value) {
-                                (Some(v), Some(b)) => format!("difference {:.4e}", v - b),
-                                _ => "missing".into(),
-                            },
-                            |p| format!("{p:+.3} %")
-                        ),
-                        c.limit,
-                        c.field
-                    )
-                })
-        })
-        .collect();
+    let html = write_suite_outputs(&results, out)?;
+    let failures = gate::failures(&results);
     for f in &failures {
         eprintln!("{f}");
     }
-    if gate && !failures.is_empty() {
-        return Ok(ExitCode::from(1));
+    if !quiet {
+        for f in gate::informative(&results) {
+            println!("{f}");
+        }
     }
-    Ok(ExitCode::SUCCESS)
+    let Some(junit) = junit else {
+        return Ok(ExitCode::SUCCESS);
+    };
+    gate::write_junit(&results, junit)?;
+    gate::write_step_summary(&results);
+    if !quiet {
+        println!(
+            "gate: {} — {} failure(s); report {}, JUnit {}",
+            if failures.is_empty() { "PASS" } else { "FAIL" },
+            failures.len(),
+            html.display(),
+            junit.display()
+        );
+    }
+    Ok(if failures.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
 }
 
 fn list(args: &[PathBuf]) -> Result<ExitCode, Error> {

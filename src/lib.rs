@@ -14,7 +14,9 @@
 //! - [`reference`]: exact and closed-form solutions, sharing nothing with the engines.
 //! - [`trace`]: the output format (channels with units) and its CSV writer.
 //! - [`analysis`]: response quantities, discrepancies, tolerance checks.
-//! - [`study`]: many-run studies over records, PGAs and μ (sharded, resumable); [`suite`]: running a case; [`report`]: Markdown reports; [`cli`]: the commands.
+//! - [`study`]: many-run studies over records, PGAs and μ (sharded, resumable).
+//! - [`suite`]: running a case; [`report`]: Markdown/HTML reports, plots, summary CSV;
+//!   [`gate`]: gate failures and JUnit XML; [`cli`]: the commands.
 //!
 //! ## Glossary (paper symbols)
 //!
@@ -39,6 +41,7 @@ pub mod case;
 pub mod cli;
 pub mod engine;
 pub mod error;
+pub mod gate;
 pub mod io;
 pub mod reference;
 pub mod report;

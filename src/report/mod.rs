@@ -1,11 +1,33 @@
-//! Reports: the paper-style tables of a case (Markdown), the suite summary, and writing
-//! every output of a case (CSV and MCAP traces, report) atomically under the output folder.
+//! Reports: the verification document an engineer signs. For each case and for the whole
+//! suite, Markdown and a self-contained HTML page (plots inline as SVG) and a summary CSV;
+//! the content — paper-style table, tolerance checks, cross-code matrix, plots, settings,
+//! provenance — is built once (`document`) as a small document model (`doc`) and rendered
+//! by `markdown` and `html`. Every file is written atomically under the output folder.
+//!
+//! Table of contents:
+//! - `table`: the paper-style table as data; `crosscode`: pairwise discrepancies;
+//!   `plots`: time-history figures (plotters, SVG); `provenance`: tool, commit, machine, date;
+//! - `document`: the report content; `doc`: the document model;
+//! - `markdown`, `html`, `summary_csv`: the renderers; `format`: number formatting;
+//! - `mcap_log`: the MCAP trace of a case run (Foxglove).
 
+mod crosscode;
+mod doc;
+mod document;
+mod format;
+mod html;
 mod markdown;
 mod mcap_log;
+mod plots;
+mod provenance;
+mod summary_csv;
+mod table;
 
+pub use html::{case_html, suite_html};
 pub use markdown::{case_markdown, suite_markdown};
 pub use mcap_log::{case_trace_log, git_commit, write_case_mcap};
+pub use provenance::Provenance;
+pub use summary_csv::{SUMMARY_HEADER, summary_csv};
 
 use std::path::{Path, PathBuf};
 
@@ -14,7 +36,14 @@ use crate::io::write_atomically;
 use crate::suite::CaseResult;
 use crate::trace::write_csv;
 
-/// Write a case's CSV traces and Markdown report under `out/<case>/`; returns the folder.
+/// A value of response quantity `key` in its display unit (4 significant digits) and the
+/// unit: `("8.699", "mm")`.
+pub fn show_value(key: &str, si: f64) -> (String, &'static str) {
+    (format::show(key, si), format::display_unit(key).0)
+}
+
+/// Write a case's outputs under `out/<case>/`: CSV traces, `report.md`, `report.html`,
+/// `summary.csv` and the plots as `plot-*.svg`; returns the folder.
 pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Error> {
     let dir = out.join(&result.case.name);
     for run in &result.runs {
@@ -30,6 +59,37 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
         )?;
     }
     write_case_mcap(result, &dir.join(format!("{}.mcap", result.case.name)))?;
-    write_atomically(&dir.join("report.md"), case_markdown(result).as_bytes())?;
+    let blocks = document::case_document(result, Provenance::current());
+    for b in &blocks {
+        if let doc::Block::Figure { file, svg, .. } = b {
+            write_atomically(&dir.join(file), svg.as_bytes())?;
+        }
+    }
+    write_atomically(
+        &dir.join("report.md"),
+        markdown::render(&blocks, "").as_bytes(),
+    )?;
+    let page = html::page(
+        &format!("rockslide — {}", result.case.name),
+        &html::render(&blocks),
+    );
+    write_atomically(&dir.join("report.html"), page.as_bytes())?;
+    write_atomically(
+        &dir.join("summary.csv"),
+        &summary_csv(std::slice::from_ref(result))?,
+    )?;
     Ok(dir)
 }
+
+/// Write the suite's outputs under `out/`: `summary.md`, `summary.html` (every case in
+/// full) and `summary.csv`. Returns the HTML path.
+pub fn write_suite_outputs(results: &[CaseResult], out: &Path) -> Result<PathBuf, Error> {
+    write_atomically(&out.join("summary.md"), suite_markdown(results).as_bytes())?;
+    let html = out.join("summary.html");
+    write_atomically(&html, suite_html(results).as_bytes())?;
+    write_atomically(&out.join("summary.csv"), &summary_csv(results)?)?;
+    Ok(html)
+}
+
+#[cfg(test)]
+mod tests;

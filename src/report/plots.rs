@@ -1,0 +1,382 @@
+//! Time-history plots in the style of the paper's Figures 3–11: one figure per quantity
+//! (force and resistance, relative displacement, sliding, centre-of-mass horizontal and
+//! vertical motion, rotation), every participant overlaid, axes in the paper's units
+//! (kN, mm). Drawn with `plotters`' SVG backend into strings, so the HTML can embed them
+//! inline and the Markdown can link the same SVG files.
+//!
+//! A run far off the others' scale (peak more than [`OFF_SCALE`] times the reference's, or
+//! the median's) would flatten every other curve: it is left out of the main figure —
+//! whose caption says so — and shown in a second figure with everything.
+
+use plotters::prelude::*;
+
+use crate::suite::CaseResult;
+use crate::trace::{Quantity, Trace, q};
+
+/// Ratio of a run's peak to the reference's (or median) peak beyond which it is off scale.
+pub(crate) const OFF_SCALE: f64 = 5.0;
+/// Figure size in pixels.
+const SIZE: (u32, u32) = (760, 420);
+/// Traces longer than this are reduced to per-bucket min/max before drawing.
+const MAX_POINTS: usize = 4000;
+
+/// One rendered figure.
+#[derive(Debug, Clone)]
+pub(crate) struct Figure {
+    /// File stem (`relative-displacement`), unique within a case.
+    pub id: String,
+    /// Caption.
+    pub caption: String,
+    /// The SVG document.
+    pub svg: String,
+}
+
+/// What a figure shows: channels sharing one axis.
+struct Spec {
+    id: &'static str,
+    title: &'static str,
+    channels: &'static [&'static Quantity],
+    paper: &'static str,
+}
+
+const SPECS: &[Spec] = &[
+    Spec {
+        id: "force-resistance",
+        title: "Force F (dashed) and resistance R (solid)",
+        channels: &[&q::FORCE, &q::RESISTANCE],
+        paper: "paper Figs 3, 4 (force and resistance)",
+    },
+    Spec {
+        id: "relative-displacement",
+        title: "Relative displacement",
+        channels: &[&q::REL_DISP],
+        paper: "paper Figs 5, 6",
+    },
+    Spec {
+        id: "sliding",
+        title: "Sliding",
+        channels: &[&q::SLIDE],
+        paper: "paper Figs 7, 8",
+    },
+    Spec {
+        id: "cm-horizontal",
+        title: "Centre of mass, horizontal",
+        channels: &[&q::CM_X],
+        paper: "paper Figs 9, 10",
+    },
+    Spec {
+        id: "cm-vertical",
+        title: "Centre of mass, vertical",
+        channels: &[&q::CM_Z],
+        paper: "paper Fig 11",
+    },
+    Spec {
+        id: "rotation",
+        title: "Base rotation",
+        channels: &[&q::ROTATION],
+        paper: "rocking scenes",
+    },
+];
+
+/// A line to draw: participant label and trace.
+struct Line<'a> {
+    label: String,
+    trace: &'a Trace,
+}
+
+fn lines(r: &CaseResult) -> Vec<Line<'_>> {
+    let mut out = Vec::new();
+    if let Ok(x) = &r.reference {
+        out.push(Line {
+            label: format!("reference ({})", x.solution.name()),
+            trace: &x.trace,
+        });
+    }
+    for run in &r.runs {
+        let mut label = run.label();
+        if !run.status.completed() {
+            label.push_str(&format!(" ({})", run.status.label()));
+        }
+        out.push(Line {
+            label,
+            trace: &run.trace,
+        });
+    }
+    out
+}
+
+/// Colour of the i-th participant: the reference black, then a qualitative palette.
+fn colour(i: usize, has_reference: bool) -> RGBColor {
+    const PALETTE: [RGBColor; 8] = [
+        RGBColor(0x1f, 0x77, 0xb4),
+        RGBColor(0xd6, 0x27, 0x28),
+        RGBColor(0x2c, 0xa0, 0x2c),
+        RGBColor(0xff, 0x7f, 0x0e),
+        RGBColor(0x94, 0x67, 0xbd),
+        RGBColor(0x8c, 0x56, 0x4b),
+        RGBColor(0xe3, 0x77, 0xc2),
+        RGBColor(0x17, 0xbe, 0xcf),
+    ];
+    match (has_reference, i) {
+        (true, 0) => RGBColor(0, 0, 0),
+        (true, i) => PALETTE[(i - 1) % PALETTE.len()],
+        (false, i) => PALETTE[i % PALETTE.len()],
+    }
+}
+
+/// (time, value·factor) points of a channel, reduced to per-bucket min and max (in time
+/// order) when long, so that peaks survive and the SVG stays small.
+fn points(trace: &Trace, key: &str, factor: f64) -> Vec<(f64, f64)> {
+    let Some(col) = trace.column(key) else {
+        return Vec::new();
+    };
+    let n = col.len();
+    if n <= MAX_POINTS {
+        return trace
+            .time
+            .iter()
+            .zip(col)
+            .map(|(&t, &v)| (t, v * factor))
+            .collect();
+    }
+    let buckets = MAX_POINTS / 2;
+    let mut out = Vec::with_capacity(MAX_POINTS + 2);
+    for b in 0..buckets {
+        let (lo, hi) = (b * n / buckets, ((b + 1) * n / buckets).min(n));
+        if lo >= hi {
+            continue;
+        }
+        let (mut imin, mut imax) = (lo, lo);
+        for i in lo..hi {
+            if col[i] < col[imin] {
+                imin = i;
+            }
+            if col[i] > col[imax] {
+                imax = i;
+            }
+        }
+        let (i1, i2) = (imin.min(imax), imin.max(imax));
+        out.push((trace.time[i1], col[i1] * factor));
+        if i2 != i1 {
+            out.push((trace.time[i2], col[i2] * factor));
+        }
+    }
+    out
+}
+
+fn peak(trace: &Trace, channels: &[&Quantity]) -> f64 {
+    channels
+        .iter()
+        .filter_map(|c| trace.column(c.key))
+        .flat_map(|col| col.iter())
+        .filter(|v| v.is_finite())
+        .fold(0.0_f64, |m, v| m.max(v.abs()))
+}
+
+/// Every figure of a case whose channels some participant has.
+pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
+    let all = lines(r);
+    let has_reference = r.reference.is_ok();
+    let mut out = Vec::new();
+    for spec in SPECS {
+        let members: Vec<usize> = (0..all.len())
+            .filter(|&i| spec.channels.iter().any(|c| all[i].trace.has(c.key)))
+            .collect();
+        if members.is_empty() {
+            continue;
+        }
+        let peaks: Vec<f64> = members
+            .iter()
+            .map(|&i| peak(all[i].trace, spec.channels))
+            .collect();
+        let scale = if has_reference && members[0] == 0 {
+            peaks[0]
+        } else {
+            let mut s = peaks.clone();
+            s.sort_by(f64::total_cmp);
+            s[s.len() / 2]
+        };
+        let off: Vec<usize> = members
+            .iter()
+            .zip(&peaks)
+            .filter(|&(_, &p)| scale > 0.0 && p > OFF_SCALE * scale)
+            .map(|(&i, _)| i)
+            .collect();
+        let kept: Vec<usize> = members
+            .iter()
+            .copied()
+            .filter(|i| !off.contains(i))
+            .collect();
+        let mut caption = format!("{} — {}", spec.title, spec.paper);
+        if !off.is_empty() {
+            let names: Vec<String> = off
+                .iter()
+                .map(|&i| {
+                    let p = peak(all[i].trace, spec.channels) * spec.channels[0].display.1;
+                    format!(
+                        "{} (peak {} {})",
+                        all[i].label,
+                        super::format::sig(p),
+                        spec.channels[0].display.0
+                    )
+                })
+                .collect();
+            caption.push_str(&format!(
+                "; off scale and left out here (> {OFF_SCALE}× the {} peak): {} — see the next figure",
+                if has_reference {
+                    "reference's"
+                } else {
+                    "median"
+                },
+                names.join(", ")
+            ));
+        }
+        out.push(Figure {
+            id: spec.id.to_string(),
+            caption,
+            svg: draw(spec, &all, &kept, has_reference),
+        });
+        if !off.is_empty() {
+            out.push(Figure {
+                id: format!("{}-all", spec.id),
+                caption: format!("{} — every run, including off-scale ones", spec.title),
+                svg: draw(spec, &all, &members, has_reference),
+            });
+        }
+    }
+    out
+}
+
+/// One line of a figure: participant index, channel index, points.
+type Series = (usize, usize, Vec<(f64, f64)>);
+
+/// Draw one figure into an SVG string.
+fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -> String {
+    let (unit, factor) = spec.channels[0].display;
+    // (participant, channel index, points)
+    let mut series: Vec<Series> = Vec::new();
+    for &i in members {
+        for (ci, c) in spec.channels.iter().enumerate() {
+            let p = points(all[i].trace, c.key, factor);
+            if !p.is_empty() {
+                series.push((i, ci, p));
+            }
+        }
+    }
+    let (mut t1, mut y0, mut y1) = (0.0_f64, f64::INFINITY, f64::NEG_INFINITY);
+    for (_, _, p) in &series {
+        for &(t, y) in p {
+            if y.is_finite() {
+                t1 = t1.max(t);
+                y0 = y0.min(y);
+                y1 = y1.max(y);
+            }
+        }
+    }
+    if y0.partial_cmp(&y1) != Some(std::cmp::Ordering::Less) {
+        (y0, y1) = (y0.min(0.0) - 1.0, y1.max(0.0) + 1.0);
+    }
+    let pad = 0.05 * (y1 - y0);
+    let (y0, y1) = (y0 - pad, y1 + pad);
+    let t1 = if t1 > 0.0 { t1 } else { 1.0 };
+    let names: Vec<&str> = spec.channels.iter().map(|c| c.label).collect();
+    let ylabel = format!("{} [{unit}]", names.join(", "));
+
+    let mut svg = String::new();
+    {
+        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        let result = (|| -> Result<(), Box<dyn std::error::Error + '_>> {
+            root.fill(&WHITE)?;
+            let mut chart = ChartBuilder::on(&root)
+                .caption(spec.title, ("sans-serif", 18))
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(70)
+                .build_cartesian_2d(0.0..t1, y0..y1)?;
+            chart
+                .configure_mesh()
+                .x_desc("time [s]")
+                .y_desc(ylabel.as_str())
+                .label_style(("sans-serif", 13))
+                .light_line_style(RGBColor(235, 235, 235))
+                .draw()?;
+            for (i, ci, p) in &series {
+                let c = colour(*i, has_reference);
+                let style = c.stroke_width(if *i == 0 && has_reference { 2 } else { 1 });
+                let name = if spec.channels.len() > 1 {
+                    format!("{} {}", spec.channels[*ci].key, all[*i].label)
+                } else {
+                    all[*i].label.clone()
+                };
+                let dashed = spec.channels.len() > 1 && *ci == 0;
+                if dashed {
+                    chart
+                        .draw_series(DashedLineSeries::new(p.iter().copied(), 6, 4, style))?
+                        .label(name)
+                        .legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 8, y)], c.stroke_width(2))
+                        });
+                } else {
+                    chart
+                        .draw_series(LineSeries::new(p.iter().copied(), style))?
+                        .label(name)
+                        .legend(move |(x, y)| {
+                            PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
+                        });
+                }
+            }
+            chart
+                .configure_series_labels()
+                .position(SeriesLabelPosition::UpperRight)
+                .background_style(WHITE.mix(0.85))
+                .border_style(RGBColor(180, 180, 180))
+                .label_font(("sans-serif", 12))
+                .draw()?;
+            root.present()?;
+            Ok(())
+        })();
+        if let Err(e) = result {
+            drop(root);
+            return format!(
+                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"40\"><text x=\"8\" y=\"24\">plot failed: {}</text></svg>",
+                SIZE.0,
+                super::format::esc(&e.to_string())
+            );
+        }
+    }
+    svg
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn long_traces_are_reduced_but_keep_their_extremes() {
+        // 100 001 samples of sin(2π·7t) + a spike: reduced to ≤ MAX_POINTS points, and
+        // the global max (the spike, 3.0) and min (−1.0 at the troughs) survive exactly.
+        let n = 100_001;
+        let mut t = Trace::with_channels(&[&q::REL_DISP], n);
+        for i in 0..n {
+            let x = i as f64 / (n - 1) as f64;
+            let v = if i == 54_321 {
+                3.0
+            } else {
+                (2.0 * std::f64::consts::PI * 7.0 * x).sin()
+            };
+            t.push(x, &[v]);
+        }
+        let p = points(&t, "rel_disp", 1e3);
+        assert!(p.len() <= MAX_POINTS, "{}", p.len());
+        let max = p.iter().map(|x| x.1).fold(f64::MIN, f64::max);
+        let min = p.iter().map(|x| x.1).fold(f64::MAX, f64::min);
+        assert_eq!(max, 3.0e3);
+        let exact_min = t
+            .column("rel_disp")
+            .unwrap()
+            .iter()
+            .fold(f64::MAX, |m, &v| m.min(v));
+        assert_eq!(min, exact_min * 1e3);
+        assert!(p.windows(2).all(|w| w[0].0 <= w[1].0), "time order kept");
+    }
+}

@@ -1,0 +1,164 @@
+//! `rockslide check` as CI runs it: exit codes (0 pass, 1 gate failed, 2 bad input), one
+//! line per gated failure, and JUnit XML that an independent XML parser reads with the
+//! right counts. Requirement: SPEC §3 "Gate"; issue 6.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+use quick_xml::Reader;
+use quick_xml::events::Event;
+
+fn check(cases: &[&str], out: &Path, junit: Option<&Path>) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rockslide"));
+    cmd.current_dir(env!("CARGO_MANIFEST_DIR"))
+        .arg("check")
+        .args(cases)
+        .arg("--out")
+        .arg(out);
+    if let Some(j) = junit {
+        cmd.arg("--junit").arg(j);
+    }
+    cmd.output().expect("the binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// Counts read off JUnit XML by quick-xml, independently of the crate that wrote it:
+/// (`tests` attribute of <testsuites>, <testcase> elements, <failure> elements,
+/// <skipped> elements).
+fn junit_counts(xml: &str) -> (usize, usize, usize, usize) {
+    let mut reader = Reader::from_str(xml);
+    let (mut declared, mut cases, mut failures, mut skipped) = (0, 0, 0, 0);
+    loop {
+        match reader.read_event().expect("well-formed XML") {
+            Event::Start(e) | Event::Empty(e) => match e.name().as_ref() {
+                b"testsuites" => {
+                    let a = e
+                        .try_get_attribute("tests")
+                        .expect("attribute parses")
+                        .expect("tests attribute");
+                    declared = String::from_utf8_lossy(&a.value).parse().unwrap();
+                }
+                b"testcase" => cases += 1,
+                b"failure" => failures += 1,
+                b"skipped" => skipped += 1,
+                _ => {}
+            },
+            Event::Eof => break,
+            _ => {}
+        }
+    }
+    (declared, cases, failures, skipped)
+}
+
+#[test]
+fn a_too_tight_tolerance_fails_the_gate_with_one_line_and_exit_1() {
+    let dir = tempfile::tempdir().unwrap();
+    let junit = dir.path().join("ci/junit.xml");
+    let o = check(&["tests/data/too-tight.toml"], dir.path(), Some(&junit));
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "stderr:\n{err}");
+    let lines: Vec<&str> = err.lines().filter(|l| l.starts_with("FAIL ")).collect();
+    // Three tolerances: one gated and too tight, one gated and passing, one failing but
+    // not gated — exactly one failure line.
+    assert_eq!(lines.len(), 1, "{err}");
+    let line = lines[0];
+    let head =
+        "FAIL too-tight: peak_relative_displacement: predictor-corrector/paper vs reference: Δ ";
+    let tail = " (tolerance ≤ 0.1 %) [tests/data/too-tight.toml: tolerance[0]]";
+    assert!(line.starts_with(head) && line.ends_with(tail), "{line}");
+    // The value: Δ in %, then run and reference values in mm. The exact peak relative
+    // displacement is 9.263 mm (exact event-driven reference, 4 digits); the
+    // predictor-corrector at dt = 0.01 s was measured 0.617 % below it.
+    let value = &line[head.len()..line.len() - tail.len()];
+    let pct: f64 = value
+        .split(' ')
+        .next()
+        .unwrap()
+        .trim_end_matches('%')
+        .parse()
+        .unwrap();
+    assert!((pct - (-0.617)).abs() <= 0.0005, "{value}");
+    assert!(value.ends_with("(9.206 vs 9.263 mm)"), "{value}");
+
+    let xml = std::fs::read_to_string(&junit).expect("JUnit written where asked");
+    let (declared, cases, failures, skipped) = junit_counts(&xml);
+    assert_eq!((declared, cases, failures, skipped), (3, 3, 1, 1), "{xml}");
+}
+
+#[test]
+fn a_gated_tolerance_that_checks_nothing_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = check(&["tests/data/checks-nothing.toml"], dir.path(), None);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("FAIL checks-nothing: peak_relative_displacement: rapier: checks nothing"),
+        "{err}"
+    );
+    // --junit defaults to <out>/junit.xml.
+    let xml = std::fs::read_to_string(dir.path().join("junit.xml")).unwrap();
+    let (declared, cases, failures, _) = junit_counts(&xml);
+    assert_eq!((declared, cases, failures), (1, 1, 1), "{xml}");
+}
+
+#[test]
+fn a_bad_case_exits_2_with_located_errors_and_writes_nothing() {
+    let dir = tempfile::tempdir().unwrap();
+    let out: PathBuf = dir.path().join("out");
+    let o = check(&["tests/data/bad-case.toml"], &out, None);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("tests/data/bad-case.toml:29:12: tolerance[0].quantity: unknown quantity \"peak_wobble\""),
+        "{err}"
+    );
+    assert!(
+        err.contains("tests/data/bad-case.toml:30:11: tolerance[0].percent:"),
+        "{err}"
+    );
+    assert!(!out.exists(), "no output on bad input");
+}
+
+#[test]
+fn a_missing_case_file_exits_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = check(&["tests/data/no-such-case.toml"], dir.path(), None);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn passing_tolerances_exit_0_and_report_zero_failures() {
+    // The linear SDOF, predictor-corrector only: three gated checks, all within tolerance.
+    let dir = tempfile::tempdir().unwrap();
+    let o = check(&["tests/data/within-tolerance.toml"], dir.path(), None);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("FAIL"));
+    let xml = std::fs::read_to_string(dir.path().join("junit.xml")).unwrap();
+    let (declared, cases, failures, _) = junit_counts(&xml);
+    assert_eq!((declared, cases, failures), (3, 3, 0), "{xml}");
+}
+
+#[test]
+fn the_suite_summary_is_appended_to_the_github_step_summary() {
+    let dir = tempfile::tempdir().unwrap();
+    let summary = dir.path().join("step-summary.md");
+    std::fs::write(&summary, "earlier step\n").unwrap();
+    let o = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("GITHUB_STEP_SUMMARY", &summary)
+        .args(["check", "tests/data/too-tight.toml", "--quiet", "--out"])
+        .arg(dir.path().join("out"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1));
+    let text = std::fs::read_to_string(&summary).unwrap();
+    assert!(text.starts_with("earlier step\n"), "appended, not replaced");
+    assert!(text.contains("**Gate: FAIL**"), "{text}");
+    assert!(
+        text.contains("- FAIL too-tight: peak_relative_displacement:"),
+        "{text}"
+    );
+}
