@@ -67,6 +67,43 @@ fn messages(path: &Path) -> Vec<(String, String, u64, Value)> {
         .collect()
 }
 
+/// Foxglove turns a JSON schema into message definitions only within a subset: the root
+/// and every nested object `"type": "object"` with `properties`; every field one concrete
+/// type (boolean, string, number, integer, object, array); array items typed likewise;
+/// no `$ref`, no type lists (Foxglove Studio's `parseJsonSchema`, which throws otherwise
+/// and the channel does not load).
+fn assert_foxglove_subset(schema: &Value, path: &str) {
+    assert_eq!(schema["type"], "object", "{path}: type");
+    let props = schema["properties"]
+        .as_object()
+        .unwrap_or_else(|| panic!("{path}: an object needs properties"));
+    for (k, f) in props {
+        let p = format!("{path}.{k}");
+        assert!(f.get("$ref").is_none(), "{p}: $ref");
+        match f["type"].as_str() {
+            Some("boolean" | "string" | "number" | "integer") => {}
+            Some("object") => assert_foxglove_subset(f, &p),
+            Some("array") => match f["items"]["type"].as_str() {
+                Some("boolean" | "string" | "number" | "integer") => {}
+                Some("object") => assert_foxglove_subset(&f["items"], &p),
+                other => panic!("{p}: array items of type {other:?}"),
+            },
+            _ => panic!("{p}: type {}", f["type"]),
+        }
+    }
+}
+
+fn assert_schemas_in_foxglove_subset(path: &Path) -> usize {
+    let bytes = std::fs::read(path).unwrap();
+    let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
+    for s in summary.schemas.values() {
+        assert_eq!(s.encoding, "jsonschema");
+        let v: Value = serde_json::from_slice(&s.data).unwrap();
+        assert_foxglove_subset(&v, &s.name);
+    }
+    summary.schemas.len()
+}
+
 #[test]
 fn pepo_case_mcap_reads_back_equal_to_csv() {
     let case = load_case(Path::new("cases/pepo-ground-disp.toml")).unwrap();
@@ -187,6 +224,7 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
     );
     assert_eq!(data, text.as_bytes());
     assert!(!m.metadata.contains_key("scene3d"));
+    assert_eq!(assert_schemas_in_foxglove_subset(&path), 3);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -362,6 +400,8 @@ fn rocking_body_pose_and_scene_follow_the_trace() {
     assert_eq!(schema_of("/fe/exact/forces"), "foxglove.SceneUpdate");
     assert_eq!(schema_of("/fe/exact/transform"), "foxglove.FrameTransform");
     assert!(m.metadata.contains_key("scene3d"));
+    // State, SceneUpdate, FrameTransform, Log.
+    assert_eq!(assert_schemas_in_foxglove_subset(&path), 4);
 
     let msgs = messages(&path);
     // The static scene: ground, label and body (2b × depth × 2h box, 10 supports + CM).

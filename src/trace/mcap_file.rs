@@ -106,7 +106,7 @@ pub fn state_schema(trace: &Trace) -> Value {
         props.insert(
             c.key.into(),
             json!({
-                "type": ["number", "null"],
+                "type": "number", // a type list (with "null") is outside Foxglove's subset
                 "title": c.label,
                 "description": format!("{} [{unit}].{display} null when not finite (NaN/Inf).", c.doc),
                 "unit": c.unit
