@@ -565,13 +565,9 @@ pub fn describe(contents: &McapContents) -> String {
     );
     let _ = writeln!(s, "channels:");
     for c in &contents.channels {
-        let _ = writeln!(
-            s,
-            "  {:<44} {:<24} {:>8} msgs",
-            c.topic, c.schema, c.messages
-        );
+        let _ = writeln!(s, "  {:<40} {:>8} msgs  {}", c.topic, c.messages, c.schema);
         if let Some(f) = c.metadata.get("fields") {
-            let _ = writeln!(s, "  {:<44} fields: time,{f}", "");
+            let _ = writeln!(s, "  {:<40} fields: time,{f}", "");
         }
     }
     for (name, m) in &contents.metadata {
