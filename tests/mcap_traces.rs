@@ -67,6 +67,43 @@ fn messages(path: &Path) -> Vec<(String, String, u64, Value)> {
         .collect()
 }
 
+/// Foxglove turns a JSON schema into message definitions only within a subset: the root
+/// and every nested object `"type": "object"` with `properties`; every field one concrete
+/// type (boolean, string, number, integer, object, array); array items typed likewise;
+/// no `$ref`, no type lists (Foxglove Studio's `parseJsonSchema`, which throws otherwise
+/// and the channel does not load).
+fn assert_foxglove_subset(schema: &Value, path: &str) {
+    assert_eq!(schema["type"], "object", "{path}: type");
+    let props = schema["properties"]
+        .as_object()
+        .unwrap_or_else(|| panic!("{path}: an object needs properties"));
+    for (k, f) in props {
+        let p = format!("{path}.{k}");
+        assert!(f.get("$ref").is_none(), "{p}: $ref");
+        match f["type"].as_str() {
+            Some("boolean" | "string" | "number" | "integer") => {}
+            Some("object") => assert_foxglove_subset(f, &p),
+            Some("array") => match f["items"]["type"].as_str() {
+                Some("boolean" | "string" | "number" | "integer") => {}
+                Some("object") => assert_foxglove_subset(&f["items"], &p),
+                other => panic!("{p}: array items of type {other:?}"),
+            },
+            _ => panic!("{p}: type {}", f["type"]),
+        }
+    }
+}
+
+fn assert_schemas_in_foxglove_subset(path: &Path) -> usize {
+    let bytes = std::fs::read(path).unwrap();
+    let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
+    for s in summary.schemas.values() {
+        assert_eq!(s.encoding, "jsonschema");
+        let v: Value = serde_json::from_slice(&s.data).unwrap();
+        assert_foxglove_subset(&v, &s.name);
+    }
+    summary.schemas.len()
+}
+
 #[test]
 fn pepo_case_mcap_reads_back_equal_to_csv() {
     let case = load_case(Path::new("cases/pepo-ground-disp.toml")).unwrap();
@@ -105,7 +142,9 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
     assert_traces_equal(&csv, m.state("/reference/state").unwrap(), "reference");
 
     // Schemas: jsonschema, units per field, only the trace's fields.
-    for c in m.channels.iter().filter(|c| c.schema == "rockslide.State") {
+    for c in m.channels.iter().filter(|c| c.topic.ends_with("/state")) {
+        let label = c.topic.trim_start_matches('/').trim_end_matches("/state");
+        assert_eq!(c.schema, rockslide::trace::state_schema_name(label));
         assert_eq!(
             (c.schema_encoding.as_str(), c.message_encoding.as_str()),
             ("jsonschema", "json")
@@ -118,7 +157,7 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
             panic!("{} has no schema", ch.topic)
         };
         let schema: Value = serde_json::from_slice(&s.data).unwrap();
-        if s.name != "rockslide.State" {
+        if !s.name.starts_with("rockslide.State.") {
             assert_eq!(s.name, "foxglove.Log");
             continue;
         }
@@ -190,6 +229,8 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
     );
     assert_eq!(data, text.as_bytes());
     assert!(!m.metadata.contains_key("scene3d"));
+    // One state schema per run (2) and the reference, and the log.
+    assert_eq!(assert_schemas_in_foxglove_subset(&path), 4);
 }
 
 // ---------------------------------------------------------------------------------------
@@ -365,6 +406,8 @@ fn rocking_body_pose_and_scene_follow_the_trace() {
     assert_eq!(schema_of("/fe/exact/forces"), "foxglove.SceneUpdate");
     assert_eq!(schema_of("/fe/exact/transform"), "foxglove.FrameTransform");
     assert!(m.metadata.contains_key("scene3d"));
+    // State, SceneUpdate, FrameTransform, Log.
+    assert_eq!(assert_schemas_in_foxglove_subset(&path), 4);
 
     let msgs = messages(&path);
     // The static scene: ground, label and body (2b × depth × 2h box, 10 supports + CM).

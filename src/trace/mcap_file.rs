@@ -3,7 +3,7 @@
 //!
 //! Layout of a file (see docs/traces.md):
 //! - one channel per run, `/<label>/state` (`label` = `engine/variant` or `reference`),
-//!   schema `rockslide.State` (encoding `jsonschema`, each field's SI unit in `unit` and in
+//!   schema `rockslide.State.<label>` (encoding `jsonschema`, each field's SI unit in `unit` and in
 //!   its description), messages `json`, one per trace row, with exactly the trace's fields;
 //! - for scenes with geometry: `/<label>/scene` and `/<label>/forces`
 //!   (`foxglove.SceneUpdate`) and `/<label>/transform` (`foxglove.FrameTransform`), see
@@ -33,8 +33,19 @@ use super::{Trace, q};
 use crate::error::{Error, InputError, InputErrors};
 use crate::io::write_atomically;
 
-/// Schema name of the per-run state channels.
+/// Schema name prefix of the per-run state channels.
 pub const STATE_SCHEMA: &str = "rockslide.State";
+
+/// The state schema name of a run: `rockslide.State.<label>` (`/` → `.`, `-` → `_`),
+/// e.g. `rockslide.State.fe.double`. One name per run, because viewers (Foxglove among
+/// them) key message definitions by schema name across the whole file, and runs record
+/// different fields.
+pub fn state_schema_name(label: &str) -> String {
+    format!(
+        "{STATE_SCHEMA}.{}",
+        label.replace('/', ".").replace('-', "_")
+    )
+}
 /// Interval between 3D messages of a run, ns (1 ms of simulated time): enough for smooth
 /// playback, far fewer messages than steps.
 pub const SCENE_PERIOD_NS: u64 = 1_000_000;
@@ -86,7 +97,7 @@ fn ns_of(t: f64, floor: u64) -> u64 {
 }
 
 /// The JSON schema of a trace's state messages: exactly its fields, units included.
-pub fn state_schema(trace: &Trace) -> Value {
+pub fn state_schema(trace: &Trace, name: &str) -> Value {
     let mut props = serde_json::Map::new();
     props.insert(
         "time".into(),
@@ -106,7 +117,7 @@ pub fn state_schema(trace: &Trace) -> Value {
         props.insert(
             c.key.into(),
             json!({
-                "type": ["number", "null"],
+                "type": "number", // a type list (with "null") is outside Foxglove's subset
                 "title": c.label,
                 "description": format!("{} [{unit}].{display} null when not finite (NaN/Inf).", c.doc),
                 "unit": c.unit
@@ -117,7 +128,7 @@ pub fn state_schema(trace: &Trace) -> Value {
         .chain(trace.channels.iter().map(|c| c.key))
         .collect();
     json!({
-        "title": STATE_SCHEMA,
+        "title": name,
         "description": "State of one run at one simulation instant, SI units (each field's `unit`). Message log time = simulation time in ns.",
         "type": "object",
         "properties": props,
@@ -253,7 +264,8 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
     let log_schema = json_schema(&mut out, "foxglove.Log", &scene3d::log_schema())?;
     let mut channels = Vec::with_capacity(log.runs.len());
     for run in &log.runs {
-        let schema = json_schema(&mut out, STATE_SCHEMA, &state_schema(run.trace))?;
+        let name = state_schema_name(&run.label);
+        let schema = json_schema(&mut out, &name, &state_schema(run.trace, &name))?;
         let mut meta = BTreeMap::new();
         meta.insert("run".to_string(), run.label.clone());
         meta.insert(
@@ -389,7 +401,7 @@ pub struct McapContents {
     pub time_range: (u64, u64),
     /// Every channel, by id order.
     pub channels: Vec<McapChannel>,
-    /// The `rockslide.State` channels as traces, (topic, trace), in channel order.
+    /// The `rockslide.State.*` channels as traces, (topic, trace), in channel order.
     pub states: Vec<(String, Trace)>,
     /// Metadata records by name.
     pub metadata: BTreeMap<String, BTreeMap<String, String>>,
@@ -443,7 +455,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             .map_or((String::new(), String::new()), |s| {
                 (s.name.clone(), s.encoding.clone())
             });
-        if schema == STATE_SCHEMA {
+        if schema.starts_with(STATE_SCHEMA) && c.metadata.contains_key("fields") {
             let fields = c.metadata.get("fields").map_or("", String::as_str);
             let mut qs = Vec::new();
             for key in fields.split(',').filter(|k| !k.is_empty()) {
@@ -553,13 +565,9 @@ pub fn describe(contents: &McapContents) -> String {
     );
     let _ = writeln!(s, "channels:");
     for c in &contents.channels {
-        let _ = writeln!(
-            s,
-            "  {:<44} {:<24} {:>8} msgs",
-            c.topic, c.schema, c.messages
-        );
+        let _ = writeln!(s, "  {:<40} {:>8} msgs  {}", c.topic, c.messages, c.schema);
         if let Some(f) = c.metadata.get("fields") {
-            let _ = writeln!(s, "  {:<44} fields: time,{f}", "");
+            let _ = writeln!(s, "  {:<40} fields: time,{f}", "");
         }
     }
     for (name, m) in &contents.metadata {

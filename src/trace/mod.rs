@@ -11,7 +11,7 @@ pub mod scene3d;
 pub use csv_file::{read_csv, write_csv};
 pub use mcap_file::{
     LoggedRun, McapChannel, McapContents, SCENE_PERIOD_NS, STATE_SCHEMA, TraceLog, describe,
-    mcap_bytes, mcap_info, read_mcap, read_mcap_bytes, state_schema, write_mcap,
+    mcap_bytes, mcap_info, read_mcap, read_mcap_bytes, state_schema, state_schema_name, write_mcap,
 };
 pub use quantity::{Quantity, q};
 

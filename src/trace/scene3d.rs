@@ -15,7 +15,9 @@
 //!
 //! The JSON schemas below are written here from the field lists of Foxglove's message
 //! schema documentation (only the fields this module emits are described in detail); the
-//! 3D panel recognises the messages by schema *name*.
+//! 3D panel recognises the messages by schema *name*. They stay inside the JSON-schema
+//! subset Foxglove's reader turns into message definitions: every field has one concrete
+//! `type`, every object its `properties`, no `$ref`.
 
 use serde_json::{Value, json};
 
@@ -388,73 +390,101 @@ pub fn log(ns: u64, level: u8, name: &str, message: &str) -> Value {
     })
 }
 
+// The schemas are inline (no `$ref`), every object has `properties` and every field one
+// concrete `type`: the subset Foxglove's JSON-schema reader accepts.
+
 fn num(d: &str) -> Value {
     json!({ "type": "number", "description": d })
 }
 
-fn defs() -> Value {
+fn object(title: &str, props: Value) -> Value {
+    json!({ "type": "object", "title": title, "properties": props })
+}
+
+fn array_of(item: Value) -> Value {
+    json!({ "type": "array", "items": item })
+}
+
+fn time_schema(d: &str) -> Value {
     json!({
-        "time": {
-            "type": "object", "title": "time", "description": "Foxglove time (here: simulation time)",
-            "properties": {
-                "sec": { "type": "integer", "minimum": 0 },
-                "nsec": { "type": "integer", "minimum": 0, "maximum": 999_999_999 }
-            },
-            "required": ["sec", "nsec"]
-        },
-        "vector3": {
-            "type": "object", "title": "foxglove.Vector3",
-            "properties": { "x": num("x, m"), "y": num("y, m"), "z": num("z, m") },
-            "required": ["x", "y", "z"]
-        },
-        "quaternion": {
-            "type": "object", "title": "foxglove.Quaternion",
-            "properties": { "x": num("x"), "y": num("y"), "z": num("z"), "w": num("w") },
-            "required": ["x", "y", "z", "w"]
-        },
-        "pose": {
-            "type": "object", "title": "foxglove.Pose",
-            "properties": {
-                "position": { "$ref": "#/$defs/vector3" },
-                "orientation": { "$ref": "#/$defs/quaternion" }
-            },
-            "required": ["position", "orientation"]
-        },
-        "color": {
-            "type": "object", "title": "foxglove.Color",
-            "properties": { "r": num("red, 0–1"), "g": num("green, 0–1"), "b": num("blue, 0–1"), "a": num("alpha, 0–1") },
-            "required": ["r", "g", "b", "a"]
-        },
-        "shape": {
-            "type": "object", "description": "Cube or sphere primitive",
-            "properties": {
-                "pose": { "$ref": "#/$defs/pose" },
-                "size": { "$ref": "#/$defs/vector3" },
-                "color": { "$ref": "#/$defs/color" }
-            },
-            "required": ["pose", "size", "color"]
-        },
-        "arrow": {
-            "type": "object", "title": "foxglove.ArrowPrimitive",
-            "properties": {
-                "pose": { "$ref": "#/$defs/pose" },
+        "type": "object", "title": "time", "description": d,
+        "properties": {
+            "sec": { "type": "integer", "minimum": 0 },
+            "nsec": { "type": "integer", "minimum": 0, "maximum": 999_999_999 }
+        }
+    })
+}
+
+fn vector3_schema() -> Value {
+    object(
+        "foxglove.Vector3",
+        json!({ "x": num("x, m"), "y": num("y, m"), "z": num("z, m") }),
+    )
+}
+
+fn quaternion_schema() -> Value {
+    object(
+        "foxglove.Quaternion",
+        json!({ "x": num("x"), "y": num("y"), "z": num("z"), "w": num("w") }),
+    )
+}
+
+fn pose_schema() -> Value {
+    object(
+        "foxglove.Pose",
+        json!({ "position": vector3_schema(), "orientation": quaternion_schema() }),
+    )
+}
+
+fn color_schema() -> Value {
+    object(
+        "foxglove.Color",
+        json!({ "r": num("red, 0–1"), "g": num("green, 0–1"), "b": num("blue, 0–1"), "a": num("alpha, 0–1") }),
+    )
+}
+
+fn shape_schema(title: &str) -> Value {
+    object(
+        title,
+        json!({ "pose": pose_schema(), "size": vector3_schema(), "color": color_schema() }),
+    )
+}
+
+fn entity_schema() -> Value {
+    let unused = |title: &str| array_of(object(title, json!({})));
+    object(
+        "foxglove.SceneEntity",
+        json!({
+            "timestamp": time_schema("Timestamp of the entity (simulation time)"),
+            "frame_id": { "type": "string" },
+            "id": { "type": "string" },
+            "lifetime": time_schema("0: until replaced"),
+            "frame_locked": { "type": "boolean" },
+            "metadata": array_of(object("foxglove.KeyValuePair", json!({
+                "key": { "type": "string" }, "value": { "type": "string" }
+            }))),
+            "arrows": array_of(object("foxglove.ArrowPrimitive", json!({
+                "pose": pose_schema(),
                 "shaft_length": num("m"), "shaft_diameter": num("m"),
                 "head_length": num("m"), "head_diameter": num("m"),
-                "color": { "$ref": "#/$defs/color" }
-            }
-        },
-        "text": {
-            "type": "object", "title": "foxglove.TextPrimitive",
-            "properties": {
-                "pose": { "$ref": "#/$defs/pose" },
+                "color": color_schema()
+            }))),
+            "cubes": array_of(shape_schema("foxglove.CubePrimitive")),
+            "spheres": array_of(shape_schema("foxglove.SpherePrimitive")),
+            "cylinders": unused("foxglove.CylinderPrimitive"),
+            "lines": unused("foxglove.LinePrimitive"),
+            "triangles": unused("foxglove.TriangleListPrimitive"),
+            "texts": array_of(object("foxglove.TextPrimitive", json!({
+                "pose": pose_schema(),
                 "billboard": { "type": "boolean" },
                 "font_size": num("px when scale_invariant"),
                 "scale_invariant": { "type": "boolean" },
-                "color": { "$ref": "#/$defs/color" },
+                "color": color_schema(),
                 "text": { "type": "string" }
-            }
-        }
-    })
+            }))),
+            "models": unused("foxglove.ModelPrimitive")
+        }),
+    )
 }
 
 /// JSON schema of `foxglove.SceneUpdate` (the fields emitted here).
@@ -463,33 +493,14 @@ pub fn scene_update_schema() -> Value {
         "title": "foxglove.SceneUpdate",
         "description": "An update to the entities displayed in a 3D scene",
         "type": "object",
-        "$defs": defs(),
         "properties": {
-            "deletions": { "type": "array", "items": { "type": "object" } },
-            "entities": {
-                "type": "array",
-                "items": {
-                    "type": "object", "title": "foxglove.SceneEntity",
-                    "properties": {
-                        "timestamp": { "$ref": "#/$defs/time" },
-                        "frame_id": { "type": "string" },
-                        "id": { "type": "string" },
-                        "lifetime": { "$ref": "#/$defs/time" },
-                        "frame_locked": { "type": "boolean" },
-                        "metadata": { "type": "array", "items": { "type": "object" } },
-                        "arrows": { "type": "array", "items": { "$ref": "#/$defs/arrow" } },
-                        "cubes": { "type": "array", "items": { "$ref": "#/$defs/shape" } },
-                        "spheres": { "type": "array", "items": { "$ref": "#/$defs/shape" } },
-                        "cylinders": { "type": "array", "items": { "type": "object" } },
-                        "lines": { "type": "array", "items": { "type": "object" } },
-                        "triangles": { "type": "array", "items": { "type": "object" } },
-                        "texts": { "type": "array", "items": { "$ref": "#/$defs/text" } },
-                        "models": { "type": "array", "items": { "type": "object" } }
-                    }
-                }
-            }
-        },
-        "required": ["deletions", "entities"]
+            "deletions": array_of(object("foxglove.SceneEntityDeletion", json!({
+                "timestamp": time_schema("Timestamp of the deletion"),
+                "type": { "type": "integer", "description": "0 matching id, 1 all" },
+                "id": { "type": "string" }
+            }))),
+            "entities": array_of(entity_schema())
+        }
     })
 }
 
@@ -499,13 +510,12 @@ pub fn frame_transform_schema() -> Value {
         "title": "foxglove.FrameTransform",
         "description": "A transform between two reference frames in 3D space",
         "type": "object",
-        "$defs": defs(),
         "properties": {
-            "timestamp": { "$ref": "#/$defs/time" },
+            "timestamp": time_schema("Timestamp of the transform (simulation time)"),
             "parent_frame_id": { "type": "string" },
             "child_frame_id": { "type": "string" },
-            "translation": { "$ref": "#/$defs/vector3" },
-            "rotation": { "$ref": "#/$defs/quaternion" }
+            "translation": vector3_schema(),
+            "rotation": quaternion_schema()
         },
         "required": ["timestamp", "parent_frame_id", "child_frame_id", "translation", "rotation"]
     })
@@ -517,9 +527,8 @@ pub fn log_schema() -> Value {
         "title": "foxglove.Log",
         "description": "A log message",
         "type": "object",
-        "$defs": defs(),
         "properties": {
-            "timestamp": { "$ref": "#/$defs/time" },
+            "timestamp": time_schema("Timestamp of the log message (simulation time)"),
             "level": { "type": "integer", "description": "0 unknown, 1 debug, 2 info, 3 warning, 4 error, 5 fatal" },
             "message": { "type": "string" },
             "name": { "type": "string" },
