@@ -49,6 +49,39 @@ pub enum Command {
         #[arg(long, short, default_value = "reports")]
         out: PathBuf,
     },
+    /// Error against run time: a Δt ladder per engine and variant, with observed order,
+    /// table and log-log plot in `<out>/<case>/sweep.{md,csv,svg}`.
+    Sweep {
+        /// Case files.
+        cases: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, short, default_value = "reports")]
+        out: PathBuf,
+        /// Rungs of the Δt ladder (from T/10 down, at least 3).
+        #[arg(long, default_value_t = 8)]
+        rungs: usize,
+        /// Refinement ratio between rungs.
+        #[arg(long, default_value_t = 2.0)]
+        ratio: f64,
+        /// Timed repeats per rung (median, min and max are reported).
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        /// Worker threads (default: all cores).
+        #[arg(long, short)]
+        jobs: Option<usize>,
+    },
+    /// Run the stiff and extreme scenes and classify every run (accurate, inaccurate,
+    /// diverged, not converged); map and stability limits in `<out>/stability/`.
+    Stability {
+        /// Case files or folders (default: `cases/stability/`).
+        cases: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, short, default_value = "reports")]
+        out: PathBuf,
+        /// Worker threads (default: all cores).
+        #[arg(long, short)]
+        jobs: Option<usize>,
+    },
 }
 
 /// Run the command line; returns the process exit code.
@@ -58,6 +91,33 @@ pub fn main(cli: Cli) -> ExitCode {
         Some(Command::Run { cases, out }) => run(&cases, &out, cli.quiet, false),
         Some(Command::Check { cases, out }) => run(&cases, &out, cli.quiet, true),
         Some(Command::List { cases }) => list(&cases),
+        Some(Command::Sweep {
+            cases,
+            out,
+            rungs,
+            ratio,
+            repeats,
+            jobs,
+        }) => crate::sweep_cmd::sweep::command(
+            &cases,
+            &out,
+            &crate::sweep_cmd::Options {
+                rungs,
+                ratio,
+                repeats,
+                jobs,
+                quiet: cli.quiet,
+            },
+        ),
+        Some(Command::Stability { cases, out, jobs }) => crate::sweep_cmd::stability::command(
+            &cases,
+            &out,
+            &crate::sweep_cmd::Options {
+                jobs,
+                quiet: cli.quiet,
+                ..Default::default()
+            },
+        ),
     };
     match result {
         Ok(code) => code,

@@ -43,4 +43,5 @@ pub mod io;
 pub mod reference;
 pub mod report;
 pub mod suite;
+pub mod sweep_cmd;
 pub mod trace;
