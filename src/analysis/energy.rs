@@ -107,16 +107,19 @@ impl EnergyHistory {
         }
     }
 
-    /// First time at which the run holds more than `factor` times the energy supplied
-    /// to it so far (accounted − supplied > factor · max supplied up to then): energy
-    /// created by the method, the signature of a numerical instability.
+    /// First time at which the energy the run accounts for (kinetic + strain + friction +
+    /// damping: stored plus dissipated) exceeds `1 + factor` times the most energy ever
+    /// supplied to it up to then: energy created by the method, the signature of a
+    /// numerical instability. (Comparing with the *largest* supplied energy keeps negative
+    /// input work — a force pushing against the motion — from counting as growth.)
+    /// Returns the time and the ratio.
     pub fn growth_time(&self, factor: f64) -> Option<(f64, f64)> {
         let mut supplied_max = 0.0_f64;
         for i in 0..self.time.len() {
-            supplied_max = supplied_max.max(self.supplied[i].abs());
-            let created = -self.error(i);
-            if supplied_max > 0.0 && created > factor * supplied_max {
-                return Some((self.time[i], self.accounted(i) / supplied_max));
+            supplied_max = supplied_max.max(self.supplied[i]);
+            let accounted = self.accounted(i);
+            if supplied_max > 0.0 && accounted > (1.0 + factor) * supplied_max {
+                return Some((self.time[i], accounted / supplied_max));
             }
         }
         None

@@ -16,9 +16,9 @@ pub struct Criteria {
     /// counts as accurate (default 0.05: the SAP2000 verification manual's "Acceptable",
     /// ≤ 5 % on displacements).
     pub accuracy: f64,
-    /// Energy growth: a run that holds more than this times the energy ever supplied to
-    /// it (beyond the supplied energy itself) has created energy (default 1.0: it holds
-    /// twice what it was given).
+    /// Energy growth: a run whose stored plus dissipated energy exceeds `1 + growth_factor`
+    /// times the most energy ever supplied to it has created energy (default 1.0: twice
+    /// the most it was given).
     pub growth_factor: f64,
 }
 
@@ -141,7 +141,7 @@ pub fn classify(
         return Class::Diverged {
             time: Some(t),
             reason: format!(
-                "energy growth: the run holds {ratio:.3} times the energy supplied to it"
+                "energy growth: stored + dissipated energy is {ratio:.3} times the most energy ever supplied"
             ),
         };
     }

@@ -385,7 +385,7 @@ pub fn stability_markdown(r: &StabilityResult) -> String {
     let mut s = String::from("# Stability on stiff and extreme scenes\n\n");
     let _ = writeln!(
         s,
-        "Classes: **accurate** (✓) max error of the relative displacement ≤ {} % of its peak (SAP2000 \"Acceptable\"); **inaccurate** (~) completed, stable, larger error; **diverged** (✗) NaN/Inf in the trace, divergence reported by the engine, an engine panic, or energy growth (the run holds more than {} × the energy ever supplied beyond that energy itself); **not converged** (NC) an iterative solver gave up. Cells show the max error or the time of the failure. {} worker threads.\n",
+        "Classes: **accurate** (✓) max error of the relative displacement ≤ {} % of its peak (SAP2000 \"Acceptable\"); **inaccurate** (~) completed, stable, larger error; **diverged** (✗) NaN/Inf in the trace, divergence reported by the engine, an engine panic, or energy growth (stored + dissipated energy above 1 + {} times the most energy ever supplied); **not converged** (NC) an iterative solver gave up. Cells show the max error or the time of the failure. {} worker threads.\n",
         100.0 * r.criteria.accuracy,
         r.criteria.growth_factor,
         r.threads
