@@ -99,11 +99,7 @@ impl EnergyHistory {
             max_error,
             end_error: self.error(last),
             scale,
-            relative_error: if scale > 0.0 {
-                max_error / scale
-            } else {
-                0.0
-            },
+            relative_error: if scale > 0.0 { max_error / scale } else { 0.0 },
         }
     }
 

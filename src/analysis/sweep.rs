@@ -116,9 +116,7 @@ pub fn fitted_order(points: &[(f64, f64)]) -> Option<f64> {
         return None;
     }
     let n = pts.len() as f64;
-    let (sx, sy) = pts
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
+    let (sx, sy) = pts.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
     let (mx, my) = (sx / n, sy / n);
     let (mut sxy, mut sxx) = (0.0, 0.0);
     for (x, y) in &pts {

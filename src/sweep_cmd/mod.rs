@@ -22,7 +22,7 @@ use std::time::Instant;
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::case::{Case, Excitation, Model};
+use crate::case::{Case, Model};
 use crate::engine::{Engine, Run};
 use crate::error::{Error, InputError, InputErrors};
 
@@ -293,14 +293,6 @@ pub fn progress(total: usize, quiet: bool, what: &str) -> ProgressBar {
     }
     bar.set_message(what.to_string());
     bar
-}
-
-/// Whether the scene is driven by support motion (for report wording).
-pub fn support_motion(case: &Case) -> bool {
-    !matches!(
-        case.scene.excitation,
-        Excitation::None | Excitation::MassAcceleration(_)
-    )
 }
 
 /// `x` in engineering notation with 3 significant digits, `—` when absent.

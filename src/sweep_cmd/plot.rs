@@ -137,7 +137,10 @@ pub fn stability_svg(r: &StabilityResult) -> Result<String, Error> {
         let hi = xs.iter().copied().fold(f64::MIN, f64::max).max(1.0) * 1.5;
         let labels = rows.clone();
         let mut chart = ChartBuilder::on(&root)
-            .caption("Stability map: class of each run against Δt/T", ("sans-serif", 18))
+            .caption(
+                "Stability map: class of each run against Δt/T",
+                ("sans-serif", 18),
+            )
             .margin(12)
             .x_label_area_size(45)
             .y_label_area_size(330)

@@ -114,11 +114,11 @@ impl StabilityResult {
     }
 }
 
-/// Classify one run of `series` on `case` at `dt` against the reference (or `own`, the
+/// Classify one run of `variant` on `case` at `dt` against the reference (or `own`, the
 /// series' finest run, when there is no reference).
 fn classify_run(
     case: &Case,
-    s: &Series,
+    variant: &str,
     timed: &super::Timed,
     reference: Option<&ReferenceResult>,
     own: Option<&crate::trace::Trace>,
@@ -137,7 +137,7 @@ fn classify_run(
             Err("no trace: the engine panicked".into()),
         ),
         Ok(run) => {
-            let energy = audit(&run.trace, &case.scene, &s.variant);
+            let energy = audit(&run.trace, &case.scene, variant);
             let error = if run.status.completed() {
                 match (reference, own) {
                     (Some(r), _) => {
@@ -203,7 +203,8 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                 tasks
                     .par_iter()
                     .map(|(ci, s, dt)| {
-                        let r = run_timed(engines[s.engine].as_ref(), &cases[*ci], &s.variant, *dt, 1);
+                        let r =
+                            run_timed(engines[s.engine].as_ref(), &cases[*ci], &s.variant, *dt, 1);
                         bar.inc(1);
                         r
                     })
@@ -238,7 +239,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
             };
             for (t, x) in block.iter().zip(DT_OVER_T) {
                 let (class, error, energy) =
-                    classify_run(case, s, t, reference, own, &criteria);
+                    classify_run(case, &s.variant, t, reference, own, &criteria);
                 runs.push(StabilityRun {
                     case: case.name.clone(),
                     series: s.label(),
@@ -265,7 +266,15 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
     let limits = labels
         .iter()
         .map(|(label, ei, variant)| {
-            limit_of(label, engines[*ei].as_ref(), variant, cases, &periods, &runs, &criteria)
+            limit_of(
+                label,
+                engines[*ei].as_ref(),
+                variant,
+                cases,
+                &periods,
+                &runs,
+                &criteria,
+            )
         })
         .collect();
     Ok(StabilityResult {
@@ -330,7 +339,7 @@ fn limit_of(
         .filter(|r| r.class.diverged() && r.dt_over_t == first)
         .map(|r| r.case.clone())
         .collect();
-    let stable = DT_OVER_T.iter().copied().filter(|&x| x < first).last();
+    let stable = DT_OVER_T.iter().copied().rfind(|&x| x < first);
     let refined = stable.and_then(|lo0| {
         diverged_cases
             .par_iter()
@@ -339,15 +348,11 @@ fn limit_of(
                 let (case, t) = (&cases[ci], periods[ci]);
                 let reference = None; // divergence does not need the error
                 let (mut lo, mut hi) = (lo0, first);
-                let s = Series {
-                    engine: 0,
-                    engine_id: engine.id(),
-                    variant: variant.to_string(),
-                };
                 for _ in 0..BISECTIONS {
                     let mid = 0.5 * (lo + hi);
                     let timed = run_timed(engine, case, variant, mid * t, 1).ok()?;
-                    let (class, _, _) = classify_run(case, &s, &timed, reference, None, criteria);
+                    let (class, _, _) =
+                        classify_run(case, variant, &timed, reference, None, criteria);
                     if class.diverged() {
                         hi = mid;
                     } else {
@@ -403,7 +408,10 @@ pub fn stability_markdown(r: &StabilityResult) -> String {
             l.label,
             l.first_diverged
                 .as_ref()
-                .map_or("none up to 1.0".into(), |(x, c)| format!("{x} ({})", c.join(", "))),
+                .map_or("none up to 1.0".into(), |(x, c)| format!(
+                    "{x} ({})",
+                    c.join(", ")
+                )),
             l.stable_up_to.map_or("—".into(), |x| format!("{x}")),
             l.refined
                 .as_ref()
@@ -481,7 +489,10 @@ pub fn stability_markdown(r: &StabilityResult) -> String {
         .iter()
         .find_map(|q| q.energy.as_ref().err().map(|w| (&q.case, w)))
     {
-        let _ = writeln!(s, "\nEnergy audit not available for some runs (e.g. {c}): {why}.");
+        let _ = writeln!(
+            s,
+            "\nEnergy audit not available for some runs (e.g. {c}): {why}."
+        );
     }
     s
 }

@@ -154,10 +154,7 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
                 r.solution.name(),
                 r.solution.method()
             ),
-            Some(
-                audit(&r.trace, &case.scene, "reference")
-                    .map(|h| h.summary()),
-            ),
+            Some(audit(&r.trace, &case.scene, "reference").map(|h| h.summary())),
         ),
         Err(why) => (
             format!(
@@ -296,7 +293,11 @@ pub fn sweep_markdown(r: &SweepResult) -> String {
     let mut s = String::new();
     let _ = writeln!(s, "# {} — error against run time\n", r.case);
     let _ = writeln!(s, "*{}*\n", r.title);
-    let _ = writeln!(s, "- Characteristic period T = {:.6} s: {}.", r.period.0, r.period.1);
+    let _ = writeln!(
+        s,
+        "- Characteristic period T = {:.6} s: {}.",
+        r.period.0, r.period.1
+    );
     let _ = writeln!(
         s,
         "- Δt ladder: from T/10 down by a ratio of {} per rung.",
@@ -405,7 +406,10 @@ pub fn sweep_markdown(r: &SweepResult) -> String {
                 "\nRichardson extrapolation from the three finest completed rungs (ratio {}):\n",
                 r.ratio
             );
-            let _ = writeln!(s, "| quantity | observed order | extrapolated | GCI (fine) |");
+            let _ = writeln!(
+                s,
+                "| quantity | observed order | extrapolated | GCI (fine) |"
+            );
             let _ = writeln!(s, "|---|---:|---:|---:|");
             for (name, est) in &se.richardson {
                 match est {
