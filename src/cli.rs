@@ -119,6 +119,39 @@ pub enum Command {
         /// The `.mcap` file (`reports/<case>/<case>.mcap`).
         file: PathBuf,
     },
+    /// Error against run time: a Δt ladder per engine and variant, with observed order,
+    /// table and log-log plot in `<out>/<case>/sweep.{md,csv,svg}`.
+    Sweep {
+        /// Case files.
+        cases: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, short, default_value = "reports")]
+        out: PathBuf,
+        /// Rungs of the Δt ladder (from T/10 down, at least 3).
+        #[arg(long, default_value_t = 8)]
+        rungs: usize,
+        /// Refinement ratio between rungs.
+        #[arg(long, default_value_t = 2.0)]
+        ratio: f64,
+        /// Timed repeats per rung (median, min and max are reported).
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        /// Worker threads (default: all cores).
+        #[arg(long, short)]
+        jobs: Option<usize>,
+    },
+    /// Run the stiff and extreme scenes and classify every run (accurate, inaccurate,
+    /// diverged, not converged); map and stability limits in `<out>/stability/`.
+    Stability {
+        /// Case files or folders (default: `cases/stability/`).
+        cases: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, short, default_value = "reports")]
+        out: PathBuf,
+        /// Worker threads (default: all cores).
+        #[arg(long, short)]
+        jobs: Option<usize>,
+    },
 }
 
 /// Run the command line; returns the process exit code.
@@ -161,6 +194,33 @@ pub fn main(cli: Cli) -> ExitCode {
             print!("{s}");
             ExitCode::SUCCESS
         }),
+        Some(Command::Sweep {
+            cases,
+            out,
+            rungs,
+            ratio,
+            repeats,
+            jobs,
+        }) => crate::sweep_cmd::sweep::command(
+            &cases,
+            &out,
+            &crate::sweep_cmd::Options {
+                rungs,
+                ratio,
+                repeats,
+                jobs,
+                quiet: cli.quiet,
+            },
+        ),
+        Some(Command::Stability { cases, out, jobs }) => crate::sweep_cmd::stability::command(
+            &cases,
+            &out,
+            &crate::sweep_cmd::Options {
+                jobs,
+                quiet: cli.quiet,
+                ..Default::default()
+            },
+        ),
     };
     match result {
         Ok(code) => code,

@@ -47,4 +47,5 @@ pub mod reference;
 pub mod report;
 pub mod study;
 pub mod suite;
+pub mod sweep_cmd;
 pub mod trace;
