@@ -76,10 +76,10 @@ fn both_polarities_and_two_way_sliding() {
     // One-way, normal polarity: the first half slides +, sliding continues into the
     // negative half and stops; inverted: only the second half drives + sliding.
     assert!(s.normal > 0.0 && s.inverse > 0.0);
-    // The inverted record's + pulse starts from rest at 2T·… and sees A for T then 0:
-    // it is the rectangle case (to the sampling ramp, 2.5e-3 relative at dt = 1 ms, measured).
+    // The inverted record is −A for T (no one-way sliding), then +A for T, then 0: the
+    // rectangle case up to the one-step ramps (measured 1.75e-3 relative at dt = 1 ms).
     assert!(
-        (s.inverse - 0.06 * G).abs() / (0.06 * G) < 2.6e-3,
+        (s.inverse - 0.06 * G).abs() / (0.06 * G) < 1.8e-3,
         "{}",
         s.inverse
     );
@@ -145,4 +145,39 @@ fn loma_prieta_agrees_with_the_slammer_scheme_both_polarities() {
             );
         }
     }
+}
+
+#[test]
+fn newmark_command_prints_both_polarities_in_cm() {
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .args(["newmark", "--ky", "0.1", "--"])
+        .arg(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("cases/records/Loma_Prieta_1989_HSP-000.AT2"),
+        )
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    // Values of loma_prieta_agrees_with_the_slammer_scheme_both_polarities (ky 0.1 g).
+    assert!(
+        text.contains("| 0.1000 | normal | 24.617 | 0.24617 |"),
+        "{text}"
+    );
+    assert!(
+        text.contains("| 0.1000 | inverse | 47.422 | 0.47422 |"),
+        "{text}"
+    );
+    assert!(text.contains("| 0.1000 | mean | 36.019 |"), "{text}");
+    // A CSV without its unit is refused with exit code 2 and says how to fix it.
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .args(["newmark", "--ky", "0.1", "--"])
+        .arg(
+            std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("cases/records/Northridge_1994_PAC-175.csv"),
+        )
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("--unit"));
 }
