@@ -271,7 +271,11 @@ fn shipped_record_cases_load() {
     ] {
         let case = load_case(&records_dir().join(name)).unwrap();
         let s = case.scene.excitation.signal().unwrap();
-        let pga = if name.starts_with("rpepo") { 2.941995 } else { 0.980665 };
+        let pga = if name.starts_with("rpepo") {
+            2.941995
+        } else {
+            0.980665
+        };
         assert_eq!(s.peak(), pga, "{name}");
         assert!(
             case.run.duration > s.end(),

@@ -40,6 +40,10 @@ pub fn case_markdown(r: &CaseResult) -> String {
     if !c.requirement.is_empty() {
         let _ = writeln!(s, "*Requirement:* {}  ", c.requirement);
     }
+    // records branch: say which record drove the case, how it was scaled.
+    if let Some(crate::case::Signal::Record { label, .. }) = c.scene.excitation.signal() {
+        let _ = writeln!(s, "*Record:* {label}  ");
+    }
     let verdict = if r.gate_passed() { "PASS" } else { "FAIL" };
     let _ = writeln!(s, "*Gate:* **{verdict}** ({} checks)\n", r.checks.len());
 
