@@ -411,6 +411,12 @@ impl Grid {
                 }
             }
         }
+        // A pulse-driven base model may be studied under records: drop the pulse's fields.
+        if let Some(e) = table.get_mut("excitation").and_then(|e| e.as_table_mut()) {
+            for k in ["shape", "amplitude", "omega", "cycles"] {
+                e.remove(k);
+            }
+        }
         set(
             &mut table,
             &["excitation", "scale_to_pga"],
@@ -442,7 +448,26 @@ impl Grid {
         );
         let text = toml::to_string(&table)
             .map_err(|e| InputError::new(&self.base.path, "", e.to_string()))?;
-        let mut case = parse_case(&self.base.path, &text)?;
+        // Errors are about the generated text: drop its line numbers, name the point.
+        let mut case = parse_case(&self.base.path, &text).map_err(|e| {
+            InputErrors(
+                e.0.into_iter()
+                    .map(|mut err| {
+                        if err.file == self.base.path {
+                            err.line = None;
+                            err.column = None;
+                            err.reason = format!(
+                                "{} (in the case built for grid point {} from {})",
+                                err.reason,
+                                p.id(),
+                                self.path.display()
+                            );
+                        }
+                        err
+                    })
+                    .collect(),
+            )
+        })?;
         case.name = format!("{}-{}", self.base.name, p.id());
         Ok(case)
     }
