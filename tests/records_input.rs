@@ -283,3 +283,49 @@ fn shipped_record_cases_load() {
         );
     }
 }
+
+/// Baseline handling (record.rs `integrate`): the cubic correction keeps the corrected
+/// acceleration, velocity and displacement exact integrals of each other (re-integrating
+/// the corrected acceleration reproduces them to < 1e-12), keeps the start at rest, leaves
+/// a displacement orthogonal to t² and t³ (the least-squares conditions), and reduces the
+/// end drift of this (already processed) record from 13.97 mm to 4.44 mm (measured).
+#[test]
+fn baseline_correction_is_consistent_and_removes_drift() {
+    use rockslide::case::record::{Baseline, integrate};
+    let rec = read_record(&records_dir().join("Loma_Prieta_1989_HSP-000.AT2"), None).unwrap();
+    let raw = integrate(rec.dt, &rec.samples, Baseline::None);
+    let cor = integrate(rec.dt, &rec.samples, Baseline::Cubic);
+    let again = integrate(rec.dt, &cor.acc, Baseline::None);
+    let dv = cor
+        .vel
+        .iter()
+        .zip(&again.vel)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    let dd = cor
+        .disp
+        .iter()
+        .zip(&again.disp)
+        .fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    assert!(dv < 1e-12 && dd < 1e-12, "{dv} {dd}");
+    assert_eq!((cor.vel[0], cor.disp[0]), (0.0, 0.0));
+    let end = |d: &[f64]| d.last().unwrap().abs();
+    assert!(
+        (end(&raw.disp) - 0.013974).abs() < 1e-6,
+        "{}",
+        end(&raw.disp)
+    );
+    assert!(
+        (end(&cor.disp) - 0.004443).abs() < 1e-6,
+        "{}",
+        end(&cor.disp)
+    );
+    for k in [2, 3] {
+        let (mut dot, mut norm) = (0.0, 0.0);
+        for (i, d) in cor.disp.iter().enumerate() {
+            let tk = (i as f64 * rec.dt).powi(k);
+            dot += tk * d;
+            norm += tk * d.abs();
+        }
+        assert!(dot.abs() < 1e-9 * norm, "t^{k}: {dot} vs {norm}");
+    }
+}
