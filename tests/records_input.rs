@@ -252,6 +252,27 @@ fn case_errors_name_the_record_file_and_line() {
         msg.contains("excitation.record_unit: is \"furlong\""),
         "{msg}"
     );
+    let e = parse_case(
+        &case_path,
+        &case_text("ok.csv", "record_unit = \"g\"\npolarity = 2"),
+    )
+    .unwrap_err()
+    .to_string();
+    assert!(
+        e.contains("excitation.polarity: is 2, but must be 1"),
+        "{e}"
+    );
+    assert!(e.contains("c.toml:14:12:"), "located in the case file: {e}");
+    // A record is an acceleration: not a ground displacement.
+    let text = case_text("ok.csv", "record_unit = \"g\"").replace(
+        "kind = \"ground-acceleration\"",
+        "kind = \"ground-displacement\"",
+    );
+    let e = parse_case(&case_path, &text).unwrap_err().to_string();
+    assert!(
+        e.contains("excitation.kind: a record is an acceleration history"),
+        "{e}"
+    );
     // Sine-pulse fields alongside a record are rejected.
     let e = parse_case(
         &case_path,
