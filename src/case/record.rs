@@ -131,7 +131,7 @@ pub fn read_record(path: &Path, unit: Option<AccelUnit>) -> Result<Record, Input
             return Err(InputError::new(
                 path,
                 "",
-                "a CSV record does not say its unit: give `record_unit` (\"g\", \"m/s2\" or \"cm/s2\")",
+                "a CSV record does not say its unit: state it (`record_unit` in a case or grid, `--unit` on the command line: \"g\", \"m/s2\" or \"cm/s2\")",
             )
             .into());
         };

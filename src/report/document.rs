@@ -299,6 +299,9 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance) -> Vec<Block> {
     if !c.requirement.is_empty() {
         facts.push(("Requirement".to_string(), c.requirement.clone()));
     }
+    if let Some(crate::case::Signal::Record { label, .. }) = c.scene.excitation.signal() {
+        facts.push(("Record".to_string(), label.clone()));
+    }
     facts.push((
         "Scene".into(),
         format!(

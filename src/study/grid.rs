@@ -102,6 +102,9 @@ pub struct Grid {
     pub newmark: bool,
     /// Every point, in index order.
     pub points: Vec<GridPoint>,
+    /// The engine runs the base case plans (`engine/variant@dt`, …): part of every point's
+    /// hash, so that results made before an engine joined are not mistaken for complete.
+    pub plan_signature: String,
 }
 
 /// Default quiet tail after the record, s.
@@ -296,7 +299,17 @@ pub fn load_grid(path: &Path) -> Result<Grid, InputErrors> {
             }
         }
     }
+    let plan_signature = match crate::suite::plan(&base, &crate::engine::all()) {
+        Ok(plan) => plan
+            .runs
+            .iter()
+            .map(|r| format!("{}/{}@{}", r.engine, r.variant, r.dt))
+            .collect::<Vec<_>>()
+            .join(","),
+        Err(e) => return Err(e),
+    };
     Ok(Grid {
+        plan_signature,
         title: raw.title.unwrap_or_else(|| {
             path.file_stem()
                 .map_or_else(|| "study".into(), |s| s.to_string_lossy().into_owned())
@@ -356,12 +369,14 @@ impl Grid {
         })
     }
 
-    /// Hash of everything that shapes a point's result: tool version, base case, record
-    /// file, the point's settings, the tail.
+    /// Hash of everything that shapes a point's result: tool version, base case, the
+    /// engine runs it plans, record file, the point's settings, the tail. (Not the engines'
+    /// code: after changing an engine, delete `runs/` or use a new `--out`.)
     pub fn point_hash(&self, p: &GridPoint) -> String {
         let mut h = Sha256::new();
         h.update(env!("CARGO_PKG_VERSION").as_bytes());
         h.update(self.base.sha256.as_bytes());
+        h.update(self.plan_signature.as_bytes());
         h.update(self.records[p.record].sha256.as_bytes());
         h.update(format!("{:?}", self.records[p.record].unit).as_bytes());
         h.update(
@@ -411,6 +426,12 @@ impl Grid {
                 }
             }
         }
+        // A pulse-driven base model may be studied under records: drop the pulse's fields.
+        if let Some(e) = table.get_mut("excitation").and_then(|e| e.as_table_mut()) {
+            for k in ["shape", "amplitude", "omega", "cycles"] {
+                e.remove(k);
+            }
+        }
         set(
             &mut table,
             &["excitation", "scale_to_pga"],
@@ -442,7 +463,26 @@ impl Grid {
         );
         let text = toml::to_string(&table)
             .map_err(|e| InputError::new(&self.base.path, "", e.to_string()))?;
-        let mut case = parse_case(&self.base.path, &text)?;
+        // Errors are about the generated text: drop its line numbers, name the point.
+        let mut case = parse_case(&self.base.path, &text).map_err(|e| {
+            InputErrors(
+                e.0.into_iter()
+                    .map(|mut err| {
+                        if err.file == self.base.path {
+                            err.line = None;
+                            err.column = None;
+                            err.reason = format!(
+                                "{} (in the case built for grid point {} from {})",
+                                err.reason,
+                                p.id(),
+                                self.path.display()
+                            );
+                        }
+                        err
+                    })
+                    .collect(),
+            )
+        })?;
         case.name = format!("{}-{}", self.base.name, p.id());
         Ok(case)
     }

@@ -160,3 +160,18 @@ pub fn cli_newmark(args: NewmarkArgs) -> Result<std::process::ExitCode, Error> {
     print!("{}", newmark_command(&args)?);
     Ok(std::process::ExitCode::SUCCESS)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shards_are_k_of_n_from_zero() {
+        assert_eq!(parse_shard("0/8"), Ok((0, 8)));
+        assert_eq!(parse_shard(" 7 / 8 "), Ok((7, 8)));
+        assert!(parse_shard("8/8").unwrap_err().contains("0 ≤ K < N"));
+        assert!(parse_shard("1/0").is_err());
+        assert!(parse_shard("3").unwrap_err().contains("K/N"));
+        assert!(parse_shard("a/2").is_err());
+    }
+}
