@@ -1,0 +1,169 @@
+//! Building the rapier world for a scene: the ground body, the structure, and the light
+//! foot bodies that carry a scene's elasticity as spring joints.
+//!
+//! Axes: rapier's x is the scene's horizontal X, rapier's y the scene's vertical Z (up),
+//! rapier's z the out-of-plane depth. Rotations of the scene are about rapier's z axis,
+//! counter-clockwise (seen with X to the right and Z up) positive. The ground's top face
+//! is the plane y = 0.
+
+use rapier3d_f64::prelude::*;
+
+use super::settings::RapierSettings;
+use crate::case::{Oscillator, RigidBlock};
+
+/// Half-extents of the ground slab, m: wide enough for a block sliding or a ground
+/// coasting for many metres; its top face is y = 0.
+const GROUND_HALF: (f64, f64) = (1.0e4, 1.0);
+
+/// Friction coefficient standing in for μ = ∞ (a friction limit 1e6 times the weight).
+pub const MU_INFINITE: f64 = 1.0e6;
+
+/// Half-extents of a foot, m (it only needs a flat face on the ground).
+const FOOT_HALF: (f64, f64) = (0.1, 0.05);
+
+/// How the ground is modelled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GroundKind {
+    /// A fixed body (inertial-force route, or no ground motion).
+    Fixed,
+    /// A kinematic, position-driven body moved to xg(t) each step.
+    Kinematic,
+}
+
+/// A built world and the handles the time loop needs.
+pub struct Rig {
+    /// The rapier world.
+    pub world: PhysicsWorld,
+    /// The ground body.
+    pub ground: RigidBodyHandle,
+    /// The structure (mass of the oscillator, the rigid block).
+    pub structure: RigidBodyHandle,
+    /// Foot bodies (one for an oscillator, none for a rigid block).
+    pub feet: Vec<RigidBodyHandle>,
+    /// Dynamic bodies with their *inertial* mass, kg (the inertial-force route pushes
+    /// each with −m·ag; a foot's gravity scale does not change its inertia).
+    pub inertial_masses: Vec<(RigidBodyHandle, f64)>,
+    /// Structure's mass, kg.
+    pub mass: f64,
+    /// Foot mass, kg (0 without feet).
+    pub foot_mass: f64,
+}
+
+fn new_world(s: &RapierSettings, dt: f64, gravity: f64) -> PhysicsWorld {
+    let mut world = PhysicsWorld::default();
+    world.gravity = Vector::new(0.0, -gravity, 0.0);
+    world.integration_parameters = s.integration_parameters(dt);
+    world
+}
+
+fn add_ground(world: &mut PhysicsWorld, kind: GroundKind, mu: f64) -> RigidBodyHandle {
+    let body = match kind {
+        GroundKind::Fixed => RigidBodyBuilder::fixed(),
+        GroundKind::Kinematic => RigidBodyBuilder::kinematic_position_based(),
+    }
+    .translation(Vector::new(0.0, -GROUND_HALF.1, 0.0));
+    let collider = ColliderBuilder::cuboid(GROUND_HALF.0, GROUND_HALF.1, GROUND_HALF.0)
+        .friction(mu)
+        .friction_combine_rule(CoefficientCombineRule::Average)
+        .restitution(0.0)
+        .restitution_combine_rule(CoefficientCombineRule::Min);
+    world.insert(body, collider).0
+}
+
+/// The oscillator (PEPO, linear SDOF): a point mass joined to one foot on the ground by
+/// a horizontal spring joint (stiffness Kx, viscous C = 2ζMω), locked in every other
+/// direction. Following FIELD-NOTES, the foot carries the mass's weight directly
+/// (gravity scale M/m_f, so its normal force is M·g exactly) and the mass has no gravity,
+/// so the joint carries only the horizontal spring: the vertical load path never goes
+/// through a 1000:1 mass ratio. Both bodies have their rotations locked (sliding only).
+pub fn oscillator(osc: &Oscillator, s: &RapierSettings, dt: f64, kind: GroundKind) -> Rig {
+    let mu = if osc.contact.mu.is_finite() {
+        osc.contact.mu
+    } else {
+        MU_INFINITE
+    };
+    let mut world = new_world(s, dt, osc.gravity);
+    let ground = add_ground(&mut world, kind, mu);
+    let m = osc.mass;
+    let mf = s.foot_mass_ratio * m;
+    let foot_y = FOOT_HALF.1;
+    let foot_body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, foot_y, 0.0))
+        .gravity_scale(m / mf) // foot weight = M·g: the normal force of the scene
+        .lock_rotations()
+        .can_sleep(false);
+    let foot_collider = ColliderBuilder::cuboid(FOOT_HALF.0, FOOT_HALF.1, FOOT_HALF.0)
+        .mass(mf)
+        .friction(mu)
+        .friction_combine_rule(CoefficientCombineRule::Average)
+        .restitution(0.0)
+        .restitution_combine_rule(CoefficientCombineRule::Min);
+    let foot = world.insert(foot_body, foot_collider).0;
+    let mass_body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, foot_y, 0.0))
+        .additional_mass_properties(MassProperties::new(Vector::ZERO, m, Vector::splat(m)))
+        .gravity_scale(0.0)
+        .lock_rotations()
+        .can_sleep(false);
+    let structure = world.insert_body(mass_body);
+    let joint = GenericJointBuilder::new(
+        JointAxesMask::LIN_Y | JointAxesMask::LIN_Z | JointAxesMask::ANG_AXES,
+    )
+    .motor_model(JointAxis::LinX, MotorModel::ForceBased)
+    .motor_position(JointAxis::LinX, 0.0, osc.contact.kx, osc.damping())
+    .contacts_enabled(false)
+    .build();
+    world.insert_impulse_joint(foot, structure, joint);
+    Rig {
+        world,
+        ground,
+        structure,
+        feet: vec![foot],
+        inertial_masses: vec![(structure, m), (foot, mf)],
+        mass: m,
+        foot_mass: mf,
+    }
+}
+
+/// The rigid block (Newmark, Housner): a uniform cuboid 2b × 2h (depth 2b) of mass M,
+/// friction μ and restitution 0 on the ground, standing on its base or tilted about its
+/// right corner by the scene's initial tilt (the left corner lifted: clockwise, so the
+/// rotation channel starts at −tilt).
+pub fn rigid_block(b: &RigidBlock, s: &RapierSettings, dt: f64, kind: GroundKind) -> Rig {
+    let mut world = new_world(s, dt, b.gravity);
+    let ground = add_ground(&mut world, kind, b.mu);
+    let phi0 = -b.initial_tilt;
+    // Centre of mass = right corner (b, 0) + R(φ0)·(−b, h).
+    let (sn, cs) = phi0.sin_cos();
+    let cm = Vector::new(
+        b.half_width + cs * (-b.half_width) - sn * b.half_height,
+        sn * (-b.half_width) + cs * b.half_height,
+        0.0,
+    );
+    let body = RigidBodyBuilder::dynamic()
+        .translation(cm)
+        .rotation(Vector::new(0.0, 0.0, phi0))
+        .can_sleep(false);
+    let collider = ColliderBuilder::cuboid(b.half_width, b.half_height, b.half_width)
+        .mass(b.mass)
+        .friction(b.mu)
+        .friction_combine_rule(CoefficientCombineRule::Average)
+        .restitution(0.0)
+        .restitution_combine_rule(CoefficientCombineRule::Min);
+    let structure = world.insert(body, collider).0;
+    Rig {
+        world,
+        ground,
+        structure,
+        feet: vec![],
+        inertial_masses: vec![(structure, b.mass)],
+        mass: b.mass,
+        foot_mass: 0.0,
+    }
+}
+
+/// Rotation of a body about rapier's z axis, rad (counter-clockwise positive).
+pub fn angle_z(body: &RigidBody) -> f64 {
+    let q = body.rotation();
+    2.0 * q.z.atan2(q.w)
+}
