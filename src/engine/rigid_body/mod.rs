@@ -53,9 +53,7 @@ impl Engine for Rapier {
                 }
             }
             Model::RigidBlock(_) => {}
-            Model::RockingBody(_) => {
-                return Err(NotApplicable(ROCKING_NA.into()));
-            }
+            Model::RockingBody(_) => {}
         }
         Ok(match scene.excitation {
             Excitation::None => vec![variant::FIXED_GROUND],
@@ -119,8 +117,42 @@ impl Engine for Rapier {
                 ));
                 simulate::run_block(rig, b, drive, ex, dt, duration)
             }
-            Model::RockingBody(_) => {
-                return Err(case.field_error("model.kind", ROCKING_NA));
+            Model::RockingBody(r) => {
+                let rig = world::rocking_body(r, &settings, dt, drive.ground_kind());
+                let inertia = world::rocking_inertia(r);
+                let omega_f = (r.contact.kz / rig.foot_mass).sqrt();
+                described.push(("foot mass (each) [kg]".into(), format!("{}", rig.foot_mass)));
+                described.push((
+                    "feet".into(),
+                    format!(
+                        "{} feet; joint per foot: springs Kx (X) and Kz (Z) as ForceBased motors in the foot's (ground) axes, rotation free; springs start with the static preload",
+                        r.supports
+                    ),
+                ));
+                described.push((
+                    "rotational inertia [kg·m²]".into(),
+                    format!(
+                        "{inertia}{}",
+                        if r.rotational_inertia > 0.0 {
+                            " (scene)"
+                        } else {
+                            " (scene has none: 1 % of a uniform block M(b² + h²)/3)"
+                        }
+                    ),
+                ));
+                described.push((
+                    "gravity through rotation (P-Delta)".into(),
+                    "included (exact rigid-body kinematics)".into(),
+                ));
+                described.push((
+                    "settling steps before t = 0".into(),
+                    format!("{SETTLE_STEPS}"),
+                ));
+                findings.push(format!(
+                    "foot vertical mode √(Kz/m_f) = {omega_f:.0} rad/s, ω·h = {:.3} per substep",
+                    omega_f * dt / settings.substeps as f64
+                ));
+                simulate::run_rocking(rig, r, drive, ex, dt, duration, SETTLE_STEPS)
             }
         };
         let ground = match drive {
@@ -150,4 +182,5 @@ impl Engine for Rapier {
     }
 }
 
-const ROCKING_NA: &str = "the rapier engine does not run the rocking elastic-plastic oscillator in this build (see docs/rapier-engine.md)";
+/// Quasi-static settling steps of a rocking body before t = 0 (static preload).
+const SETTLE_STEPS: usize = 400;

@@ -6,7 +6,7 @@ use rapier3d_f64::prelude::*;
 
 use super::ground::GroundTable;
 use super::world::{GroundKind, Rig, angle_z};
-use crate::case::{Excitation, RigidBlock, Signal};
+use crate::case::{Excitation, RigidBlock, RockingBody, Signal};
 use crate::engine::{RunStatus, step_count};
 use crate::trace::{Quantity, Trace, q};
 
@@ -352,4 +352,168 @@ struct BlockMemory {
     vy: f64,
     corners: [f64; 2],
     slide: f64,
+}
+
+/// Settling under gravity before t = 0: `steps` steps in which every velocity is halved
+/// after the step (a strongly damped relaxation), then all velocities are zeroed, so the
+/// soft contacts and the preloaded springs start in equilibrium.
+fn settle(rig: &mut Rig, steps: usize) {
+    for _ in 0..steps {
+        rig.world.step();
+        for &(h, _) in &rig.inertial_masses {
+            let b = &mut rig.world.bodies[h];
+            let (v, w) = (b.linvel(), b.angvel());
+            b.set_linvel(0.5 * v, false);
+            b.set_angvel(0.5 * w, false);
+        }
+    }
+    for &(h, _) in &rig.inertial_masses {
+        let b = &mut rig.world.bodies[h];
+        b.set_linvel(Vector::ZERO, false);
+        b.set_angvel(Vector::ZERO, false);
+    }
+}
+
+/// Run the rocking-body rig (RPEPO) and record its channels. The rig is first settled
+/// under gravity (static preload); displacements are measured from the settled state.
+pub fn run_rocking(
+    mut rig: Rig,
+    body: &RockingBody,
+    drive: Drive,
+    ex: &Excitation,
+    dt: f64,
+    duration: f64,
+    settle_steps: usize,
+) -> Outcome {
+    let n = step_count(duration, dt);
+    let g = GroundTable::new(ex, dt, n);
+    let moves = ex.moves_ground();
+    let mut channels: Vec<&'static Quantity> = vec![
+        &q::FORCE,
+        &q::RESISTANCE,
+        &q::BASE_SHEAR,
+        &q::REL_DISP,
+        &q::SLIDE,
+        &q::SLIDE_SPREAD,
+        &q::VEL,
+        &q::ACC,
+        &q::CM_X,
+        &q::CM_Z,
+        &q::ROTATION,
+        &q::UPLIFT,
+        &q::CONTACTS,
+        &q::NORMAL,
+    ];
+    if moves {
+        channels.push(&q::GROUND_DISP);
+    }
+    settle(&mut rig, settle_steps);
+    let mut trace = Trace::with_channels(&channels, n + 1);
+    let mut row = vec![0.0; channels.len()];
+    let m = body.mass;
+    let (kx, kz, hh) = (body.contact.kx, body.contact.kz, body.cm_height);
+    let xs = body.support_positions();
+    let nf = rig.feet.len();
+    let mut foot0 = vec![(0.0, 0.0); nf];
+    for (i, &f) in rig.feet.iter().enumerate() {
+        let p = rig.world.bodies[f].translation();
+        foot0[i] = (p.x, p.y);
+    }
+    let b0 = &rig.world.bodies[rig.structure];
+    let (cm0, phi0) = (b0.translation(), angle_z(b0));
+    let o0 = cm0.x + phi0.sin() * hh;
+    // A support is open when its foot has risen more than 1 % of the static spring
+    // compression W/(n·Kz) above its settled level.
+    let open_gap = 0.01 * body.weight() / (nf as f64 * kz);
+    if drive == Drive::InertialForce && g.vel[0] != 0.0 {
+        for &(h, _) in &rig.inertial_masses {
+            rig.world.bodies[h].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
+        }
+    }
+    let frame = |k: usize| {
+        if drive == Drive::KinematicGround {
+            g.disp[k]
+        } else {
+            0.0
+        }
+    };
+    let frame_v = |k: usize| {
+        if drive == Drive::KinematicGround {
+            g.vel[k]
+        } else {
+            0.0
+        }
+    };
+    let mut v_prev = 0.0;
+    let mut record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: &mut f64| {
+        let t = k as f64 * dt;
+        let b = &rig.world.bodies[rig.structure];
+        let cm = b.translation();
+        let phi = angle_z(b);
+        let (sn, cs) = phi.sin_cos();
+        let off = frame(k);
+        let (mut shear, mut normal, mut contacts) = (0.0, 0.0, 0.0);
+        let (mut slide_sum, mut slide_min, mut slide_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
+        let mut uplift: f64 = 0.0;
+        for (i, &f) in rig.feet.iter().enumerate() {
+            let p = rig.world.bodies[f].translation();
+            // body anchor = CM + R(φ)·(x_i, −h); spring stretch d = anchor − foot centre
+            let ax = cm.x + cs * xs[i] + sn * hh;
+            let ay = cm.y + sn * xs[i] - cs * hh;
+            shear += kx * (ax - p.x);
+            normal += -kz * (ay - p.y);
+            let slip = p.x - off - foot0[i].0;
+            slide_sum += slip;
+            slide_min = slide_min.min(slip);
+            slide_max = slide_max.max(slip);
+            let gap = p.y - foot0[i].1;
+            uplift = uplift.max(gap);
+            if gap < open_gap {
+                contacts += 1.0;
+            }
+        }
+        let v = b.linvel().x - frame_v(k);
+        let a = if k == 0 { 0.0 } else { (v - *v_prev) / dt };
+        *v_prev = v;
+        let vals = [
+            force_at(ex, m, t),
+            shear,
+            shear,
+            cm.x + sn * hh - off - o0,
+            slide_sum / nf as f64,
+            slide_max - slide_min,
+            v,
+            a,
+            cm.x - off - cm0.x,
+            cm.y - cm0.y,
+            phi - phi0,
+            uplift.max(0.0),
+            contacts,
+            normal,
+            g.disp[k],
+        ];
+        let len = row.len();
+        row.copy_from_slice(&vals[..len]);
+        trace.push(t, &row);
+    };
+    record(&mut trace, &rig, 0, &mut v_prev);
+    let mut status = RunStatus::Completed;
+    for k in 0..n {
+        drive_step(&mut rig, drive, ex, &g, k, dt);
+        rig.world.step();
+        let b = &rig.world.bodies[rig.structure];
+        if !(b.translation().is_finite() && b.rotation().is_finite()) {
+            status = RunStatus::Diverged {
+                time: (k + 1) as f64 * dt,
+                reason: "the body's position is not finite".into(),
+            };
+            break;
+        }
+        record(&mut trace, &rig, k + 1, &mut v_prev);
+    }
+    Outcome {
+        steps: (trace.len() - 1) as u64,
+        trace,
+        status,
+    }
 }

@@ -9,7 +9,7 @@
 use rapier3d_f64::prelude::*;
 
 use super::settings::RapierSettings;
-use crate::case::{Oscillator, RigidBlock};
+use crate::case::{Oscillator, RigidBlock, RockingBody};
 
 /// Half-extents of the ground slab, m: wide enough for a block sliding or a ground
 /// coasting for many metres; its top face is y = 0.
@@ -166,4 +166,91 @@ pub fn rigid_block(b: &RigidBlock, s: &RapierSettings, dt: f64, kind: GroundKind
 pub fn angle_z(body: &RigidBody) -> f64 {
     let q = body.rotation();
     2.0 * q.z.atan2(q.w)
+}
+
+/// Half-extents of a rocking body's foot, m (narrower than half the support spacing).
+const ROCK_FOOT_HALF: (f64, f64) = (0.02, 0.02);
+
+/// Rotational inertia used for a rocking body whose scene gives none: 1 % of a uniform
+/// block 2b × 2h, M·(b² + h²)/3 — the same convention as the FE engine.
+pub fn rocking_inertia(r: &RockingBody) -> f64 {
+    if r.rotational_inertia > 0.0 {
+        r.rotational_inertia
+    } else {
+        0.01 * r.mass * (r.half_width.powi(2) + r.cm_height.powi(2)) / 3.0
+    }
+}
+
+/// The rocking body (RPEPO): a point mass M with a small rotational inertia at height h
+/// above the base centre O, joined to n feet at x_i by spring joints carrying each
+/// support's Kx (horizontal) and Kz (vertical), both ForceBased motors. The joint axes
+/// are the foot's, and feet never rotate, so the springs act along the ground's X and Z
+/// as the paper's contact elements do; the body's rotation about Z is free at each foot.
+/// A foot whose spring goes into tension lifts off (compression-only support); each foot
+/// slides on its own with μ times its own normal force. The vertical load path runs
+/// through the joints: that is the hard part for rapier's solver (FIELD-NOTES).
+/// The springs start compressed by the static preload W/(n·Kz).
+pub fn rocking_body(r: &RockingBody, s: &RapierSettings, dt: f64, kind: GroundKind) -> Rig {
+    let mu = if r.contact.mu.is_finite() {
+        r.contact.mu
+    } else {
+        MU_INFINITE
+    };
+    let mut world = new_world(s, dt, r.gravity);
+    let ground = add_ground(&mut world, kind, mu);
+    let n = r.supports;
+    let m = r.mass;
+    let mf = s.foot_mass_ratio * m / n as f64;
+    let preload = r.weight() / (n as f64 * r.contact.kz);
+    let foot_y = ROCK_FOOT_HALF.1;
+    let cm = Vector::new(0.0, foot_y + r.cm_height - preload, 0.0);
+    let inertia = rocking_inertia(r);
+    let body = RigidBodyBuilder::dynamic()
+        .translation(cm)
+        .additional_mass_properties(MassProperties::new(
+            Vector::ZERO,
+            m,
+            Vector::new(inertia, inertia, inertia),
+        ))
+        .enabled_rotations(false, false, true)
+        .can_sleep(false);
+    let structure = world.insert_body(body);
+    let mut feet = Vec::with_capacity(n);
+    let mut inertial_masses = vec![(structure, m)];
+    for x in r.support_positions() {
+        let fb = RigidBodyBuilder::dynamic()
+            .translation(Vector::new(x, foot_y, 0.0))
+            .lock_rotations()
+            .can_sleep(false);
+        let fc = ColliderBuilder::cuboid(ROCK_FOOT_HALF.0, ROCK_FOOT_HALF.1, ROCK_FOOT_HALF.0)
+            .mass(mf)
+            .friction(mu)
+            .friction_combine_rule(CoefficientCombineRule::Average)
+            .restitution(0.0)
+            .restitution_combine_rule(CoefficientCombineRule::Min);
+        let foot = world.insert(fb, fc).0;
+        let joint = GenericJointBuilder::new(
+            JointAxesMask::LIN_Z | JointAxesMask::ANG_X | JointAxesMask::ANG_Y,
+        )
+        .local_anchor1(Vector::ZERO)
+        .local_anchor2(Vector::new(x, -r.cm_height, 0.0))
+        .motor_model(JointAxis::LinX, MotorModel::ForceBased)
+        .motor_position(JointAxis::LinX, 0.0, r.contact.kx, 0.0)
+        .motor_model(JointAxis::LinY, MotorModel::ForceBased)
+        .motor_position(JointAxis::LinY, 0.0, r.contact.kz, 0.0)
+        .contacts_enabled(false)
+        .build();
+        world.insert_impulse_joint(foot, structure, joint);
+        feet.push(foot);
+        inertial_masses.push((foot, mf));
+    }
+    Rig {
+        world,
+        ground,
+        structure,
+        feet,
+        inertial_masses,
+        mass: m,
+        foot_mass: mf,
+    }
 }
