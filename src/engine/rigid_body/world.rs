@@ -50,10 +50,11 @@ pub struct Rig {
 }
 
 fn new_world(s: &RapierSettings, dt: f64, gravity: f64) -> PhysicsWorld {
-    let mut world = PhysicsWorld::default();
-    world.gravity = Vector::new(0.0, -gravity, 0.0);
-    world.integration_parameters = s.integration_parameters(dt);
-    world
+    PhysicsWorld {
+        gravity: Vector::new(0.0, -gravity, 0.0),
+        integration_parameters: s.integration_parameters(dt),
+        ..PhysicsWorld::default()
+    }
 }
 
 fn add_ground(world: &mut PhysicsWorld, kind: GroundKind, mu: f64) -> RigidBodyHandle {
