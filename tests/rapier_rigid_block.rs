@@ -64,8 +64,12 @@ fn sliding_block_matches_newmark() {
 /// reason the engine defaults to the Simplified model. Measured: 0.1745 instead of 0.2.
 #[test]
 fn coulomb_friction_model_undershoots_mu() {
-    let text = std::fs::read_to_string("cases/rigid-sliding-block.toml").unwrap()
-        + "friction_model = \"coulomb\"\n";
+    let text = std::fs::read_to_string("cases/rigid-sliding-block.toml")
+        .unwrap()
+        .replace(
+            "[engines.rapier]",
+            "[engines.rapier]\nfriction_model = \"coulomb\"",
+        );
     let c = rockslide::case::parse_case(Path::new("coulomb.toml"), &text).unwrap();
     let run = Rapier.run(&c, "inertial-force", 1e-3).unwrap();
     let mu_eff = responses(&run.trace)["peak_resistance"] / (1000.0 * 9.81);
