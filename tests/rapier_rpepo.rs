@@ -92,3 +92,28 @@ cycles = 5.0"#,
         assert!(e < 2e-3, "{key}: routes differ by {e}");
     }
 }
+
+/// rockslide shall give a bit-identical trace twice, also with ten feet and lift-off.
+#[test]
+fn rpepo_is_deterministic() {
+    let c = rpepo(
+        r#"kind = "mass-acceleration"
+shape = "sine-pulse"
+amplitude = 0.981
+omega = 31.41592653589793
+cycles = 5.0"#,
+        1.0,
+        "",
+    );
+    let a = Rapier.run(&c, "applied-force", 2e-3).unwrap();
+    let b = Rapier.run(&c, "applied-force", 2e-3).unwrap();
+    assert!(
+        responses(&a.trace)["peak_uplift"] > 1e-3,
+        "the run lifts off"
+    );
+    for (ca, cb) in a.trace.columns.iter().zip(&b.trace.columns) {
+        for (x, y) in ca.iter().zip(cb) {
+            assert_eq!(x.to_bits(), y.to_bits());
+        }
+    }
+}
