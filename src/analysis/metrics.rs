@@ -23,6 +23,13 @@ pub enum Reading {
     SlipEnd,
     /// First time the channel reaches zero (no support in contact).
     FirstZero,
+    /// First time the channel changes sign (rocking: first impact), interpolated.
+    FirstCrossing,
+    /// Second time the channel changes sign (rocking: second impact), interpolated.
+    SecondCrossing,
+    /// Largest absolute value between the first and second sign changes (rocking: the
+    /// tilt reached after the first impact).
+    PeakAbsAfterFirstCrossing,
 }
 
 /// A response quantity: key, label, the channel it reads and how.
@@ -43,7 +50,11 @@ impl QuantityDef {
     pub fn is_time(&self) -> bool {
         matches!(
             self.reading,
-            Reading::SlipStart | Reading::SlipEnd | Reading::FirstZero
+            Reading::SlipStart
+                | Reading::SlipEnd
+                | Reading::FirstZero
+                | Reading::FirstCrossing
+                | Reading::SecondCrossing
         )
     }
     /// SI unit of the quantity.
@@ -100,6 +111,19 @@ defs![
     ("peak_cm_x", "Peak CM horizontal", q::CM_X, PeakAbs),
     ("max_cm_z", "Max CM vertical", q::CM_Z, Max),
     ("min_cm_z", "Min CM vertical", q::CM_Z, Min),
+    ("first_impact", "First impact", q::ROTATION, FirstCrossing),
+    (
+        "second_impact",
+        "Second impact",
+        q::ROTATION,
+        SecondCrossing
+    ),
+    (
+        "peak_tilt_after_impact",
+        "Peak tilt after first impact",
+        q::ROTATION,
+        PeakAbsAfterFirstCrossing
+    ),
 ];
 
 /// The definition of a quantity key.
@@ -128,6 +152,20 @@ pub fn responses(trace: &Trace) -> Responses {
             Reading::SlipStart => slip_window(&trace.time, col).map(|w| w.0),
             Reading::SlipEnd => slip_window(&trace.time, col).map(|w| w.1),
             Reading::FirstZero => col.iter().position(|&c| c <= 0.0).map(|i| trace.time[i]),
+            Reading::FirstCrossing => sign_changes(&trace.time, col).first().copied(),
+            Reading::SecondCrossing => sign_changes(&trace.time, col).get(1).copied(),
+            Reading::PeakAbsAfterFirstCrossing => {
+                let c = sign_changes(&trace.time, col);
+                c.first().map(|&t0| {
+                    let t1 = c.get(1).copied().unwrap_or(f64::INFINITY);
+                    trace
+                        .time
+                        .iter()
+                        .zip(col)
+                        .filter(|(t, _)| **t > t0 && **t < t1)
+                        .fold(0.0_f64, |m, (_, x)| m.max(x.abs()))
+                })
+            }
         };
         if let Some(v) = value {
             out.insert(d.key, v);
@@ -151,6 +189,33 @@ pub fn slip_window(time: &[f64], slide: &[f64]) -> Option<(f64, f64)> {
     let first = (1..slide.len()).find(|&i| rate(i) > threshold)?;
     let last = (1..slide.len()).rev().find(|&i| rate(i) > threshold)?;
     Some((time[first - 1], time[last]))
+}
+
+/// Times at which a channel changes sign, linearly interpolated. Samples smaller than
+/// 1e-3 of the channel's peak are ignored (a block resting flat has rotation noise).
+pub fn sign_changes(time: &[f64], col: &[f64]) -> Vec<f64> {
+    let peak = col.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let floor = 1e-3 * peak;
+    let mut out = Vec::new();
+    let mut last: Option<(usize, f64)> = None;
+    for (i, &x) in col.iter().enumerate() {
+        if x.abs() <= floor {
+            continue;
+        }
+        if let Some((j, s)) = last {
+            if x.signum() != s {
+                // the change lies between samples j and i: find the raw crossing
+                let k = (j..i)
+                    .find(|&k| col[k + 1].signum() != s || col[k + 1] == 0.0)
+                    .unwrap_or(i - 1);
+                let (x0, x1) = (col[k], col[k + 1]);
+                let f = if x1 != x0 { x0 / (x0 - x1) } else { 0.0 };
+                out.push(time[k] + f * (time[k + 1] - time[k]));
+            }
+        }
+        last = Some((i, x.signum()));
+    }
+    out
 }
 
 /// Discrepancy in percent, 100·(value/basis − 1) (the SAP2000 verification convention);

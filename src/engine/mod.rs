@@ -4,6 +4,7 @@
 //! hide in another.
 
 pub mod predictor_corrector;
+pub mod rigid_body;
 
 use crate::case::{Case, Scene};
 use crate::error::InputError;
@@ -115,7 +116,10 @@ pub trait Engine: Send + Sync {
 
 /// Every engine, in report column order.
 pub fn all() -> Vec<Box<dyn Engine>> {
-    vec![Box::new(predictor_corrector::PredictorCorrector)]
+    vec![
+        Box::new(predictor_corrector::PredictorCorrector),
+        Box::new(rigid_body::Rapier),
+    ]
 }
 
 /// Number of steps covering `duration` at `dt` (the last step may end past it by < dt/2).

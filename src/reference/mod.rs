@@ -4,11 +4,15 @@
 
 mod duhamel;
 mod epo_exact;
+mod housner;
+mod newmark_block;
 pub mod newmark_record;
 mod root;
 
 pub use duhamel::Duhamel;
 pub use epo_exact::{EpoExact, Phase, Segment};
+pub use housner::HousnerRocking;
+pub use newmark_block::{BlockSegment, NewmarkBlock};
 
 use crate::case::{Case, Excitation, Model, Signal};
 use crate::trace::{Quantity, Trace};
@@ -44,7 +48,18 @@ pub fn for_case(case: &Case) -> Result<Box<dyn ExactSolution>, String> {
         Model::RockingBody(_) => Err(
             "no exact solution exists for the rocking elastic-plastic oscillator: engines are compared with each other and with their own converged solutions".into(),
         ),
-        Model::RigidBlock(_) => Err("no reference for rigid blocks in this build".into()),
+        Model::RigidBlock(block) => {
+            let forcing = SineForcing::of(&scene.excitation, block.mass)?;
+            // Rocking starts from a tilt, or when the driving acceleration exceeds g·b/h
+            // (Housner 1963); otherwise the block can only slide (Newmark 1965).
+            let rocks = block.initial_tilt != 0.0
+                || (forcing.p0 / block.mass).abs() > block.gravity * block.half_width / block.half_height;
+            if rocks {
+                Ok(Box::new(HousnerRocking::new(block, forcing, case.run.duration)?))
+            } else {
+                Ok(Box::new(NewmarkBlock::new(block, forcing, case.run.duration)?))
+            }
+        }
     }
 }
 

@@ -1,0 +1,91 @@
+//! Wall time of the rapier engine per simulated second, for every scene it runs, at the
+//! case files' settings (RPEPO: the paper's case, dt = 0.5 ms, inline below). Criterion
+//! reports the time of one run; the scene's duration turns it into seconds per simulated
+//! second, printed once per scene before the measurements.
+
+use std::hint::black_box;
+use std::path::Path;
+use std::time::Instant;
+
+use criterion::{Criterion, criterion_group, criterion_main};
+use rockslide::case::{Case, load_case, parse_case};
+use rockslide::engine::Engine;
+use rockslide::engine::rigid_body::Rapier;
+
+const RPEPO: &str = r#"
+[model]
+kind = "rocking-body"
+mass = 1.0e6
+gravity = 9.81
+cm_height = 0.625
+half_width = 0.5
+supports = 10
+[model.contact]
+kx = 2.4e9
+kz = 3.94784e8
+mu = 0.5
+[excitation]
+kind = "mass-acceleration"
+shape = "sine-pulse"
+amplitude = 0.981
+omega = 31.41592653589793
+cycles = 5.0
+[run]
+duration = 2.0
+dt = 0.0005
+[engines.rapier]
+"#;
+
+fn scenes() -> Vec<(String, Case)> {
+    let mut v: Vec<(String, Case)> = [
+        "pepo-mass-accel",
+        "pepo-ground-disp",
+        "linear-sdof",
+        "rigid-sliding-block",
+        "housner-free-rocking",
+        "housner-pulse",
+    ]
+    .iter()
+    .map(|n| {
+        let c = load_case(Path::new(&format!("cases/{n}.toml"))).expect("case loads");
+        (n.to_string(), c)
+    })
+    .collect();
+    v.push((
+        "rpepo-mass-accel".into(),
+        parse_case(Path::new("rpepo.toml"), RPEPO).expect("case parses"),
+    ));
+    v
+}
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("rapier");
+    group.sample_size(10);
+    for (name, case) in scenes() {
+        let variants = Rapier.variants(&case.scene).expect("rapier applies");
+        for variant in variants {
+            let dt = case.dt_for("rapier");
+            let start = Instant::now();
+            let run = Rapier.run(&case, variant, dt).expect("runs");
+            let wall = start.elapsed().as_secs_f64();
+            let substeps = run
+                .counters
+                .iter()
+                .find(|(k, _)| k == "substeps")
+                .map_or(0, |c| c.1);
+            println!(
+                "{name}/{variant}: dt = {dt} s, {} steps, {substeps} substeps, {:.3} s wall per simulated s, {:.2} µs per step",
+                run.trace.len() - 1,
+                wall / case.run.duration,
+                1e6 * wall / (run.trace.len() - 1) as f64
+            );
+            group.bench_function(format!("{name}/{variant}"), |b| {
+                b.iter(|| black_box(Rapier.run(&case, variant, dt).expect("runs")))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
