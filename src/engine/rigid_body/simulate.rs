@@ -107,7 +107,7 @@ pub fn run_oscillator(
         channels.push(&q::GROUND_DISP);
     }
     channels.push(&q::NORMAL);
-    let mut trace = Trace::with_channels(&channels, n + 1);
+    let trace = Trace::with_channels(&channels, n + 1);
     let mut row = vec![0.0; channels.len()];
     let foot = rig.feet[0];
     let (m, mf) = (rig.mass, rig.foot_mass);
@@ -135,19 +135,19 @@ pub fn run_oscillator(
     };
     let x_m0 = rig.world.bodies[rig.structure].translation().x;
     let x_f0 = rig.world.bodies[foot].translation().x;
-    let mut record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: f64, vy_prev: f64| {
+    let record = |trace: &mut Trace, rig: &Rig, k: usize, prev: &mut (f64, f64)| {
         let t = k as f64 * dt;
         let (bm, bf) = (&rig.world.bodies[rig.structure], &rig.world.bodies[foot]);
         let x = bm.translation().x - x_m0 - frame(k);
         let xf = bf.translation().x - x_f0 - frame(k);
         let v = bm.linvel().x - frame_v(k);
-        let a = if k == 0 { 0.0 } else { (v - v_prev) / dt };
+        let a = if k == 0 { 0.0 } else { (v - prev.0) / dt };
         // Normal force on the foot from its vertical momentum balance: N = W + m_f·dv_y/dt.
         let vy = bf.linvel().y;
         let normal = if k == 0 {
             weight
         } else {
-            weight + mf * (vy - vy_prev) / dt
+            weight + mf * (vy - prev.1) / dt
         };
         let vals = [
             force_at(ex, m, t),
@@ -167,22 +167,44 @@ pub fn run_oscillator(
             row[6] = normal;
         }
         trace.push(t, &row);
-        (v, vy)
+        *prev = (v, vy);
     };
-    let (mut v_prev, mut vy_prev) = record(&mut trace, &rig, 0, 0.0, 0.0);
+    time_loop(&mut rig, drive, ex, &g, n, dt, trace, (0.0, 0.0), record)
+}
+
+/// The common time loop: drive the ground, step the world, record after every step with
+/// the recorder's own memory; a body whose pose stops being finite ends the run as
+/// `Diverged` (a result, not a panic).
+#[allow(clippy::too_many_arguments)]
+fn time_loop<M>(
+    rig: &mut Rig,
+    drive: Drive,
+    ex: &Excitation,
+    g: &GroundTable,
+    n: usize,
+    dt: f64,
+    mut trace: Trace,
+    mut memory: M,
+    mut record: impl FnMut(&mut Trace, &Rig, usize, &mut M),
+) -> Outcome {
+    record(&mut trace, rig, 0, &mut memory);
     let mut status = RunStatus::Completed;
     for k in 0..n {
-        drive_step(&mut rig, drive, ex, &g, k, dt);
+        drive_step(rig, drive, ex, g, k, dt);
         rig.world.step();
-        let p = rig.world.bodies[rig.structure].translation();
-        if !(p.is_finite() && rig.world.bodies[foot].translation().is_finite()) {
+        let finite = rig
+            .world
+            .bodies
+            .iter()
+            .all(|(_, b)| b.translation().is_finite() && b.rotation().is_finite());
+        if !finite {
             status = RunStatus::Diverged {
                 time: (k + 1) as f64 * dt,
-                reason: "a body position is not finite".into(),
+                reason: "a body's position is not finite".into(),
             };
             break;
         }
-        (v_prev, vy_prev) = record(&mut trace, &rig, k + 1, v_prev, vy_prev);
+        record(&mut trace, rig, k + 1, &mut memory);
     }
     Outcome {
         steps: (trace.len() - 1) as u64,
@@ -220,7 +242,7 @@ pub fn run_block(
     if moves {
         channels.push(&q::GROUND_DISP);
     }
-    let mut trace = Trace::with_channels(&channels, n + 1);
+    let trace = Trace::with_channels(&channels, n + 1);
     let mut row = vec![0.0; channels.len()];
     let (m, bw, hh) = (block.mass, block.half_width, block.half_height);
     let grav = -rig.world.gravity.y;
@@ -264,7 +286,7 @@ pub fn run_block(
         let c = corners_of(cm_start, phi_start);
         state.corners = [c[0].0, c[1].0];
     }
-    let mut record = |trace: &mut Trace, rig: &Rig, k: usize, st: &mut BlockMemory| {
+    let record = |trace: &mut Trace, rig: &Rig, k: usize, st: &mut BlockMemory| {
         let t = k as f64 * dt;
         let body = &rig.world.bodies[rig.structure];
         let cm = body.translation();
@@ -324,26 +346,7 @@ pub fn run_block(
         row.copy_from_slice(&vals[..len]);
         trace.push(t, &row);
     };
-    record(&mut trace, &rig, 0, &mut state);
-    let mut status = RunStatus::Completed;
-    for k in 0..n {
-        drive_step(&mut rig, drive, ex, &g, k, dt);
-        rig.world.step();
-        let body = &rig.world.bodies[rig.structure];
-        if !(body.translation().is_finite() && body.rotation().is_finite()) {
-            status = RunStatus::Diverged {
-                time: (k + 1) as f64 * dt,
-                reason: "the block's position is not finite".into(),
-            };
-            break;
-        }
-        record(&mut trace, &rig, k + 1, &mut state);
-    }
-    Outcome {
-        steps: (trace.len() - 1) as u64,
-        trace,
-        status,
-    }
+    time_loop(&mut rig, drive, ex, &g, n, dt, trace, state, record)
 }
 
 /// What the block recorder carries from one row to the next.
@@ -408,7 +411,7 @@ pub fn run_rocking(
         channels.push(&q::GROUND_DISP);
     }
     settle(&mut rig, settle_steps);
-    let mut trace = Trace::with_channels(&channels, n + 1);
+    let trace = Trace::with_channels(&channels, n + 1);
     let mut row = vec![0.0; channels.len()];
     let m = body.mass;
     let (kx, kz, hh) = (body.contact.kx, body.contact.kz, body.cm_height);
@@ -444,8 +447,7 @@ pub fn run_rocking(
             0.0
         }
     };
-    let mut v_prev = 0.0;
-    let mut record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: &mut f64| {
+    let record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: &mut f64| {
         let t = k as f64 * dt;
         let b = &rig.world.bodies[rig.structure];
         let cm = b.translation();
@@ -496,24 +498,5 @@ pub fn run_rocking(
         row.copy_from_slice(&vals[..len]);
         trace.push(t, &row);
     };
-    record(&mut trace, &rig, 0, &mut v_prev);
-    let mut status = RunStatus::Completed;
-    for k in 0..n {
-        drive_step(&mut rig, drive, ex, &g, k, dt);
-        rig.world.step();
-        let b = &rig.world.bodies[rig.structure];
-        if !(b.translation().is_finite() && b.rotation().is_finite()) {
-            status = RunStatus::Diverged {
-                time: (k + 1) as f64 * dt,
-                reason: "the body's position is not finite".into(),
-            };
-            break;
-        }
-        record(&mut trace, &rig, k + 1, &mut v_prev);
-    }
-    Outcome {
-        steps: (trace.len() - 1) as u64,
-        trace,
-        status,
-    }
+    time_loop(&mut rig, drive, ex, &g, n, dt, trace, 0.0, record)
 }
