@@ -291,18 +291,7 @@ impl ExactSolution for EpoExact {
     }
 
     fn channels(&self) -> Vec<&'static Quantity> {
-        let mut c = vec![
-            &q::FORCE,
-            &q::RESISTANCE,
-            &q::REL_DISP,
-            &q::SLIDE,
-            &q::VEL,
-            &q::ACC,
-        ];
-        if self.forcing.ground_amplitude.is_some() {
-            c.push(&q::GROUND_DISP);
-        }
-        c
+        q::sliding(self.forcing.ground_amplitude.is_some())
     }
 
     fn eval(&self, t: f64, out: &mut [f64]) {

@@ -197,14 +197,7 @@ impl ExactSolution for NewmarkBlock {
     }
 
     fn channels(&self) -> Vec<&'static Quantity> {
-        vec![
-            &q::FORCE,
-            &q::RESISTANCE,
-            &q::REL_DISP,
-            &q::SLIDE,
-            &q::VEL,
-            &q::ACC,
-        ]
+        q::sliding(false)
     }
 
     fn eval(&self, t: f64, out: &mut [f64]) {

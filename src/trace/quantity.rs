@@ -187,6 +187,16 @@ pub mod q {
         "Input work minus (kinetic + strain + friction + damping) energy."
     );
 
+    /// The channels every sliding-oscillator trace has, in this order (engines and
+    /// references alike), with `GROUND_DISP` after them when the ground moves.
+    pub fn sliding(moving_ground: bool) -> Vec<&'static Quantity> {
+        let mut c = vec![&FORCE, &RESISTANCE, &REL_DISP, &SLIDE, &VEL, &ACC];
+        if moving_ground {
+            c.push(&GROUND_DISP);
+        }
+        c
+    }
+
     /// Every quantity, for lookups by key.
     pub static ALL: &[&Quantity] = &[
         &FORCE,

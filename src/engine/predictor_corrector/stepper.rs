@@ -43,17 +43,7 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
     let dt = s.dt;
     let n = step_count(s.duration, dt);
     let moves_ground = excitation.moves_ground();
-    let mut channels = vec![
-        &q::FORCE,
-        &q::RESISTANCE,
-        &q::REL_DISP,
-        &q::SLIDE,
-        &q::VEL,
-        &q::ACC,
-    ];
-    if moves_ground {
-        channels.push(&q::GROUND_DISP);
-    }
+    let mut channels = q::sliding(moves_ground);
     channels.push(&q::PC_CHANGE);
     let mut trace = Trace::with_channels(&channels, n + 1);
     let mut row = vec![0.0; channels.len()];

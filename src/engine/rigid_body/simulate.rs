@@ -95,17 +95,7 @@ pub fn run_oscillator(
     let n = step_count(duration, dt);
     let g = GroundTable::new(ex, dt, n);
     let moves = ex.moves_ground();
-    let mut channels: Vec<&'static Quantity> = vec![
-        &q::FORCE,
-        &q::RESISTANCE,
-        &q::REL_DISP,
-        &q::SLIDE,
-        &q::VEL,
-        &q::ACC,
-    ];
-    if moves {
-        channels.push(&q::GROUND_DISP);
-    }
+    let mut channels: Vec<&'static Quantity> = q::sliding(moves);
     channels.push(&q::NORMAL);
     let trace = Trace::with_channels(&channels, n + 1);
     let mut row = vec![0.0; channels.len()];
