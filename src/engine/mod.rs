@@ -3,6 +3,7 @@
 //! (`trace`) only — never on each other or on `reference` — so that a bug in one cannot
 //! hide in another.
 
+pub mod fe;
 pub mod predictor_corrector;
 
 use crate::case::{Case, Scene};
@@ -115,7 +116,10 @@ pub trait Engine: Send + Sync {
 
 /// Every engine, in report column order.
 pub fn all() -> Vec<Box<dyn Engine>> {
-    vec![Box::new(predictor_corrector::PredictorCorrector)]
+    vec![
+        Box::new(predictor_corrector::PredictorCorrector),
+        Box::new(fe::Fe),
+    ]
 }
 
 /// Number of steps covering `duration` at `dt` (the last step may end past it by < dt/2).
