@@ -431,3 +431,53 @@ impl Model {
         point_kin(self.kinematics, self.p_delta, q, cs, d).u
     }
 }
+
+impl Model {
+    /// Put every intermediate node at its exact equilibrium for the current body
+    /// position and ground (a local solve, exact for the double arrangement: element 1
+    /// compression-only with friction from the ground, element 2 bonded with μ2 = ∞).
+    ///
+    /// The node's two equations f1(δ1) = f2(δt − δ1) are piecewise linear; Newton on them
+    /// cycles between stick and slip (a saturating force plus a soft spring behaves like
+    /// arctan), so they are solved in closed form:
+    ///   closed (δtz ≤ 0): δ1z = kz2·δtz/(kz1 + kz2);  open: δ1 = δt (no force).
+    ///   stick: T = ks(δtx − s1), δ1x = (kx1·s1 + kx2·δtx)/(kx1 + kx2), ks = series kx;
+    ///   slip (|T| > μ1·N): T = ±μ1·N, δ1x = δtx − T/kx2.
+    /// The global Newton then iterates on the body alone with the condensed (Schur)
+    /// tangent, which is the derivative of this local solution.
+    pub fn relax_nodes(&self, q: &Vector3<f64>, un: &mut [Vector2<f64>], xg: f64) {
+        let cs = if self.kinematics == Kinematics::Exact {
+            (q.z.cos(), q.z.sin())
+        } else {
+            (1.0, 0.0)
+        };
+        for sup in &self.supports {
+            let Some(k) = sup.node else { continue };
+            let (l1, l2) = (&self.links[sup.ground_link], &self.links[sup.ground_link + 1]);
+            let Point::Body(i) = l2.upper else { continue };
+            let (e1, e2) = (&l1.element, &l2.element);
+            if !(e2.bonded && e2.mu.is_infinite()) || e1.bonded {
+                continue;
+            }
+            let ub = point_kin(self.kinematics, self.p_delta, q, cs, &self.body.attachments[i]).u;
+            let dt = ub - Vector2::new(xg, 0.0);
+            let d1 = if dt.y > 0.0 {
+                dt
+            } else {
+                let z1 = e2.kz * dt.y / (e1.kz + e2.kz);
+                let n = -e1.kz * z1;
+                let s1 = e1.state().slip;
+                let ks = e1.kx * e2.kx / (e1.kx + e2.kx);
+                let t = ks * (dt.x - s1);
+                let cap = e1.mu * n;
+                let x1 = if e1.mu.is_infinite() || t.abs() <= cap {
+                    (e1.kx * s1 + e2.kx * dt.x) / (e1.kx + e2.kx)
+                } else {
+                    dt.x - t.signum() * cap / e2.kx
+                };
+                Vector2::new(x1, z1)
+            };
+            un[k] = d1 + Vector2::new(xg, 0.0);
+        }
+    }
+}

@@ -94,6 +94,9 @@ struct Workspace {
     pn_n: Vec<Vector2<f64>>,
     rn: Vec<Vector2<f64>>,
     dun: Vec<Vector2<f64>>,
+    /// Line search: the last accepted iterate and its Newton direction.
+    un_prev: Vec<Vector2<f64>>,
+    dun_prev: Vec<Vector2<f64>>,
 }
 
 impl Workspace {
@@ -105,7 +108,9 @@ impl Workspace {
             un_n: z.clone(),
             pn_n: z.clone(),
             rn: z.clone(),
-            dun: z,
+            dun: z.clone(),
+            un_prev: z.clone(),
+            dun_prev: z,
         }
     }
 }
@@ -122,6 +127,7 @@ fn static_preload(model: &mut Model, w: &mut Workspace) -> Result<(Vector3<f64>,
     let mut q = Vector3::zeros();
     let mut dq = Vector3::zeros();
     for it in 0..100 {
+        model.relax_nodes(&q, &mut w.un, 0.0);
         model.assemble(&q, &w.un, 0.0, &mut w.asm);
         let rb = f - w.asm.pb;
         let mut r2 = rb.norm_squared();
@@ -236,6 +242,11 @@ pub fn integrate(
         let (mut a, mut v) = (a_n, v_n);
         let mut last = (0.0, 0.0, 0.0);
         let mut it = 0;
+        // Backtracking line search (Dennis & Schnabel 1983, §6.3): the friction law is
+        // piecewise linear, and a full Newton step can jump between stick and slip of
+        // several elements and cycle; halve the step while the residual does not fall.
+        let (mut q_prev, mut dq_prev) = (q, Vector3::zeros());
+        let (mut r_prev, mut lambda) = (f64::INFINITY, 1.0_f64);
         while it < newton.max_iterations {
             it += 1;
             a = (q - q_n - v_n * dt) * c0 - a_n * (0.5 / beta - 1.0); // Newmark
@@ -244,6 +255,7 @@ pub fn integrate(
                 a.z = 0.0;
                 v.z = 0.0;
             }
+            model.relax_nodes(&q, &mut w.un, g.0);
             model.assemble(&q, &w.un, g.0, &mut w.asm);
             let damp = c * (v.x - g.1);
             // HHT residual (α = 0: Newmark), paper Eq 2 generalised.
@@ -256,6 +268,14 @@ pub fn integrate(
                 r2 += w.rn[k].norm_squared();
             }
             let fref = f.norm() + w.asm.pb.norm() + m.component_mul(&a).norm();
+            if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
+                lambda *= 0.5;
+                q = q_prev + dq_prev * lambda;
+                for k in 0..model.nodes {
+                    w.un[k] = w.un_prev[k] + w.dun_prev[k] * lambda;
+                }
+                continue;
+            }
             if !(r2.is_finite() && q.iter().all(|x| x.is_finite())) {
                 model.restore();
                 return (
@@ -289,8 +309,11 @@ pub fn integrate(
                 converged = true;
                 break;
             }
+            (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
             q += dq;
             for k in 0..model.nodes {
+                w.un_prev[k] = w.un[k];
+                w.dun_prev[k] = w.dun[k];
                 w.un[k] += w.dun[k];
             }
         }
