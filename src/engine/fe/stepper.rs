@@ -296,12 +296,19 @@ pub fn integrate(
                     counters,
                 );
             }
-            let (mut d2, mut inc2) = (dq.norm_squared(), (q + dq - q_n).norm_squared());
+            let (mut d2, mut inc2, mut u2) = (
+                dq.norm_squared(),
+                (q + dq - q_n).norm_squared(),
+                q.norm_squared(),
+            );
             for k in 0..model.nodes {
                 d2 += w.dun[k].norm_squared();
                 inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
+                u2 += w.un[k].norm_squared();
             }
-            let (rn, dn, incn) = (r2.sqrt(), d2.sqrt(), inc2.sqrt());
+            // The increment is floored at 1e-5 of the total displacement: below that the
+            // correction is round-off of the absolute positions (a body at rest).
+            let (rn, dn, incn) = (r2.sqrt(), d2.sqrt(), inc2.sqrt().max(1e-5 * u2.sqrt()));
             last = (rn / fref.max(f64::MIN_POSITIVE), dn, incn);
             // Converged at the current iterate: its residual is small and the correction
             // Newton would still make is small against the step's increment.

@@ -1,0 +1,203 @@
+//! The FE engine on the sliding oscillators (SPEC §1.1 PEPO, §1.2 linear SDOF), against
+//! the exact references: rockslide shall reproduce the closed-form and the exact
+//! elastic-plastic solutions with both contact arrangements, and its double model's
+//! intermediate node shall show the sliding to within element 1's elastic deflection.
+//! Tolerances are the measured errors (stated at each assert) plus a small margin.
+
+use std::path::Path;
+
+use rockslide::case::{Case, Model, parse_case};
+use rockslide::engine::fe::{Fe, FeOptions, simulate};
+use rockslide::engine::{Engine, Run, RunStatus};
+use rockslide::reference;
+use rockslide::trace::Trace;
+
+/// The case at `path` with `extra` lines appended (its last section is `[engines.fe]`).
+fn case(path: &str, extra: &str) -> Case {
+    let text = std::fs::read_to_string(path).unwrap() + "\n" + extra + "\n";
+    parse_case(Path::new(path), &text).unwrap()
+}
+
+fn run(c: &Case, variant: &str, dt: f64) -> Run {
+    let (o, errors) = FeOptions::parse(c);
+    assert!(errors.is_empty(), "{errors:?}");
+    let r = simulate(c, variant, dt, &o).unwrap();
+    assert!(r.status.completed(), "{}", r.status);
+    r
+}
+
+/// max |a − b| of a channel over the run's times.
+fn max_diff(run: &Trace, key_run: &str, reference: &Trace, key_ref: &str) -> f64 {
+    let a = run.column(key_run).unwrap();
+    let b = reference.column(key_ref).unwrap();
+    a.iter().zip(b).fold(0.0, |m, (x, y)| m.max((x - y).abs()))
+}
+
+fn peak(col: &[f64]) -> f64 {
+    col.iter().fold(0.0, |m, x| m.max(x.abs()))
+}
+
+/// (max |Δx| / peak x, max |Δslide|, peak-sliding error in %) against the reference.
+fn errors(c: &Case, variant: &str, dt: f64) -> (f64, f64, f64, Run, Trace) {
+    let sol = reference::for_case(c).unwrap();
+    let r = run(c, variant, dt);
+    let exact = reference::sample(sol.as_ref(), &r.trace.time);
+    let ex = max_diff(&r.trace, "rel_disp", &exact, "rel_disp") / peak(exact.column("rel_disp").unwrap());
+    let es = max_diff(&r.trace, "slide", &exact, "slide");
+    let ps = |t: &Trace| t.column("slide").unwrap().iter().copied().fold(f64::MIN, f64::max);
+    let pe = if ps(&exact) > 0.0 { 100.0 * (ps(&r.trace) / ps(&exact) - 1.0) } else { 0.0 };
+    (ex, es, pe, r, exact)
+}
+
+#[test]
+fn linear_oscillator_matches_duhamel_with_second_order_convergence() {
+    let c = case("cases/linear-sdof.toml", "");
+    for v in ["single", "double"] {
+        let (e1, ..) = errors(&c, v, 1e-3);
+        let (e2, ..) = errors(&c, v, 5e-4);
+        // Measured: 1.790e-3 and 4.475e-4 (both variants): Newmark's period error.
+        assert!(e1 < 1.80e-3, "{v}: {e1}");
+        assert!(e2 < 4.50e-4, "{v}: {e2}");
+        let order = (e1 / e2).log2();
+        assert!((order - 2.0).abs() < 0.02, "{v}: observed order {order}");
+    }
+}
+
+#[test]
+fn pepo_mass_acceleration_matches_the_exact_solution_at_dt_1e_3() {
+    let c = case("cases/pepo-mass-accel.toml", "");
+    for v in ["single", "double"] {
+        let (ex, es, pe, ..) = errors(&c, v, 1e-3);
+        // Measured: max|Δx|/peak 1.583e-4 (single), 1.582e-4 (double); max|Δslide|
+        // 8.55e-7 m; peak sliding −0.0098 % (8.755 mm against 8.756 mm).
+        assert!(ex < 1.6e-4, "{v}: {ex}");
+        assert!(es < 8.6e-7, "{v}: {es}");
+        assert!(pe.abs() < 0.0100, "{v}: {pe}");
+    }
+}
+
+#[test]
+fn pepo_ground_displacement_matches_the_exact_solution_at_dt_1e_3() {
+    let c = case("cases/pepo-ground-disp.toml", "");
+    for v in ["single", "double"] {
+        let (ex, es, pe, ..) = errors(&c, v, 1e-3);
+        // Measured: max|Δx|/peak 3.495e-4 (single), 3.490e-4 (double); max|Δslide|
+        // 4.20e-7 m; peak sliding −0.0116 %.
+        assert!(ex < 3.5e-4, "{v}: {ex}");
+        assert!(es < 4.3e-7, "{v}: {es}");
+        assert!(pe.abs() < 0.0120, "{v}: {pe}");
+    }
+}
+
+#[test]
+fn double_models_node_shows_the_exact_sliding_within_element_1s_deflection() {
+    for path in ["cases/pepo-mass-accel.toml", "cases/pepo-ground-disp.toml"] {
+        let c = case(path, "");
+        let Model::Oscillator(o) = &c.scene.model else { unreachable!() };
+        let d = o.double.unwrap();
+        let deflection = o.contact.mu * o.mass * o.gravity / d.lower.kx; // Ru/Kx1 = 4.95 µm
+        for dt in [1e-3, 1e-4] {
+            let (_, es, _, r, exact) = errors(&c, "double", dt);
+            let en = max_diff(&r.trace, "node_disp", &exact, "slide");
+            // |node − exact slide| ≤ |node − slip| + |slip − exact| = T1/Kx1 + es; measured
+            // 5.806e-6 m at dt = 1e-3 and 4.957e-6 m at dt = 1e-4 (Ru/Kx1 = 4.950e-6 m).
+            assert!(en <= deflection + es + 1e-12, "{path} dt {dt}: {en} > {deflection} + {es}");
+            assert!(en >= 0.99 * deflection, "{path} dt {dt}: the node carries element 1's deflection");
+        }
+    }
+}
+
+#[test]
+fn a_sliding_oscillator_keeps_its_normal_force() {
+    let c = case("cases/pepo-mass-accel.toml", "");
+    let Model::Oscillator(o) = &c.scene.model else { unreachable!() };
+    for v in ["single", "double"] {
+        let r = run(&c, v, 1e-3);
+        let n = r.trace.column("normal").unwrap();
+        let worst = n.iter().fold(0.0_f64, |m, x| m.max((x / o.normal_force() - 1.0).abs()));
+        assert!(worst < 1e-9, "{v}: normal force varies by {worst}");
+    }
+}
+
+#[test]
+fn runs_are_bit_identical() {
+    let c = case("cases/pepo-ground-disp.toml", "");
+    let (a, b) = (run(&c, "double", 1e-3), run(&c, "double", 1e-3));
+    assert_eq!(a.trace, b.trace);
+    assert_eq!(a.counters, b.counters);
+}
+
+#[test]
+fn newton_counters_are_deterministic() {
+    let c = case("cases/pepo-mass-accel.toml", "");
+    let r = run(&c, "single", 1e-3);
+    // 1000 steps; 2 iterations per sticking step, 3 when stick/slip changes.
+    assert_eq!(r.counters[0], ("steps".to_string(), 1000));
+    assert_eq!(r.counters[1], ("Newton iterations".to_string(), 2102));
+}
+
+#[test]
+fn too_few_newton_iterations_is_reported_not_a_panic() {
+    let c = case("cases/pepo-mass-accel.toml", "max_iterations = 1");
+    let (o, e) = FeOptions::parse(&c);
+    assert!(e.is_empty());
+    let r = simulate(&c, "single", 1e-3, &o).unwrap();
+    match r.status {
+        RunStatus::NotConverged { time, reason } => {
+            assert_eq!(time, 1e-3);
+            assert!(reason.contains("1 iterations"), "{reason}");
+        }
+        other => panic!("expected not converged, got {other}"),
+    }
+}
+
+#[test]
+fn an_overflowing_load_is_reported_as_divergence() {
+    let text = std::fs::read_to_string("cases/pepo-mass-accel.toml")
+        .unwrap()
+        .replace("amplitude = 1.0 ", "amplitude = 1.0e300 ");
+    let c = parse_case(Path::new("overflow.toml"), &text).unwrap();
+    let r = simulate(&c, "single", 1e-3, &FeOptions::default()).unwrap();
+    assert!(matches!(r.status, RunStatus::Diverged { time, .. } if time == 1e-3), "{}", r.status);
+}
+
+#[test]
+fn bad_options_are_located_errors() {
+    for (extra, field) in [
+        ("colour = \"red\"", "engines.fe.colour"),
+        ("kinematics = \"exact\"\np_delta = false", "engines.fe.p_delta"),
+        ("alpha = -0.1", "engines.fe.alpha"),
+        ("integrator = \"hht\"\nalpha = -0.5", "engines.fe.alpha"),
+        ("newton = \"loose\"", "engines.fe.newton"),
+        ("rotational_inertia = -1.0", "engines.fe.rotational_inertia"),
+        ("max_iterations = 2.5", "engines.fe.max_iterations"),
+    ] {
+        let c = case("cases/pepo-mass-accel.toml", extra);
+        let errors = Fe.check_options(&c);
+        assert_eq!(errors.len(), 1, "{extra}: {errors:?}");
+        assert_eq!(errors[0].field, field);
+        assert!(errors[0].line.is_some(), "{extra}: located");
+    }
+}
+
+#[test]
+fn rigid_blocks_are_not_applicable() {
+    let text = r#"
+title = "block"
+[model]
+kind = "rigid-block"
+mass = 1.0
+gravity = 9.81
+half_width = 0.5
+half_height = 1.0
+mu = 0.5
+[excitation]
+kind = "none"
+[run]
+duration = 1.0
+dt = 0.01
+"#;
+    let c = parse_case(Path::new("block.toml"), text).unwrap();
+    let why = Fe.variants(&c.scene).unwrap_err();
+    assert!(why.0.contains("contact stiffness"), "{}", why.0);
+}
