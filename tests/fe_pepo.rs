@@ -42,10 +42,21 @@ fn errors(c: &Case, variant: &str, dt: f64) -> (f64, f64, f64, Run, Trace) {
     let sol = reference::for_case(c).unwrap();
     let r = run(c, variant, dt);
     let exact = reference::sample(sol.as_ref(), &r.trace.time);
-    let ex = max_diff(&r.trace, "rel_disp", &exact, "rel_disp") / peak(exact.column("rel_disp").unwrap());
+    let ex = max_diff(&r.trace, "rel_disp", &exact, "rel_disp")
+        / peak(exact.column("rel_disp").unwrap());
     let es = max_diff(&r.trace, "slide", &exact, "slide");
-    let ps = |t: &Trace| t.column("slide").unwrap().iter().copied().fold(f64::MIN, f64::max);
-    let pe = if ps(&exact) > 0.0 { 100.0 * (ps(&r.trace) / ps(&exact) - 1.0) } else { 0.0 };
+    let ps = |t: &Trace| {
+        t.column("slide")
+            .unwrap()
+            .iter()
+            .copied()
+            .fold(f64::MIN, f64::max)
+    };
+    let pe = if ps(&exact) > 0.0 {
+        100.0 * (ps(&r.trace) / ps(&exact) - 1.0)
+    } else {
+        0.0
+    };
     (ex, es, pe, r, exact)
 }
 
@@ -93,7 +104,9 @@ fn pepo_ground_displacement_matches_the_exact_solution_at_dt_1e_3() {
 fn double_models_node_shows_the_exact_sliding_within_element_1s_deflection() {
     for path in ["cases/pepo-mass-accel.toml", "cases/pepo-ground-disp.toml"] {
         let c = case(path, "");
-        let Model::Oscillator(o) = &c.scene.model else { unreachable!() };
+        let Model::Oscillator(o) = &c.scene.model else {
+            unreachable!()
+        };
         let d = o.double.unwrap();
         let deflection = o.contact.mu * o.mass * o.gravity / d.lower.kx; // Ru/Kx1 = 4.95 µm
         for dt in [1e-3, 1e-4] {
@@ -101,8 +114,14 @@ fn double_models_node_shows_the_exact_sliding_within_element_1s_deflection() {
             let en = max_diff(&r.trace, "node_disp", &exact, "slide");
             // |node − exact slide| ≤ |node − slip| + |slip − exact| = T1/Kx1 + es; measured
             // 5.806e-6 m at dt = 1e-3 and 4.957e-6 m at dt = 1e-4 (Ru/Kx1 = 4.950e-6 m).
-            assert!(en <= deflection + es + 1e-12, "{path} dt {dt}: {en} > {deflection} + {es}");
-            assert!(en >= 0.99 * deflection, "{path} dt {dt}: the node carries element 1's deflection");
+            assert!(
+                en <= deflection + es + 1e-12,
+                "{path} dt {dt}: {en} > {deflection} + {es}"
+            );
+            assert!(
+                en >= 0.99 * deflection,
+                "{path} dt {dt}: the node carries element 1's deflection"
+            );
         }
     }
 }
@@ -110,11 +129,15 @@ fn double_models_node_shows_the_exact_sliding_within_element_1s_deflection() {
 #[test]
 fn a_sliding_oscillator_keeps_its_normal_force() {
     let c = case("cases/pepo-mass-accel.toml", "");
-    let Model::Oscillator(o) = &c.scene.model else { unreachable!() };
+    let Model::Oscillator(o) = &c.scene.model else {
+        unreachable!()
+    };
     for v in ["single", "double"] {
         let r = run(&c, v, 1e-3);
         let n = r.trace.column("normal").unwrap();
-        let worst = n.iter().fold(0.0_f64, |m, x| m.max((x / o.normal_force() - 1.0).abs()));
+        let worst = n
+            .iter()
+            .fold(0.0_f64, |m, x| m.max((x / o.normal_force() - 1.0).abs()));
         assert!(worst < 1e-9, "{v}: normal force varies by {worst}");
     }
 }
@@ -158,14 +181,21 @@ fn an_overflowing_load_is_reported_as_divergence() {
         .replace("amplitude = 1.0 ", "amplitude = 1.0e300 ");
     let c = parse_case(Path::new("overflow.toml"), &text).unwrap();
     let r = simulate(&c, "single", 1e-3, &FeOptions::default()).unwrap();
-    assert!(matches!(r.status, RunStatus::Diverged { time, .. } if time == 1e-3), "{}", r.status);
+    assert!(
+        matches!(r.status, RunStatus::Diverged { time, .. } if time == 1e-3),
+        "{}",
+        r.status
+    );
 }
 
 #[test]
 fn bad_options_are_located_errors() {
     for (extra, field) in [
         ("colour = \"red\"", "engines.fe.colour"),
-        ("kinematics = \"exact\"\np_delta = false", "engines.fe.p_delta"),
+        (
+            "kinematics = \"exact\"\np_delta = false",
+            "engines.fe.p_delta",
+        ),
         ("alpha = -0.1", "engines.fe.alpha"),
         ("integrator = \"hht\"\nalpha = -0.5", "engines.fe.alpha"),
         ("newton = \"loose\"", "engines.fe.newton"),

@@ -9,8 +9,8 @@ use std::f64::consts::PI;
 use std::path::Path;
 
 use rockslide::case::{Case, Model as SceneModel, RockingBody, parse_case};
-use rockslide::engine::fe::{FeOptions, Kinematics, Model, eigenfrequencies, simulate};
 use rockslide::engine::Run;
+use rockslide::engine::fe::{FeOptions, Kinematics, Model, eigenfrequencies, simulate};
 
 fn case(path: &str, extra: &str) -> Case {
     let text = std::fs::read_to_string(path).unwrap() + "\n" + extra + "\n";
@@ -43,23 +43,61 @@ fn the_model_has_the_papers_frequencies() {
     let d = r.double.unwrap();
     let (kxs, kzs) = d.series();
     for (double, kx, kz) in [(None, r.contact.kx, r.contact.kz), (Some(&d), kxs, kzs)] {
-        for (kin, pd) in [(Kinematics::SmallRotation, false), (Kinematics::SmallRotation, true), (Kinematics::Exact, true)] {
+        for (kin, pd) in [
+            (Kinematics::SmallRotation, false),
+            (Kinematics::SmallRotation, true),
+            (Kinematics::Exact, true),
+        ] {
             let m = eigenfrequencies(&Model::rocking(&r, double, 2000.0, kin, pd)).unwrap();
             let (wx, wz) = closed_form(&r, kx, kz, pd);
-            assert!((m.omega_x / wx - 1.0).abs() < 1e-9, "{kin:?} {pd}: {} vs {wx}", m.omega_x);
-            assert!((m.omega_z / wz - 1.0).abs() < 1e-9, "{kin:?} {pd}: {} vs {wz}", m.omega_z);
+            assert!(
+                (m.omega_x / wx - 1.0).abs() < 1e-9,
+                "{kin:?} {pd}: {} vs {wx}",
+                m.omega_x
+            );
+            assert!(
+                (m.omega_z / wz - 1.0).abs() < 1e-9,
+                "{kin:?} {pd}: {} vs {wz}",
+                m.omega_z
+            );
         }
     }
     // The single arrangement without P-Delta is the paper's design: 10π and 20π
     // (measured 10.0003π: Kx ≈ 2,400,000 kN/m is rounded; ωZ exact to 2e-7).
-    let m = eigenfrequencies(&Model::rocking(&r, None, 2000.0, Kinematics::SmallRotation, false)).unwrap();
-    assert!((m.omega_x / (10.0 * PI) - 1.0).abs() < 5e-5, "{}", m.omega_x / PI);
-    assert!((m.omega_z / (20.0 * PI) - 1.0).abs() < 1e-6, "{}", m.omega_z / PI);
+    let m = eigenfrequencies(&Model::rocking(
+        &r,
+        None,
+        2000.0,
+        Kinematics::SmallRotation,
+        false,
+    ))
+    .unwrap();
+    assert!(
+        (m.omega_x / (10.0 * PI) - 1.0).abs() < 5e-5,
+        "{}",
+        m.omega_x / PI
+    );
+    assert!(
+        (m.omega_z / (20.0 * PI) - 1.0).abs() < 1e-6,
+        "{}",
+        m.omega_z / PI
+    );
     // P-Delta lowers ωX to 9.9269π (−0.73 %); the double's stiffer series raises ωZ to 20.086π.
     let m = eigenfrequencies(&Model::rocking(&r, None, 2000.0, Kinematics::Exact, true)).unwrap();
     assert!((m.omega_x / PI - 9.9269).abs() < 1e-4, "{}", m.omega_x / PI);
-    let m = eigenfrequencies(&Model::rocking(&r, Some(&d), 2000.0, Kinematics::Exact, true)).unwrap();
-    assert!((m.omega_z / PI - 20.0864).abs() < 1e-4, "{}", m.omega_z / PI);
+    let m = eigenfrequencies(&Model::rocking(
+        &r,
+        Some(&d),
+        2000.0,
+        Kinematics::Exact,
+        true,
+    ))
+    .unwrap();
+    assert!(
+        (m.omega_z / PI - 20.0864).abs() < 1e-4,
+        "{}",
+        m.omega_z / PI
+    );
 }
 
 fn rpepo_run(c: &Case, variant: &str, dt: f64) -> Run {
@@ -82,7 +120,11 @@ fn the_dynamic_run_starts_from_static_equilibrium() {
         assert!(first("rotation").abs() < 1e-15);
         assert_eq!(first("contacts"), 10.0);
         assert_eq!(first("uplift"), 0.0);
-        assert!((first("normal") / r.weight() - 1.0).abs() < 1e-12, "{v}: {}", first("normal"));
+        assert!(
+            (first("normal") / r.weight() - 1.0).abs() < 1e-12,
+            "{v}: {}",
+            first("normal")
+        );
         // One step later nothing has moved vertically beyond round-off of the preload.
         let z1 = t.column("cm_z").unwrap()[1];
         assert!(z1.abs() < 1e-12, "{v}: {z1}");
@@ -97,28 +139,34 @@ fn history_gap(a: &Run, b: &Run, key: &str, until: f64) -> f64 {
         .iter()
         .zip(col)
         .take_while(|(t, _)| **t <= until)
-        .fold(0.0, |m, (t, x)| m.max((x - b.trace.sample(key, *t).unwrap()).abs()))
+        .fold(0.0, |m, (t, x)| {
+            m.max((x - b.trace.sample(key, *t).unwrap()).abs())
+        })
 }
 
 #[test]
 fn mass_acceleration_results_converge_as_dt_falls() {
     let c = case("cases/rpepo-mass-accel.toml", "sensitivity = false");
     for v in ["single", "double"] {
-        let runs: Vec<Run> = [1e-3, 5e-4, 2.5e-4].iter().map(|&dt| rpepo_run(&c, v, dt)).collect();
-        // Up to t = 0.7 s, before the first full lift-off (0.743–0.746 s in every run).
-        let d01 = history_gap(&runs[0], &runs[1], "rel_disp", 0.7);
-        let d12 = history_gap(&runs[1], &runs[2], "rel_disp", 0.7);
-        let s01 = history_gap(&runs[0], &runs[1], "slide", 0.7);
-        let s12 = history_gap(&runs[1], &runs[2], "slide", 0.7);
-        let peak = |r: &Run| r.trace.column("slide").unwrap().iter().copied().fold(f64::MIN, f64::max);
-        let (p0, p1, p2) = (peak(&runs[0]), peak(&runs[1]), peak(&runs[2]));
-        // Measured (single, double): rel_disp gaps 4.00e-4 → 4.87e-5 m and 1.08e-4 →
-        // 6.04e-5 m; slide gaps 3.83e-4 → 3.98e-5 m and 1.08e-4 → 5.77e-5 m (contact
-        // events at fixed steps make the rate irregular, between first and second order);
-        // peak sliding 11.27/11.98/12.03 mm and 11.52/11.66/11.75 mm (whole history,
-        // including the airborne phase, so only the shrinking change is asserted).
-        assert!(d12 < 0.6 * d01, "{v}: {d01} then {d12}");
-        assert!(s12 < 0.6 * s01, "{v}: {s01} then {s12}");
-        assert!((p2 - p1).abs() < 0.75 * (p1 - p0).abs(), "{v}: {p0} {p1} {p2}");
+        let runs: Vec<Run> = [1e-3, 5e-4, 2.5e-4, 1.25e-4]
+            .iter()
+            .map(|&dt| rpepo_run(&c, v, dt))
+            .collect();
+        // Largest change of the relative displacement of O when Δt halves, up to 0.6 s
+        // (rocking with partial uplift, before the violent phase that ends in full
+        // lift-off at 0.84 s). Measured (m): single 2.64e-4, 1.79e-4, 6.63e-5; double
+        // 2.21e-4, 1.37e-4, 6.18e-5 — contact events at fixed steps make the rate
+        // irregular, between first and second order.
+        let gaps: Vec<f64> = (0..3)
+            .map(|i| history_gap(&runs[i], &runs[i + 1], "rel_disp", 0.6))
+            .collect();
+        assert!(gaps[1] < 0.75 * gaps[0], "{v}: {gaps:?}");
+        assert!(gaps[2] < 0.75 * gaps[1], "{v}: {gaps:?}");
+        assert!(gaps[2] < 7e-5, "{v}: {gaps:?}");
+        // Whole history (airborne phase and landings included), measured (m): single
+        // 5.49e-3 → 2.05e-3, double 4.06e-3 → 1.52e-3 from the first to the last pair.
+        let whole0 = history_gap(&runs[0], &runs[1], "rel_disp", 2.0);
+        let whole2 = history_gap(&runs[2], &runs[3], "rel_disp", 2.0);
+        assert!(whole2 < 0.4 * whole0, "{v}: {whole0} then {whole2}");
     }
 }

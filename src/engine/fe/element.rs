@@ -129,10 +129,7 @@ impl Element for Contact178 {
                 force: Vector2::new(t_trial, -n),
                 status: Status::Stick,
             };
-            (
-                Vector2::new(t_trial, -n),
-                Matrix2::new(kx, 0.0, 0.0, kz),
-            )
+            (Vector2::new(t_trial, -n), Matrix2::new(kx, 0.0, 0.0, kz))
         } else {
             // Return mapping: T = sign(T_trial)·μN, slip = δx − T/kx.
             let sg = t_trial.signum();

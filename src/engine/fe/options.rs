@@ -2,7 +2,7 @@
 //! kinematics, P-Delta, rotational inertia. Each field says its unit and valid range; the
 //! paper's Newton tolerances are one named preset.
 
-use crate::case::{Case, OptionValue};
+use crate::case::Case;
 use crate::error::InputError;
 
 const ID: &str = "fe";
@@ -173,10 +173,9 @@ impl FeOptions {
                 }
                 o.integrator = Integrator::Hht { alpha };
             } else if has_alpha {
-                return Err(case.field_error(
-                    &field("alpha"),
-                    "applies only with integrator = \"hht\"",
-                ));
+                return Err(
+                    case.field_error(&field("alpha"), "applies only with integrator = \"hht\"")
+                );
             }
             Ok(())
         })());
@@ -188,7 +187,7 @@ impl FeOptions {
                 Newton::TIGHT
             };
             let m = case.engine_number(ID, "max_iterations", o.newton.max_iterations as f64)?;
-            if !(m >= 1.0 && m <= 1000.0 && m.fract() == 0.0) {
+            if !((1.0..=1000.0).contains(&m) && m.fract() == 0.0) {
                 return Err(case.field_error(
                     &field("max_iterations"),
                     format!("is {m}, but must be a whole number from 1 to 1000"),
@@ -214,9 +213,9 @@ impl FeOptions {
             Ok(())
         })());
         take((|| {
-            if let Some(OptionValue::Number(_)) | Some(_) = case
+            if case
                 .engine(ID)
-                .and_then(|r| r.options.get("rotational_inertia"))
+                .is_some_and(|r| r.options.contains_key("rotational_inertia"))
             {
                 let i = case.engine_number(ID, "rotational_inertia", 0.0)?;
                 if !(i > 0.0 && i.is_finite()) {

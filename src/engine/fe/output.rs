@@ -64,7 +64,7 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
                 _ => {
                     let i = default_rotational_inertia(r);
                     inertia_note = format!(
-                        "{i:.1} kg·m² (engine default for a case giving 0: 1 % of a uniform block 2b × 2h, 0.01·M(b² + h²)/3)"
+                        "{i:.2} kg·m² (engine default for a case giving 0: 0.01 % of a uniform block 2b × 2h, 1e-4·M(b² + h²)/3)"
                     );
                     i
                 }
@@ -201,13 +201,16 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
     }
     findings.push(format!(
         "Newton: {} iterations in {} steps (at most {} in one step); static preload {} iterations",
-        counters.iterations, counters.steps, counters.max_step_iterations, counters.static_iterations
+        counters.iterations,
+        counters.steps,
+        counters.max_step_iterations,
+        counters.static_iterations
     ));
     if rocking && opts.sensitivity && status.completed() {
         let base = Summary::of(&trace);
         findings.push(format!("this run: {}", base.describe()));
         let mut alternatives: Vec<(String, Model)> = Vec::new();
-        for factor in [0.1, 10.0] {
+        for factor in [0.1, 10.0, 100.0] {
             let mut m = model.clone();
             m.body.inertia *= factor;
             alternatives.push((format!("rotational inertia ×{factor}"), m));
@@ -216,12 +219,18 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
             let mut m = model.clone();
             m.kinematics = Kinematics::SmallRotation;
             m.p_delta = false;
-            alternatives.push(("small rotation without P-Delta (the paper's programs)".into(), m));
+            alternatives.push((
+                "small rotation without P-Delta (the paper's programs)".into(),
+                m,
+            ));
         }
         for (label, m) in alternatives {
             let (tr, st, _, _) = run_model(case, m, dt, opts);
             if st.completed() {
-                findings.push(format!("sensitivity — {label}: {}", Summary::of(&tr).describe()));
+                findings.push(format!(
+                    "sensitivity — {label}: {}",
+                    Summary::of(&tr).describe()
+                ));
             } else {
                 findings.push(format!("sensitivity — {label}: {st}"));
             }
@@ -235,8 +244,14 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
         counters: vec![
             ("steps".into(), counters.steps),
             ("Newton iterations".into(), counters.iterations),
-            ("max iterations in a step".into(), counters.max_step_iterations),
-            ("static preload iterations".into(), counters.static_iterations),
+            (
+                "max iterations in a step".into(),
+                counters.max_step_iterations,
+            ),
+            (
+                "static preload iterations".into(),
+                counters.static_iterations,
+            ),
         ],
         findings,
         trace,

@@ -142,7 +142,10 @@ fn static_preload(model: &mut Model, w: &mut Workspace) -> Result<(Vector3<f64>,
         for k in 0..model.nodes {
             d2 += w.dun[k].norm_squared();
         }
-        if it > 0 && r2.sqrt() <= 1e-10 * f.norm().max(1.0) && d2.sqrt() <= 1e-12 * q.norm().max(1e-9) {
+        if it > 0
+            && r2.sqrt() <= 1e-10 * f.norm().max(1.0)
+            && d2.sqrt() <= 1e-12 * q.norm().max(1e-9)
+        {
             model.commit();
             return Ok((q, it as u64 + 1));
         }
@@ -206,7 +209,8 @@ pub fn integrate(
     w.pn_n.copy_from_slice(&w.asm.pn);
     let mut damp_n = c * (v_n.x - g0.1);
     let mut g_n = g0.0;
-    let mut a_n = (f_n - pb_n - Vector3::new(damp_n, 0.0, 0.0)).component_div(&m.map(|x| if x > 0.0 { x } else { f64::INFINITY }));
+    let mut a_n = (f_n - pb_n - Vector3::new(damp_n, 0.0, 0.0))
+        .component_div(&m.map(|x| if x > 0.0 { x } else { f64::INFINITY }));
     if !model.body.rotation {
         a_n.z = 0.0;
     }
@@ -306,13 +310,15 @@ pub fn integrate(
                 inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
                 u2 += w.un[k].norm_squared();
             }
-            // The increment is floored at 1e-5 of the total displacement: below that the
-            // correction is round-off of the absolute positions (a body at rest).
-            let (rn, dn, incn) = (r2.sqrt(), d2.sqrt(), inc2.sqrt().max(1e-5 * u2.sqrt()));
+            let (rn, dn, incn) = (r2.sqrt(), d2.sqrt(), inc2.sqrt());
             last = (rn / fref.max(f64::MIN_POSITIVE), dn, incn);
             // Converged at the current iterate: its residual is small and the correction
             // Newton would still make is small against the step's increment.
-            if rn <= newton.force_tol * fref && dn <= newton.displacement_tol * incn.max(1e-15) {
+            // A correction below 1e-12 of the displacement, or a residual below 1e-11 of
+            // the force scale, is round-off of the absolute positions: nothing to correct.
+            let force_ok = rn <= newton.force_tol * fref;
+            let disp_ok = dn <= (newton.displacement_tol * incn).max(1e-12 * u2.sqrt());
+            if (force_ok && disp_ok) || rn <= 1e-11 * fref {
                 converged = true;
                 break;
             }
