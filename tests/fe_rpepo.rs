@@ -154,19 +154,19 @@ fn mass_acceleration_results_converge_as_dt_falls() {
             .collect();
         // Largest change of the relative displacement of O when Δt halves, up to 0.6 s
         // (rocking with partial uplift, before the violent phase that ends in full
-        // lift-off at 0.84 s). Measured (m): single 2.64e-4, 1.79e-4, 6.63e-5; double
-        // 2.21e-4, 1.37e-4, 6.18e-5 — contact events at fixed steps make the rate
-        // irregular, between first and second order.
+        // lift-off at 0.84 s); HHT-α = −0.1 as in the case. Measured (m): single
+        // 2.78e-4, 1.35e-4, 5.04e-5; double 2.11e-4, 9.60e-5, 3.45e-5 — contact events
+        // at fixed steps make the rate irregular, between first and second order.
         let gaps: Vec<f64> = (0..3)
             .map(|i| history_gap(&runs[i], &runs[i + 1], "rel_disp", 0.6))
             .collect();
         assert!(gaps[1] < 0.75 * gaps[0], "{v}: {gaps:?}");
         assert!(gaps[2] < 0.75 * gaps[1], "{v}: {gaps:?}");
-        assert!(gaps[2] < 7e-5, "{v}: {gaps:?}");
+        assert!(gaps[2] < 5.1e-5, "{v}: {gaps:?}");
         // Whole history (airborne phase and landings included), measured (m): single
-        // 5.49e-3 → 2.05e-3, double 4.06e-3 → 1.52e-3 from the first to the last pair.
+        // 3.11e-3 → 1.33e-3, double 3.14e-3 → 1.33e-3 from the first to the last pair.
         let whole0 = history_gap(&runs[0], &runs[1], "rel_disp", 2.0);
         let whole2 = history_gap(&runs[2], &runs[3], "rel_disp", 2.0);
-        assert!(whole2 < 0.4 * whole0, "{v}: {whole0} then {whole2}");
+        assert!(whole2 < 0.45 * whole0, "{v}: {whole0} then {whole2}");
     }
 }
