@@ -119,10 +119,11 @@ impl Assembly {
     }
 }
 
-/// Displacement of a body point, its Jacobian G = ∂u/∂q and H = ∂²u/∂θ².
+/// Displacement of a body point, the θ column g of its Jacobian G = ∂u/∂q = [I₂ | g],
+/// and h = ∂²u/∂θ².
 struct PointKin {
     u: Vector2<f64>,
-    g: Matrix2x3<f64>,
+    g: Vector2<f64>,
     h: Vector2<f64>,
 }
 
@@ -163,7 +164,7 @@ fn point_kin(
     };
     PointKin {
         u: Vector2::new(q.x + ux, q.y + uz),
-        g: Matrix2x3::new(1.0, 0.0, gx, 0.0, 1.0, gz),
+        g: Vector2::new(gx, gz),
         h: Vector2::new(hx, hz),
     }
 }
@@ -289,36 +290,45 @@ impl Model {
             let (uu, ku) = at(link.upper);
             let (f, d) = link.element.trial(uu - ul);
             // Upper end gets +f, lower end −f; ∂f/∂u_upper = D, ∂f/∂u_lower = −D.
-            if let Some(pk) = &ku {
-                a.pb += pk.g.transpose() * f;
-                a.kbb += pk.g.transpose() * d * pk.g;
-                a.kbb[(2, 2)] += f.dot(&pk.h); // geometric stiffness Σ f·∂²u/∂θ²
+            // With G = [I₂ | g]: Gᵀf = (f, g·f), GᵀDG = [[D, Dg], [gᵀD, gᵀDg]].
+            let body_end = match (&ku, &kl) {
+                (Some(pk), _) => Some((pk, 1.0)),
+                (_, Some(pk)) => Some((pk, -1.0)),
+                _ => None,
+            };
+            let mut coupling = None;
+            if let Some((pk, sign)) = body_end {
+                let dg = d * pk.g;
+                let gtd = d.tr_mul(&pk.g); // (gᵀD)ᵀ
+                a.pb += Vector3::new(f.x, f.y, pk.g.dot(&f)) * sign;
+                let k = &mut a.kbb;
+                k[(0, 0)] += d[(0, 0)];
+                k[(0, 1)] += d[(0, 1)];
+                k[(1, 0)] += d[(1, 0)];
+                k[(1, 1)] += d[(1, 1)];
+                k[(0, 2)] += dg.x;
+                k[(1, 2)] += dg.y;
+                k[(2, 0)] += gtd.x;
+                k[(2, 1)] += gtd.y;
+                // geometric stiffness ±f·∂²u/∂θ²
+                k[(2, 2)] += pk.g.dot(&dg) + sign * f.dot(&pk.h);
+                coupling = Some((dg, gtd));
             }
-            if let Some(pk) = &kl {
-                a.pb -= pk.g.transpose() * f;
-                a.kbb += pk.g.transpose() * d * pk.g;
-                a.kbb[(2, 2)] -= f.dot(&pk.h);
-            }
-            match (link.upper, link.lower) {
-                (Point::Node(k), other) | (other, Point::Node(k)) => {
-                    let sign = if link.upper == Point::Node(k) {
-                        1.0
-                    } else {
-                        -1.0
-                    };
-                    a.pn[k] += sign * f;
-                    a.knn[k] += d;
-                    if let Point::Body(_) = other {
-                        let g = if let Some(pk) = &ku {
-                            pk.g
-                        } else {
-                            kl.as_ref().expect("body end").g
-                        };
-                        a.kbn[k] -= g.transpose() * d;
-                        a.knb[k] -= d * g;
-                    }
+            let node = match (link.upper, link.lower) {
+                (Point::Node(k), _) => Some((k, 1.0)),
+                (_, Point::Node(k)) => Some((k, -1.0)),
+                _ => None,
+            };
+            if let Some((k, sign)) = node {
+                a.pn[k] += f * sign;
+                a.knn[k] += d;
+                if let Some((dg, gtd)) = coupling {
+                    // ∂pb/∂un = −GᵀD, ∂pn/∂q = −DG
+                    a.kbn[k] -=
+                        Matrix3x2::new(d[(0, 0)], d[(0, 1)], d[(1, 0)], d[(1, 1)], gtd.x, gtd.y);
+                    a.knb[k] -=
+                        Matrix2x3::new(d[(0, 0)], d[(0, 1)], dg.x, d[(1, 0)], d[(1, 1)], dg.y);
                 }
-                _ => {}
             }
         }
     }
@@ -427,6 +437,8 @@ pub fn solve(
         s_mat[(2, 2)] = 1.0;
         rhs.z = 0.0;
     }
+    // LU with partial pivoting: the closed-form 3×3 inverse is a little cheaper but
+    // loses digits, and the tight preset then needs more iterations.
     let Some(x) = s_mat.lu().solve(&rhs) else {
         return false;
     };
