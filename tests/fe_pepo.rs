@@ -154,9 +154,11 @@ fn runs_are_bit_identical() {
 fn newton_counters_are_deterministic() {
     let c = case("cases/pepo-mass-accel.toml", "");
     let r = run(&c, "single", 1e-3);
-    // 1000 steps; 2 iterations per sticking step, 3 when stick/slip changes.
+    // 1000 steps: 2 iterations per sticking step, 3 when stick/slip changes, and 1 for
+    // each of the 100 steps sliding under a constant friction force after the pulse
+    // (0.2–0.3 s), where the constant-acceleration predictor is exact.
     assert_eq!(r.counters[0], ("steps".to_string(), 1000));
-    assert_eq!(r.counters[1], ("Newton iterations".to_string(), 2102));
+    assert_eq!(r.counters[1], ("Newton iterations".to_string(), 1900));
 }
 
 #[test]

@@ -233,7 +233,8 @@ pub fn integrate(
         let t = step as f64 * dt;
         let g = drive.ground(t);
         let f = Vector3::new(drive.force(t), -weight, 0.0);
-        let mut q = q_n;
+        // Predictor: constant acceleration over the step.
+        let mut q = q_n + v_n * dt + a_n * (0.5 * dt * dt);
         w.un.copy_from_slice(&w.un_n);
         // Predictor: nodes on the ground move with it (element 1 is the stiff one); a
         // node left behind would put element 1 far into slip and let Newton cycle.
