@@ -102,12 +102,16 @@ pub struct Assembly {
     pub knb: Vec<Matrix2x3<f64>>,
     /// Inverses of the node blocks (filled by `solve`).
     knn_inv: Vec<Matrix2<f64>>,
+    /// Kinematics of every body attachment at the current q (computed once per assembly).
+    points: Vec<PointKin>,
 }
 
 impl Assembly {
-    /// Room for a model's nodes.
-    pub fn new(nodes: usize) -> Self {
+    /// Room for a model's nodes and attachment points.
+    pub fn new(model: &Model) -> Self {
+        let nodes = model.nodes;
         Self {
+            points: vec![PointKin::default(); model.body.attachments.len()],
             pb: Vector3::zeros(),
             kbb: Matrix3::zeros(),
             pn: vec![Vector2::zeros(); nodes],
@@ -121,6 +125,7 @@ impl Assembly {
 
 /// Displacement of a body point, the θ column g of its Jacobian G = ∂u/∂q = [I₂ | g],
 /// and h = ∂²u/∂θ².
+#[derive(Debug, Clone, Copy, Default)]
 struct PointKin {
     u: Vector2<f64>,
     g: Vector2<f64>,
@@ -260,7 +265,15 @@ impl Model {
 
     /// Evaluate every element at the trial state (body q, nodes `un`, ground at `xg`)
     /// and assemble internal forces and the consistent tangent into `a`.
-    pub fn assemble(&mut self, q: &Vector3<f64>, un: &[Vector2<f64>], xg: f64, a: &mut Assembly) {
+    /// The massless nodes are first put at their exact local equilibrium
+    /// (`relax_nodes`), so `un` is updated.
+    pub fn assemble(
+        &mut self,
+        q: &Vector3<f64>,
+        un: &mut [Vector2<f64>],
+        xg: f64,
+        a: &mut Assembly,
+    ) {
         a.pb = Vector3::zeros();
         a.kbb = Matrix3::zeros();
         for k in 0..self.nodes {
@@ -274,15 +287,18 @@ impl Model {
         } else {
             (1.0, 0.0)
         };
-        let (kin, pd) = (self.kinematics, self.p_delta);
-        let body = &self.body;
+        for (p, d) in a.points.iter_mut().zip(&self.body.attachments) {
+            *p = point_kin(self.kinematics, self.p_delta, q, cs, d);
+        }
+        self.relax_nodes(&a.points, un, xg);
         let ground = Vector2::new(xg, 0.0);
+        let un: &[Vector2<f64>] = un;
         for link in &mut self.links {
             let at = |p: Point| match p {
                 Point::Ground => (ground, None),
                 Point::Node(k) => (un[k], None),
                 Point::Body(i) => {
-                    let pk = point_kin(kin, pd, q, cs, &body.attachments[i]);
+                    let pk = a.points[i];
                     (pk.u, Some(pk))
                 }
             };
@@ -481,12 +497,7 @@ impl Model {
     ///   slip (|T| > μ1·N): T = ±μ1·N, δ1x = δtx − T/kx2.
     /// The global Newton then iterates on the body alone with the condensed (Schur)
     /// tangent, which is the derivative of this local solution.
-    pub fn relax_nodes(&self, q: &Vector3<f64>, un: &mut [Vector2<f64>], xg: f64) {
-        let cs = if self.kinematics == Kinematics::Exact {
-            (q.z.cos(), q.z.sin())
-        } else {
-            (1.0, 0.0)
-        };
+    fn relax_nodes(&self, points: &[PointKin], un: &mut [Vector2<f64>], xg: f64) {
         for sup in &self.supports {
             let Some(k) = sup.node else { continue };
             let (l1, l2) = (
@@ -498,14 +509,7 @@ impl Model {
             if !(e2.bonded && e2.mu.is_infinite()) || e1.bonded {
                 continue;
             }
-            let ub = point_kin(
-                self.kinematics,
-                self.p_delta,
-                q,
-                cs,
-                &self.body.attachments[i],
-            )
-            .u;
+            let ub = points[i].u;
             let dt = ub - Vector2::new(xg, 0.0);
             let d1 = if dt.y > 0.0 {
                 dt

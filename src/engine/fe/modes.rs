@@ -22,9 +22,9 @@ pub struct Modes {
 /// Eigenfrequencies of `model` about its static equilibrium.
 pub fn eigenfrequencies(model: &Model) -> Result<Modes, String> {
     let mut m = model.clone();
-    let (q, un) = preload(&mut m)?;
-    let mut a = Assembly::new(m.nodes);
-    m.assemble(&q, &un, 0.0, &mut a);
+    let (q, mut un) = preload(&mut m)?;
+    let mut a = Assembly::new(&m);
+    m.assemble(&q, &mut un, 0.0, &mut a);
     let k = condensed_tangent(&m, &a).ok_or("singular node block")?;
     let k = (k + k.transpose()) * 0.5; // sticking tangents are symmetric; remove round-off
     let mass = m.body.mass;

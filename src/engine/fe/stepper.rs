@@ -100,10 +100,10 @@ struct Workspace {
 }
 
 impl Workspace {
-    fn new(nodes: usize) -> Self {
-        let z = vec![Vector2::zeros(); nodes];
+    fn new(model: &Model) -> Self {
+        let z = vec![Vector2::zeros(); model.nodes];
         Self {
-            asm: Assembly::new(nodes),
+            asm: Assembly::new(model),
             un: z.clone(),
             un_n: z.clone(),
             pn_n: z.clone(),
@@ -127,8 +127,7 @@ fn static_preload(model: &mut Model, w: &mut Workspace) -> Result<(Vector3<f64>,
     let mut q = Vector3::zeros();
     let mut dq = Vector3::zeros();
     for it in 0..100 {
-        model.relax_nodes(&q, &mut w.un, 0.0);
-        model.assemble(&q, &w.un, 0.0, &mut w.asm);
+        model.assemble(&q, &mut w.un, 0.0, &mut w.asm);
         let rb = f - w.asm.pb;
         let mut r2 = rb.norm_squared();
         for k in 0..model.nodes {
@@ -160,7 +159,7 @@ fn static_preload(model: &mut Model, w: &mut Workspace) -> Result<(Vector3<f64>,
 /// The static equilibrium under gravity (body q and node displacements); commits the
 /// elements' states.
 pub fn preload(model: &mut Model) -> Result<(Vector3<f64>, Vec<Vector2<f64>>), String> {
-    let mut w = Workspace::new(model.nodes);
+    let mut w = Workspace::new(model);
     let (q, _) = static_preload(model, &mut w)?;
     Ok((q, w.un))
 }
@@ -176,7 +175,7 @@ pub fn integrate(
     steps: usize,
     mut observe: impl FnMut(&Model, &Snapshot),
 ) -> (RunStatus, Counters) {
-    let mut w = Workspace::new(model.nodes);
+    let mut w = Workspace::new(model);
     let mut counters = Counters::default();
     let q_static = match static_preload(model, &mut w) {
         Ok((q, it)) => {
@@ -203,7 +202,7 @@ pub fn integrate(
     let mut v_n = Vector3::zeros();
     let g0 = drive.ground(0.0);
     let mut f_n = Vector3::new(drive.force(0.0), -weight, 0.0);
-    model.assemble(&q_n, &w.un, g0.0, &mut w.asm);
+    model.assemble(&q_n, &mut w.un, g0.0, &mut w.asm);
     let mut pb_n = w.asm.pb;
     w.un_n.copy_from_slice(&w.un);
     w.pn_n.copy_from_slice(&w.asm.pn);
@@ -260,8 +259,7 @@ pub fn integrate(
                 a.z = 0.0;
                 v.z = 0.0;
             }
-            model.relax_nodes(&q, &mut w.un, g.0);
-            model.assemble(&q, &w.un, g.0, &mut w.asm);
+            model.assemble(&q, &mut w.un, g.0, &mut w.asm);
             let damp = c * (v.x - g.1);
             // HHT residual (α = 0: Newmark), paper Eq 2 generalised.
             let rb = (f - w.asm.pb - Vector3::new(damp, 0.0, 0.0)) * s
