@@ -104,6 +104,7 @@ impl Contact178 {
 }
 
 impl Element for Contact178 {
+    #[inline]
     fn trial(&mut self, d: Vector2<f64>) -> (Vector2<f64>, Matrix2<f64>) {
         let (kx, kz) = (self.kx, self.kz);
         let s_n = self.committed.slip;
@@ -148,6 +149,7 @@ impl Element for Contact178 {
         }
     }
 
+    #[inline]
     fn commit(&mut self) {
         self.committed = self.trial;
     }
