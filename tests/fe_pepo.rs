@@ -233,3 +233,58 @@ dt = 0.01
     let why = Fe.variants(&c.scene).unwrap_err();
     assert!(why.0.contains("contact stiffness"), "{}", why.0);
 }
+
+#[test]
+fn the_same_scene_in_tonnes_and_kilonewtons_gives_the_same_displacements() {
+    // FIELD-NOTES: "Run a scene in kg/N and in t/kN: a correct engine gives the same
+    // answer." Mass ÷1000 and stiffnesses ÷1000 (forces in kN) leave every displacement
+    // unchanged up to the Newton tolerance (1e-9) and round-off of the scaled inputs:
+    // measured 2.0e-11 (rel_disp) and 1.1e-11 (slide) of the peak.
+    let text = std::fs::read_to_string("cases/pepo-mass-accel.toml").unwrap();
+    let scaled = text
+        .replace("mass = 1.0e6 ", "mass = 1.0e3 ")
+        .replace("kx = 9.8696e8 ", "kx = 9.8696e5 ")
+        .replace("kz = 3.94784e9 ", "kz = 3.94784e6 ")
+        .replace("kx1 = 1.01e11", "kx1 = 1.01e8")
+        .replace("kz1 = 4.01e11", "kz1 = 4.01e8")
+        .replace("kx2 = 9.967e8", "kx2 = 9.967e5")
+        .replace("kz2 = 3.987e9", "kz2 = 3.987e6");
+    assert_ne!(text, scaled);
+    let si = parse_case(Path::new("si.toml"), &text).unwrap();
+    let t_kn = parse_case(Path::new("t-kN.toml"), &scaled).unwrap();
+    for v in ["single", "double"] {
+        let (a, b) = (run(&si, v, 1e-3), run(&t_kn, v, 1e-3));
+        let x = a.trace.column("rel_disp").unwrap();
+        let d = max_diff(&a.trace, "rel_disp", &b.trace, "rel_disp") / peak(x);
+        let s = max_diff(&a.trace, "slide", &b.trace, "slide") / peak(x);
+        assert!(d < 3e-11 && s < 3e-11, "{v}: {d} {s}");
+        let r = max_diff(&a.trace, "resistance", &b.trace, "resistance");
+        assert!(r > 1e5, "forces do scale by 1000");
+    }
+}
+
+#[test]
+fn hht_dissipates_the_free_vibration_and_stays_close_to_duhamel() {
+    // Linear SDOF after the pulse (free vibration, ω·Δt = 0.0314): HHT-α = −0.3 damps
+    // it slightly; average acceleration does not. Measured at Δt = 1e-3: max|Δx|/peak
+    // 1.790e-3 (Newmark) against 2.675e-3 (HHT), last-period amplitude ratio HHT/Newmark
+    // 0.99997 (HHT's dissipation is tiny at ω·Δt = 0.03, as designed).
+    let newmark = case("cases/linear-sdof.toml", "");
+    let hht = case(
+        "cases/linear-sdof.toml",
+        "integrator = \"hht\"\nalpha = -0.3",
+    );
+    let (e_n, _, _, r_n, _) = errors(&newmark, "single", 1e-3);
+    let (e_h, _, _, r_h, _) = errors(&hht, "single", 1e-3);
+    let last_peak = |r: &Run| {
+        let (t, x) = (&r.trace.time, r.trace.column("rel_disp").unwrap());
+        t.iter()
+            .zip(x)
+            .filter(|(t, _)| **t >= 0.8)
+            .fold(0.0_f64, |m, (_, x)| m.max(x.abs()))
+    };
+    let ratio = last_peak(&r_h) / last_peak(&r_n);
+    assert!(e_n < 1.80e-3, "{e_n}");
+    assert!(e_h > e_n && e_h < 2.7e-3, "{e_h}");
+    assert!(ratio < 1.0 && ratio > 0.9999, "{ratio}");
+}
