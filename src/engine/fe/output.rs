@@ -96,7 +96,7 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
         ),
         (
             "α, β, γ".into(),
-            format!("{alpha}, {beta}, {gamma}"),
+            format!("{alpha}, {beta:.6}, {gamma:.6}"),
         ),
         (
             "Newton".into(),
