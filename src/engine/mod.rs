@@ -3,6 +3,7 @@
 //! (`trace`) only — never on each other or on `reference` — so that a bug in one cannot
 //! hide in another.
 
+pub mod fe;
 pub mod predictor_corrector;
 pub mod rigid_body;
 
@@ -118,6 +119,7 @@ pub trait Engine: Send + Sync {
 pub fn all() -> Vec<Box<dyn Engine>> {
     vec![
         Box::new(predictor_corrector::PredictorCorrector),
+        Box::new(fe::Fe),
         Box::new(rigid_body::Rapier),
     ]
 }

@@ -186,6 +186,15 @@ pub mod q {
         1e-3,
         "Input work minus (kinetic + strain + friction + damping) energy."
     );
+    quantity!(
+        NODE_DISP,
+        "node_disp",
+        "Intermediate-node displacement",
+        "m",
+        "mm",
+        1e3,
+        "Horizontal displacement of the massless intermediate node of a double contact arrangement relative to the ground (mean over supports): the sliding plus element 1's elastic deflection."
+    );
 
     /// The channels every sliding-oscillator trace has, in this order (engines and
     /// references alike), with `GROUND_DISP` after them when the ground moves.
@@ -216,6 +225,7 @@ pub mod q {
         &NORMAL,
         &PC_CHANGE,
         &ENERGY_ERROR,
+        &NODE_DISP,
     ];
 
     /// The quantity with this key.
