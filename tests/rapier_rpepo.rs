@@ -156,7 +156,7 @@ cycles = 0.5"#,
     let sum_x2: f64 = (0..10)
         .map(|i| (-b + 2.0 * b * i as f64 / 9.0).powi(2))
         .sum();
-    let inertia = 0.01 * m * (b * b + h * h) / 3.0;
+    let inertia = 1e-4 * m * (b * b + h * h) / 3.0; // the engine's rule for a scene giving 0
     let lower = |k_rot: f64| {
         let (k1, k2) = (10.0 * kx, k_rot);
         let (m11, m12, m22) = (m, m * h, m * h * h + inertia);
