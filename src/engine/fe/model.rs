@@ -178,7 +178,8 @@ fn point_kin(
 /// uniform solid block 2b wide and 2h tall about its centre, I = 1e-4·M(b² + h²)/3
 /// (21.35 kg·m² for the RPEPO). Measured on the RPEPO (docs/fe-engine.md): results with
 /// I and I/10 agree to about 1–3 % while 100·I (1 % of the block's) changes the peak
-/// sliding by 50 %, so this value stands for the paper's "no rotational inertia".
+/// sliding by 50 %, so this value stands for the paper's "no rotational inertia". The
+/// rapier engine applies the same rule in its own code; the shipped RPEPO cases state it.
 pub fn default_rotational_inertia(r: &RockingBody) -> f64 {
     1e-4 * r.mass * (r.half_width.powi(2) + r.cm_height.powi(2)) / 3.0
 }

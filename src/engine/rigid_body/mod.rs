@@ -136,7 +136,7 @@ impl Engine for Rapier {
                         if r.rotational_inertia > 0.0 {
                             " (scene)"
                         } else {
-                            " (scene has none: 1 % of a uniform block M(b² + h²)/3)"
+                            " (scene has none: 0.01 % of a uniform block 2b × 2h, 1e-4·M(b² + h²)/3, as the fe engine)"
                         }
                     ),
                 ));
@@ -151,6 +151,24 @@ impl Engine for Rapier {
                 findings.push(format!(
                     "foot vertical mode √(Kz/m_f) = {omega_f:.0} rad/s, ω·h = {:.3} per substep",
                     omega_f * dt / settings.substeps as f64
+                ));
+                // The stated inertia on the supports: the body's own rocking mode about the
+                // CM, √((n·Kx·h² + Kz·Σx_i²)/I); rapier resolves it only for ω·h ≲ 2
+                // (docs/rapier-engine.md, "Rotational inertia").
+                let sum_x2: f64 = (0..r.supports)
+                    .map(|i| {
+                        let x =
+                            -r.half_width + 2.0 * r.half_width * i as f64 / (r.supports - 1) as f64;
+                        x * x
+                    })
+                    .sum();
+                let omega_r = ((r.supports as f64 * r.contact.kx * r.cm_height.powi(2)
+                    + r.contact.kz * sum_x2)
+                    / inertia)
+                    .sqrt();
+                findings.push(format!(
+                    "rocking mode of the rotational inertia on the supports √((n·Kx·h² + Kz·Σx²)/I) = {omega_r:.0} rad/s, ω·h = {:.2} per substep",
+                    omega_r * dt / settings.substeps as f64
                 ));
                 simulate::run_rocking(rig, r, drive, ex, dt, duration, SETTLE_STEPS)
             }
