@@ -151,7 +151,10 @@ mod tests {
         // Step 0.025 s: 4 step times per sample; at samples the table equals `integrate`.
         let g = GroundTable::new(&Excitation::GroundAcceleration(s), 0.025, 48);
         for i in 0..11 {
-            assert!((g.disp[4 * i] - m.disp[i]).abs() < 1e-14, "disp at sample {i}");
+            assert!(
+                (g.disp[4 * i] - m.disp[i]).abs() < 1e-14,
+                "disp at sample {i}"
+            );
             assert!((g.vel[4 * i] - m.vel[i]).abs() < 1e-14, "vel at sample {i}");
         }
         // Between samples: the corrected acceleration is linear, so v is the exact

@@ -165,8 +165,10 @@ impl Engine for Rapier {
             }
         };
         described.push(("ground motion".into(), ground.into()));
-        if matches!(ex, Excitation::GroundAcceleration(crate::case::Signal::Record { .. }))
-            && drive != Drive::AppliedForce
+        if matches!(
+            ex,
+            Excitation::GroundAcceleration(crate::case::Signal::Record { .. })
+        ) && drive != Drive::AppliedForce
         {
             described.push((
                 "record baseline".into(),
