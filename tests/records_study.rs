@@ -23,7 +23,8 @@ fn root() -> PathBuf {
 
 /// The shipped Northridge PEPO case (all its engines) on the record's first 8 s (401
 /// samples: the strong motion starts near 3 s), written to `dir`; returns (case, record).
-fn short_base(dir: &Path) -> (PathBuf, PathBuf) {
+/// `rapier = false` drops the rapier engine (the slow one) from the case.
+fn short_base(dir: &Path, rapier: bool) -> (PathBuf, PathBuf) {
     let full =
         std::fs::read_to_string(root().join("cases/records/Northridge_1994_PAC-175.csv")).unwrap();
     let short: Vec<&str> = full
@@ -39,14 +40,19 @@ fn short_base(dir: &Path) -> (PathBuf, PathBuf) {
         .replace("Northridge_1994_PAC-175.csv", "northridge-8s.csv")
         .replace("duration = 25.0", "duration = 9.0");
     assert!(text.contains("duration = 9.0") && text.contains("[engines.rapier]"));
+    let text = if rapier {
+        text
+    } else {
+        text.split("\n[engines.rapier]").next().unwrap().to_string()
+    };
     let base = dir.join("pepo-northridge-8s.toml");
     std::fs::write(&base, text).unwrap();
     (base, rec)
 }
 
 /// A 2 PGA × 2 polarity × 2 μ grid (8 points) in `dir`.
-fn write_grid(dir: &Path) -> PathBuf {
-    let (base, rec) = short_base(dir);
+fn write_grid(dir: &Path, rapier: bool) -> PathBuf {
+    let (base, rec) = short_base(dir, rapier);
     let text = format!(
         "title = \"test grid\"\nbase = \"{}\"\nrecords = [{{ path = \"{}\", unit = \"g\" }}]\n\
          pga = [0.980665, 1.96133]\npolarity = [1, -1]\nmu = [0.4, 0.5]\ntail = 1.0\n",
@@ -61,7 +67,8 @@ fn write_grid(dir: &Path) -> PathBuf {
 #[test]
 fn resume_skips_finished_points() {
     let dir = tempfile::tempdir().unwrap();
-    let grid_path = write_grid(dir.path());
+    // Without rapier (the slow engine): resuming does not depend on the engines.
+    let grid_path = write_grid(dir.path(), false);
     let grid = load_grid(&grid_path).unwrap();
     assert_eq!(grid.points.len(), 8);
     let out = dir.path().join("out");
@@ -73,9 +80,9 @@ fn resume_skips_finished_points() {
     // "Interrupted": only shard 0 of 3 (points 0, 3, 6) finished.
     let first = run_study(&grid, &opts(Some((0, 3)))).unwrap();
     assert_eq!((first.assigned, first.executed, first.skipped), (3, 3, 0));
-    // Six runs per point: predictor-corrector, fe single and double, rapier kinematic
-    // ground and inertial force (every engine of the base case), and the rigid block.
-    assert_eq!(first.runs, 3 * 6);
+    // Four runs per point: predictor-corrector, fe single and double (every engine of
+    // the base case), and the rigid block.
+    assert_eq!(first.runs, 3 * 4);
     // Resume the whole grid: only the other 5 run.
     let second = run_study(&grid, &opts(None)).unwrap();
     assert_eq!((second.executed, second.skipped), (5, 3));
@@ -95,7 +102,7 @@ fn resume_skips_finished_points() {
 #[test]
 fn shards_merged_equal_the_unsharded_summary() {
     let dir = tempfile::tempdir().unwrap();
-    let grid_path = write_grid(dir.path());
+    let grid_path = write_grid(dir.path(), true);
     let whole = dir.path().join("whole");
     let o = study_command(&grid_path, &whole, None, true).unwrap();
     assert_eq!(o.executed, 8);
