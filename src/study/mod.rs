@@ -17,7 +17,10 @@ pub use runner::{
     PointResult, RunSummary, StudyOptions, StudyOutcome, read_result, result_path, run_study,
     runs_dir, yield_acceleration,
 };
-pub use summary::{Collected, collect, headline, summary_csv, summary_markdown, write_summary};
+pub use summary::{
+    Collected, agreement, collect, headline, run_labels, summary_csv, summary_markdown,
+    write_summary,
+};
 
 use std::path::{Path, PathBuf};
 

@@ -1,6 +1,8 @@
 //! Study plots (plotters, SVG): residual sliding against PGA, one line per engine/variant
 //! and record (and μ, polarity when the grid varies them), so engines can be compared with
-//! each other and with Newmark's rigid block across intensity.
+//! each other and with Newmark's rigid block across intensity; and the same plot for one
+//! engine/variant at a time (with the rigid block beside it), so that a study with every
+//! engine stays readable.
 
 use std::collections::BTreeMap;
 
@@ -11,8 +13,26 @@ use super::summary::Collected;
 use crate::case::record::STANDARD_GRAVITY;
 use crate::error::Error;
 
-/// |Residual sliding| (cm) against PGA (g), as an SVG document.
+/// |Residual sliding| (cm) against PGA (g), as an SVG document: every run of the study.
 pub fn residual_vs_pga_svg(title: &str, c: &Collected) -> Result<String, Error> {
+    residual_vs_pga_svg_of(title, c, None)
+}
+
+/// File-name-safe form of a run label `engine/variant`.
+pub fn run_slug(label: &str) -> String {
+    label
+        .chars()
+        .map(|ch| if ch.is_ascii_alphanumeric() { ch } else { '-' })
+        .collect()
+}
+
+/// |Residual sliding| (cm) against PGA (g) of one run label `engine/variant` and, beside
+/// it, the rigid block (`newmark-rigid/…`); `None`: every run.
+pub fn residual_vs_pga_svg_of(
+    title: &str,
+    c: &Collected,
+    only: Option<&str>,
+) -> Result<String, Error> {
     // Series key → points (pga g, |residual| cm).
     let vary_mu = distinct(c.results.iter().map(|r| r.mu.to_bits())) > 1;
     let vary_pol = distinct(c.results.iter().map(|r| r.point.polarity.to_bits())) > 1;
@@ -22,6 +42,10 @@ pub fn residual_vs_pga_svg(title: &str, c: &Collected) -> Result<String, Error> 
             let Some(res) = run.residual_sliding else {
                 continue;
             };
+            let label = format!("{}/{}", run.engine, run.variant);
+            if only.is_some_and(|o| o != label && run.engine != "newmark-rigid") {
+                continue;
+            }
             let mut key = format!("{}/{} — {}", run.engine, run.variant, short_name(&r.record));
             if vary_mu {
                 key.push_str(&format!(", μ = {}", r.mu));
@@ -58,7 +82,10 @@ pub fn residual_vs_pga_svg(title: &str, c: &Collected) -> Result<String, Error> 
         root.fill(&WHITE).map_err(|e| err(&e))?;
         let mut chart = ChartBuilder::on(&root)
             .caption(
-                format!("{title}: residual sliding against PGA"),
+                match only {
+                    Some(l) => format!("{title}: residual sliding against PGA, {l}"),
+                    None => format!("{title}: residual sliding against PGA"),
+                },
                 ("sans-serif", 18),
             )
             .margin(12)

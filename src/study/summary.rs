@@ -9,7 +9,7 @@ use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
 use super::grid::{Grid, short_name};
-use super::plot::residual_vs_pga_svg;
+use super::plot::{residual_vs_pga_svg, residual_vs_pga_svg_of, run_slug};
 use super::runner::{PointResult, read_result, result_path};
 use crate::case::record::STANDARD_GRAVITY;
 use crate::error::Error;
@@ -111,9 +111,9 @@ pub fn summary_csv(c: &Collected) -> String {
     s
 }
 
-/// Headline lines: per engine/variant, the largest |residual sliding| and where, and
-/// engine-to-rigid-block ratios when both are present.
-pub fn headline(c: &Collected) -> Vec<String> {
+/// The run labels `engine/variant` in the order they first appear (engines in the
+/// order the base case plans them, the rigid block last).
+pub fn run_labels(c: &Collected) -> Vec<String> {
     let mut labels: Vec<String> = Vec::new();
     for Row { run, .. } in rows(c) {
         let l = format!("{}/{}", run.engine, run.variant);
@@ -121,6 +121,32 @@ pub fn headline(c: &Collected) -> Vec<String> {
             labels.push(l);
         }
     }
+    labels
+}
+
+/// Residual sliding of run `label` at every point where it and `basis` both have one and
+/// |basis| > 0.1 mm: the relative differences 100·(label/basis − 1), in point order.
+pub fn agreement(c: &Collected, label: &str, basis: &str) -> Vec<f64> {
+    let find = |r: &PointResult, l: &str| {
+        r.runs
+            .iter()
+            .find(|x| format!("{}/{}", x.engine, x.variant) == l)
+            .and_then(|x| x.residual_sliding)
+    };
+    c.results
+        .iter()
+        .filter_map(|r| match (find(r, label), find(r, basis)) {
+            (Some(a), Some(b)) if b.abs() > 1e-4 => Some(100.0 * (a / b - 1.0)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Headline lines: per engine/variant, the largest |residual sliding| and where; each
+/// engine/variant against the first one planned (residual sliding, point by point); and
+/// engine-to-rigid-block ratios when both are present.
+pub fn headline(c: &Collected) -> Vec<String> {
+    let labels = run_labels(c);
     let mut out = Vec::new();
     for l in &labels {
         let best = rows(c)
@@ -137,6 +163,26 @@ pub fn headline(c: &Collected) -> Vec<String> {
                 row.r.pga / STANDARD_GRAVITY,
                 row.r.mu,
                 row.r.point.polarity
+            ));
+        }
+    }
+    // Engines against the first engine planned, point by point.
+    let engines: Vec<&String> = labels
+        .iter()
+        .filter(|l| !l.starts_with("newmark-rigid"))
+        .collect();
+    if let Some((basis, others)) = engines.split_first() {
+        for l in others {
+            let mut d: Vec<f64> = agreement(c, l, basis).iter().map(|x| x.abs()).collect();
+            if d.is_empty() {
+                continue;
+            }
+            d.sort_by(f64::total_cmp);
+            out.push(format!(
+                "{l} against {basis}, residual sliding: median |Δ| {:.2} %, largest {:.2} % over {} points with |sliding| > 0.1 mm",
+                d[d.len() / 2],
+                d[d.len() - 1],
+                d.len()
             ));
         }
     }
@@ -226,10 +272,22 @@ pub fn summary_markdown(grid: &Grid, c: &Collected) -> String {
         let _ = writeln!(s, "\n## Engines not applicable\n\n{}", na.join("\n"));
     }
     let _ = writeln!(s, "\n![residual sliding against PGA](residual-vs-pga.svg)");
+    let labels = run_labels(c);
+    let engines: Vec<&String> = labels
+        .iter()
+        .filter(|l| !l.starts_with("newmark-rigid"))
+        .collect();
+    if engines.len() > 1 {
+        let _ = writeln!(s, "\n## Per engine (with the rigid block)\n");
+        for l in engines {
+            let _ = writeln!(s, "![{l}](residual-vs-pga-{}.svg)", run_slug(l));
+        }
+    }
     s
 }
 
-/// Write `summary.csv`, `summary.md` and `residual-vs-pga.svg` into `out`.
+/// Write `summary.csv`, `summary.md` and `residual-vs-pga.svg` into `out`, and with more
+/// than one engine/variant `residual-vs-pga-<engine>-<variant>.svg` for each.
 pub fn write_summary(grid: &Grid, c: &Collected, out: &Path) -> Result<(), Error> {
     write_atomically(&out.join("summary.csv"), summary_csv(c).as_bytes())?;
     write_atomically(
@@ -238,5 +296,17 @@ pub fn write_summary(grid: &Grid, c: &Collected, out: &Path) -> Result<(), Error
     )?;
     let svg = residual_vs_pga_svg(&grid.title, c)?;
     write_atomically(&out.join("residual-vs-pga.svg"), svg.as_bytes())?;
+    let labels = run_labels(c);
+    let engines: Vec<&String> = labels
+        .iter()
+        .filter(|l| !l.starts_with("newmark-rigid"))
+        .collect();
+    if engines.len() > 1 {
+        for l in engines {
+            let svg = residual_vs_pga_svg_of(&grid.title, c, Some(l))?;
+            let name = format!("residual-vs-pga-{}.svg", run_slug(l));
+            write_atomically(&out.join(name), svg.as_bytes())?;
+        }
+    }
     Ok(())
 }

@@ -183,6 +183,16 @@ impl Engine for Rapier {
             }
         };
         described.push(("ground motion".into(), ground.into()));
+        if matches!(
+            ex,
+            Excitation::GroundAcceleration(crate::case::Signal::Record { .. })
+        ) && drive != Drive::AppliedForce
+        {
+            described.push((
+                "record baseline".into(),
+                "cubic: least-squares c2·t² + c3·t³ removed from the integrated displacement (and its derivatives from v and a); both routes use this corrected ground".into(),
+            ));
+        }
         Ok(Run {
             engine: "rapier",
             variant: variant.to_string(),
