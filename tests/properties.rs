@@ -14,9 +14,10 @@ proptest! {
         let (r, xp_new) = resistance(x, xp, k, ru);
         prop_assert!(r.abs() <= ru);
         prop_assert!((xp_new - xp) * r >= 0.0);
-        // the elastic part is exactly R/K
+        // the elastic part is R/K, up to the rounding of x − xp (|x|·ε, times K)
         if xp_new != xp {
-            prop_assert!(((x - xp_new) * k - r).abs() <= 1e-9 * ru.max(1.0));
+            let rounding = 4.0 * f64::EPSILON * k * (x.abs() + xp.abs() + xp_new.abs());
+            prop_assert!(((x - xp_new) * k - r).abs() <= rounding);
         }
     }
 
