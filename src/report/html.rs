@@ -4,7 +4,9 @@
 //! in the suite table link to the case's section of the same page.
 
 use std::fmt::Write;
+use std::path::Path;
 
+use super::attachments::Attachments;
 use super::doc::{Block, Cell, Table, Tone};
 use super::document::{case_document, suite_document};
 use super::format::esc;
@@ -174,16 +176,25 @@ pub(crate) fn page(title: &str, body: &str) -> String {
 
 /// The self-contained HTML report of one case.
 pub fn case_html(r: &CaseResult) -> String {
-    let blocks = case_document(r, Provenance::current());
+    let blocks = case_document(r, Provenance::current(), &Attachments::default());
     page(&format!("rockslide — {}", r.case.name), &render(&blocks))
 }
 
 /// The self-contained HTML report of the suite: the summary, then every case in full.
 pub fn suite_html(results: &[CaseResult]) -> String {
+    suite_html_in(results, None)
+}
+
+/// The suite page, with the sweeps and the stability study found under `out` (when given).
+pub(crate) fn suite_html_in(results: &[CaseResult], out: Option<&Path>) -> String {
     let prov = Provenance::current();
-    let mut body = render(&suite_document(results, prov));
+    let att = out.map_or_else(Attachments::default, Attachments::for_suite);
+    let mut body = render(&suite_document(results, prov, &att));
     for r in results {
-        let blocks: Vec<Block> = case_document(r, prov)
+        let att = out.map_or_else(Attachments::default, |o| {
+            Attachments::for_case(&o.join(&r.case.name))
+        });
+        let blocks: Vec<Block> = case_document(r, prov, &att)
             .into_iter()
             .map(|b| b.demoted(1))
             .collect();

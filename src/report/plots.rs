@@ -10,6 +10,7 @@
 
 use plotters::prelude::*;
 
+use super::study_plots::{Entry, draw_legend, legend_height};
 use crate::suite::CaseResult;
 use crate::trace::{Quantity, Trace, q};
 
@@ -37,6 +38,8 @@ struct Spec {
     title: &'static str,
     channels: &'static [&'static Quantity],
     paper: &'static str,
+    /// Title and paper figures for a rocking body (RPEPO, paper Figs 8–11).
+    rocking: (&'static str, &'static str),
 }
 
 const SPECS: &[Spec] = &[
@@ -45,36 +48,51 @@ const SPECS: &[Spec] = &[
         title: "Force F (dashed) and resistance R (solid)",
         channels: &[&q::FORCE, &q::RESISTANCE],
         paper: "paper Figs 3, 4 (force and resistance)",
+        rocking: (
+            "Force F (dashed) and base shear R (solid)",
+            "force and resistance, RPEPO",
+        ),
     },
     Spec {
         id: "relative-displacement",
         title: "Relative displacement",
         channels: &[&q::REL_DISP],
-        paper: "paper Figs 5, 6",
+        paper: "paper Figs 3–5",
+        rocking: (
+            "Relative displacement of O (base centre − ground)",
+            "paper Fig 8",
+        ),
     },
     Spec {
         id: "sliding",
         title: "Sliding",
         channels: &[&q::SLIDE],
-        paper: "paper Figs 7, 8",
+        paper: "paper Figs 3, 4, 6",
+        rocking: (
+            "Sliding of O (mean accumulated slip of the supports)",
+            "paper Fig 9",
+        ),
     },
     Spec {
         id: "cm-horizontal",
         title: "Centre of mass, horizontal",
         channels: &[&q::CM_X],
-        paper: "paper Figs 9, 10",
+        paper: "paper Fig 10",
+        rocking: ("Centre of mass, horizontal", "paper Fig 10"),
     },
     Spec {
         id: "cm-vertical",
         title: "Centre of mass, vertical",
         channels: &[&q::CM_Z],
         paper: "paper Fig 11",
+        rocking: ("Centre of mass, vertical", "paper Fig 11"),
     },
     Spec {
         id: "rotation",
         title: "Base rotation",
         channels: &[&q::ROTATION],
         paper: "rocking scenes",
+        rocking: ("Base rotation", "rocking scenes"),
     },
 ];
 
@@ -177,6 +195,7 @@ fn peak(trace: &Trace, channels: &[&Quantity]) -> f64 {
 pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
     let all = lines(r);
     let has_reference = r.reference.is_ok();
+    let rocking = matches!(r.case.scene.model, crate::case::Model::RockingBody(_));
     let mut out = Vec::new();
     for spec in SPECS {
         let members: Vec<usize> = (0..all.len())
@@ -207,7 +226,12 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
             .copied()
             .filter(|i| !off.contains(i))
             .collect();
-        let mut caption = format!("{} — {}", spec.title, spec.paper);
+        let (title, paper) = if rocking {
+            spec.rocking
+        } else {
+            (spec.title, spec.paper)
+        };
+        let mut caption = format!("{title} — {paper}");
         if !off.is_empty() {
             let names: Vec<String> = off
                 .iter()
@@ -234,13 +258,13 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
         out.push(Figure {
             id: spec.id.to_string(),
             caption,
-            svg: draw(spec, &all, &kept, has_reference),
+            svg: draw(spec, title, &all, &kept, has_reference),
         });
         if !off.is_empty() {
             out.push(Figure {
                 id: format!("{}-all", spec.id),
-                caption: format!("{} — every run, including off-scale ones", spec.title),
-                svg: draw(spec, &all, &members, has_reference),
+                caption: format!("{title} — every run, including off-scale ones"),
+                svg: draw(spec, title, &all, &members, has_reference),
             });
         }
     }
@@ -251,7 +275,13 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
 type Series = (usize, usize, Vec<(f64, f64)>);
 
 /// Draw one figure into an SVG string.
-fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -> String {
+fn draw(
+    spec: &Spec,
+    title: &str,
+    all: &[Line<'_>],
+    members: &[usize],
+    has_reference: bool,
+) -> String {
     let (unit, factor) = spec.channels[0].display;
     // (participant, channel index, points)
     let mut series: Vec<Series> = Vec::new();
@@ -282,13 +312,30 @@ fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -
     let names: Vec<&str> = spec.channels.iter().map(|c| c.label).collect();
     let ylabel = format!("{} [{unit}]", names.join(", "));
 
+    // Legend entries, drawn in a strip below the plot so that no box hides a curve.
+    let entries: Vec<Entry> = series
+        .iter()
+        .map(|(i, ci, _)| {
+            let name = if spec.channels.len() > 1 {
+                format!("{} {}", spec.channels[*ci].label, all[*i].label)
+            } else {
+                all[*i].label.clone()
+            };
+            let dashed = spec.channels.len() > 1 && *ci == 0;
+            (name, colour(*i, has_reference), dashed)
+        })
+        .collect();
+    let legend_h = legend_height(entries.len(), SIZE.0);
+
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (SIZE.0, SIZE.1 + legend_h)).into_drawing_area();
         let result = (|| -> Result<(), Box<dyn std::error::Error + '_>> {
             root.fill(&WHITE)?;
-            let mut chart = ChartBuilder::on(&root)
-                .caption(spec.title, ("sans-serif", 18))
+            let (plot, legend) = root.split_vertically(SIZE.1);
+            let mut chart = ChartBuilder::on(&plot)
+                .caption(title, ("sans-serif", 18))
                 .margin(12)
                 .x_label_area_size(40)
                 .y_label_area_size(70)
@@ -303,35 +350,14 @@ fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -
             for (i, ci, p) in &series {
                 let c = colour(*i, has_reference);
                 let style = c.stroke_width(if *i == 0 && has_reference { 2 } else { 1 });
-                let name = if spec.channels.len() > 1 {
-                    format!("{} {}", spec.channels[*ci].key, all[*i].label)
-                } else {
-                    all[*i].label.clone()
-                };
                 let dashed = spec.channels.len() > 1 && *ci == 0;
                 if dashed {
-                    chart
-                        .draw_series(DashedLineSeries::new(p.iter().copied(), 6, 4, style))?
-                        .label(name)
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 8, y)], c.stroke_width(2))
-                        });
+                    chart.draw_series(DashedLineSeries::new(p.iter().copied(), 6, 4, style))?;
                 } else {
-                    chart
-                        .draw_series(LineSeries::new(p.iter().copied(), style))?
-                        .label(name)
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
-                        });
+                    chart.draw_series(LineSeries::new(p.iter().copied(), style))?;
                 }
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(RGBColor(180, 180, 180))
-                .label_font(("sans-serif", 12))
-                .draw()?;
+            draw_legend(&legend, &entries)?;
             root.present()?;
             Ok(())
         })();
