@@ -292,7 +292,10 @@ mod tests {
     fn a_broken_sweep_csv_is_a_reason_not_a_failure() {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("sweep.csv"), "series,dt_s\na,0.1\n").unwrap();
-        let why = Attachments::for_case(dir.path()).sweep.unwrap().unwrap_err();
+        let why = Attachments::for_case(dir.path())
+            .sweep
+            .unwrap()
+            .unwrap_err();
         assert!(why.contains("no column `dt_over_T`"), "{why}");
     }
 }

@@ -8,10 +8,10 @@ use super::crosscode::{
     CrossCode, HISTORY_KEY, LIFTOFF_KEY, PEAK_KEY, cross_code, normalised_rms, participants,
 };
 use super::doc::{Block, Cell, Table, Tone};
-use super::sections;
 use super::format::{display_unit, pct, ratio, show};
 use super::plots::figures;
 use super::provenance::Provenance;
+use super::sections;
 use super::table::{Column, paper_table};
 use crate::analysis::{Verdict, quantity_def};
 use crate::gate;
@@ -224,10 +224,10 @@ fn liftoff_matrix(r: &CaseResult) -> (Vec<Vec<Option<f64>>>, Vec<Option<f64>>) {
 fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
     let x = cross_code(r);
     let mut b = Vec::new();
-    if let Err(why) = &r.reference {
-        b.push(Block::Para(format!(
-            "No exact reference ({why}). The engines are therefore verified against each other (the matrices below, as the paper compares ANSYS with SAP2000) and against their own converged solutions (Δt → 0: the work-precision section, from `rockslide sweep`)."
-        )));
+    if r.reference.is_err() {
+        b.push(Block::Para(
+            "No exact reference exists for this scene. The engines are therefore verified against each other (the matrices below, as the paper compares ANSYS with SAP2000) and against their own converged solutions (Δt → 0: the work-precision section below, from `rockslide sweep`).".into(),
+        ));
     }
     if x.labels.len() < 2 {
         b.push(Block::Para(
@@ -302,7 +302,11 @@ fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
     }
     if x.lifts_off {
         let mut row: Vec<Cell> = vec![Cell::plain("nRMS to first lift-off")];
-        row.extend(x.pairs.iter().map(|p| Cell::plain(ratio(p.nrms_to_liftoff))));
+        row.extend(
+            x.pairs
+                .iter()
+                .map(|p| Cell::plain(ratio(p.nrms_to_liftoff))),
+        );
         rows.push(row);
     }
     let mut row: Vec<Cell> = vec![Cell::plain("History nRMS (whole run)")];

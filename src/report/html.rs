@@ -20,6 +20,7 @@ h2 { border-bottom: 1px solid #ccc; padding-bottom: .2rem; margin-top: 2rem; }
 table { border-collapse: collapse; margin: .6rem 0 1rem; font-size: .88rem; }
 th, td { border: 1px solid #c8c8c8; padding: .25rem .5rem; vertical-align: top; }
 th { background: #f0f0f0; text-align: left; }
+td:first-child { white-space: nowrap; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 td.pass { background: #e3f4e1; color: #14531a; }
 td.fail { background: #fbe0e0; color: #8a1010; font-weight: 600; }

@@ -47,7 +47,7 @@ pub(crate) fn energy_blocks(r: &CaseResult) -> Vec<Block> {
             .iter()
             .all(|(_, a)| a.as_ref().err().is_some_and(|w| w == first))
     {
-        b.push(Block::Para(format!("Energy audit skipped, because {first}.")));
+        b.push(Block::Para(format!("Not audited: {first}.")));
         return b;
     }
     b.push(Block::Para(
@@ -82,7 +82,7 @@ pub(crate) fn energy_blocks(r: &CaseResult) -> Vec<Block> {
                 kj(e.end_error).into(),
                 Cell::plain(format!("{:.2e}", e.relative_error)),
             ]),
-            Err(why) => skipped.push(format!("{label}: skipped, because {why}")),
+            Err(why) => skipped.push(format!("{label}: not audited — {why}")),
         }
     }
     b.push(Block::Table(t));
@@ -94,17 +94,14 @@ pub(crate) fn energy_blocks(r: &CaseResult) -> Vec<Block> {
 
 /// The work-precision section of a case: the sweep's table, observed orders and figure,
 /// or how to produce them.
-pub(crate) fn sweep_blocks(
-    r: &CaseResult,
-    sweep: Option<&Result<Sweep, String>>,
-) -> Vec<Block> {
+pub(crate) fn sweep_blocks(r: &CaseResult, sweep: Option<&Result<Sweep, String>>) -> Vec<Block> {
     let mut b = vec![Block::Heading(
         2,
         "Error against run time (work-precision)".into(),
     )];
     let case = &r.case.name;
     let how = format!(
-        "`rockslide sweep {}` writes it (every applicable engine and variant over a Δt ladder from T/10 down); `rockslide run` and `check` pick it up from the output folder and do not recompute it.",
+        "`rockslide sweep {} --out <this folder>` writes it — every applicable engine and variant over a Δt ladder from T/10 down, a few minutes — and `rockslide run` and `check` pick it up from the output folder without recomputing it.",
         r.case.path.display()
     );
     let s = match sweep {
@@ -125,7 +122,7 @@ pub(crate) fn sweep_blocks(
         Err(_) => "no exact reference; each engine variant against its own finest rung".into(),
     });
     b.push(Block::Para(format!(
-        "From {case}/sweep.csv ({how}) Basis: {basis}. Errors: max and RMS of the relative-displacement difference over the whole history, normalised by the basis's peak; residual-sliding error in mm; event-time error (slip start/end, first lift-off) in ms. Run time: median of the repeats, wall clock. Observed order: least-squares slope of ln(max error) against ln Δt."
+        "Picked up from {case}/sweep.csv: {how} Basis: {basis}. Errors: max and RMS of the relative-displacement difference over the whole history, normalised by the basis's peak; residual-sliding error in mm; event-time error (slip start/end, first lift-off) in ms. Run time: median of the repeats, wall clock. Observed order: least-squares slope of ln(max error) against ln Δt."
     )));
     if r.reference.is_err() {
         b.push(Block::Para(
@@ -161,6 +158,13 @@ pub(crate) fn sweep_blocks(
         ]);
     }
     b.push(Block::Table(summary));
+    if let Some(svg) = sweep_figure(s, case) {
+        b.push(Block::Figure {
+            file: "plot-work-precision.svg".into(),
+            caption: "Left: max error against Δt, log-log (the slope is the observed order). Right: work-precision, max error against median run time — lower left is better. Where series coincide, the earlier one is drawn wider so that it shows around the later ones.".into(),
+            svg,
+        });
+    }
     let mut t = Table {
         header: [
             "Engine/variant",
@@ -201,13 +205,6 @@ pub(crate) fn sweep_blocks(
         ]);
     }
     b.push(Block::Table(t));
-    if let Some(svg) = sweep_figure(s, case) {
-        b.push(Block::Figure {
-            file: "plot-work-precision.svg".into(),
-            caption: "Left: max error against Δt, log-log (the slope is the observed order). Right: work-precision, max error against median run time — lower left is better.".into(),
-            svg,
-        });
-    }
     b
 }
 
@@ -318,7 +315,8 @@ pub(crate) fn stability_blocks(st: Option<&Result<Stability, String>>) -> Vec<Bl
                 r.series,
                 r.dt_over_t,
                 r.class,
-                r.time.map_or(String::new(), |t| format!(" at t = {t:.4} s")),
+                r.time
+                    .map_or(String::new(), |t| format!(" at t = {t:.4} s")),
                 r.reason
             )
         })

@@ -157,8 +157,11 @@ pub(crate) fn sweep_figure(sweep: &Sweep, case: &str) -> Option<String> {
                     .label_style(("sans-serif", 13))
                     .light_line_style(RGBColor(238, 238, 238))
                     .draw()?;
+                let n = series.len() as u32;
                 for (i, s) in series.iter().enumerate() {
                     let c = palette(i);
+                    // Earlier series wider, so coinciding curves stay visible.
+                    let w = 1 + (n - 1 - i as u32).min(4);
                     let pts: Vec<(f64, f64)> = sweep
                         .rungs(s)
                         .filter_map(|r| {
@@ -167,10 +170,10 @@ pub(crate) fn sweep_figure(sweep: &Sweep, case: &str) -> Option<String> {
                         })
                         .filter(|(x, y)| *x > 0.0 && *y > 0.0)
                         .collect();
-                    chart.draw_series(LineSeries::new(pts.iter().copied(), c.stroke_width(2)))?;
+                    chart.draw_series(LineSeries::new(pts.iter().copied(), c.stroke_width(w)))?;
                     chart.draw_series(
                         pts.iter()
-                            .map(|&p| Circle::new(p, 3, ShapeStyle::from(c).filled())),
+                            .map(|&p| Circle::new(p, 2 + w, ShapeStyle::from(c).filled())),
                     )?;
                 }
             }
@@ -241,7 +244,9 @@ pub(crate) fn stability_figure(st: &Stability, rows: &[String]) -> Option<String
                 .light_line_style(RGBColor(240, 240, 240))
                 .draw()?;
             for r in &st.runs {
-                let Some(i) = rows.iter().position(|x| *x == format!("{} · {}", r.scene, r.series))
+                let Some(i) = rows
+                    .iter()
+                    .position(|x| *x == format!("{} · {}", r.scene, r.series))
                 else {
                     continue;
                 };
