@@ -14,10 +14,10 @@ use super::provenance::Provenance;
 use crate::suite::CaseResult;
 
 const STYLE: &str = r#"
-body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 2rem auto; max-width: 1200px; padding: 0 1rem; color: #1b1b1b; line-height: 1.45; }
+body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 2rem auto; max-width: 1400px; padding: 0 1rem; color: #1b1b1b; line-height: 1.45; }
 h1 { border-bottom: 2px solid #333; padding-bottom: .3rem; }
 h2 { border-bottom: 1px solid #ccc; padding-bottom: .2rem; margin-top: 2rem; }
-table { border-collapse: collapse; margin: .6rem 0 1rem; font-size: .88rem; }
+table { border-collapse: collapse; margin: .6rem 0 1rem; font-size: .88rem; display: block; max-width: 100%; overflow-x: auto; }
 th, td { border: 1px solid #c8c8c8; padding: .25rem .5rem; vertical-align: top; }
 th { background: #f0f0f0; text-align: left; }
 td:first-child { white-space: nowrap; }

@@ -17,7 +17,7 @@ use crate::trace::{Quantity, Trace, q};
 /// Ratio of a run's peak to the reference's (or median) peak beyond which it is off scale.
 pub(crate) const OFF_SCALE: f64 = 5.0;
 /// Figure size in pixels.
-const SIZE: (u32, u32) = (760, 420);
+const SIZE: (u32, u32) = (1000, 440);
 /// Traces longer than this are reduced to per-bucket min/max before drawing.
 const MAX_POINTS: usize = 4000;
 
@@ -196,6 +196,15 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
     let all = lines(r);
     let has_reference = r.reference.is_ok();
     let rocking = matches!(r.case.scene.model, crate::case::Model::RockingBody(_));
+    // The earliest first full lift-off of any completed run: the cross-code comparison
+    // is made up to it, so the figures mark it.
+    let liftoff = r
+        .runs
+        .iter()
+        .zip(&r.run_responses)
+        .filter(|(run, _)| run.status.completed())
+        .filter_map(|(_, resp)| resp.get(super::crosscode::LIFTOFF_KEY).copied())
+        .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.min(t))));
     let mut out = Vec::new();
     for spec in SPECS {
         let members: Vec<usize> = (0..all.len())
@@ -258,13 +267,13 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
         out.push(Figure {
             id: spec.id.to_string(),
             caption,
-            svg: draw(spec, title, &all, &kept, has_reference),
+            svg: draw(spec, title, &all, &kept, has_reference, liftoff),
         });
         if !off.is_empty() {
             out.push(Figure {
                 id: format!("{}-all", spec.id),
                 caption: format!("{title} — every run, including off-scale ones"),
-                svg: draw(spec, title, &all, &members, has_reference),
+                svg: draw(spec, title, &all, &members, has_reference, liftoff),
             });
         }
     }
@@ -281,6 +290,7 @@ fn draw(
     all: &[Line<'_>],
     members: &[usize],
     has_reference: bool,
+    liftoff: Option<f64>,
 ) -> String {
     let (unit, factor) = spec.channels[0].display;
     // (participant, channel index, points)
@@ -347,6 +357,20 @@ fn draw(
                 .label_style(("sans-serif", 13))
                 .light_line_style(RGBColor(235, 235, 235))
                 .draw()?;
+            if let Some(t) = liftoff {
+                let grey = RGBColor(120, 120, 120);
+                chart.draw_series(DashedLineSeries::new(
+                    [(t, y0), (t, y1)],
+                    4,
+                    4,
+                    grey.stroke_width(1),
+                ))?;
+                chart.draw_series(std::iter::once(Text::new(
+                    format!(" first full lift-off {t:.3} s"),
+                    (t, y1),
+                    ("sans-serif", 12).into_font().color(&grey),
+                )))?;
+            }
             for (i, ci, p) in &series {
                 let c = colour(*i, has_reference);
                 let style = c.stroke_width(if *i == 0 && has_reference { 2 } else { 1 });

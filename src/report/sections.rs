@@ -210,10 +210,12 @@ pub(crate) fn sweep_blocks(r: &CaseResult, sweep: Option<&Result<Sweep, String>>
 
 /// Short map cell: class symbol with the error or the failure time.
 fn map_cell(class: &str, error: Option<f64>, time: Option<f64>) -> Cell {
-    let at = |t: Option<f64>| t.map_or(String::new(), |t| format!(" t={t:.4}"));
+    let at = |t: Option<f64>| t.map_or(String::new(), |t| format!(" t={t:.3}"));
+    // Three digits keep the eleven-column map on a page; the CSV has them all.
+    let e = error.map_or("—".into(), |v| format!("{v:.2e}"));
     match class {
-        "accurate" => Cell::toned(format!("✓ {}", sci(error)), Tone::Pass),
-        "inaccurate" => Cell::toned(format!("~ {}", sci(error)), Tone::Warn),
+        "accurate" => Cell::toned(format!("✓ {e}"), Tone::Pass),
+        "inaccurate" => Cell::toned(format!("~ {e}"), Tone::Warn),
         "diverged" => Cell::toned(format!("✗{}", at(time)), Tone::Fail),
         c => Cell::toned(format!("{c}{}", at(time)), Tone::Fail),
     }
@@ -266,8 +268,11 @@ pub(crate) fn stability_blocks(st: Option<&Result<Stability, String>>) -> Vec<Bl
         }
     }
     b.push(Block::Heading(3, "Map".into()));
-    let mut header = vec!["scene · engine/variant".to_string()];
-    header.extend(dts.iter().map(|x| format!("Δt/T = {x}")));
+    b.push(Block::Para(
+        "Rows: scene · engine/variant; columns: Δt/T. Cells: ✓ accurate, ~ inaccurate (with the max error), ✗ diverged (with the time, s); hover a failed cell for the reason.".into(),
+    ));
+    let mut header = vec!["scene · engine/variant  ·  Δt/T →".to_string()];
+    header.extend(dts.iter().map(|x| format!("{x}")));
     let mut t = Table {
         numeric: std::iter::once(false)
             .chain(std::iter::repeat_n(true, dts.len()))

@@ -84,9 +84,10 @@ fn log_range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)> {
         .filter(|v| *v > 0.0 && v.is_finite())
         .fold((f64::INFINITY, 0.0_f64), |(a, b), v| (a.min(v), b.max(v)));
     (hi > 0.0).then(|| {
+        // Whole decades, widened a little so the end ticks are labelled inside the axis.
         (
-            10f64.powf(lo.log10().floor()),
-            10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
+            0.8 * 10f64.powf(lo.log10().floor()),
+            1.25 * 10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
         )
     })
 }
@@ -124,7 +125,8 @@ pub(crate) fn sweep_figure(sweep: &Sweep, case: &str) -> Option<String> {
             root.fill(&WHITE)?;
             let (plots, legend) = root.split_vertically(420);
             let (left, right) = plots.split_horizontally(W / 2);
-            let panels: [(&DrawingArea<_, Shift>, String, &str, Option<(f64, f64)>); 2] = [
+            // (area, title, x axis, x range)
+            let panels = [
                 (
                     &left,
                     format!("{case}: max error against Δt (slope = order)"),
