@@ -289,6 +289,34 @@ mod tests {
     }
 
     #[test]
+    fn stated_limits_are_the_table_under_their_heading() {
+        let dir = tempfile::tempdir().unwrap();
+        let st = dir.path().join("stability");
+        std::fs::create_dir(&st).unwrap();
+        std::fs::write(
+            st.join("stability.csv"),
+            "scene,series,dt_over_T,dt_s,class,time_s,max_error,energy_relative_error,reason\n\
+             s,pc/paper,0.4,0.08,diverged,3.28e0,,,\"energy growth, 2.0 times\"\n",
+        )
+        .unwrap();
+        std::fs::write(
+            st.join("stability.md"),
+            "# x\n\n| a | b |\n|---|---|\n| no | no |\n\n## Practical stability limits\n\n\
+             | engine/variant | **limit Δt/T** |\n|---|---:|\n| pc/paper | **0.3183** |\n\n## Scenes\n| c |\n",
+        )
+        .unwrap();
+        let s = Attachments::for_suite(dir.path())
+            .stability
+            .unwrap()
+            .unwrap();
+        assert_eq!(s.runs[0].reason, "energy growth, 2.0 times");
+        assert_eq!(s.runs[0].time, Some(3.28));
+        let (h, rows) = s.limits.unwrap();
+        assert_eq!(h, ["engine/variant", "limit Δt/T"]);
+        assert_eq!(rows, [["pc/paper", "0.3183"]]);
+    }
+
+    #[test]
     fn a_broken_sweep_csv_is_a_reason_not_a_failure() {
         let dir = tempfile::tempdir().unwrap();
         std::fs::write(dir.path().join("sweep.csv"), "series,dt_s\na,0.1\n").unwrap();
