@@ -235,9 +235,33 @@ fn suite_report_has_the_stability_section() {
 #[test]
 fn rpepo_report_compares_up_to_first_liftoff_and_draws_figs_8_to_11() {
     let dir = tempfile::tempdir().unwrap();
+    rockslide(
+        &[
+            "sweep",
+            "cases/rpepo-mass-accel.toml",
+            "--rungs",
+            "3",
+            "--repeats",
+            "1",
+        ],
+        dir.path(),
+    );
     rockslide(&["run", "cases/rpepo-mass-accel.toml"], dir.path());
     let case = dir.path().join("rpepo-mass-accel");
     let md = read(&case.join("report.md"));
+    // The sweep against each engine's own finest rung, said so, with the Richardson
+    // rows of sweep.md carried over cell for cell.
+    assert!(md.contains("Without an exact reference these are convergence errors against each engine's own finest solution"));
+    let sweep_md = read(&case.join("sweep.md"));
+    let first = sweep_md
+        .lines()
+        .skip_while(|l| !l.starts_with("Richardson extrapolation"))
+        .find(|l| l.starts_with("| peak relative displacement |"))
+        .unwrap();
+    assert!(
+        md.contains(&format!("| fe/single {}", first.replace("**", ""))),
+        "{first}"
+    );
     assert!(md.contains("No exact reference exists for this scene. The engines are therefore verified against each other"));
     let lift = md
         .find("### Up to the first full lift-off")

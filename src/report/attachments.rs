@@ -25,8 +25,12 @@ impl Attachments {
         let csv = dir.join("sweep.csv");
         Attachments {
             sweep: csv.exists().then(|| {
-                let basis = basis_line(&dir.join("sweep.md"));
-                read_sweep(&csv).map(|rows| Sweep { rows, basis })
+                let md = std::fs::read_to_string(dir.join("sweep.md")).unwrap_or_default();
+                read_sweep(&csv).map(|rows| Sweep {
+                    rows,
+                    basis: basis_line(&md),
+                    richardson: richardson_rows(&md),
+                })
             }),
             stability: None,
         }
@@ -55,6 +59,9 @@ pub(crate) struct Sweep {
     pub rows: Vec<SweepRow>,
     /// The sweep's basis sentence (from `sweep.md`), when present.
     pub basis: Option<String>,
+    /// The Richardson tables of `sweep.md`: (series, [quantity, observed order,
+    /// extrapolated, GCI]).
+    pub richardson: Vec<(String, Vec<String>)>,
 }
 
 /// One rung of a sweep.
@@ -232,11 +239,43 @@ fn read_stability(path: &Path) -> Result<Vec<StabilityRow>, String> {
 }
 
 /// The `- Basis: …` line of `sweep.md`.
-fn basis_line(md: &Path) -> Option<String> {
-    let text = std::fs::read_to_string(md).ok()?;
+fn basis_line(text: &str) -> Option<String> {
     text.lines()
         .find_map(|l| l.strip_prefix("- Basis: "))
         .map(|s| s.trim_end_matches('.').to_string())
+}
+
+/// Cells of a Markdown table line.
+fn md_cells(l: &str) -> Vec<String> {
+    l.trim()
+        .trim_matches('|')
+        .split('|')
+        .map(|c| c.trim().replace("**", ""))
+        .collect()
+}
+
+/// The rows of the Richardson tables of `sweep.md`, each with its series (the `## `
+/// heading above it).
+fn richardson_rows(text: &str) -> Vec<(String, Vec<String>)> {
+    let mut out = Vec::new();
+    let mut series = String::new();
+    let mut inside = false;
+    for l in text.lines() {
+        if let Some(h) = l.strip_prefix("## ") {
+            series = h.trim().to_string();
+            inside = false;
+        } else if l.starts_with("Richardson extrapolation") {
+            inside = true;
+        } else if inside && l.starts_with('|') {
+            let cells = md_cells(l);
+            if cells.len() == 4 && cells[0] != "quantity" && !cells[0].starts_with("---") {
+                out.push((series.clone(), cells));
+            }
+        } else if inside && !l.trim().is_empty() {
+            inside = false;
+        }
+    }
+    out
 }
 
 /// The Markdown table under `## Practical stability limits` in `stability.md`.

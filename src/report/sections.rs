@@ -205,6 +205,30 @@ pub(crate) fn sweep_blocks(r: &CaseResult, sweep: Option<&Result<Sweep, String>>
         ]);
     }
     b.push(Block::Table(t));
+    if !s.richardson.is_empty() {
+        b.push(Block::Para(
+            "Richardson extrapolation from the three finest completed rungs (from sweep.md): the converged value each engine is heading for, with the observed order and the Grid Convergence Index of the finest rung; “—” where the differences do not shrink monotonically (not yet in the asymptotic range).".into(),
+        ));
+        let mut rt = Table {
+            header: [
+                "Engine/variant",
+                "quantity",
+                "observed order",
+                "extrapolated",
+                "GCI (fine)",
+            ]
+            .map(String::from)
+            .to_vec(),
+            numeric: vec![false, false, true, false, true],
+            rows: Vec::new(),
+        };
+        for (series, cells) in &s.richardson {
+            let mut row: Vec<Cell> = vec![series.clone().into()];
+            row.extend(cells.iter().map(|c| Cell::plain(c.clone())));
+            rt.rows.push(row);
+        }
+        b.push(Block::Table(rt));
+    }
     b
 }
 
