@@ -286,6 +286,11 @@ fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
         .collect();
     let mut rows = Vec::new();
     for (k, key) in x.keys.iter().enumerate() {
+        // A quantity no pair could compare (e.g. a minimum that is zero everywhere) is
+        // left out rather than shown as a row of dashes.
+        if x.pairs.iter().all(|p| p.entries[k].is_none()) {
+            continue;
+        }
         let d = quantity_def(key).expect("catalogue key");
         let label = if d.is_time() {
             format!("{} Δt [ms]", d.label)
