@@ -14,7 +14,7 @@ pub(crate) const HISTORY_KEY: &str = "rel_disp";
 /// The quantity of the peak matrix.
 pub(crate) const PEAK_KEY: &str = "peak_relative_displacement";
 /// The quantity that marks the first full lift-off.
-const LIFTOFF_KEY: &str = "first_liftoff";
+pub(crate) const LIFTOFF_KEY: &str = "first_liftoff";
 
 /// One side of a comparison.
 pub(crate) struct Participant<'a> {

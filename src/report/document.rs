@@ -3,11 +3,15 @@
 //! run's settings and findings, and provenance; for the suite, the verdict per case, the
 //! gate failures, and (in HTML) every case in full.
 
-use super::crosscode::{CrossCode, HISTORY_KEY, PEAK_KEY, cross_code};
+use super::attachments::Attachments;
+use super::crosscode::{
+    CrossCode, HISTORY_KEY, LIFTOFF_KEY, PEAK_KEY, cross_code, normalised_rms, participants,
+};
 use super::doc::{Block, Cell, Table, Tone};
 use super::format::{display_unit, pct, ratio, show};
 use super::plots::figures;
 use super::provenance::Provenance;
+use super::sections;
 use super::table::{Column, paper_table};
 use crate::analysis::{Verdict, quantity_def};
 use crate::gate;
@@ -59,9 +63,9 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
                     numeric.push(true);
                 }
             }
+            // Engines that did not run get no column (a column of "n/a" only hides the
+            // numbers): the reason is listed right under the table.
             Column::Absent { engine, why } => {
-                header.push(engine.clone());
-                numeric.push(false);
                 notes.push(format!("{engine}: n/a — {why}"));
             }
         }
@@ -100,9 +104,7 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
                         cells.push(Cell::toned(text, tone));
                     }
                 }
-                Column::Absent { why, .. } => {
-                    cells.push(Cell::toned("n/a", Tone::Muted).hint(why.clone()));
-                }
+                Column::Absent { .. } => {}
             }
         }
         cells.push(row.tolerance.clone().into());
@@ -192,62 +194,129 @@ fn matrix(x: &CrossCode, values: &[Vec<Option<f64>>], f: impl Fn(Option<f64>) ->
     }
 }
 
+/// Normalised RMS difference of the relative displacement of every participant against
+/// every other one, up to the earlier first full lift-off of the two (`None` where neither
+/// lifts off). Same definition as the whole-history matrix, on a shorter window.
+fn liftoff_matrix(r: &CaseResult) -> (Vec<Vec<Option<f64>>>, Vec<Option<f64>>) {
+    let ps = participants(r);
+    let lift: Vec<Option<f64>> = ps
+        .iter()
+        .map(|p| p.responses.get(LIFTOFF_KEY).copied())
+        .collect();
+    let n = ps.len();
+    let mut m = vec![vec![None; n]; n];
+    for i in 0..n {
+        for j in 0..n {
+            if i == j {
+                continue;
+            }
+            let until = match (lift[i], lift[j]) {
+                (Some(a), Some(b)) => a.min(b),
+                (Some(a), None) | (None, Some(a)) => a,
+                (None, None) => continue,
+            };
+            m[i][j] = normalised_rms(ps[i].trace, ps[j].trace, HISTORY_KEY, until);
+        }
+    }
+    (m, lift)
+}
+
 fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
     let x = cross_code(r);
-    if x.labels.len() < 2 {
-        return vec![Block::Para(
-            "Fewer than two participants completed: nothing to compare.".into(),
-        )];
+    let mut b = Vec::new();
+    if r.reference.is_err() {
+        b.push(Block::Para(
+            "No exact reference exists for this scene. The engines are therefore verified against each other (the matrices below, as the paper compares ANSYS with SAP2000) and against their own converged solutions (Δt → 0: the work-precision section below, from `rockslide sweep`).".into(),
+        ));
     }
-    let mut b = vec![
-        Block::Para(format!(
-            "Every participant (the reference, when there is one, and every run that completed) against every other one. Peaks: 100·(row/column − 1) of the peak relative displacement. History: RMS of the difference of the relative displacement over the whole run, normalised by the column's peak; evaluated at the coarser trace's output times, the finer trace linearly interpolated there. {}",
-            if x.lifts_off {
-                "Scenes that lift off also give the history difference up to the first full lift-off."
-            } else {
-                ""
-            }
-        ).trim_end().to_string()),
-        Block::Heading(3, "Peak relative displacement, Δ %".into()),
-        Block::Table(matrix(&x, &x.peak, pct)),
-        Block::Heading(3, format!("Whole-history normalised RMS difference of {HISTORY_KEY}")),
-        Block::Table(matrix(&x, &x.nrms, ratio)),
-        Block::Heading(3, "Every pair, every quantity".into()),
-    ];
-    let mut header = vec!["Basis".to_string(), "Compared".into()];
-    let mut numeric = vec![false, false];
-    for k in &x.keys {
-        let d = quantity_def(k).expect("catalogue key");
-        header.push(if d.is_time() {
+    if x.labels.len() < 2 {
+        b.push(Block::Para(
+            "Fewer than two participants completed: nothing to compare.".into(),
+        ));
+        return b;
+    }
+    b.push(Block::Para(format!(
+        "Every participant (the reference, when there is one, and every run that completed) against every other one. Peaks: 100·(row/column − 1) of the peak relative displacement. History: RMS of the difference of the relative displacement, normalised by the column's peak over the same window; evaluated at the coarser trace's output times, the finer trace linearly interpolated there.{}",
+        if x.lifts_off {
+            " This scene lifts off: the airborne phase and the landing amplify small differences, so the history is compared first up to the first full lift-off (the part the engines must agree on), then over the whole run."
+        } else {
+            ""
+        }
+    )));
+    if x.lifts_off {
+        let (m, lift) = liftoff_matrix(r);
+        b.push(Block::Heading(
+            3,
+            "Up to the first full lift-off: normalised RMS difference of the relative displacement"
+                .into(),
+        ));
+        b.push(Block::Para(format!(
+            "Window: from the start to the earlier first full lift-off of the two participants. First full lift-off: {}.",
+            x.labels
+                .iter()
+                .zip(&lift)
+                .map(|(l, t)| format!(
+                    "{l} {}",
+                    t.map_or("none".to_string(), |t| format!("{t:.4} s"))
+                ))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+        b.push(Block::Table(matrix(&x, &m, ratio)));
+    }
+    b.push(Block::Heading(
+        3,
+        format!("Whole history: normalised RMS difference of {HISTORY_KEY}"),
+    ));
+    b.push(Block::Table(matrix(&x, &x.nrms, ratio)));
+    b.push(Block::Heading(3, "Peak relative displacement, Δ %".into()));
+    b.push(Block::Table(matrix(&x, &x.peak, pct)));
+    b.push(Block::Heading(3, "Every pair, every quantity".into()));
+    b.push(Block::Para(
+        "One column per pair “compared vs basis”: Δ % = 100·(compared/basis − 1) for values, compared − basis in ms for event times.".into(),
+    ));
+    // Quantities as rows and pairs as columns: the table stays as wide as the number of
+    // pairs, however many quantities a scene has.
+    let mut header = vec!["Quantity".to_string()];
+    for p in &x.pairs {
+        header.push(format!("{} vs {}", x.labels[p.b], x.labels[p.a]));
+    }
+    let numeric: Vec<bool> = std::iter::once(false)
+        .chain(std::iter::repeat_n(true, x.pairs.len()))
+        .collect();
+    let mut rows = Vec::new();
+    for (k, key) in x.keys.iter().enumerate() {
+        // A quantity no pair could compare (e.g. a minimum that is zero everywhere) is
+        // left out rather than shown as a row of dashes.
+        if x.pairs.iter().all(|p| p.entries[k].is_none()) {
+            continue;
+        }
+        let d = quantity_def(key).expect("catalogue key");
+        let label = if d.is_time() {
             format!("{} Δt [ms]", d.label)
         } else {
             format!("{} Δ %", d.label)
-        });
-        numeric.push(true);
-    }
-    header.push("History nRMS".into());
-    numeric.push(true);
-    if x.lifts_off {
-        header.push("nRMS to first lift-off".into());
-        numeric.push(true);
-    }
-    let mut rows = Vec::new();
-    for p in &x.pairs {
-        let mut row: Vec<Cell> = vec![x.labels[p.a].clone().into(), x.labels[p.b].clone().into()];
-        for (k, e) in x.keys.iter().zip(&p.entries) {
-            let is_time = quantity_def(k).is_some_and(|d| d.is_time());
-            row.push(Cell::plain(match e {
-                None => "—".into(),
-                Some(v) if is_time => format!("{v:+.2}"),
-                Some(v) => format!("{v:+.2}"),
-            }));
-        }
-        row.push(ratio(p.nrms).into());
-        if x.lifts_off {
-            row.push(ratio(p.nrms_to_liftoff).into());
+        };
+        let mut row: Vec<Cell> = vec![label.into()];
+        for p in &x.pairs {
+            row.push(Cell::plain(
+                p.entries[k].map_or("—".into(), |v| format!("{v:+.2}")),
+            ));
         }
         rows.push(row);
     }
+    if x.lifts_off {
+        let mut row: Vec<Cell> = vec![Cell::plain("nRMS to first lift-off")];
+        row.extend(
+            x.pairs
+                .iter()
+                .map(|p| Cell::plain(ratio(p.nrms_to_liftoff))),
+        );
+        rows.push(row);
+    }
+    let mut row: Vec<Cell> = vec![Cell::plain("History nRMS (whole run)")];
+    row.extend(x.pairs.iter().map(|p| Cell::plain(ratio(p.nrms))));
+    rows.push(row);
     b.push(Block::Table(Table {
         header,
         numeric,
@@ -289,7 +358,7 @@ fn history_table(r: &CaseResult) -> Option<Table> {
 }
 
 /// The blocks of one case's report.
-pub(crate) fn case_document(r: &CaseResult, prov: &Provenance) -> Vec<Block> {
+pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments) -> Vec<Block> {
     let c = &r.case;
     let mut b = vec![Block::Heading(1, format!("{} — {}", c.name, c.title))];
     let mut facts = Vec::new();
@@ -376,6 +445,9 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance) -> Vec<Block> {
         });
     }
 
+    b.extend(sections::energy_blocks(r));
+    b.extend(sections::sweep_blocks(r, att.sweep.as_ref()));
+
     b.push(Block::Heading(
         2,
         "Runs: settings, counters, findings".into(),
@@ -403,7 +475,11 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance) -> Vec<Block> {
 }
 
 /// The blocks of the suite summary (without the cases' own reports).
-pub(crate) fn suite_document(results: &[CaseResult], prov: &Provenance) -> Vec<Block> {
+pub(crate) fn suite_document(
+    results: &[CaseResult],
+    prov: &Provenance,
+    att: &Attachments,
+) -> Vec<Block> {
     let all = gate::failures(results);
     let mut b = vec![Block::Heading(1, "rockslide — verification suite".into())];
     b.push(Block::Verdict {
@@ -470,6 +546,7 @@ pub(crate) fn suite_document(results: &[CaseResult], prov: &Provenance) -> Vec<B
         ]);
     }
     b.push(Block::Table(t));
+    b.extend(sections::stability_blocks(att.stability.as_ref()));
     b.push(Block::Heading(2, "Provenance".into()));
     b.push(Block::Facts(vec![
         ("tool".into(), prov.tool.clone()),

@@ -4,7 +4,9 @@
 //! in the suite table link to the case's section of the same page.
 
 use std::fmt::Write;
+use std::path::Path;
 
+use super::attachments::Attachments;
 use super::doc::{Block, Cell, Table, Tone};
 use super::document::{case_document, suite_document};
 use super::format::esc;
@@ -12,12 +14,13 @@ use super::provenance::Provenance;
 use crate::suite::CaseResult;
 
 const STYLE: &str = r#"
-body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 2rem auto; max-width: 1200px; padding: 0 1rem; color: #1b1b1b; line-height: 1.45; }
+body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 2rem auto; max-width: 1400px; padding: 0 1rem; color: #1b1b1b; line-height: 1.45; }
 h1 { border-bottom: 2px solid #333; padding-bottom: .3rem; }
 h2 { border-bottom: 1px solid #ccc; padding-bottom: .2rem; margin-top: 2rem; }
-table { border-collapse: collapse; margin: .6rem 0 1rem; font-size: .88rem; }
+table { border-collapse: collapse; margin: .6rem 0 1rem; font-size: .88rem; display: block; max-width: 100%; overflow-x: auto; }
 th, td { border: 1px solid #c8c8c8; padding: .25rem .5rem; vertical-align: top; }
 th { background: #f0f0f0; text-align: left; }
+td:first-child { white-space: nowrap; }
 td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
 td.pass { background: #e3f4e1; color: #14531a; }
 td.fail { background: #fbe0e0; color: #8a1010; font-weight: 600; }
@@ -174,16 +177,25 @@ pub(crate) fn page(title: &str, body: &str) -> String {
 
 /// The self-contained HTML report of one case.
 pub fn case_html(r: &CaseResult) -> String {
-    let blocks = case_document(r, Provenance::current());
+    let blocks = case_document(r, Provenance::current(), &Attachments::default());
     page(&format!("rockslide — {}", r.case.name), &render(&blocks))
 }
 
 /// The self-contained HTML report of the suite: the summary, then every case in full.
 pub fn suite_html(results: &[CaseResult]) -> String {
+    suite_html_in(results, None)
+}
+
+/// The suite page, with the sweeps and the stability study found under `out` (when given).
+pub(crate) fn suite_html_in(results: &[CaseResult], out: Option<&Path>) -> String {
     let prov = Provenance::current();
-    let mut body = render(&suite_document(results, prov));
+    let att = out.map_or_else(Attachments::default, Attachments::for_suite);
+    let mut body = render(&suite_document(results, prov, &att));
     for r in results {
-        let blocks: Vec<Block> = case_document(r, prov)
+        let att = out.map_or_else(Attachments::default, |o| {
+            Attachments::for_case(&o.join(&r.case.name))
+        });
+        let blocks: Vec<Block> = case_document(r, prov, &att)
             .into_iter()
             .map(|b| b.demoted(1))
             .collect();

@@ -4,6 +4,7 @@
 
 use std::fmt::Write;
 
+use super::attachments::Attachments;
 use super::doc::{Block, Cell, Table, Tone};
 use super::document::{case_document, suite_document};
 use super::format::md_cell;
@@ -94,10 +95,16 @@ pub(crate) fn render(blocks: &[Block], figure_dir: &str) -> String {
 
 /// The Markdown report of one case.
 pub fn case_markdown(r: &CaseResult) -> String {
-    render(&case_document(r, Provenance::current()), "")
+    render(
+        &case_document(r, Provenance::current(), &Attachments::default()),
+        "",
+    )
 }
 
 /// The suite summary: the verdict per case, every gate failure, provenance.
 pub fn suite_markdown(results: &[CaseResult]) -> String {
-    render(&suite_document(results, Provenance::current()), "")
+    render(
+        &suite_document(results, Provenance::current(), &Attachments::default()),
+        "",
+    )
 }

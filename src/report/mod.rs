@@ -9,8 +9,12 @@
 //!   `plots`: time-history figures (plotters, SVG); `provenance`: tool, commit, machine, date;
 //! - `document`: the report content; `doc`: the document model;
 //! - `markdown`, `html`, `summary_csv`: the renderers; `format`: number formatting;
+//! - `sections`: energy audit, work-precision and stability sections; `attachments`: the
+//!   sweep and stability files picked up from the output folder (never recomputed);
+//!   `study_plots`: their figures and the legend strip under every figure;
 //! - `mcap_log`: the MCAP trace of a case run (Foxglove).
 
+mod attachments;
 mod crosscode;
 mod doc;
 mod document;
@@ -20,6 +24,8 @@ mod markdown;
 mod mcap_log;
 mod plots;
 mod provenance;
+mod sections;
+mod study_plots;
 mod summary_csv;
 mod table;
 
@@ -59,7 +65,9 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
         )?;
     }
     write_case_mcap(result, &dir.join(format!("{}.mcap", result.case.name)))?;
-    let blocks = document::case_document(result, Provenance::current());
+    // The sweep of this case, when `rockslide sweep` left one here: picked up, not rerun.
+    let att = attachments::Attachments::for_case(&dir);
+    let blocks = document::case_document(result, Provenance::current(), &att);
     for b in &blocks {
         if let doc::Block::Figure { file, svg, .. } = b {
             write_atomically(&dir.join(file), svg.as_bytes())?;
@@ -82,11 +90,23 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
 }
 
 /// Write the suite's outputs under `out/`: `summary.md`, `summary.html` (every case in
-/// full) and `summary.csv`. Returns the HTML path.
+/// full) and `summary.csv`, with the stability study (`out/stability/`) and each case's
+/// sweep (`out/<case>/sweep.csv`) when those commands left them there. Returns the HTML
+/// path.
 pub fn write_suite_outputs(results: &[CaseResult], out: &Path) -> Result<PathBuf, Error> {
-    write_atomically(&out.join("summary.md"), suite_markdown(results).as_bytes())?;
+    let att = attachments::Attachments::for_suite(out);
+    let blocks = document::suite_document(results, Provenance::current(), &att);
+    for b in &blocks {
+        if let doc::Block::Figure { file, svg, .. } = b {
+            write_atomically(&out.join(file), svg.as_bytes())?;
+        }
+    }
+    write_atomically(
+        &out.join("summary.md"),
+        markdown::render(&blocks, "").as_bytes(),
+    )?;
     let html = out.join("summary.html");
-    write_atomically(&html, suite_html(results).as_bytes())?;
+    write_atomically(&html, html::suite_html_in(results, Some(out)).as_bytes())?;
     write_atomically(&out.join("summary.csv"), &summary_csv(results)?)?;
     Ok(html)
 }

@@ -10,13 +10,14 @@
 
 use plotters::prelude::*;
 
+use super::study_plots::{Entry, draw_legend, legend_height};
 use crate::suite::CaseResult;
 use crate::trace::{Quantity, Trace, q};
 
 /// Ratio of a run's peak to the reference's (or median) peak beyond which it is off scale.
 pub(crate) const OFF_SCALE: f64 = 5.0;
 /// Figure size in pixels.
-const SIZE: (u32, u32) = (760, 420);
+const SIZE: (u32, u32) = (1000, 440);
 /// Traces longer than this are reduced to per-bucket min/max before drawing.
 const MAX_POINTS: usize = 4000;
 
@@ -37,6 +38,8 @@ struct Spec {
     title: &'static str,
     channels: &'static [&'static Quantity],
     paper: &'static str,
+    /// Title and paper figures for a rocking body (RPEPO, paper Figs 8–11).
+    rocking: (&'static str, &'static str),
 }
 
 const SPECS: &[Spec] = &[
@@ -45,36 +48,51 @@ const SPECS: &[Spec] = &[
         title: "Force F (dashed) and resistance R (solid)",
         channels: &[&q::FORCE, &q::RESISTANCE],
         paper: "paper Figs 3, 4 (force and resistance)",
+        rocking: (
+            "Force F (dashed) and base shear R (solid)",
+            "force and resistance, RPEPO",
+        ),
     },
     Spec {
         id: "relative-displacement",
         title: "Relative displacement",
         channels: &[&q::REL_DISP],
-        paper: "paper Figs 5, 6",
+        paper: "paper Figs 3–5",
+        rocking: (
+            "Relative displacement of O (base centre − ground)",
+            "paper Fig 8",
+        ),
     },
     Spec {
         id: "sliding",
         title: "Sliding",
         channels: &[&q::SLIDE],
-        paper: "paper Figs 7, 8",
+        paper: "paper Figs 3, 4, 6",
+        rocking: (
+            "Sliding of O (mean accumulated slip of the supports)",
+            "paper Fig 9",
+        ),
     },
     Spec {
         id: "cm-horizontal",
         title: "Centre of mass, horizontal",
         channels: &[&q::CM_X],
-        paper: "paper Figs 9, 10",
+        paper: "paper Fig 10",
+        rocking: ("Centre of mass, horizontal", "paper Fig 10"),
     },
     Spec {
         id: "cm-vertical",
         title: "Centre of mass, vertical",
         channels: &[&q::CM_Z],
         paper: "paper Fig 11",
+        rocking: ("Centre of mass, vertical", "paper Fig 11"),
     },
     Spec {
         id: "rotation",
         title: "Base rotation",
         channels: &[&q::ROTATION],
         paper: "rocking scenes",
+        rocking: ("Base rotation", "rocking scenes"),
     },
 ];
 
@@ -177,6 +195,16 @@ fn peak(trace: &Trace, channels: &[&Quantity]) -> f64 {
 pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
     let all = lines(r);
     let has_reference = r.reference.is_ok();
+    let rocking = matches!(r.case.scene.model, crate::case::Model::RockingBody(_));
+    // The earliest first full lift-off of any completed run: the cross-code comparison
+    // is made up to it, so the figures mark it.
+    let liftoff = r
+        .runs
+        .iter()
+        .zip(&r.run_responses)
+        .filter(|(run, _)| run.status.completed())
+        .filter_map(|(_, resp)| resp.get(super::crosscode::LIFTOFF_KEY).copied())
+        .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.min(t))));
     let mut out = Vec::new();
     for spec in SPECS {
         let members: Vec<usize> = (0..all.len())
@@ -207,7 +235,12 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
             .copied()
             .filter(|i| !off.contains(i))
             .collect();
-        let mut caption = format!("{} — {}", spec.title, spec.paper);
+        let (title, paper) = if rocking {
+            spec.rocking
+        } else {
+            (spec.title, spec.paper)
+        };
+        let mut caption = format!("{title} — {paper}");
         if !off.is_empty() {
             let names: Vec<String> = off
                 .iter()
@@ -234,13 +267,13 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
         out.push(Figure {
             id: spec.id.to_string(),
             caption,
-            svg: draw(spec, &all, &kept, has_reference),
+            svg: draw(spec, title, &all, &kept, has_reference, liftoff),
         });
         if !off.is_empty() {
             out.push(Figure {
                 id: format!("{}-all", spec.id),
-                caption: format!("{} — every run, including off-scale ones", spec.title),
-                svg: draw(spec, &all, &members, has_reference),
+                caption: format!("{title} — every run, including off-scale ones"),
+                svg: draw(spec, title, &all, &members, has_reference, liftoff),
             });
         }
     }
@@ -251,7 +284,14 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
 type Series = (usize, usize, Vec<(f64, f64)>);
 
 /// Draw one figure into an SVG string.
-fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -> String {
+fn draw(
+    spec: &Spec,
+    title: &str,
+    all: &[Line<'_>],
+    members: &[usize],
+    has_reference: bool,
+    liftoff: Option<f64>,
+) -> String {
     let (unit, factor) = spec.channels[0].display;
     // (participant, channel index, points)
     let mut series: Vec<Series> = Vec::new();
@@ -282,13 +322,30 @@ fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -
     let names: Vec<&str> = spec.channels.iter().map(|c| c.label).collect();
     let ylabel = format!("{} [{unit}]", names.join(", "));
 
+    // Legend entries, drawn in a strip below the plot so that no box hides a curve.
+    let entries: Vec<Entry> = series
+        .iter()
+        .map(|(i, ci, _)| {
+            let name = if spec.channels.len() > 1 {
+                format!("{} {}", spec.channels[*ci].label, all[*i].label)
+            } else {
+                all[*i].label.clone()
+            };
+            let dashed = spec.channels.len() > 1 && *ci == 0;
+            (name, colour(*i, has_reference), dashed)
+        })
+        .collect();
+    let legend_h = legend_height(entries.len(), SIZE.0);
+
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, SIZE).into_drawing_area();
+        let root =
+            SVGBackend::with_string(&mut svg, (SIZE.0, SIZE.1 + legend_h)).into_drawing_area();
         let result = (|| -> Result<(), Box<dyn std::error::Error + '_>> {
             root.fill(&WHITE)?;
-            let mut chart = ChartBuilder::on(&root)
-                .caption(spec.title, ("sans-serif", 18))
+            let (plot, legend) = root.split_vertically(SIZE.1);
+            let mut chart = ChartBuilder::on(&plot)
+                .caption(title, ("sans-serif", 18))
                 .margin(12)
                 .x_label_area_size(40)
                 .y_label_area_size(70)
@@ -300,38 +357,31 @@ fn draw(spec: &Spec, all: &[Line<'_>], members: &[usize], has_reference: bool) -
                 .label_style(("sans-serif", 13))
                 .light_line_style(RGBColor(235, 235, 235))
                 .draw()?;
+            if let Some(t) = liftoff {
+                let grey = RGBColor(120, 120, 120);
+                chart.draw_series(DashedLineSeries::new(
+                    [(t, y0), (t, y1)],
+                    4,
+                    4,
+                    grey.stroke_width(1),
+                ))?;
+                chart.draw_series(std::iter::once(Text::new(
+                    format!(" first full lift-off {t:.3} s"),
+                    (t, y1),
+                    ("sans-serif", 12).into_font().color(&grey),
+                )))?;
+            }
             for (i, ci, p) in &series {
                 let c = colour(*i, has_reference);
                 let style = c.stroke_width(if *i == 0 && has_reference { 2 } else { 1 });
-                let name = if spec.channels.len() > 1 {
-                    format!("{} {}", spec.channels[*ci].key, all[*i].label)
-                } else {
-                    all[*i].label.clone()
-                };
                 let dashed = spec.channels.len() > 1 && *ci == 0;
                 if dashed {
-                    chart
-                        .draw_series(DashedLineSeries::new(p.iter().copied(), 6, 4, style))?
-                        .label(name)
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 8, y)], c.stroke_width(2))
-                        });
+                    chart.draw_series(DashedLineSeries::new(p.iter().copied(), 6, 4, style))?;
                 } else {
-                    chart
-                        .draw_series(LineSeries::new(p.iter().copied(), style))?
-                        .label(name)
-                        .legend(move |(x, y)| {
-                            PathElement::new(vec![(x, y), (x + 16, y)], c.stroke_width(2))
-                        });
+                    chart.draw_series(LineSeries::new(p.iter().copied(), style))?;
                 }
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(RGBColor(180, 180, 180))
-                .label_font(("sans-serif", 12))
-                .draw()?;
+            draw_legend(&legend, &entries)?;
             root.present()?;
             Ok(())
         })();

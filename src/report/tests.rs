@@ -1,6 +1,6 @@
 //! The reports are generic over runs: a synthetic rocking case with two engine runs and no
 //! reference (as the RPEPO will be once the FE and rapier engines exist) gets run columns
-//! without Δ % against a reference, an n/a column for the predictor-corrector, a
+//! without Δ % against a reference, an n/a reason for the predictor-corrector, a
 //! cross-code matrix with event-time differences and the history difference up to the
 //! first lift-off, CM and rotation figures, and a run-against-run gate failure. Every
 //! expected number is computed here from the synthetic signals.
@@ -131,7 +131,7 @@ fn reports_have_run_columns_na_column_figures_and_the_run_vs_run_failure() {
     let r = result();
     let md = super::case_markdown(&r);
     assert!(
-        md.contains("| Quantity | Unit | fe/single | rapier/inertial | predictor-corrector | Tolerance | Result |"),
+        md.contains("| Quantity | Unit | fe/single | rapier/inertial | Tolerance | Result |"),
         "{md}"
     );
     assert!(md.contains("- predictor-corrector: n/a — the predictor-corrector is a single-degree-of-freedom sliding method"));
