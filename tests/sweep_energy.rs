@@ -83,3 +83,28 @@ fn audit_names_what_it_lacks() {
     let why = audit(&t, &case.scene, "paper").unwrap_err();
     assert!(why.contains("force") && why.contains("resistance"), "{why}");
 }
+
+/// Exploration (printed): rigid-block audits on references and rapier.
+#[test]
+#[ignore]
+fn explore_rigid_block_audits() {
+    for file in [
+        "cases/rigid-sliding-block.toml",
+        "cases/housner-free-rocking.toml",
+        "cases/housner-pulse.toml",
+    ] {
+        let case = load_case(Path::new(file)).unwrap();
+        let r = solve_reference(&case).unwrap();
+        let s = audit(&r.trace, &case.scene, "reference").unwrap().summary();
+        println!("{file} reference: {s:?}");
+        let rap = engine::all()
+            .into_iter()
+            .find(|e| e.id() == "rapier")
+            .unwrap();
+        for v in rap.variants(&case.scene).unwrap() {
+            let run = rap.run(&case, v, case.dt_for("rapier")).unwrap();
+            let s = audit(&run.trace, &case.scene, v).unwrap().summary();
+            println!("{file} rapier/{v}: {s:?}");
+        }
+    }
+}

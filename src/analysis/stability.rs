@@ -20,6 +20,9 @@ pub struct Criteria {
     /// times the most energy ever supplied to it has created energy (default 1.0: twice
     /// the most it was given).
     pub growth_factor: f64,
+    /// The least energy counted as supplied, J: the most energy the exact reference was
+    /// ever given, when there is one (0: none).
+    pub energy_floor: f64,
 }
 
 impl Default for Criteria {
@@ -27,6 +30,7 @@ impl Default for Criteria {
         Criteria {
             accuracy: 0.05,
             growth_factor: 1.0,
+            energy_floor: 0.0,
         }
     }
 }
@@ -137,7 +141,9 @@ pub fn classify(
             reason: format!("{key} is not finite"),
         };
     }
-    if let Some((t, ratio)) = energy.and_then(|h| h.growth_time(criteria.growth_factor)) {
+    if let Some((t, ratio)) =
+        energy.and_then(|h| h.growth_time_above(criteria.growth_factor, criteria.energy_floor))
+    {
         return Class::Diverged {
             time: Some(t),
             reason: format!(

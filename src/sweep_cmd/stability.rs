@@ -153,12 +153,20 @@ fn classify_run(
             } else {
                 None
             };
+            // The reference's energy is a floor under the supplied energy.
+            let floor = reference
+                .and_then(|r| audit(&r.trace, &case.scene, "reference").ok())
+                .map_or(0.0, |h| h.supplied.iter().fold(0.0_f64, |a, &b| a.max(b)));
+            let criteria = Criteria {
+                energy_floor: floor,
+                ..*criteria
+            };
             let class = classify(
                 Ok(&run.status),
                 &run.trace,
                 energy.as_ref().ok(),
                 error,
-                criteria,
+                &criteria,
             );
             (class, error, energy.map(|h| h.summary()))
         }
@@ -272,6 +280,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                 variant,
                 cases,
                 &periods,
+                &references,
                 &runs,
                 &criteria,
             )
@@ -307,6 +316,7 @@ fn limit_of(
     variant: &str,
     cases: &[Case],
     periods: &[f64],
+    references: &[Result<ReferenceResult, String>],
     runs: &[StabilityRun],
     criteria: &Criteria,
 ) -> Limit {
@@ -346,7 +356,7 @@ fn limit_of(
             .filter_map(|name| {
                 let ci = cases.iter().position(|c| &c.name == name)?;
                 let (case, t) = (&cases[ci], periods[ci]);
-                let reference = None; // divergence does not need the error
+                let reference = references[ci].as_ref().ok();
                 let (mut lo, mut hi) = (lo0, first);
                 for _ in 0..BISECTIONS {
                     let mid = 0.5 * (lo + hi);
