@@ -20,8 +20,8 @@ pub struct Criteria {
     /// times the most energy ever supplied to it has created energy (default 1.0: twice
     /// the most it was given).
     pub growth_factor: f64,
-    /// The least energy counted as supplied, J: the most energy the exact reference was
-    /// ever given, when there is one (0: none).
+    /// The least energy counted as supplied, J (the `stability` command uses 1 % of the
+    /// most energy the exact reference was ever given, when there is one; 0: none).
     pub energy_floor: f64,
 }
 
