@@ -140,14 +140,23 @@ fn starved_newton_is_not_converged_with_time_and_residual() {
         } else {
             None
         };
-        classify(Ok(&run.status), &run.trace, None, error, &Criteria::default())
+        classify(
+            Ok(&run.status),
+            &run.trace,
+            None,
+            error,
+            &Criteria::default(),
+        )
     };
     let c = class(0.05);
     match &c {
         Class::NotConverged { time, reason } => {
             // Measured: t = 0.4000 s, "2 iterations: relative residual 4.945e-5".
             assert!((time - 0.4).abs() < 1e-6, "{time}");
-            assert!(reason.contains("2 iterations") && reason.contains("residual"), "{reason}");
+            assert!(
+                reason.contains("2 iterations") && reason.contains("residual"),
+                "{reason}"
+            );
         }
         other => panic!("expected not converged, got {other:?}"),
     }

@@ -118,7 +118,12 @@ fn audit_closes_on_the_rigid_block_references() {
     let case = load_case(Path::new("cases/housner-free-rocking.toml")).unwrap();
     let r = solve_reference(&case).unwrap();
     let s = audit(&r.trace, &case.scene, "reference").unwrap().summary();
-    assert!(s.impact > 0.25 * s.supplied, "impact {} of {}", s.impact, s.supplied);
+    assert!(
+        s.impact > 0.25 * s.supplied,
+        "impact {} of {}",
+        s.impact,
+        s.supplied
+    );
 }
 
 /// A rocking body on ten elastic supports cannot be audited from its trace: the message
@@ -128,5 +133,24 @@ fn rocking_body_audit_names_the_missing_channels() {
     let case = load_case(Path::new("cases/rpepo-mass-accel.toml")).unwrap();
     let t = rockslide::trace::Trace::default();
     let why = audit(&t, &case.scene, "single").unwrap_err();
-    assert!(why.contains("tangential force") && why.contains("energy_error"), "{why}");
+    assert!(
+        why.contains("tangential force") && why.contains("energy_error"),
+        "{why}"
+    );
+}
+
+#[test]
+#[ignore]
+fn explore_mu_large_rapier() {
+    let case = load_case(Path::new("cases/stability/mu-large.toml")).unwrap();
+    let rap = engine::all()
+        .into_iter()
+        .find(|e| e.id() == "rapier")
+        .unwrap();
+    let run = rap.run(&case, "applied-force", 0.2).unwrap();
+    for (c, col) in run.trace.channels.iter().zip(&run.trace.columns) {
+        println!("{}: {:?}", c.key, col);
+    }
+    let h = audit(&run.trace, &case.scene, "applied-force").unwrap();
+    println!("{:?}", h.summary());
 }

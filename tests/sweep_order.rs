@@ -132,7 +132,11 @@ fn the_cost_budget_caps_rungs_and_says_so() {
     for s in &r.series {
         assert_eq!(s.rungs.len(), 3, "{}", s.label);
         let k = s.skipped.as_ref().expect("skipped");
-        assert!((k.from_dt - r.period.0 / 80.0).abs() < 1e-15, "{}", k.from_dt);
+        assert!(
+            (k.from_dt - r.period.0 / 80.0).abs() < 1e-15,
+            "{}",
+            k.from_dt
+        );
     }
     let md = rockslide::sweep_cmd::sweep::sweep_markdown(&r);
     assert!(md.contains("**Cost budget:** 3 of 8 rungs run"), "{md}");

@@ -130,17 +130,21 @@ impl EnergyHistory {
         self.growth_time_above(factor, 0.0)
     }
 
-    /// As [`Self::growth_time`], with the supplied energy never counted below `floor`, J
-    /// (the most energy the exact solution was ever given): a run whose trace shows no
-    /// input at all — a force sampled only at its zeros — is still caught when its energy
-    /// runs away.
-    pub fn growth_time_above(&self, factor: f64, floor: f64) -> Option<(f64, f64)> {
-        let mut supplied_max = floor.max(0.0);
+    /// As [`Self::growth_time`], and also the first time the accounted energy exceeds
+    /// `ceiling`, J (when positive): an absolute limit — the `stability` command uses
+    /// 100 times the most energy the exact solution was ever given — that catches a
+    /// run whose trace shows no input at all (rapier at Δt = T samples the half-sine
+    /// force at its zeros while applying its step mean) and still blows up.
+    pub fn growth_time_above(&self, factor: f64, ceiling: f64) -> Option<(f64, f64)> {
+        let mut supplied_max = 0.0_f64;
         for i in 0..self.time.len() {
             supplied_max = supplied_max.max(self.supplied[i]);
             let accounted = self.accounted(i);
             if supplied_max > 0.0 && accounted > (1.0 + factor) * supplied_max {
                 return Some((self.time[i], accounted / supplied_max));
+            }
+            if ceiling > 0.0 && accounted > ceiling {
+                return Some((self.time[i], accounted / supplied_max.max(ceiling / 100.0)));
             }
         }
         None
