@@ -138,19 +138,3 @@ fn rocking_body_audit_names_the_missing_channels() {
         "{why}"
     );
 }
-
-#[test]
-#[ignore]
-fn explore_mu_large_rapier() {
-    let case = load_case(Path::new("cases/stability/mu-large.toml")).unwrap();
-    let rap = engine::all()
-        .into_iter()
-        .find(|e| e.id() == "rapier")
-        .unwrap();
-    let run = rap.run(&case, "applied-force", 0.2).unwrap();
-    for (c, col) in run.trace.channels.iter().zip(&run.trace.columns) {
-        println!("{}: {:?}", c.key, col);
-    }
-    let h = audit(&run.trace, &case.scene, "applied-force").unwrap();
-    println!("{:?}", h.summary());
-}

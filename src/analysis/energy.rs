@@ -136,11 +136,15 @@ impl EnergyHistory {
     /// run whose trace shows no input at all (rapier at Δt = T samples the half-sine
     /// force at its zeros while applying its step mean) and still blows up.
     pub fn growth_time_above(&self, factor: f64, ceiling: f64) -> Option<(f64, f64)> {
+        // Rows where less than 1 % of the run's largest supplied energy has come in are
+        // not judged: there the trapezoidal input work of the first steps of a steep
+        // pulse (10 g in one step) is too coarse for a ratio to mean anything.
+        let total = self.supplied.iter().fold(0.0_f64, |a, &b| a.max(b));
         let mut supplied_max = 0.0_f64;
         for i in 0..self.time.len() {
             supplied_max = supplied_max.max(self.supplied[i]);
             let accounted = self.accounted(i);
-            if supplied_max > 0.0 && accounted > (1.0 + factor) * supplied_max {
+            if supplied_max > 0.01 * total && accounted > (1.0 + factor) * supplied_max {
                 return Some((self.time[i], accounted / supplied_max));
             }
             if ceiling > 0.0 && accounted > ceiling {
