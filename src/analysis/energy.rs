@@ -17,9 +17,13 @@
 //! e = R/K_s, ∫ R de = ΔU holds exactly row by row, so an audit of a correct trace
 //! closes to the accuracy of ∫F dx and ∫C v dx alone. The balance error is
 //! E0 + W − (K + U + D_f + D_c), E0 the energy at the first row (it contains any
-//! velocity jump at t = 0). Traces lacking a channel, and scenes this audit cannot
-//! describe (rocking bodies, rigid blocks — no velocity channels for the body), are
-//! skipped with a reason rather than guessed at.
+//! velocity jump at t = 0).
+//!
+//! A rigid block (Newmark, Housner) is audited in the ground's frame with its rotation,
+//! gravity potential, friction work and impact losses (see `audit_block`). A rocking body
+//! on elastic supports (RPEPO) is not: its trace carries only sums over the supports, not
+//! the per-support forces its strain energy needs ([`ROCKING_MISSING`] says so). Traces
+//! lacking a channel are skipped with a reason rather than guessed at.
 
 use crate::case::{Excitation, Model, Scene};
 use crate::trace::{Trace, q};
@@ -348,8 +352,8 @@ fn audit_block(
         }
     }
     let mut booked = 0.0;
-    for i in 1..n {
-        if in_window[i] {
+    for (i, &impact) in in_window.iter().enumerate().skip(1) {
+        if impact {
             let before = h.supplied[i - 1] - h.accounted(i - 1);
             let now = h.supplied[i] - (h.accounted(i) - h.impact[i]) - booked;
             booked += now - before;

@@ -84,7 +84,7 @@ impl Options {
             return Err(Error::Other("--repeats must be at least 1".into()));
         }
         if let Some(b) = self.budget
-            && !(b > 0.0)
+            && (b.is_nan() || b <= 0.0)
         {
             return Err(Error::Other(format!(
                 "--budget is {b} s, but must be a positive number of seconds"

@@ -321,6 +321,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
 /// Bracket the first divergence of one engine variant on the ladder, then bisect it on
 /// every scene that diverged there (in parallel; the smallest bracket wins). Bisection
 /// assumes that once a scene diverges, larger steps diverge too.
+#[allow(clippy::too_many_arguments)]
 fn limit_of(
     label: &str,
     engine: &dyn Engine,
