@@ -139,6 +139,9 @@ pub enum Command {
         /// Worker threads (default: all cores).
         #[arg(long, short)]
         jobs: Option<usize>,
+        /// Wall-time budget per engine variant, s (0: none); rungs beyond it are skipped.
+        #[arg(long, default_value_t = crate::sweep_cmd::DEFAULT_BUDGET)]
+        budget: f64,
     },
     /// Run the stiff and extreme scenes and classify every run (accurate, inaccurate,
     /// diverged, not converged); map and stability limits in `<out>/stability/`.
@@ -201,6 +204,7 @@ pub fn main(cli: Cli) -> ExitCode {
             ratio,
             repeats,
             jobs,
+            budget,
         }) => crate::sweep_cmd::sweep::command(
             &cases,
             &out,
@@ -210,6 +214,7 @@ pub fn main(cli: Cli) -> ExitCode {
                 repeats,
                 jobs,
                 quiet: cli.quiet,
+                budget: (budget > 0.0).then_some(budget),
             },
         ),
         Some(Command::Stability { cases, out, jobs }) => crate::sweep_cmd::stability::command(

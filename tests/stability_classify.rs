@@ -119,3 +119,46 @@ fn a_panicking_engine_is_a_diverged_result() {
     );
     assert!(c.diverged() && c.time().is_none());
 }
+
+/// FE on the stiffest double arrangement (Kx1/Kx2 = 1e6) with at most 2 Newton
+/// iterations per step (`cases/stability/stiff-ratio-1e6-newton-2.toml`): at Δt = T/20
+/// the first slip needs more, and the run is classified `not converged` with its time and
+/// residual (measured: t = 0.4 s, relative residual 4.9e-5 after 2 iterations) while a
+/// finer run with the same budget converges and is accurate.
+#[test]
+fn starved_newton_is_not_converged_with_time_and_residual() {
+    let case = load_case(Path::new("cases/stability/stiff-ratio-1e6-newton-2.toml")).unwrap();
+    let fe = engine::all().into_iter().find(|e| e.id() == "fe").unwrap();
+    let t = characteristic_period(&case).0;
+    let exact = reference::for_case(&case).unwrap();
+    let class = |ratio: f64| {
+        let timed = run_timed(fe.as_ref(), &case, "double", ratio * t, 1).unwrap();
+        let run = timed.run.unwrap();
+        let at = reference::sample(exact.as_ref(), &run.trace.time);
+        let error = if run.status.completed() {
+            history_difference(&run.trace, &at, "rel_disp").map(|e| e.0)
+        } else {
+            None
+        };
+        classify(
+            Ok(&run.status),
+            &run.trace,
+            None,
+            error,
+            &Criteria::default(),
+        )
+    };
+    let c = class(0.05);
+    match &c {
+        Class::NotConverged { time, reason } => {
+            // Measured: t = 0.4000 s, "2 iterations: relative residual 4.945e-5".
+            assert!((time - 0.4).abs() < 1e-6, "{time}");
+            assert!(
+                reason.contains("2 iterations") && reason.contains("residual"),
+                "{reason}"
+            );
+        }
+        other => panic!("expected not converged, got {other:?}"),
+    }
+    assert_eq!(class(0.01), Class::Accurate);
+}

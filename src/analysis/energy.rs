@@ -17,9 +17,13 @@
 //! e = R/K_s, ∫ R de = ΔU holds exactly row by row, so an audit of a correct trace
 //! closes to the accuracy of ∫F dx and ∫C v dx alone. The balance error is
 //! E0 + W − (K + U + D_f + D_c), E0 the energy at the first row (it contains any
-//! velocity jump at t = 0). Traces lacking a channel, and scenes this audit cannot
-//! describe (rocking bodies, rigid blocks — no velocity channels for the body), are
-//! skipped with a reason rather than guessed at.
+//! velocity jump at t = 0).
+//!
+//! A rigid block (Newmark, Housner) is audited in the ground's frame with its rotation,
+//! gravity potential, friction work and impact losses (see `audit_block`). A rocking body
+//! on elastic supports (RPEPO) is not: its trace carries only sums over the supports, not
+//! the per-support forces its strain energy needs ([`ROCKING_MISSING`] says so). Traces
+//! lacking a channel are skipped with a reason rather than guessed at.
 
 use crate::case::{Excitation, Model, Scene};
 use crate::trace::{Trace, q};
@@ -39,6 +43,12 @@ pub struct EnergyHistory {
     pub friction: Vec<f64>,
     /// Damping work ∫C v dx.
     pub damping: Vec<f64>,
+    /// Gravity potential M·g·z_cm above the static position (rigid blocks; 0 for
+    /// oscillators, whose normal motion is not part of the balance).
+    pub potential: Vec<f64>,
+    /// Energy lost in impacts (rigid blocks: the balance residual booked in a window
+    /// around each pivot change; 0 for oscillators).
+    pub impact: Vec<f64>,
     /// The stiffness used for the strain energy, N/m, and why (for reports).
     pub stiffness: (f64, &'static str),
 }
@@ -56,6 +66,10 @@ pub struct EnergySummary {
     pub friction: f64,
     /// Damping work at the end, J.
     pub damping: f64,
+    /// Gravity potential at the end, J.
+    pub potential: f64,
+    /// Impact losses at the end, J.
+    pub impact: f64,
     /// Largest |balance error| over the run, J.
     pub max_error: f64,
     /// Balance error at the end (supplied − accounted), J: positive means energy lost
@@ -73,9 +87,14 @@ impl EnergyHistory {
         self.supplied[i] - self.accounted(i)
     }
 
-    /// K + U + D_f + D_c at row `i`, J.
+    /// K + U + V + D_f + D_c + D_i at row `i`, J.
     pub fn accounted(&self, i: usize) -> f64 {
-        self.kinetic[i] + self.strain[i] + self.friction[i] + self.damping[i]
+        self.kinetic[i]
+            + self.strain[i]
+            + self.potential[i]
+            + self.friction[i]
+            + self.damping[i]
+            + self.impact[i]
     }
 
     /// The run in a few numbers.
@@ -96,6 +115,8 @@ impl EnergyHistory {
             strain: self.strain[last],
             friction: self.friction[last],
             damping: self.damping[last],
+            potential: self.potential[last],
+            impact: self.impact[last],
             max_error,
             end_error: self.error(last),
             scale,
@@ -110,12 +131,28 @@ impl EnergyHistory {
     /// input work — a force pushing against the motion — from counting as growth.)
     /// Returns the time and the ratio.
     pub fn growth_time(&self, factor: f64) -> Option<(f64, f64)> {
+        self.growth_time_above(factor, 0.0)
+    }
+
+    /// As [`Self::growth_time`], and also the first time the accounted energy exceeds
+    /// `ceiling`, J (when positive): an absolute limit — the `stability` command uses
+    /// 100 times the most energy the exact solution was ever given — that catches a
+    /// run whose trace shows no input at all (rapier at Δt = T samples the half-sine
+    /// force at its zeros while applying its step mean) and still blows up.
+    pub fn growth_time_above(&self, factor: f64, ceiling: f64) -> Option<(f64, f64)> {
+        // Rows where less than 1 % of the run's largest supplied energy has come in are
+        // not judged: there the trapezoidal input work of the first steps of a steep
+        // pulse (10 g in one step) is too coarse for a ratio to mean anything.
+        let total = self.supplied.iter().fold(0.0_f64, |a, &b| a.max(b));
         let mut supplied_max = 0.0_f64;
         for i in 0..self.time.len() {
             supplied_max = supplied_max.max(self.supplied[i]);
             let accounted = self.accounted(i);
-            if supplied_max > 0.0 && accounted > (1.0 + factor) * supplied_max {
+            if supplied_max > 0.01 * total && accounted > (1.0 + factor) * supplied_max {
                 return Some((self.time[i], accounted / supplied_max));
+            }
+            if ceiling > 0.0 && accounted > ceiling {
+                return Some((self.time[i], accounted / supplied_max.max(ceiling / 100.0)));
             }
         }
         None
@@ -126,12 +163,8 @@ impl EnergyHistory {
 pub fn audit(trace: &Trace, scene: &Scene, variant: &str) -> Result<EnergyHistory, String> {
     let osc = match &scene.model {
         Model::Oscillator(o) => o,
-        other => {
-            return Err(format!(
-                "energy audit not available for a {}: the trace format has no body velocities (centre-of-mass and angular velocity) to compute its kinetic energy from",
-                other.kind()
-            ));
-        }
+        Model::RigidBlock(b) => return audit_block(trace, scene, b),
+        Model::RockingBody(_) => return Err(ROCKING_MISSING.into()),
     };
     let keys = [
         q::FORCE.key,
@@ -186,6 +219,8 @@ pub fn audit(trace: &Trace, scene: &Scene, variant: &str) -> Result<EnergyHistor
         strain: vec![0.0; n],
         friction: vec![0.0; n],
         damping: vec![0.0; n],
+        potential: vec![0.0; n],
+        impact: vec![0.0; n],
         stiffness,
     };
     let strain = |r: f64| if k.is_finite() { 0.5 * r * r / k } else { 0.0 };
@@ -206,6 +241,124 @@ pub fn audit(trace: &Trace, scene: &Scene, variant: &str) -> Result<EnergyHistor
         h.strain[i] = strain(r[i]);
         h.friction[i] = h.friction[i - 1] + 0.5 * (r[i - 1] + r[i]) * (xp[i] - xp[i - 1]);
         h.damping[i] = h.damping[i - 1] + c * 0.5 * (v[i - 1] + v[i]) * dx;
+    }
+    Ok(h)
+}
+
+/// Why a rocking body on elastic supports (RPEPO) is not audited.
+pub const ROCKING_MISSING: &str = "energy audit not available for a rocking body: its strain energy Σ½T_i²/Kx + Σ½N_i²/Kz and friction work Σ∫T_i ds_i need each support's tangential force T_i (or slip s_i) and normal force N_i, and the trace carries only their sums (base_shear, normal) and the slip's mean and spread (slide, slide_spread); a per-run `energy_error` channel (q::ENERGY_ERROR) recorded by the engine from its own element states would close the gap";
+
+/// Window around a pivot change in which the balance residual is booked as impact loss, s.
+pub const IMPACT_WINDOW: f64 = 0.01;
+
+/// The audit of a rigid block on a rigid ground (Newmark sliding, Housner rocking), in
+/// the ground's frame:
+///
+/// - kinetic  K = ½M(ẋ² + ż²) + ½I_G·φ̇², I_G = M(b² + h²)/3 of the uniform 2b × 2h block;
+///   ẋ from `vel` (the centre of mass's horizontal velocity), else from `cm_x`; ż and φ̇
+///   from `cm_z` and `rotation` by central differences (zero when the trace has no such
+///   channel: a sliding-only model);
+/// - potential V = M·g·z (z = `cm_z`, from the resting position);
+/// - input work W = ∫F dx_cm (trapezoidal; F from the `force` channel, else from the
+///   scene: M·a(t), or −M·ag(t) in the ground's frame);
+/// - friction D_f = ∫R dxp (`resistance`, `slide`) when the trace has both;
+/// - impact losses D_i (Housner 1963: the plastic impact when the pivot changes corner
+///   loses 1 − r² of the kinetic energy): the balance residual accumulated within
+///   ±[`IMPACT_WINDOW`] of each sign change of `rotation`. What is left is the error.
+fn audit_block(
+    trace: &Trace,
+    scene: &Scene,
+    b: &crate::case::RigidBlock,
+) -> Result<EnergyHistory, String> {
+    let n = trace.len();
+    if n < 3 {
+        return Err("energy audit skipped: the trace has fewer than three rows".into());
+    }
+    let x = trace
+        .column(q::CM_X.key)
+        .or_else(|| trace.column(q::REL_DISP.key))
+        .ok_or("energy audit skipped: the trace has neither cm_x nor rel_disp")?;
+    let force: Vec<f64> = match trace.column(q::FORCE.key) {
+        Some(f) => f.to_vec(),
+        None => {
+            let m = b.mass;
+            let f: Box<dyn Fn(f64) -> f64> = match &scene.excitation {
+                Excitation::None => Box::new(|_| 0.0),
+                Excitation::MassAcceleration(s) => Box::new(move |t| m * s.value(t)),
+                Excitation::GroundAcceleration(s) => Box::new(move |t| -m * s.value(t)),
+                Excitation::GroundDisplacement(_) => {
+                    return Err("energy audit skipped: a block under ground displacement needs the trace's force channel (the ground's velocity jumps are impulses)".into());
+                }
+            };
+            trace.time.iter().map(|&t| f(t)).collect()
+        }
+    };
+    let t = &trace.time;
+    // Central differences inside, one-sided at the ends.
+    let rate = |c: &[f64]| -> Vec<f64> {
+        (0..n)
+            .map(|i| {
+                let (a, z) = (i.saturating_sub(1), (i + 1).min(n - 1));
+                (c[z] - c[a]) / (t[z] - t[a])
+            })
+            .collect()
+    };
+    let vx = match trace.column(q::VEL.key) {
+        Some(v) => v.to_vec(),
+        None => rate(x),
+    };
+    let zero = vec![0.0; n];
+    let z = trace.column(q::CM_Z.key).unwrap_or(&zero);
+    let phi = trace.column(q::ROTATION.key).unwrap_or(&zero);
+    let (vz, w) = (rate(z), rate(phi));
+    let m = b.mass;
+    let inertia = m * (b.half_width.powi(2) + b.half_height.powi(2)) / 3.0;
+    let friction = match (trace.column(q::RESISTANCE.key), trace.column(q::SLIDE.key)) {
+        (Some(r), Some(s)) => Some((r, s)),
+        _ => None,
+    };
+    let mut h = EnergyHistory {
+        time: t.clone(),
+        supplied: vec![0.0; n],
+        kinetic: vec![0.0; n],
+        strain: vec![0.0; n],
+        friction: vec![0.0; n],
+        damping: vec![0.0; n],
+        potential: vec![0.0; n],
+        impact: vec![0.0; n],
+        stiffness: (f64::INFINITY, "rigid block: no strain energy"),
+    };
+    for i in 0..n {
+        h.kinetic[i] = 0.5 * m * (vx[i] * vx[i] + vz[i] * vz[i]) + 0.5 * inertia * w[i] * w[i];
+        h.potential[i] = m * b.gravity * z[i];
+    }
+    h.supplied[0] = h.kinetic[0] + h.potential[0];
+    for i in 1..n {
+        h.supplied[i] = h.supplied[i - 1] + 0.5 * (force[i - 1] + force[i]) * (x[i] - x[i - 1]);
+        if let Some((r, s)) = friction {
+            h.friction[i] = h.friction[i - 1] + 0.5 * (r[i - 1] + r[i]) * (s[i] - s[i - 1]);
+        }
+    }
+    // Impacts: rows within the window of a pivot change (rotation changes sign).
+    let mut in_window = vec![false; n];
+    for i in 1..n {
+        if phi[i - 1] * phi[i] < 0.0 || (phi[i] == 0.0 && phi[i - 1] != 0.0) {
+            let (lo, hi) = (t[i] - IMPACT_WINDOW, t[i] + IMPACT_WINDOW);
+            for (k, flag) in in_window.iter_mut().enumerate() {
+                if t[k] >= lo && t[k] <= hi {
+                    *flag = true;
+                }
+            }
+        }
+    }
+    let mut booked = 0.0;
+    for (i, &impact) in in_window.iter().enumerate().skip(1) {
+        if impact {
+            let before = h.supplied[i - 1] - h.accounted(i - 1);
+            let now = h.supplied[i] - (h.accounted(i) - h.impact[i]) - booked;
+            booked += now - before;
+        }
+        h.impact[i] = booked;
     }
     Ok(h)
 }

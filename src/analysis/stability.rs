@@ -20,6 +20,10 @@ pub struct Criteria {
     /// times the most energy ever supplied to it has created energy (default 1.0: twice
     /// the most it was given).
     pub growth_factor: f64,
+    /// Absolute energy ceiling, J: a run whose stored plus dissipated energy exceeds it
+    /// has diverged whatever its trace says it was given (the `stability` command uses
+    /// 100 times the most energy the exact reference was ever given; 0: none).
+    pub energy_ceiling: f64,
 }
 
 impl Default for Criteria {
@@ -27,6 +31,7 @@ impl Default for Criteria {
         Criteria {
             accuracy: 0.05,
             growth_factor: 1.0,
+            energy_ceiling: 0.0,
         }
     }
 }
@@ -137,11 +142,13 @@ pub fn classify(
             reason: format!("{key} is not finite"),
         };
     }
-    if let Some((t, ratio)) = energy.and_then(|h| h.growth_time(criteria.growth_factor)) {
+    if let Some((t, ratio)) =
+        energy.and_then(|h| h.growth_time_above(criteria.growth_factor, criteria.energy_ceiling))
+    {
         return Class::Diverged {
             time: Some(t),
             reason: format!(
-                "energy growth: stored + dissipated energy is {ratio:.3} times the most energy ever supplied"
+                "energy growth: stored + dissipated energy is {ratio:.3} times the most energy ever supplied (to the run, or to the exact solution when the run's trace shows less)"
             ),
         };
     }

@@ -39,7 +39,18 @@ pub struct Options {
     pub jobs: Option<usize>,
     /// No progress bar.
     pub quiet: bool,
+    /// Sweep only: wall-time budget per engine variant, s (all repeats of all its rungs).
+    /// Rungs are run coarse to fine; a rung whose projected cost (the previous rung's
+    /// time scaled by its step count) would overrun the budget is run once instead of
+    /// `repeats` times, and skipped — with every finer rung — when even one run would.
+    /// The first three rungs always run (an order needs three). `None`: no budget.
+    pub budget: Option<f64>,
 }
+
+/// Default wall-time budget of one engine variant in a sweep, s: rapier at 16 substeps
+/// costs about 0.1–0.2 ms per step, so its finest PEPO rungs (T/1280: 6400 steps) take
+/// about a second each; a rocking body's cost ten times that.
+pub const DEFAULT_BUDGET: f64 = 20.0;
 
 impl Default for Options {
     fn default() -> Self {
@@ -49,6 +60,7 @@ impl Default for Options {
             repeats: 3,
             jobs: None,
             quiet: false,
+            budget: Some(DEFAULT_BUDGET),
         }
     }
 }
@@ -70,6 +82,13 @@ impl Options {
         }
         if self.repeats == 0 {
             return Err(Error::Other("--repeats must be at least 1".into()));
+        }
+        if let Some(b) = self.budget
+            && (b.is_nan() || b <= 0.0)
+        {
+            return Err(Error::Other(format!(
+                "--budget is {b} s, but must be a positive number of seconds"
+            )));
         }
         if self.jobs == Some(0) {
             return Err(Error::Other("--jobs must be at least 1".into()));

@@ -13,18 +13,20 @@ use std::process::ExitCode;
 
 use rayon::prelude::*;
 
-use super::{Options, Series, Timed, applicable, characteristic_period, progress, run_timed, sci};
+use super::{Options, Timed, applicable, characteristic_period, progress, run_timed, sci};
 use crate::analysis::energy::{EnergySummary, audit};
+use crate::analysis::history_difference;
 use crate::analysis::responses;
 use crate::analysis::sweep::{
     Richardson, RungError, fitted_order, ladder, local_orders, resample, richardson, rung_error,
 };
-use crate::case::{Case, load_case};
+use crate::case::{Case, OptionValue, load_case};
 use crate::engine::{self, RunStatus};
 use crate::error::{Error, InputErrors};
 use crate::io::write_atomically;
 use crate::reference;
 use crate::suite::solve_reference;
+use crate::trace::q;
 
 /// One rung of one series.
 #[derive(Debug, Clone)]
@@ -37,6 +39,8 @@ pub struct Rung {
     pub status: Result<RunStatus, String>,
     /// Steps taken (the engine's `steps` counter, else trace rows − 1).
     pub steps: u64,
+    /// Solver substeps per step, for an engine that counts them (rapier).
+    pub substeps: Option<f64>,
     /// Wall time (median, min, max) over the repeats, s.
     pub seconds: (f64, f64, f64),
     /// Repeats timed.
@@ -51,6 +55,20 @@ pub struct Rung {
     pub residual_sliding: Option<f64>,
     /// Energy audit, or why there is none.
     pub energy: Result<EnergySummary, String>,
+    /// Self-convergence: max |x − x_next| / peak against the next finer rung of the same
+    /// series (`None` for the finest rung or a failed run).
+    pub change: Option<f64>,
+}
+
+/// Where the cost budget stopped a series.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Skipped {
+    /// The first rung not run (this and every finer rung), s.
+    pub from_dt: f64,
+    /// Its projected wall time for one run, s.
+    pub projected: f64,
+    /// Wall time already spent on the series, s.
+    pub spent: f64,
 }
 
 impl Rung {
@@ -80,6 +98,18 @@ pub struct SeriesResult {
     pub local_orders: Vec<Option<f64>>,
     /// Richardson estimates from the three finest completed rungs: (quantity, estimate).
     pub richardson: Vec<(&'static str, Option<Richardson>)>,
+    /// Self-convergence order: least-squares slope of ln(change to the next rung) against
+    /// ln Δt — the method's own order even where its converged solution is not the exact
+    /// one (a model error, e.g. rapier's foot mass, puts a floor under the exact error).
+    pub self_order: Option<f64>,
+    /// Self-convergence order between consecutive changes (one per pair of rungs that
+    /// both have a change).
+    pub self_local_orders: Vec<Option<f64>>,
+    /// Both orders fitted on the finest four rungs only (the asymptotic range, where
+    /// the coarse rungs are not): (against the basis, self-convergence).
+    pub fine_orders: (Option<f64>, Option<f64>),
+    /// Where the cost budget stopped the series, if it did.
+    pub skipped: Option<Skipped>,
 }
 
 /// A whole sweep of one case.
@@ -105,47 +135,109 @@ pub struct SweepResult {
     pub not_applicable: Vec<(&'static str, String)>,
     /// Worker threads used.
     pub threads: usize,
+    /// Wall-time budget per series, s.
+    pub budget: Option<f64>,
+    /// Options the sweep set for itself, in words.
+    pub overrides: Vec<String>,
+    /// Rungs of the full ladder.
+    pub planned_rungs: usize,
 }
 
-/// Sweep one case.
+/// Options a sweep sets for itself (unless the case sets them): runs that only feed a
+/// report, not the error of the run, are switched off so the timing is the method's.
+/// (engine, option, value, why)
+pub const SWEEP_OVERRIDES: &[(&str, &str, bool, &str)] = &[(
+    "fe",
+    "sensitivity",
+    false,
+    "the FE engine's rotational-inertia and P-Delta sensitivity reruns (four extra runs of a rocking body) are not part of the method's cost",
+)];
+
+/// The case as the sweep runs it: [`SWEEP_OVERRIDES`] applied where the case is silent.
+/// Returns the case and the overrides applied.
+pub fn prepare(case: &Case) -> (Case, Vec<String>) {
+    let mut case = case.clone();
+    let mut applied = Vec::new();
+    for (engine, key, value, why) in SWEEP_OVERRIDES {
+        let section = case.engines.entry(engine.to_string()).or_default();
+        if !section.options.contains_key(*key) {
+            section
+                .options
+                .insert(key.to_string(), OptionValue::Bool(*value));
+            applied.push(format!("`[engines.{engine}] {key} = {value}`: {why}"));
+        }
+    }
+    (case, applied)
+}
+
+/// Sweep one case. Rungs are run in waves, coarse to fine: every series' rung k in
+/// parallel, then the budget decides which series go on to rung k + 1.
 pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
     opts.validate()?;
+    let (case, overrides) = prepare(case);
+    let case = &case;
     let engines = engine::all();
     let (series, not_applicable) = applicable(case, &engines)?;
     let period = characteristic_period(case);
     let dts = ladder(period.0 / 10.0, opts.ratio, opts.rungs);
-    let tasks: Vec<(&Series, f64)> = series
-        .iter()
-        .flat_map(|s| dts.iter().map(move |&dt| (s, dt)))
-        .collect();
-    let bar = progress(tasks.len(), opts.quiet, &case.name);
-    let (timed, reference, threads) = opts.install(|| {
-        let (timed, reference) = rayon::join(
-            || {
-                tasks
-                    .par_iter()
-                    .map(|(s, dt)| {
-                        let r = run_timed(
-                            engines[s.engine].as_ref(),
-                            case,
-                            &s.variant,
-                            *dt,
-                            opts.repeats,
-                        );
-                        bar.inc(1);
-                        r
-                    })
-                    .collect::<Vec<_>>()
-            },
-            || solve_reference(case),
-        );
-        (timed, reference, rayon::current_num_threads())
-    })?;
+    let bar = progress(series.len() * dts.len(), opts.quiet, &case.name);
+    // Per series: the timed rungs so far, wall time spent, and why it stopped (if it did).
+    let mut done: Vec<Vec<Timed>> = vec![Vec::new(); series.len()];
+    let mut spent = vec![0.0_f64; series.len()];
+    let mut stopped: Vec<Option<Skipped>> = vec![None; series.len()];
+    let (reference, threads) = opts.install(|| -> Result<_, InputErrors> {
+        let reference = solve_reference(case);
+        for (k, &dt) in dts.iter().enumerate() {
+            // Plan the wave: which series run rung k, with how many repeats.
+            let mut wave: Vec<(usize, usize)> = Vec::new();
+            for si in 0..series.len() {
+                if stopped[si].is_some() {
+                    continue;
+                }
+                let projected = done[si].last().map(|t| {
+                    let (med, _, _) = t.time_stats();
+                    let steps_prev = engine::step_count(case.run.duration, dts[k - 1]) as f64;
+                    let steps = engine::step_count(case.run.duration, dt) as f64;
+                    med * steps / steps_prev
+                });
+                let repeats = match (opts.budget, projected) {
+                    (Some(b), Some(p)) if k >= 3 => {
+                        let left = b - spent[si];
+                        if p * opts.repeats as f64 <= left {
+                            opts.repeats
+                        } else if p <= left {
+                            1
+                        } else {
+                            stopped[si] = Some(Skipped {
+                                from_dt: dt,
+                                projected: p,
+                                spent: spent[si],
+                            });
+                            continue;
+                        }
+                    }
+                    _ => opts.repeats,
+                };
+                wave.push((si, repeats));
+            }
+            let timed = wave
+                .par_iter()
+                .map(|&(si, repeats)| {
+                    let s = &series[si];
+                    let r = run_timed(engines[s.engine].as_ref(), case, &s.variant, dt, repeats);
+                    bar.inc(1);
+                    r
+                })
+                .collect::<Vec<_>>();
+            for ((si, _), t) in wave.iter().zip(timed) {
+                let t = t?;
+                spent[*si] += t.seconds.iter().sum::<f64>();
+                done[*si].push(t);
+            }
+        }
+        Ok((reference, rayon::current_num_threads()))
+    })??;
     bar.finish_and_clear();
-    let timed: Vec<Timed> = timed
-        .into_iter()
-        .collect::<Result<_, _>>()
-        .map_err(InputErrors::from)?;
 
     let (basis, reference_energy) = match &reference {
         Ok(r) => (
@@ -158,8 +250,7 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
         ),
         Err(why) => (
             format!(
-                "no exact reference ({why}); each engine variant is measured against its own finest rung (Δt = T/10/{:.0}), with a Richardson estimate",
-                opts.ratio.powi(opts.rungs as i32 - 1)
+                "no exact reference ({why}); each engine variant is measured against its own finest completed rung, with a Richardson estimate"
             ),
             None,
         ),
@@ -167,7 +258,7 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
 
     let mut results = Vec::new();
     for (si, s) in series.iter().enumerate() {
-        let block = &timed[si * dts.len()..(si + 1) * dts.len()];
+        let block = &done[si];
         // The basis of this series: the reference, else the finest completed rung.
         let own_basis = if reference.is_ok() {
             None
@@ -180,10 +271,11 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
         let own_resp = own_basis.map(|r| responses(&r.trace));
         let mut rungs = Vec::new();
         for (t, &dt) in block.iter().zip(&dts) {
-            let (status, steps, error, peak, resid, energy) = match &t.run {
+            let (status, steps, substeps, error, peak, resid, energy) = match &t.run {
                 Err(p) => (
                     Err(p.clone()),
                     0,
+                    None,
                     None,
                     None,
                     None,
@@ -191,12 +283,17 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
                 ),
                 Ok(run) => {
                     let resp = responses(&run.trace);
-                    let steps = run
-                        .counters
-                        .iter()
-                        .find(|(k, _)| k == "steps")
-                        .map(|(_, v)| *v)
-                        .unwrap_or(run.trace.len().saturating_sub(1) as u64);
+                    let counter = |name: &str| {
+                        run.counters
+                            .iter()
+                            .find(|(k, _)| k == name)
+                            .map(|(_, v)| *v)
+                    };
+                    let steps =
+                        counter("steps").unwrap_or(run.trace.len().saturating_sub(1) as u64);
+                    let substeps = counter("substeps")
+                        .filter(|_| steps > 0)
+                        .map(|n| n as f64 / steps as f64);
                     let error = if !run.status.completed() {
                         None
                     } else if let Ok(r) = &reference {
@@ -214,6 +311,7 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
                     (
                         Ok(run.status.clone()),
                         steps,
+                        substeps,
                         error,
                         resp.get("peak_relative_displacement").copied(),
                         resp.get("residual_sliding").copied(),
@@ -226,6 +324,7 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
                 dt_over_t: dt / period.0,
                 status,
                 steps,
+                substeps,
                 seconds: t.time_stats(),
                 repeats: t.seconds.len(),
                 deterministic: t.deterministic,
@@ -233,9 +332,22 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
                 peak_displacement: peak,
                 residual_sliding: resid,
                 energy,
+                change: None,
             });
         }
-        results.push(summarise(s.label(), rungs, opts.ratio));
+        // Self-convergence: each rung against the next finer one.
+        for i in 0..rungs.len().saturating_sub(1) {
+            if let (Ok(a), Ok(b)) = (&block[i].run, &block[i + 1].run)
+                && a.status.completed()
+                && b.status.completed()
+            {
+                let at = resample(&b.trace, &a.trace.time);
+                rungs[i].change = history_difference(&a.trace, &at, q::REL_DISP.key).map(|e| e.0);
+            }
+        }
+        let mut r = summarise(s.label(), rungs, opts.ratio);
+        r.skipped = stopped[si].clone();
+        results.push(r);
     }
     Ok(SweepResult {
         case: case.name.clone(),
@@ -248,6 +360,9 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
         series: results,
         not_applicable,
         threads,
+        budget: opts.budget,
+        overrides,
+        planned_rungs: dts.len(),
     })
 }
 
@@ -279,11 +394,22 @@ fn summarise(label: String, rungs: Vec<Rung>, ratio: f64) -> SeriesResult {
             rich.push((name, est));
         }
     }
+    let changes: Vec<(f64, f64)> = rungs
+        .iter()
+        .filter_map(|r| r.change.map(|c| (r.dt, c)))
+        .collect();
     SeriesResult {
         label,
         fitted_order: fitted_order(&points),
         local_orders: local_orders(&points),
         richardson: rich,
+        self_order: fitted_order(&changes),
+        self_local_orders: local_orders(&changes),
+        fine_orders: (
+            fitted_order(&points[points.len().saturating_sub(4)..]),
+            fitted_order(&changes[changes.len().saturating_sub(3)..]),
+        ),
+        skipped: None,
         rungs,
     }
 }
@@ -327,6 +453,24 @@ pub fn sweep_markdown(r: &SweepResult) -> String {
         "- Run time: median (min–max) of the repeats, wall clock, with {} worker threads running rungs in parallel (timings share the machine; use `--jobs 1` for quiet timings).\n",
         r.threads
     );
+    let _ = writeln!(
+        s,
+        "- Self-convergence: \"change\" = max |x − x(next finer rung)| / peak; its slope against Δt is the method's own order, which holds even where the engine converges to something other than the exact solution (a model error puts a floor under the error against the reference)."
+    );
+    match r.budget {
+        Some(b) => {
+            let _ = writeln!(
+                s,
+                "- Cost budget: {b} s of wall time per engine variant (all repeats). Rungs run coarse to fine; a rung projected (previous rung's time × step ratio) past the budget runs once instead of repeating, and is skipped with every finer rung when even one run would overrun. The first three rungs always run."
+            );
+        }
+        None => {
+            let _ = writeln!(s, "- Cost budget: none (every rung of every series ran).");
+        }
+    }
+    for o in &r.overrides {
+        let _ = writeln!(s, "- Sweep setting {o}.");
+    }
     for (id, why) in &r.not_applicable {
         let _ = writeln!(s, "- {id}: not applicable — {why}");
     }
@@ -342,11 +486,34 @@ pub fn sweep_markdown(r: &SweepResult) -> String {
         );
         let _ = writeln!(
             s,
-            "| Δt [s] | Δt/T | status | max error | RMS error | order | resid. sliding err [mm] | event-time err [ms] | energy rel. err | run time [ms] median (min–max) | steps | µs/step | det. |"
+            "Self-convergence order (slope of ln change against ln Δt): **{}**\n",
+            se.self_order.map_or("—".into(), |p| format!("{p:.3}"))
         );
         let _ = writeln!(
             s,
-            "|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
+            "Fitted on the finest four rungs only: against the basis **{}**, self-convergence **{}**\n",
+            se.fine_orders.0.map_or("—".into(), |p| format!("{p:.3}")),
+            se.fine_orders.1.map_or("—".into(), |p| format!("{p:.3}"))
+        );
+        if let Some(k) = &se.skipped {
+            let _ = writeln!(
+                s,
+                "**Cost budget:** {} of {} rungs run; Δt ≤ {:.4e} s skipped (one run projected at {:.2} s, {:.2} s of the {} s budget already spent).\n",
+                se.rungs.len(),
+                r.planned_rungs,
+                k.from_dt,
+                k.projected,
+                k.spent,
+                r.budget.unwrap_or(f64::NAN)
+            );
+        }
+        let _ = writeln!(
+            s,
+            "| Δt [s] | Δt/T | substep [s] | status | max error | RMS error | order | change (order) | resid. sliding err [mm] | event-time err [ms] | energy rel. err | run time [ms] median (min–max) | repeats | steps | µs/step | det. |"
+        );
+        let _ = writeln!(
+            s,
+            "|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|"
         );
         for (i, g) in se.rungs.iter().enumerate() {
             let order = if i == 0 {
@@ -372,13 +539,26 @@ pub fn sweep_markdown(r: &SweepResult) -> String {
             };
             let _ = writeln!(
                 s,
-                "| {:.4e} | {:.5} | {} | {} | {} | {} | {} | {} | {} | {:.3} ({:.3}–{:.3}) | {} | {} | {} |",
+                "| {:.4e} | {:.5} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.3} ({:.3}–{:.3}) | {} | {} | {} | {} |",
                 g.dt,
                 g.dt_over_t,
+                g.substeps
+                    .map_or("—".into(), |n| format!("{:.3e}", g.dt / n)),
                 status,
                 sci(e.map(|e| e.max)),
                 sci(e.map(|e| e.rms)),
                 order,
+                match (
+                    g.change,
+                    i.checked_sub(1)
+                        .and_then(|j| se.self_local_orders.get(j))
+                        .copied()
+                        .flatten()
+                ) {
+                    (Some(c), Some(p)) if se.rungs[i - 1].change.is_some() =>
+                        format!("{c:.3e} ({p:.2})"),
+                    (c, _) => sci(c),
+                },
                 sci(e.and_then(|e| e.residual_sliding).map(|x| x * 1e3)),
                 match e {
                     Some(e) if e.events_missing > 0 => format!(
@@ -392,6 +572,7 @@ pub fn sweep_markdown(r: &SweepResult) -> String {
                 med * 1e3,
                 lo * 1e3,
                 hi * 1e3,
+                g.repeats,
                 g.steps,
                 per_step,
                 if g.deterministic { "yes" } else { "NO" },
@@ -441,7 +622,7 @@ pub fn sweep_markdown(r: &SweepResult) -> String {
 /// The sweep as CSV, one row per rung.
 pub fn sweep_csv(r: &SweepResult) -> String {
     let mut s = String::from(
-        "series,dt_s,dt_over_T,status,max_error,rms_error,residual_sliding_error_m,event_time_error_s,energy_relative_error,time_median_s,time_min_s,time_max_s,steps,deterministic\n",
+        "series,dt_s,dt_over_T,status,max_error,rms_error,residual_sliding_error_m,event_time_error_s,energy_relative_error,time_median_s,time_min_s,time_max_s,steps,deterministic,change_to_next,substeps_per_step,repeats\n",
     );
     let f = |x: Option<f64>| x.map_or(String::new(), |v| format!("{v:e}"));
     for se in &r.series {
@@ -449,7 +630,7 @@ pub fn sweep_csv(r: &SweepResult) -> String {
             let e = g.error;
             let _ = writeln!(
                 s,
-                "{},{:e},{:e},{},{},{},{},{},{},{:e},{:e},{:e},{},{}",
+                "{},{:e},{:e},{},{},{},{},{},{},{:e},{:e},{:e},{},{},{},{},{}",
                 se.label,
                 g.dt,
                 g.dt_over_t,
@@ -463,7 +644,10 @@ pub fn sweep_csv(r: &SweepResult) -> String {
                 g.seconds.1,
                 g.seconds.2,
                 g.steps,
-                g.deterministic
+                g.deterministic,
+                f(g.change),
+                f(g.substeps),
+                g.repeats
             );
         }
     }
@@ -504,10 +688,17 @@ pub fn command(cases: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode
         if !opts.quiet {
             for se in &r.series {
                 println!(
-                    "{}: {}: observed order {}",
+                    "{}: {}: observed order {} (self-convergence {}){}",
                     r.case,
                     se.label,
-                    se.fitted_order.map_or("—".into(), |p| format!("{p:.3}"))
+                    se.fitted_order.map_or("—".into(), |p| format!("{p:.3}")),
+                    se.self_order.map_or("—".into(), |p| format!("{p:.3}")),
+                    se.skipped.as_ref().map_or(String::new(), |k| format!(
+                        "; cost budget: {} of {} rungs, Δt ≤ {:.3e} s skipped",
+                        se.rungs.len(),
+                        r.planned_rungs,
+                        k.from_dt
+                    ))
                 );
             }
             println!("{}: → {}", r.case, dir.join("sweep.md").display());
