@@ -313,7 +313,7 @@ fn rpepo_report_compares_up_to_first_liftoff_and_draws_figs_8_to_11() {
     // Energy audit: the rocking body is not audited, and the report says why.
     assert!(
         md.contains(
-            "## Energy audit\n\nNot audited: energy audit not available for a rocking-body"
+            "## Energy audit\n\nNot audited: energy audit not available for a rocking body"
         )
     );
     // Engines that did not run get a reason under the table, not an n/a column.
