@@ -26,7 +26,8 @@ fn max_rel_diff(
 
 /// With μ = ∞ the event-driven elastic-plastic solution never slips and must equal the
 /// Duhamel closed form (two different formulations: state transition from each event vs
-/// Chopra's transient + steady state). Measured: 2e-15 (mass force), 3e-15 (support).
+/// Chopra's transient + steady state). The issue asks for 1e-9; measured 2.5e-16 (mass
+/// force) and 8.0e-17 (support displacement), so the bound is 1e-13.
 #[test]
 fn exact_elastic_plastic_equals_duhamel_without_slip() {
     for (name, from) in [
@@ -46,15 +47,15 @@ fn exact_elastic_plastic_equals_duhamel_without_slip() {
         let duhamel = Duhamel::new(osc, forcing, case.run.duration).unwrap();
         assert_eq!(exact.slips().len(), 0);
         let d = max_rel_diff(&exact, &duhamel, case.run.duration, 2);
-        assert!(d < 1e-9, "{name}: relative difference {d:e}");
+        assert!(d < 1e-13, "{name}: relative difference {d:e}");
         let dv = max_rel_diff(&exact, &duhamel, case.run.duration, 4);
-        assert!(dv < 1e-9, "{name}: velocity difference {dv:e}");
+        assert!(dv < 1e-13, "{name}: velocity difference {dv:e}");
     }
 }
 
 /// The Duhamel closed form against a direct composite-Simpson quadrature of the Duhamel
 /// integral x(t) = 1/(Mω) ∫ F(τ) sin ω(t − τ) dτ (undamped, mass force). With 20,000
-/// panels the quadrature error is ~1e-13 relative; measured agreement 3e-14.
+/// panels the quadrature error is ~1e-15 relative; measured agreement 4.7e-15.
 #[test]
 fn duhamel_closed_form_equals_quadrature() {
     let case = common::case("linear-sdof");
@@ -79,7 +80,7 @@ fn duhamel_closed_form_equals_quadrature() {
         duhamel.eval(t, &mut out);
         worst = worst.max((out[2] - x).abs() / 1.754935e-3);
     }
-    assert!(worst < 1e-12, "quadrature vs closed form: {worst:e}");
+    assert!(worst < 2e-14, "quadrature vs closed form: {worst:e}");
 }
 
 /// Properties the exact solution must have: |R| ≤ Ru everywhere, slip only while
