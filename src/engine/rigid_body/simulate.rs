@@ -102,35 +102,15 @@ pub fn run_oscillator(
     let foot = rig.feet[0];
     let (m, mf) = (rig.mass, rig.foot_mass);
     let weight = -rig.world.gravity.y * m;
-    if drive == Drive::InertialForce && g.vel[0] != 0.0 {
-        // The ground's velocity jumps at t = 0: in the ground's frame every body starts
-        // with relative velocity −vg(0⁺).
-        for &(h, _) in &rig.inertial_masses {
-            rig.world.bodies[h].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
-        }
-    }
-    let frame = |k: usize| {
-        if drive == Drive::KinematicGround {
-            g.disp[k]
-        } else {
-            0.0
-        }
-    };
-    let frame_v = |k: usize| {
-        if drive == Drive::KinematicGround {
-            g.vel[k]
-        } else {
-            0.0
-        }
-    };
+    start_in_ground_frame(&mut rig, drive, &g);
     let x_m0 = rig.world.bodies[rig.structure].translation().x;
     let x_f0 = rig.world.bodies[foot].translation().x;
     let record = |trace: &mut Trace, rig: &Rig, k: usize, prev: &mut (f64, f64)| {
         let t = k as f64 * dt;
         let (bm, bf) = (&rig.world.bodies[rig.structure], &rig.world.bodies[foot]);
-        let x = bm.translation().x - x_m0 - frame(k);
-        let xf = bf.translation().x - x_f0 - frame(k);
-        let v = bm.linvel().x - frame_v(k);
+        let x = bm.translation().x - x_m0 - ground_frame(drive, &g, k).0;
+        let xf = bf.translation().x - x_f0 - ground_frame(drive, &g, k).0;
+        let v = bm.linvel().x - ground_frame(drive, &g, k).1;
         let a = if k == 0 { 0.0 } else { (v - prev.0) / dt };
         // Normal force on the foot from its vertical momentum balance: N = W + m_f·dv_y/dt.
         let vy = bf.linvel().y;
@@ -160,6 +140,26 @@ pub fn run_oscillator(
         *prev = (v, vy);
     };
     time_loop(&mut rig, drive, ex, &g, n, dt, trace, (0.0, 0.0), record)
+}
+
+/// Where the recorder measures from at step `k`: the moving ground's (displacement,
+/// velocity) for a kinematic ground, zero for a fixed one.
+fn ground_frame(drive: Drive, g: &GroundTable, k: usize) -> (f64, f64) {
+    if drive == Drive::KinematicGround {
+        (g.disp[k], g.vel[k])
+    } else {
+        (0.0, 0.0)
+    }
+}
+
+/// With the inertial-force route a ground velocity that jumps at t = 0 gives every body
+/// the relative velocity −vg(0⁺) in the ground's frame.
+fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable) {
+    if drive == Drive::InertialForce && g.vel[0] != 0.0 {
+        for &(h, _) in &rig.inertial_masses {
+            rig.world.bodies[h].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
+        }
+    }
 }
 
 /// The common time loop: drive the ground, step the world, record after every step with
@@ -243,20 +243,6 @@ pub fn run_block(
     if drive == Drive::InertialForce && g.vel[0] != 0.0 {
         rig.world.bodies[rig.structure].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
     }
-    let frame = |k: usize| {
-        if drive == Drive::KinematicGround {
-            g.disp[k]
-        } else {
-            0.0
-        }
-    };
-    let frame_v = |k: usize| {
-        if drive == Drive::KinematicGround {
-            g.vel[k]
-        } else {
-            0.0
-        }
-    };
     // Horizontal positions are measured from the block standing flat at x = 0 (the
     // world is built that way), so a tilted start shows its offset as the reference does.
     let b0 = &rig.world.bodies[rig.structure];
@@ -281,9 +267,9 @@ pub fn run_block(
         let body = &rig.world.bodies[rig.structure];
         let cm = body.translation();
         let phi = angle_z(body);
-        let off = frame(k);
+        let off = ground_frame(drive, &g, k).0;
         let o_x = cm.x + phi.sin() * hh - off;
-        let v = body.linvel().x - frame_v(k);
+        let v = body.linvel().x - ground_frame(drive, &g, k).1;
         let vy = body.linvel().y;
         let a = if k == 0 { 0.0 } else { (v - st.v) / dt };
         let ay = if k == 0 { 0.0 } else { (vy - st.vy) / dt };
@@ -418,32 +404,14 @@ pub fn run_rocking(
     // A support is open when its foot has risen more than 1 % of the static spring
     // compression W/(n·Kz) above its settled level.
     let open_gap = 0.01 * body.weight() / (nf as f64 * kz);
-    if drive == Drive::InertialForce && g.vel[0] != 0.0 {
-        for &(h, _) in &rig.inertial_masses {
-            rig.world.bodies[h].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
-        }
-    }
-    let frame = |k: usize| {
-        if drive == Drive::KinematicGround {
-            g.disp[k]
-        } else {
-            0.0
-        }
-    };
-    let frame_v = |k: usize| {
-        if drive == Drive::KinematicGround {
-            g.vel[k]
-        } else {
-            0.0
-        }
-    };
+    start_in_ground_frame(&mut rig, drive, &g);
     let record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: &mut f64| {
         let t = k as f64 * dt;
         let b = &rig.world.bodies[rig.structure];
         let cm = b.translation();
         let phi = angle_z(b);
         let (sn, cs) = phi.sin_cos();
-        let off = frame(k);
+        let off = ground_frame(drive, &g, k).0;
         let (mut shear, mut normal, mut contacts) = (0.0, 0.0, 0.0);
         let (mut slide_sum, mut slide_min, mut slide_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
         let mut uplift: f64 = 0.0;
@@ -464,7 +432,7 @@ pub fn run_rocking(
                 contacts += 1.0;
             }
         }
-        let v = b.linvel().x - frame_v(k);
+        let v = b.linvel().x - ground_frame(drive, &g, k).1;
         let a = if k == 0 { 0.0 } else { (v - *v_prev) / dt };
         *v_prev = v;
         let vals = [
