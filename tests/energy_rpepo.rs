@@ -66,9 +66,9 @@ fn newmark_balance_closes_to_round_off_apart_from_contact_kinks() {
             );
             let rest = (0..err.len()).fold(0.0_f64, |m, i| m.max((err[i] - kink[i]).abs()));
             // The audit's error is the engine's own energy_error channel.
-            for i in 0..err.len() {
+            for (i, e) in err.iter().enumerate() {
                 assert!(
-                    (h.error(i) - err[i]).abs() <= 1e-9 * s.scale,
+                    (h.error(i) - e).abs() <= 1e-9 * s.scale,
                     "{name} {v} row {i}"
                 );
             }

@@ -250,7 +250,7 @@ pub fn audit(trace: &Trace, scene: &Scene, variant: &str) -> Result<EnergyHistor
 
 /// Why a rocking body on elastic supports (RPEPO) is not audited when its trace lacks the
 /// engine-recorded energy channels ([`ROCKING_CHANNELS`]).
-pub const ROCKING_MISSING: &str = "energy audit not available for a rocking body from this trace: its strain energy Σ½T_i²/Kx + Σ½N_i²/Kz and friction work Σ∫T_i ds_i need each support's tangential force T_i (or slip s_i) and normal force N_i, which the trace carries only as sums (base_shear, normal) and the slip's mean and spread (slide, slide_spread); the engine records no energy channels (energy_input, energy_kinetic, energy_strain, energy_friction, energy_potential, energy_error) from its own element states, as the fe engine does";
+pub const ROCKING_MISSING: &str = "energy audit not available for a rocking body from this trace: its strain energy Σ½T_i²/Kx + Σ½N_i²/Kz and friction work Σ∫T_i ds_i need each support's tangential force T_i (or slip s_i) and normal force N_i, which the trace carries only as sums (base_shear, normal) and the slip's mean and spread (slide, slide_spread); the engine that wrote it records no energy channels from its own states (energy_input, energy_kinetic, energy_strain, energy_friction, energy_potential, energy_error: the fe engine does, rapier does not)";
 
 /// The channels an engine records for a rocking body's audit, in the order
 /// (input work, kinetic, strain, friction, potential).
