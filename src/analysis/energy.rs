@@ -21,9 +21,12 @@
 //!
 //! A rigid block (Newmark, Housner) is audited in the ground's frame with its rotation,
 //! gravity potential, friction work and impact losses (see `audit_block`). A rocking body
-//! on elastic supports (RPEPO) is not: its trace carries only sums over the supports, not
-//! the per-support forces its strain energy needs ([`ROCKING_MISSING`] says so). Traces
-//! lacking a channel are skipped with a reason rather than guessed at.
+//! on elastic supports (RPEPO) cannot be audited from sums over its supports, which is
+//! all its kinematic channels give: its strain energy needs each element's forces. It is
+//! audited from the energy channels its engine records per step from its own element
+//! states ([`ROCKING_CHANNELS`]; the fe engine writes them), and skipped with
+//! [`ROCKING_MISSING`] otherwise. Traces lacking a channel are skipped with a reason
+//! rather than guessed at.
 
 use crate::case::{Excitation, Model, Scene};
 use crate::trace::{Trace, q};
@@ -164,7 +167,7 @@ pub fn audit(trace: &Trace, scene: &Scene, variant: &str) -> Result<EnergyHistor
     let osc = match &scene.model {
         Model::Oscillator(o) => o,
         Model::RigidBlock(b) => return audit_block(trace, scene, b),
-        Model::RockingBody(_) => return Err(ROCKING_MISSING.into()),
+        Model::RockingBody(r) => return audit_rocking(trace, r),
     };
     let keys = [
         q::FORCE.key,
@@ -245,8 +248,51 @@ pub fn audit(trace: &Trace, scene: &Scene, variant: &str) -> Result<EnergyHistor
     Ok(h)
 }
 
-/// Why a rocking body on elastic supports (RPEPO) is not audited.
-pub const ROCKING_MISSING: &str = "energy audit not available for a rocking body: its strain energy Σ½T_i²/Kx + Σ½N_i²/Kz and friction work Σ∫T_i ds_i need each support's tangential force T_i (or slip s_i) and normal force N_i, and the trace carries only their sums (base_shear, normal) and the slip's mean and spread (slide, slide_spread); a per-run `energy_error` channel (q::ENERGY_ERROR) recorded by the engine from its own element states would close the gap";
+/// Why a rocking body on elastic supports (RPEPO) is not audited when its trace lacks the
+/// engine-recorded energy channels ([`ROCKING_CHANNELS`]).
+pub const ROCKING_MISSING: &str = "energy audit not available for a rocking body from this trace: its strain energy Σ½T_i²/Kx + Σ½N_i²/Kz and friction work Σ∫T_i ds_i need each support's tangential force T_i (or slip s_i) and normal force N_i, which the trace carries only as sums (base_shear, normal) and the slip's mean and spread (slide, slide_spread); the engine that wrote it records no energy channels from its own states (energy_input, energy_kinetic, energy_strain, energy_friction, energy_potential, energy_error: the fe engine does, rapier does not)";
+
+/// The channels an engine records for a rocking body's audit, in the order
+/// (input work, kinetic, strain, friction, potential).
+pub const ROCKING_CHANNELS: [&str; 5] = [
+    q::ENERGY_INPUT.key,
+    q::ENERGY_KINETIC.key,
+    q::ENERGY_STRAIN.key,
+    q::ENERGY_FRICTION.key,
+    q::ENERGY_POTENTIAL.key,
+];
+
+/// The audit of a rocking body on elastic supports from the energy terms its engine
+/// recorded per step from its own element states (the trace's sums over supports cannot
+/// give them): supplied = E0 + W (`energy_input`, E0 = K + U + V at the first row),
+/// kinetic, strain (Σ over every contact element), friction, gravity potential. No
+/// viscous damping (the RPEPO has none) and no impact term: an engine's losses at contact
+/// opening and closing, and HHT-α's numerical dissipation, stay in the balance error.
+fn audit_rocking(trace: &Trace, r: &crate::case::RockingBody) -> Result<EnergyHistory, String> {
+    if !ROCKING_CHANNELS.iter().all(|k| trace.has(k)) {
+        return Err(ROCKING_MISSING.into());
+    }
+    let n = trace.len();
+    if n < 2 {
+        return Err("energy audit skipped: the trace has fewer than two rows".into());
+    }
+    let [w, k, u, d, v] = ROCKING_CHANNELS.map(|key| trace.column(key).expect("checked above"));
+    let e0 = k[0] + u[0] + v[0];
+    Ok(EnergyHistory {
+        time: trace.time.clone(),
+        supplied: w.iter().map(|w| e0 + w).collect(),
+        kinetic: k.to_vec(),
+        strain: u.to_vec(),
+        friction: d.to_vec(),
+        damping: vec![0.0; n],
+        potential: v.to_vec(),
+        impact: vec![0.0; n],
+        stiffness: (
+            r.contact.kx,
+            "per contact element, Σ½T²/Kx + ½N²/Kz, recorded by the engine",
+        ),
+    })
+}
 
 /// Window around a pivot change in which the balance residual is booked as impact loss, s.
 pub const IMPACT_WINDOW: f64 = 0.01;

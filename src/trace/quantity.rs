@@ -196,6 +196,62 @@ pub mod q {
         "Horizontal displacement of the massless intermediate node of a double contact arrangement relative to the ground (mean over supports): the sliding plus element 1's elastic deflection."
     );
 
+    quantity!(
+        ENERGY_INPUT,
+        "energy_input",
+        "Input work",
+        "J",
+        "kJ",
+        1e-3,
+        "Work done on the model since t = 0 by the applied horizontal force and the moving ground (trapezoidal per step), recorded by an engine from its own states; gravity is booked as energy_potential, not here."
+    );
+    quantity!(
+        ENERGY_KINETIC,
+        "energy_kinetic",
+        "Kinetic energy",
+        "J",
+        "kJ",
+        1e-3,
+        "Kinetic energy ½M(vx² + vz²) + ½I·ω² of the body, recorded by an engine from its own states."
+    );
+    quantity!(
+        ENERGY_STRAIN,
+        "energy_strain",
+        "Strain energy",
+        "J",
+        "kJ",
+        1e-3,
+        "Elastic energy stored in the contact elements, Σ ½T²/Kx + ½N²/Kz over every element (both of a double arrangement), recorded by an engine from its own element states."
+    );
+    quantity!(
+        ENERGY_FRICTION,
+        "energy_friction",
+        "Friction work",
+        "J",
+        "kJ",
+        1e-3,
+        "Energy dissipated by friction since t = 0, Σ ∫T ds over the contact elements (T the element's tangential force, s its slip), recorded by an engine from its own element states."
+    );
+    quantity!(
+        ENERGY_POTENTIAL,
+        "energy_potential",
+        "Gravity potential",
+        "J",
+        "kJ",
+        1e-3,
+        "Gravity potential M·g·(z_cm − z_cm,static) of the body above its static equilibrium, recorded by an engine."
+    );
+
+    quantity!(
+        ENERGY_NONSMOOTH,
+        "energy_nonsmooth",
+        "Non-smooth energy error",
+        "J",
+        "kJ",
+        1e-3,
+        "The part of energy_error made by the contact law's kinks inside a step, summed since t = 0 (positive: lost): an element opening or closing (its trapezoidal work ½(fₙ + fₙ₊₁)·Δδ minus its strain-energy change) and a slip reversal (the negative trapezoid ½(Tₙ + Tₙ₊₁)·Δs). A numerical error of stepping across a kink, not a physical loss."
+    );
+
     /// The channels every sliding-oscillator trace has, in this order (engines and
     /// references alike), with `GROUND_DISP` after them when the ground moves.
     pub fn sliding(moving_ground: bool) -> Vec<&'static Quantity> {
@@ -226,6 +282,12 @@ pub mod q {
         &PC_CHANGE,
         &ENERGY_ERROR,
         &NODE_DISP,
+        &ENERGY_INPUT,
+        &ENERGY_KINETIC,
+        &ENERGY_STRAIN,
+        &ENERGY_FRICTION,
+        &ENERGY_POTENTIAL,
+        &ENERGY_NONSMOOTH,
     ];
 
     /// The quantity with this key.
