@@ -160,7 +160,7 @@ pub enum Command {
 /// Run the command line; returns the process exit code.
 pub fn main(cli: Cli) -> ExitCode {
     let result = match cli.command {
-        None => run(&[], Path::new("reports"), cli.quiet, None),
+        None => run_everything(Path::new("reports"), cli.quiet),
         Some(Command::Run { cases, out }) => run(&cases, &out, cli.quiet, None),
         Some(Command::Check { cases, out, junit }) => {
             let junit = junit.unwrap_or_else(|| out.join("junit.xml"));
@@ -234,6 +234,30 @@ pub fn main(cli: Cli) -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// The default command: the complete document. Stability map of `cases/stability/`,
+/// work-precision sweeps of the oscillator cases (cheap: each has an exact reference and
+/// runs in seconds per engine), then every case in `cases/` — whose reports pick up the
+/// sweeps and the stability map.
+fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
+    let options = crate::sweep_cmd::Options {
+        quiet,
+        ..Default::default()
+    };
+    let stability_cases = Path::new("cases/stability");
+    if stability_cases.is_dir() {
+        crate::sweep_cmd::stability::command(&[stability_cases.to_path_buf()], out, &options)?;
+    }
+    let oscillators: Vec<PathBuf> = load_all(&case_paths(&[])?)?
+        .into_iter()
+        .filter(|c| matches!(c.scene.model, crate::case::Model::Oscillator(_)))
+        .map(|c| c.path)
+        .collect();
+    if !oscillators.is_empty() {
+        crate::sweep_cmd::sweep::command(&oscillators, out, &options)?;
+    }
+    run(&[], out, quiet, None)
 }
 
 /// Expand case arguments: files as given, folders to their `*.toml`, default `cases/`.
