@@ -119,11 +119,10 @@ pub struct CaseResult {
 }
 
 impl CaseResult {
-    /// Whether every gated check passed.
+    /// Whether the case passes the gate (as `rockslide check` decides it).
     pub fn gate_passed(&self) -> bool {
-        self.checks
-            .iter()
-            .all(|c| !c.gated || c.verdict == crate::analysis::Verdict::Pass)
+        // one truth with `check`: failed gated checks and gated tolerances that check nothing
+        crate::gate::failures(std::slice::from_ref(self)).is_empty()
     }
 }
 

@@ -83,16 +83,12 @@ pub fn evaluate_tolerances(
             let (percent, verdict) = match (value, basis_value) {
                 (Some(v), Some(b)) => {
                     let pct = discrepancy_percent(v, b);
-                    let pass_pct = tol.percent.is_none_or(|lim| {
-                        pct.is_some_and(|p| p.abs() <= lim)
-                            || (v - b).abs() <= tol.absolute.unwrap_or(-1.0)
-                    });
-                    let pass_abs = tol.absolute.is_none_or(|lim| (v - b).abs() <= lim);
-                    let pass = if tol.percent.is_some() && tol.absolute.is_some() {
-                        pass_pct || pass_abs
-                    } else {
-                        pass_pct && pass_abs
-                    };
+                    // Either limit suffices (validation guarantees at least one is given).
+                    let within_pct = tol
+                        .percent
+                        .is_some_and(|lim| pct.is_some_and(|p| p.abs() <= lim));
+                    let within_abs = tol.absolute.is_some_and(|lim| (v - b).abs() <= lim);
+                    let pass = within_pct || within_abs;
                     (pct, if pass { Verdict::Pass } else { Verdict::Fail })
                 }
                 _ => (None, Verdict::Missing),

@@ -123,22 +123,12 @@ fn lines(r: &CaseResult) -> Vec<Line<'_>> {
     out
 }
 
-/// Colour of the i-th participant: the reference black, then a qualitative palette.
+/// Colour of the i-th participant: the reference black, then the shared palette.
 fn colour(i: usize, has_reference: bool) -> RGBColor {
-    const PALETTE: [RGBColor; 8] = [
-        RGBColor(0x1f, 0x77, 0xb4),
-        RGBColor(0xd6, 0x27, 0x28),
-        RGBColor(0x2c, 0xa0, 0x2c),
-        RGBColor(0xff, 0x7f, 0x0e),
-        RGBColor(0x94, 0x67, 0xbd),
-        RGBColor(0x8c, 0x56, 0x4b),
-        RGBColor(0xe3, 0x77, 0xc2),
-        RGBColor(0x17, 0xbe, 0xcf),
-    ];
     match (has_reference, i) {
         (true, 0) => RGBColor(0, 0, 0),
-        (true, i) => PALETTE[(i - 1) % PALETTE.len()],
-        (false, i) => PALETTE[i % PALETTE.len()],
+        (true, i) => super::study_plots::palette(i - 1),
+        (false, i) => super::study_plots::palette(i),
     }
 }
 
