@@ -51,7 +51,19 @@ fn syntax_errors_give_line_and_column() {
     assert_eq!(e.len(), 1);
     assert_eq!(
         e[0],
-        format!("bad.toml:{line}:10: model.contact: invalid float, expected nothing")
+        format!("bad.toml:{line}:10: model.contact.kz: invalid float, expected nothing")
+    );
+}
+
+#[test]
+fn a_value_of_the_wrong_type_names_its_field() {
+    let e = with("mu = 0.5\n", "mu = \"half\"\n");
+    let line = GOOD.lines().position(|l| l == "mu = 0.5").unwrap() + 1;
+    assert_eq!(
+        e,
+        vec![format!(
+            "bad.toml:{line}:6: model.contact.mu: invalid type: string \"half\", expected f64"
+        )]
     );
 }
 

@@ -85,7 +85,7 @@ fn syntax_error(path: &Path, text: &str, e: &toml::de::Error) -> InputErrors {
     let message = e.message().trim().to_string();
     let mut field = field_from_message(&message);
     if let Some(span) = e.span() {
-        let table = Locator::new(path, text).table_at(span.start);
+        let table = Locator::new(path, text).path_at(span.start);
         if !table.is_empty() && !field.is_empty() && !field.starts_with(&table) {
             field = format!("{table}.{field}");
         } else if field.is_empty() {

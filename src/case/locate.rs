@@ -42,12 +42,12 @@ impl Locator {
         }
     }
 
-    /// Dotted path of the deepest table whose span contains byte `offset` (for naming
-    /// the table of a parser error such as a missing field).
-    pub fn table_at(&self, offset: usize) -> String {
+    /// Dotted path of the value or table at byte `offset` (for naming the field of a
+    /// parser error: the value of a wrong type, or the table missing a field).
+    pub fn path_at(&self, offset: usize) -> String {
         let (root, _) = DeTable::parse_recoverable(&self.text);
         let mut tables = Vec::new();
-        collect_tables(root.get_ref(), "", &mut tables);
+        collect_fields(root.get_ref(), "", &mut tables);
         // the table whose header is the last one before `offset` and whose extent holds it
         tables
             .into_iter()
@@ -85,9 +85,9 @@ impl Locator {
     }
 }
 
-/// Every table under `table` as (dotted path, start of its header or first key, end of
-/// its last value).
-fn collect_tables(table: &DeTable, prefix: &str, out: &mut Vec<(String, usize, usize)>) -> usize {
+/// Every table and scalar value under `table` as (dotted path, start of its header, first
+/// key or value, end of its last value).
+fn collect_fields(table: &DeTable, prefix: &str, out: &mut Vec<(String, usize, usize)>) -> usize {
     let mut hi = 0;
     for (k, v) in table.iter() {
         let path = if prefix.is_empty() {
@@ -98,7 +98,7 @@ fn collect_tables(table: &DeTable, prefix: &str, out: &mut Vec<(String, usize, u
         hi = hi.max(v.span().end);
         match v.get_ref() {
             DeValue::Table(t) => {
-                let end = collect_tables(t, &path, out).max(v.span().end);
+                let end = collect_fields(t, &path, out).max(v.span().end);
                 out.push((path, v.span().start, end));
                 hi = hi.max(end);
             }
@@ -106,13 +106,13 @@ fn collect_tables(table: &DeTable, prefix: &str, out: &mut Vec<(String, usize, u
                 for (i, item) in items.iter().enumerate() {
                     if let DeValue::Table(t) = item.get_ref() {
                         let p = format!("{path}[{i}]");
-                        let end = collect_tables(t, &p, out).max(item.span().end);
+                        let end = collect_fields(t, &p, out).max(item.span().end);
                         out.push((p, item.span().start, end));
                         hi = hi.max(end);
                     }
                 }
             }
-            _ => {}
+            _ => out.push((path, v.span().start, v.span().end)),
         }
     }
     hi
