@@ -1,0 +1,418 @@
+//! The command line: clap definitions and what each command does. Exit codes: 0 success
+//! (gate passed), 1 a gated discrepancy is out of tolerance, 2 bad input or an error.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+
+use clap::{Parser, Subcommand};
+
+use rockslide_core::case::discover;
+use rockslide_core::error::{Error, InputErrors};
+use rockslide_present::gate;
+use rockslide_present::report::{write_case_outputs, write_suite_outputs};
+use rockslide_verify::registry;
+use rockslide_verify::registry::load_case;
+use rockslide_verify::suite::{CaseResult, plan, run_case};
+
+/// Cross-code verification of seismic sliding and rocking.
+#[derive(Debug, Parser)]
+#[command(name = "rockslide", version, about, long_about = None)]
+pub struct Cli {
+    /// What to do (default: run every case under `cases/` and write `reports/`).
+    #[command(subcommand)]
+    pub command: Option<Command>,
+    /// Print nothing but errors and failures.
+    #[arg(long, short, global = true)]
+    pub quiet: bool,
+}
+
+/// The commands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Run cases and write their traces and reports.
+    Run {
+        /// Case files or folders (default: `cases/`).
+        cases: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, short, default_value = "reports")]
+        out: PathBuf,
+    },
+    /// List the cases and which engines apply to each.
+    List {
+        /// Case files or folders (default: `cases/`).
+        cases: Vec<PathBuf>,
+    },
+    /// Write a case's reference solution (exact or closed form) as a CSV trace.
+    Reference {
+        /// The case file.
+        case: PathBuf,
+        /// Sampling interval, s.
+        #[arg(long, default_value_t = 0.001)]
+        dt: f64,
+        /// Output CSV file.
+        #[arg(long, short)]
+        out: PathBuf,
+    },
+    /// Run cases and gate on their tolerances: exit 0 when every gated check passes, 1 when
+    /// any fails (one line per failure on stderr), 2 on bad input. Writes the reports and
+    /// JUnit XML.
+    Check {
+        /// Case files or folders (default: `cases/`).
+        cases: Vec<PathBuf>,
+        /// Output folder for reports and traces.
+        #[arg(long, short, default_value = "reports")]
+        out: PathBuf,
+        /// JUnit XML file for CI systems (default: `<out>/junit.xml`, i.e. `reports/junit.xml`).
+        #[arg(long)]
+        junit: Option<PathBuf>,
+    },
+    // --- records and studies (src/study; docs/records-and-studies.md) ---
+    /// Run a study grid: one model under many records / PGAs / μ / polarities, resumable.
+    Study {
+        /// The grid file (TOML).
+        grid: PathBuf,
+        /// Output folder (result files in `<out>/runs/`, summary beside them).
+        #[arg(long, short, default_value = "reports/study")]
+        out: PathBuf,
+        /// Run only shard K of N (0-based, e.g. `--shard $SLURM_ARRAY_TASK_ID/8`).
+        #[arg(long)]
+        shard: Option<String>,
+        /// Do not run: merge the results found in `--from` folders into `--out` (as study-merge).
+        #[arg(long)]
+        merge: bool,
+        /// With --merge: folders holding other shards' results.
+        #[arg(long)]
+        from: Vec<PathBuf>,
+    },
+    /// Merge the shards of a study into one summary.
+    StudyMerge {
+        /// The grid file the shards ran.
+        grid: PathBuf,
+        /// Output folder for the merged results and summary.
+        #[arg(long, short, default_value = "reports/study")]
+        out: PathBuf,
+        /// Folders holding shards' results (each with a `runs/` folder); `--out` is always searched.
+        #[arg(long)]
+        from: Vec<PathBuf>,
+    },
+    /// Newmark rigid-block sliding on a record, both polarities, in cm and m (SLAMMER style).
+    Newmark {
+        /// The record (.AT2 or two-column CSV).
+        record: PathBuf,
+        /// Yield acceleration(s), g.
+        #[arg(long, required = true, num_args = 1..)]
+        ky: Vec<f64>,
+        /// Unit of a CSV record: g, m/s2 or cm/s2.
+        #[arg(long)]
+        unit: Option<String>,
+        /// Scale the record to this PGA first, g.
+        #[arg(long)]
+        pga: Option<f64>,
+        /// Slide both ways (block on a level frictional base) instead of one way.
+        #[arg(long)]
+        two_way: bool,
+        /// Also write the table as CSV.
+        #[arg(long)]
+        csv: Option<PathBuf>,
+    },
+    /// Check an MCAP trace and print its channels, metadata and attachments.
+    TraceInfo {
+        /// The `.mcap` file (`reports/<case>/<case>.mcap`).
+        file: PathBuf,
+    },
+    /// Error against run time: a Δt ladder per engine and variant, with observed order,
+    /// table and log-log plot in `<out>/<case>/sweep.{md,csv,svg}`.
+    Sweep {
+        /// Case files.
+        cases: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, short, default_value = "reports")]
+        out: PathBuf,
+        /// Rungs of the Δt ladder (from T/10 down, at least 3).
+        #[arg(long, default_value_t = 8)]
+        rungs: usize,
+        /// Refinement ratio between rungs.
+        #[arg(long, default_value_t = 2.0)]
+        ratio: f64,
+        /// Timed repeats per rung (median, min and max are reported).
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        /// Worker threads (default: all cores).
+        #[arg(long, short)]
+        jobs: Option<usize>,
+        /// Wall-time budget per engine variant, s (0: none); rungs beyond it are skipped.
+        #[arg(long, default_value_t = rockslide_verify::sweep::DEFAULT_BUDGET)]
+        budget: f64,
+    },
+    /// Run the stiff and extreme scenes and classify every run (accurate, inaccurate,
+    /// diverged, not converged); map and stability limits in `<out>/stability/`.
+    Stability {
+        /// Case files or folders (default: `cases/stability/`).
+        cases: Vec<PathBuf>,
+        /// Output folder.
+        #[arg(long, short, default_value = "reports")]
+        out: PathBuf,
+        /// Worker threads (default: all cores).
+        #[arg(long, short)]
+        jobs: Option<usize>,
+    },
+}
+
+/// Run the command line; returns the process exit code.
+pub fn main(cli: Cli) -> ExitCode {
+    let result = match cli.command {
+        None => run_everything(Path::new("reports"), cli.quiet),
+        Some(Command::Run { cases, out }) => run(&cases, &out, cli.quiet, None),
+        Some(Command::Check { cases, out, junit }) => {
+            let junit = junit.unwrap_or_else(|| out.join("junit.xml"));
+            run(&cases, &out, cli.quiet, Some(&junit))
+        }
+        Some(Command::List { cases }) => list(&cases),
+        Some(Command::Reference { case, dt, out }) => write_reference(&case, dt, &out),
+        Some(Command::Study {
+            grid,
+            out,
+            shard,
+            merge,
+            from,
+        }) => rockslide_verify::study::cli_study(
+            &grid,
+            &out,
+            shard.as_deref(),
+            merge,
+            &from,
+            cli.quiet,
+        ),
+        Some(Command::StudyMerge { grid, out, from }) => {
+            rockslide_verify::study::cli_study(&grid, &out, None, true, &from, cli.quiet)
+        }
+        Some(Command::Newmark {
+            record,
+            ky,
+            unit,
+            pga,
+            two_way,
+            csv,
+        }) => rockslide_verify::study::cli_newmark(rockslide_verify::study::NewmarkArgs {
+            record,
+            ky,
+            unit,
+            pga,
+            two_way,
+            csv,
+        }),
+        Some(Command::TraceInfo { file }) => rockslide_core::trace::mcap_info(&file).map(|s| {
+            print!("{s}");
+            ExitCode::SUCCESS
+        }),
+        Some(Command::Sweep {
+            cases,
+            out,
+            rungs,
+            ratio,
+            repeats,
+            jobs,
+            budget,
+        }) => rockslide_verify::sweep::work_precision::command(
+            &cases,
+            &out,
+            &rockslide_verify::sweep::Options {
+                rungs,
+                ratio,
+                repeats,
+                jobs,
+                quiet: cli.quiet,
+                budget: (budget > 0.0).then_some(budget),
+            },
+        ),
+        Some(Command::Stability { cases, out, jobs }) => {
+            rockslide_verify::sweep::stability::command(
+                &cases,
+                &out,
+                &rockslide_verify::sweep::Options {
+                    jobs,
+                    quiet: cli.quiet,
+                    ..Default::default()
+                },
+            )
+        }
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(2)
+        }
+    }
+}
+
+/// The default command: the complete document. Stability map of `cases/stability/`,
+/// work-precision sweeps of the oscillator cases (cheap: each has an exact reference and
+/// runs in seconds per engine), then every case in `cases/` — whose reports pick up the
+/// sweeps and the stability map.
+fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
+    let options = rockslide_verify::sweep::Options {
+        quiet,
+        ..Default::default()
+    };
+    let stability_cases = Path::new("cases/stability");
+    if stability_cases.is_dir() {
+        rockslide_verify::sweep::stability::command(
+            &[stability_cases.to_path_buf()],
+            out,
+            &options,
+        )?;
+    }
+    let oscillators: Vec<PathBuf> = load_all(&case_paths(&[])?)?
+        .into_iter()
+        .filter(|c| matches!(c.scene.model, rockslide_core::case::Model::Oscillator(_)))
+        .map(|c| c.path)
+        .collect();
+    if !oscillators.is_empty() {
+        rockslide_verify::sweep::work_precision::command(&oscillators, out, &options)?;
+    }
+    run(&[], out, quiet, None)
+}
+
+/// Expand case arguments: files as given, folders to their `*.toml`, default `cases/`.
+fn case_paths(args: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
+    let args = if args.is_empty() {
+        vec![PathBuf::from("cases")]
+    } else {
+        args.to_vec()
+    };
+    let mut out = Vec::new();
+    for a in args {
+        if a.is_dir() {
+            out.extend(discover(&a).map_err(|e| Error::io(&a, e))?);
+        } else {
+            out.push(a);
+        }
+    }
+    Ok(out)
+}
+
+/// Load every case first, so that all input errors are reported before any work.
+fn load_all(paths: &[PathBuf]) -> Result<Vec<rockslide_core::case::Case>, Error> {
+    let mut cases = Vec::new();
+    let mut errors = Vec::new();
+    for p in paths {
+        match load_case(p) {
+            Ok(c) => cases.push(c),
+            Err(e) => errors.extend(e.0),
+        }
+    }
+    if errors.is_empty() {
+        Ok(cases)
+    } else {
+        Err(InputErrors(errors).into())
+    }
+}
+
+/// Run the cases, write every report; with `junit` (the `check` command), also write the
+/// JUnit XML and return exit code 1 when the gate fails.
+fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Result<ExitCode, Error> {
+    let cases = load_all(&case_paths(args)?)?;
+    let engines = registry::all();
+    for c in &cases {
+        plan(c, &engines)?;
+    }
+    let mut results: Vec<CaseResult> = Vec::new();
+    for case in cases {
+        let name = case.name.clone();
+        let result = run_case(case)?;
+        let dir = write_case_outputs(&result, out)?;
+        if !quiet {
+            let passed = gate::failures(std::slice::from_ref(&result)).is_empty();
+            println!(
+                "{name}: {} runs, gate {} → {}",
+                result.runs.len(),
+                if passed { "PASS" } else { "FAIL" },
+                dir.join("report.html").display()
+            );
+        }
+        results.push(result);
+    }
+    let html = write_suite_outputs(&results, out)?;
+    let failures = gate::failures(&results);
+    for f in &failures {
+        eprintln!("{f}");
+    }
+    if !quiet {
+        for f in gate::informative(&results) {
+            println!("{f}");
+        }
+    }
+    let Some(junit) = junit else {
+        return Ok(ExitCode::SUCCESS);
+    };
+    gate::write_junit(&results, junit)?;
+    gate::write_step_summary(&results);
+    if !quiet {
+        println!(
+            "gate: {} — {} failure(s); report {}, JUnit {}",
+            if failures.is_empty() { "PASS" } else { "FAIL" },
+            failures.len(),
+            html.display(),
+            junit.display()
+        );
+    }
+    Ok(if failures.is_empty() {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::from(1)
+    })
+}
+
+fn list(args: &[PathBuf]) -> Result<ExitCode, Error> {
+    let cases = load_all(&case_paths(args)?)?;
+    let engines = registry::all();
+    for c in &cases {
+        println!("{} — {}", c.name, c.title);
+        println!(
+            "    {} under {}, {} s",
+            c.scene.model.kind(),
+            c.scene.excitation.kind(),
+            c.run.duration
+        );
+        for e in &engines {
+            let listed = c.engines.is_empty() || c.engine(e.id()).is_some();
+            match e.variants(&c.scene) {
+                Err(na) => println!("    {:<20} n/a — {}", e.id(), na.0),
+                Ok(_) if !listed => println!("    {:<20} not requested by the case", e.id()),
+                Ok(v) => {
+                    let wanted = c
+                        .engine(e.id())
+                        .and_then(|r| r.variants.clone())
+                        .unwrap_or_else(|| v.iter().map(|s| s.to_string()).collect());
+                    println!(
+                        "    {:<20} {} (dt {} s)",
+                        e.id(),
+                        wanted.join(", "),
+                        c.dt_for(e.id())
+                    );
+                }
+            }
+        }
+        match rockslide_reference::for_case(c) {
+            Ok(r) => println!("    {:<20} {}", "reference", r.name()),
+            Err(why) => println!("    {:<20} none — {why}", "reference"),
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+fn write_reference(path: &Path, dt: f64, out: &Path) -> Result<ExitCode, Error> {
+    let case = load_case(path)?;
+    if !(dt > 0.0 && dt.is_finite()) {
+        return Err(Error::Other(format!("--dt must be positive, got {dt}")));
+    }
+    let solution = rockslide_reference::for_case(&case)
+        .map_err(|why| Error::Other(format!("{}: no reference: {why}", path.display())))?;
+    let n = rockslide_engine_api::step_count(case.run.duration, dt);
+    let times: Vec<f64> = (0..=n).map(|i| i as f64 * dt).collect();
+    let trace = rockslide_reference::sample(solution.as_ref(), &times);
+    rockslide_core::trace::write_csv(&trace, out)?;
+    println!("{}: {} → {}", case.name, solution.method(), out.display());
+    Ok(ExitCode::SUCCESS)
+}

@@ -1,0 +1,36 @@
+//! # rockslide — cross-code verification of seismic sliding and rocking
+//!
+//! The command line ([`cli`]) and a façade over the workspace, so that tests, benchmarks,
+//! examples and library users find every part under one name. The architecture lives in
+//! the crates (see ARCHITECTURE.md):
+//!
+//! ```text
+//! rockslide-core ─▶ rockslide-engine-api ─▶ rockslide-engine-{pc,fe,rapier}
+//!       └──────────▶ rockslide-reference                       │
+//!                          └──────────▶ rockslide-verify ◀──────┘ ─▶ rockslide-present ─▶ rockslide (cli)
+//! ```
+
+#![warn(missing_docs)]
+
+pub mod cli;
+
+pub use rockslide_core::{error, io, response, trace};
+pub use rockslide_present::{gate, report};
+pub use rockslide_reference as reference;
+pub use rockslide_verify::{analysis, registry, study, suite, sweep, verdict};
+
+/// Case files; [`case::load_case`] and [`case::parse_case`] validate against the engine
+/// registry.
+pub mod case {
+    pub use rockslide_core::case::*;
+    pub use rockslide_verify::registry::{load_case, parse_case};
+}
+
+/// The engines behind one interface, and the registry.
+pub mod engine {
+    pub use rockslide_engine_api::*;
+    pub use rockslide_engine_fe as fe;
+    pub use rockslide_engine_pc as predictor_corrector;
+    pub use rockslide_engine_rapier as rigid_body;
+    pub use rockslide_verify::registry::{ENGINE_IDS, all};
+}

@@ -1,0 +1,685 @@
+//! Loading a case: read the file, parse the raw form (syntax and type errors located by
+//! the TOML parser), then validate every field (semantic errors located by [`Locator`]).
+//! All problems of a file are returned together.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use sha2::{Digest, Sha256};
+
+use super::locate::Locator;
+use super::raw::{
+    RawCase, RawContact, RawDouble, RawEngine, RawExcitation, RawModel, RawTolerance,
+};
+use super::record::{AccelUnit, STANDARD_GRAVITY, read_record};
+use super::scene::*;
+use super::signal::Signal;
+use crate::error::{InputError, InputErrors, line_col};
+
+/// Read and validate the case file at `path`; `engine_ids` are the engines a case may name
+/// (the registry's, passed in so that there is one list).
+pub fn load_case(path: &Path, engine_ids: &[&str]) -> Result<Case, InputErrors> {
+    let text = std::fs::read_to_string(path)
+        .map_err(|e| InputError::new(path, "", format!("cannot read the case file: {e}")))?;
+    parse_case(path, &text, engine_ids)
+}
+
+/// Validate a case from its text (`path` names it in messages and sets the default name).
+pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, InputErrors> {
+    let raw: RawCase = toml::from_str(text).map_err(|e| syntax_error(path, text, &e))?;
+    let locator = Locator::new(path, text);
+    let mut v = Validator {
+        loc: &locator,
+        engine_ids,
+        errors: Vec::new(),
+    };
+    let model = v.model(&raw.model);
+    let excitation = v.excitation(&raw.excitation, path);
+    let run = v.run(raw.run.duration, raw.run.dt);
+    let engines = v.engines(&raw.engines);
+    let tolerances = raw
+        .tolerance
+        .iter()
+        .enumerate()
+        .filter_map(|(i, t)| v.tolerance(i, t))
+        .collect();
+    if !v.errors.is_empty() {
+        return Err(InputErrors(v.errors));
+    }
+    let (Some(model), Some(excitation)) = (model, excitation) else {
+        unreachable!("a missing model or excitation always records an error")
+    };
+    let name = raw.name.unwrap_or_else(|| {
+        path.file_stem()
+            .map(|s| s.to_string_lossy().into_owned())
+            .unwrap_or_else(|| "case".into())
+    });
+    Ok(Case {
+        title: raw.title.unwrap_or_else(|| name.clone()),
+        name,
+        source: raw.source.unwrap_or_default(),
+        requirement: raw.requirement.unwrap_or_default(),
+        path: path.to_path_buf(),
+        sha256: format!("{:x}", Sha256::digest(text.as_bytes())),
+        text: text.to_string(),
+        scene: Scene { model, excitation },
+        run,
+        engines,
+        tolerances,
+        locator,
+    })
+}
+
+/// All case files (`*.toml`) under `dir`, sorted, skipping `README`s and study grids.
+pub fn discover(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
+    let mut found = Vec::new();
+    for entry in std::fs::read_dir(dir)? {
+        let path = entry?.path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            found.push(path);
+        }
+    }
+    found.sort();
+    Ok(found)
+}
+
+fn syntax_error(path: &Path, text: &str, e: &toml::de::Error) -> InputErrors {
+    let message = e.message().trim().to_string();
+    let mut field = field_from_message(&message);
+    if let Some(span) = e.span() {
+        let table = Locator::new(path, text).path_at(span.start);
+        if !table.is_empty() && !field.is_empty() && !field.starts_with(&table) {
+            field = format!("{table}.{field}");
+        } else if field.is_empty() {
+            field = table;
+        }
+    }
+    let mut err = InputError::new(path, field, message);
+    if let Some(span) = e.span() {
+        let (l, c) = line_col(text, span.start);
+        err = err.at(l, c);
+    }
+    err.into()
+}
+
+/// serde's messages quote the field (`missing field `mass``); pull it out for the field slot.
+fn field_from_message(message: &str) -> String {
+    let mut parts = message.split('`');
+    match (parts.next(), parts.next()) {
+        (Some(_), Some(f)) if !f.contains(' ') => f.to_string(),
+        _ => String::new(),
+    }
+}
+
+struct Validator<'a> {
+    loc: &'a Locator,
+    engine_ids: &'a [&'a str],
+    errors: Vec<InputError>,
+}
+
+impl Validator<'_> {
+    fn fail(&mut self, field: &str, reason: impl Into<String>) {
+        self.errors.push(self.loc.error(field, reason));
+    }
+
+    /// A required number in `(lo, hi)` or `[lo, hi)` (open at hi), with its unit in the message.
+    fn number(&mut self, field: &str, value: Option<f64>, rule: Rule) -> f64 {
+        let Some(x) = value else {
+            self.fail(field, format!("is required ({})", rule.describe()));
+            return f64::NAN;
+        };
+        if !rule.accepts(x) {
+            self.fail(field, format!("is {x}, but must be {}", rule.describe()));
+        }
+        x
+    }
+
+    fn forbid(&mut self, field: &str, present: bool, kind: &str) {
+        if present {
+            self.fail(
+                field,
+                format!("does not apply to a model of kind \"{kind}\""),
+            );
+        }
+    }
+
+    fn model(&mut self, m: &RawModel) -> Option<Model> {
+        let mass = self.number("model.mass", m.mass, Rule::positive("kg"));
+        let gravity = self.number("model.gravity", m.gravity, Rule::non_negative("m/s²"));
+        match m.kind.as_str() {
+            "oscillator" => {
+                for (f, p) in [
+                    ("model.cm_height", m.cm_height.is_some()),
+                    ("model.half_width", m.half_width.is_some()),
+                    ("model.supports", m.supports.is_some()),
+                    ("model.rotational_inertia", m.rotational_inertia.is_some()),
+                    ("model.half_height", m.half_height.is_some()),
+                    ("model.mu", m.mu.is_some()),
+                    ("model.initial_tilt", m.initial_tilt.is_some()),
+                ] {
+                    self.forbid(f, p, "oscillator");
+                }
+                let damping_ratio = match m.damping_ratio {
+                    None => 0.0,
+                    x => self.number("model.damping_ratio", x, Rule::fraction()),
+                };
+                let contact = self.contact("model.contact", m.contact.as_ref())?;
+                let double = m.double.as_ref().map(|d| self.double("model.double", d));
+                Some(Model::Oscillator(Oscillator {
+                    mass,
+                    gravity,
+                    damping_ratio,
+                    contact,
+                    double,
+                }))
+            }
+            "rocking-body" => {
+                for (f, p) in [
+                    ("model.mu", m.mu.is_some()),
+                    ("model.initial_tilt", m.initial_tilt.is_some()),
+                    ("model.damping_ratio", m.damping_ratio.is_some()),
+                    ("model.half_height", m.half_height.is_some()),
+                ] {
+                    self.forbid(f, p, "rocking-body");
+                }
+                let cm_height = self.number("model.cm_height", m.cm_height, Rule::positive("m"));
+                let half_width = self.number("model.half_width", m.half_width, Rule::positive("m"));
+                let supports = match m.supports {
+                    Some(n) if n >= 2 => n as usize,
+                    Some(n) => {
+                        self.fail("model.supports", format!("is {n}, but must be at least 2"));
+                        2
+                    }
+                    None => {
+                        self.fail(
+                            "model.supports",
+                            "is required (number of supports, at least 2)",
+                        );
+                        2
+                    }
+                };
+                let rotational_inertia = match m.rotational_inertia {
+                    None => 0.0,
+                    x => self.number("model.rotational_inertia", x, Rule::non_negative("kg·m²")),
+                };
+                let contact = self.contact("model.contact", m.contact.as_ref())?;
+                let double = m.double.as_ref().map(|d| self.double("model.double", d));
+                Some(Model::RockingBody(RockingBody {
+                    mass,
+                    gravity,
+                    cm_height,
+                    half_width,
+                    supports,
+                    rotational_inertia,
+                    contact,
+                    double,
+                }))
+            }
+            "rigid-block" => {
+                for (f, p) in [
+                    ("model.cm_height", m.cm_height.is_some()),
+                    ("model.supports", m.supports.is_some()),
+                    ("model.rotational_inertia", m.rotational_inertia.is_some()),
+                    ("model.contact", m.contact.is_some()),
+                    ("model.double", m.double.is_some()),
+                    ("model.damping_ratio", m.damping_ratio.is_some()),
+                ] {
+                    self.forbid(f, p, "rigid-block");
+                }
+                let half_width = self.number("model.half_width", m.half_width, Rule::positive("m"));
+                let half_height =
+                    self.number("model.half_height", m.half_height, Rule::positive("m"));
+                let mu = self.number("model.mu", m.mu, Rule::non_negative(""));
+                let initial_tilt = match m.initial_tilt {
+                    None => 0.0,
+                    x => self.number("model.initial_tilt", x, Rule::range(-1.5, 1.5, "rad")),
+                };
+                Some(Model::RigidBlock(RigidBlock {
+                    mass,
+                    gravity,
+                    half_width,
+                    half_height,
+                    mu,
+                    initial_tilt,
+                }))
+            }
+            other => {
+                self.fail(
+                    "model.kind",
+                    format!("is \"{other}\", but must be one of \"oscillator\", \"rocking-body\", \"rigid-block\""),
+                );
+                None
+            }
+        }
+    }
+
+    fn contact(&mut self, field: &str, c: Option<&RawContact>) -> Option<Contact> {
+        let Some(c) = c else {
+            self.fail(field, "is required: a table with kx (N/m), kz (N/m) and mu");
+            return None;
+        };
+        self.number(&format!("{field}.kx"), Some(c.kx), Rule::positive("N/m"));
+        self.number(&format!("{field}.kz"), Some(c.kz), Rule::positive("N/m"));
+        self.number(&format!("{field}.mu"), Some(c.mu), Rule::friction());
+        Some(Contact {
+            kx: c.kx,
+            kz: c.kz,
+            mu: c.mu,
+        })
+    }
+
+    fn double(&mut self, field: &str, d: &RawDouble) -> DoubleContact {
+        for (k, x) in [
+            ("kx1", d.kx1),
+            ("kz1", d.kz1),
+            ("kx2", d.kx2),
+            ("kz2", d.kz2),
+        ] {
+            self.number(&format!("{field}.{k}"), Some(x), Rule::positive("N/m"));
+        }
+        self.number(&format!("{field}.mu1"), Some(d.mu1), Rule::friction());
+        self.number(&format!("{field}.mu2"), Some(d.mu2), Rule::friction());
+        DoubleContact {
+            lower: Contact {
+                kx: d.kx1,
+                kz: d.kz1,
+                mu: d.mu1,
+            },
+            upper: Contact {
+                kx: d.kx2,
+                kz: d.kz2,
+                mu: d.mu2,
+            },
+        }
+    }
+
+    fn excitation(&mut self, e: &RawExcitation, case_path: &Path) -> Option<Excitation> {
+        if e.kind == "none" {
+            return Some(Excitation::None);
+        }
+        let signal = self.signal(e, case_path)?;
+        if e.record.is_some() && e.kind == "ground-displacement" {
+            self.fail(
+                "excitation.kind",
+                "a record is an acceleration history: use kind = \"ground-acceleration\" (or \"mass-acceleration\")",
+            );
+            return None;
+        }
+        match e.kind.as_str() {
+            "mass-acceleration" => Some(Excitation::MassAcceleration(signal)),
+            "ground-displacement" => {
+                if let Signal::SinePulse { cycles, .. } = signal {
+                    if ((cycles * 2.0).round() - cycles * 2.0).abs() > 1e-12 {
+                        self.fail(
+                            "excitation.cycles",
+                            "must be a whole number of half cycles for a ground displacement (else the ground would jump)",
+                        );
+                    }
+                }
+                Some(Excitation::GroundDisplacement(signal))
+            }
+            "ground-acceleration" => Some(Excitation::GroundAcceleration(signal)),
+            other => {
+                self.fail(
+                    "excitation.kind",
+                    format!("is \"{other}\", but must be one of \"none\", \"mass-acceleration\", \"ground-displacement\", \"ground-acceleration\""),
+                );
+                None
+            }
+        }
+    }
+
+    fn signal(&mut self, e: &RawExcitation, case_path: &Path) -> Option<Signal> {
+        if let Some(record) = &e.record {
+            return self.record_signal(e, record, case_path);
+        }
+        for (f, p) in [
+            ("excitation.record_unit", e.record_unit.is_some()),
+            ("excitation.scale_to_pga", e.scale_to_pga.is_some()),
+            ("excitation.polarity", e.polarity.is_some()),
+        ] {
+            if p {
+                self.fail(f, "applies only to a recorded excitation (`record`)");
+            }
+        }
+        match e.shape.as_deref() {
+            Some("sine-pulse") => {
+                let amplitude = self.number("excitation.amplitude", e.amplitude, Rule::finite());
+                let omega = self.number("excitation.omega", e.omega, Rule::positive("rad/s"));
+                let cycles = self.number("excitation.cycles", e.cycles, Rule::positive("cycles"));
+                Some(Signal::SinePulse {
+                    amplitude,
+                    omega,
+                    cycles,
+                })
+            }
+            Some(other) => {
+                self.fail(
+                    "excitation.shape",
+                    format!("is \"{other}\", but must be \"sine-pulse\" (or give `record`)"),
+                );
+                None
+            }
+            None => {
+                self.fail(
+                    "excitation.shape",
+                    "is required: \"sine-pulse\" (or give `record`)",
+                );
+                None
+            }
+        }
+    }
+
+    /// The `record` branch: read the file (relative to the case file), convert to m/s²,
+    /// scale to the stated PGA and polarity. See [`super::record`] for the conventions.
+    fn record_signal(
+        &mut self,
+        e: &RawExcitation,
+        record: &str,
+        case_path: &Path,
+    ) -> Option<Signal> {
+        for (f, p) in [
+            ("excitation.shape", e.shape.is_some()),
+            ("excitation.amplitude", e.amplitude.is_some()),
+            ("excitation.omega", e.omega.is_some()),
+            ("excitation.cycles", e.cycles.is_some()),
+        ] {
+            if p {
+                self.fail(
+                    f,
+                    "does not apply to a recorded excitation (`record` is given)",
+                );
+            }
+        }
+        let unit = match e.record_unit.as_deref() {
+            None => None,
+            Some(u) => match AccelUnit::parse(u) {
+                Some(u) => Some(u),
+                None => {
+                    self.fail(
+                        "excitation.record_unit",
+                        format!(
+                            "is \"{u}\", but must be one of {}",
+                            quoted(AccelUnit::NAMES)
+                        ),
+                    );
+                    return None;
+                }
+            },
+        };
+        let polarity = match e.polarity {
+            None => 1.0,
+            Some(p) if p == 1.0 || p == -1.0 => p,
+            Some(p) => {
+                self.fail(
+                    "excitation.polarity",
+                    format!("is {p}, but must be 1 (as recorded) or -1 (inverted)"),
+                );
+                1.0
+            }
+        };
+        let target = match e.scale_to_pga {
+            None => None,
+            x => Some(self.number("excitation.scale_to_pga", x, Rule::positive("m/s²"))),
+        };
+        let dir = case_path.parent().unwrap_or(Path::new(""));
+        let path = dir.join(record);
+        let mut rec = match read_record(&path, unit) {
+            Ok(r) => r,
+            Err(errs) => {
+                // The record's own errors, located in the record file, under the case field.
+                for mut err in errs.0 {
+                    if err.field.is_empty() {
+                        err.field = "excitation.record".into();
+                    }
+                    self.errors.push(err);
+                }
+                return None;
+            }
+        };
+        let pga = rec.pga();
+        if pga == 0.0 {
+            self.fail(
+                "excitation.record",
+                format!("{}: every sample is zero", path.display()),
+            );
+            return None;
+        }
+        let scaling = match target {
+            Some(t) if t.is_finite() && t > 0.0 => {
+                let f = rec.scale_to_pga(t, polarity);
+                format!(
+                    ", scaled ×{f:.6} to PGA {t} m/s² ({:.4} g)",
+                    t / STANDARD_GRAVITY
+                )
+            }
+            _ => {
+                rec.scale(polarity);
+                format!(
+                    ", PGA {pga:.4} m/s² ({:.4} g) as recorded",
+                    pga / STANDARD_GRAVITY
+                )
+            }
+        };
+        let name = Path::new(record)
+            .file_name()
+            .map_or_else(|| record.to_string(), |n| n.to_string_lossy().into_owned());
+        let mut label = format!(
+            "{name}: {} samples × {} s in {}{scaling}, polarity {:+}",
+            rec.samples.len(),
+            rec.dt,
+            rec.unit.name(),
+            polarity
+        );
+        if !rec.note.is_empty() {
+            label.push_str(&format!(" ({})", rec.note));
+        }
+        Some(Signal::Record {
+            dt: rec.dt,
+            samples: rec.samples.into(),
+            label,
+        })
+    }
+
+    fn run(&mut self, duration: f64, dt: f64) -> RunSettings {
+        self.number("run.duration", Some(duration), Rule::positive("s"));
+        self.number("run.dt", Some(dt), Rule::positive("s"));
+        if dt > duration {
+            self.fail(
+                "run.dt",
+                format!("is {dt} s, longer than run.duration ({duration} s)"),
+            );
+        }
+        RunSettings { duration, dt }
+    }
+
+    fn engines(&mut self, raw: &BTreeMap<String, RawEngine>) -> BTreeMap<String, EngineRequest> {
+        let mut out = BTreeMap::new();
+        for (id, e) in raw {
+            let field = format!("engines.{id}");
+            if !self.engine_ids.contains(&id.as_str()) {
+                let known = quoted(self.engine_ids);
+                self.fail(
+                    &field,
+                    format!("unknown engine \"{id}\"; the engines are {known}"),
+                );
+                continue;
+            }
+            if let Some(dt) = e.dt {
+                self.number(&format!("{field}.dt"), Some(dt), Rule::positive("s"));
+            }
+            let mut options = BTreeMap::new();
+            for (k, v) in &e.options {
+                let value = match v {
+                    toml::Value::Float(x) => OptionValue::Number(*x),
+                    toml::Value::Integer(i) => OptionValue::Number(*i as f64),
+                    toml::Value::String(s) => OptionValue::Text(s.clone()),
+                    toml::Value::Boolean(b) => OptionValue::Bool(*b),
+                    _ => {
+                        self.fail(
+                            &format!("{field}.{k}"),
+                            "must be a number, a string or a boolean",
+                        );
+                        continue;
+                    }
+                };
+                options.insert(k.clone(), value);
+            }
+            out.insert(
+                id.clone(),
+                EngineRequest {
+                    dt: e.dt,
+                    variants: e.variants.clone(),
+                    options,
+                },
+            );
+        }
+        out
+    }
+
+    fn tolerance(&mut self, i: usize, t: &RawTolerance) -> Option<Tolerance> {
+        let field = format!("tolerance[{i}]");
+        if t.percent.is_none() && t.absolute.is_none() {
+            self.fail(&field, "needs `percent` or `absolute` (or both)");
+        }
+        if let Some(p) = t.percent {
+            self.number(
+                &format!("{field}.percent"),
+                Some(p),
+                Rule::non_negative("%"),
+            );
+        }
+        if let Some(a) = t.absolute {
+            self.number(
+                &format!("{field}.absolute"),
+                Some(a),
+                Rule::non_negative("SI unit of the quantity"),
+            );
+        }
+        if !crate::response::QUANTITY_KEYS.contains(&t.quantity.as_str()) {
+            self.fail(
+                &format!("{field}.quantity"),
+                format!(
+                    "unknown quantity \"{}\"; known: {}",
+                    t.quantity,
+                    quoted(crate::response::QUANTITY_KEYS)
+                ),
+            );
+        }
+        let basis = match t.against.as_deref() {
+            None | Some("reference") => ToleranceBasis::Reference,
+            Some(run) => ToleranceBasis::Run(run.to_string()),
+        };
+        Some(Tolerance {
+            quantity: t.quantity.clone(),
+            runs: t.engine.clone(),
+            basis,
+            percent: t.percent,
+            absolute: t.absolute,
+            gate: t.gate.unwrap_or(true),
+            field,
+        })
+    }
+}
+
+/// An accepted range for a number, with its unit, able to say itself in words.
+struct Rule {
+    lo: f64,
+    lo_open: bool,
+    hi: f64,
+    allow_inf: bool,
+    unit: &'static str,
+}
+
+impl Rule {
+    fn positive(unit: &'static str) -> Self {
+        Rule {
+            lo: 0.0,
+            lo_open: true,
+            hi: f64::INFINITY,
+            allow_inf: false,
+            unit,
+        }
+    }
+    fn non_negative(unit: &'static str) -> Self {
+        Rule {
+            lo: 0.0,
+            lo_open: false,
+            hi: f64::INFINITY,
+            allow_inf: false,
+            unit,
+        }
+    }
+    fn friction() -> Self {
+        Rule {
+            lo: 0.0,
+            lo_open: false,
+            hi: f64::INFINITY,
+            allow_inf: true,
+            unit: "",
+        }
+    }
+    fn fraction() -> Self {
+        Rule {
+            lo: 0.0,
+            lo_open: false,
+            hi: 1.0,
+            allow_inf: false,
+            unit: "",
+        }
+    }
+    fn finite() -> Self {
+        Rule {
+            lo: f64::NEG_INFINITY,
+            lo_open: true,
+            hi: f64::INFINITY,
+            allow_inf: false,
+            unit: "",
+        }
+    }
+    fn range(lo: f64, hi: f64, unit: &'static str) -> Self {
+        Rule {
+            lo,
+            lo_open: false,
+            hi,
+            allow_inf: false,
+            unit,
+        }
+    }
+
+    fn accepts(&self, x: f64) -> bool {
+        if x.is_nan() {
+            return false;
+        }
+        if x.is_infinite() {
+            return self.allow_inf && x > 0.0;
+        }
+        let above = if self.lo_open {
+            x > self.lo
+        } else {
+            x >= self.lo
+        };
+        above && x <= self.hi
+    }
+
+    fn describe(&self) -> String {
+        let unit = if self.unit.is_empty() {
+            String::new()
+        } else {
+            format!(", in {}", self.unit)
+        };
+        let body = match (self.lo, self.hi.is_infinite()) {
+            (lo, true) if lo == f64::NEG_INFINITY => "a finite number".to_string(),
+            (lo, true) if lo == 0.0 && self.lo_open => "positive and finite".to_string(),
+            (0.0, true) => {
+                if self.allow_inf {
+                    "zero or positive (`inf` for no slip)".to_string()
+                } else {
+                    "zero or positive and finite".to_string()
+                }
+            }
+            (lo, _) => format!("between {lo} and {}", self.hi),
+        };
+        format!("{body}{unit}")
+    }
+}

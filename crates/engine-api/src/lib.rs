@@ -1,0 +1,118 @@
+//! # rockslide-engine-api — the interface every engine implements
+//!
+//! [`Engine`], the outcome of a run ([`Run`], [`RunStatus`]: divergence and non-convergence
+//! are values) and why an engine does not apply ([`NotApplicable`]). Engine crates depend on
+//! this crate and `rockslide-core` only — never on each other or on the references — so a
+//! bug in one cannot hide in another; the crate graph enforces it.
+
+#![warn(missing_docs)]
+
+use rockslide_core::case::{Case, Scene};
+use rockslide_core::error::InputError;
+use rockslide_core::trace::Trace;
+
+/// Why an engine cannot represent a scene.
+#[derive(Debug, Clone, PartialEq)]
+pub struct NotApplicable(pub String);
+
+/// How a run ended.
+#[derive(Debug, Clone, PartialEq)]
+pub enum RunStatus {
+    /// Ran to the end of the case.
+    Completed,
+    /// The solution blew up (NaN/Inf or energy growth) at `time`.
+    Diverged {
+        /// Simulation time, s.
+        time: f64,
+        /// What was seen.
+        reason: String,
+    },
+    /// An iterative solver did not converge at `time`.
+    NotConverged {
+        /// Simulation time, s.
+        time: f64,
+        /// Residual and iteration count, in words.
+        reason: String,
+    },
+}
+
+impl RunStatus {
+    /// Whether the run reached the end.
+    pub fn completed(&self) -> bool {
+        matches!(self, RunStatus::Completed)
+    }
+    /// One-word label.
+    pub fn label(&self) -> &'static str {
+        match self {
+            RunStatus::Completed => "completed",
+            RunStatus::Diverged { .. } => "diverged",
+            RunStatus::NotConverged { .. } => "not converged",
+        }
+    }
+}
+
+impl std::fmt::Display for RunStatus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            RunStatus::Completed => write!(f, "completed"),
+            RunStatus::Diverged { time, reason } => {
+                write!(f, "diverged at t = {time:.6} s: {reason}")
+            }
+            RunStatus::NotConverged { time, reason } => {
+                write!(f, "not converged at t = {time:.6} s: {reason}")
+            }
+        }
+    }
+}
+
+/// The outcome of one engine run: its trace, how it ended, and what it ran with.
+#[derive(Debug, Clone)]
+pub struct Run {
+    /// Engine id.
+    pub engine: &'static str,
+    /// Variant name.
+    pub variant: String,
+    /// Time step, s.
+    pub dt: f64,
+    /// Every setting that shaped the result, as (name, value) — recorded in all outputs.
+    pub settings: Vec<(String, String)>,
+    /// Deterministic counters (steps, iterations, cut-backs).
+    pub counters: Vec<(String, u64)>,
+    /// Things the engine measured about itself worth reporting (Eq. 9 change, eigenfrequencies).
+    pub findings: Vec<String>,
+    /// Time histories.
+    pub trace: Trace,
+    /// How it ended.
+    pub status: RunStatus,
+    /// Wall time of the run, s (filled by the caller; not part of the physics).
+    pub wall_seconds: f64,
+}
+
+impl Run {
+    /// `engine/variant`.
+    pub fn label(&self) -> String {
+        format!("{}/{}", self.engine, self.variant)
+    }
+}
+
+/// A simulation method.
+pub trait Engine: Send + Sync {
+    /// Id as in case files.
+    fn id(&self) -> &'static str;
+    /// One line saying what it is.
+    fn description(&self) -> &'static str;
+    /// The variants this engine can run for a scene, or why it cannot run it at all.
+    fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable>;
+    /// Problems with this engine's options in the case (located), checked at load time.
+    fn check_options(&self, case: &Case) -> Vec<InputError> {
+        let _ = case;
+        Vec::new()
+    }
+    /// Run one variant at time step `dt`. Divergence is a [`RunStatus`], never a panic.
+    fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError>;
+}
+
+/// Number of steps covering `duration` at `dt` (the last step may end past it by < dt/2).
+pub fn step_count(duration: f64, dt: f64) -> usize {
+    (duration / dt - 1e-9).ceil().max(1.0) as usize
+}

@@ -1,0 +1,534 @@
+//! The FE model: a rigid body (point mass at the centre of mass, rigid massless base),
+//! massless intermediate nodes, and contact elements linking ground, nodes and support
+//! points; its assembly (internal force and consistent tangent) and the block solve of
+//! the Newton system.
+//!
+//! Degrees of freedom: the body's q = (X, Z, θ) of the centre of mass (θ locked for a
+//! sliding oscillator) and (x, z) of each massless node. A node links only to the ground
+//! and to the body, so the Newton matrix is an arrowhead; each node's 2×2 block is
+//! condensed out exactly (static condensation), leaving a 3×3 body system. This is an
+//! exact elimination, not an approximation, and it keeps a step allocation-free and
+//! cheap (fixed-size nalgebra matrices on the stack).
+//!
+//! Gravity is a constant load −M·g on Z; the run starts from the static equilibrium
+//! under it (`static_preload`).
+
+use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
+
+use super::element::{Contact178, Element};
+use super::options::Kinematics;
+use rockslide_core::case::{Contact, DoubleContact, Oscillator, RockingBody};
+
+/// Where an element end sits.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Point {
+    /// The ground (prescribed horizontal displacement xg(t)).
+    Ground,
+    /// Massless node `k`.
+    Node(usize),
+    /// Attachment point `i` of the body.
+    Body(usize),
+}
+
+/// One element between two points.
+#[derive(Debug, Clone)]
+pub struct Link {
+    /// Lower end.
+    pub lower: Point,
+    /// Upper end.
+    pub upper: Point,
+    /// The element.
+    pub element: Contact178,
+}
+
+/// One support: the element touching the ground and, in the double arrangement, the
+/// intermediate node above it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Support {
+    /// Index of the link whose lower end is the ground.
+    pub ground_link: usize,
+    /// The intermediate node, if any.
+    pub node: Option<usize>,
+}
+
+/// The rigid body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body {
+    /// Translational mass (X and Z), kg.
+    pub mass: f64,
+    /// Rotational inertia about the centre of mass, kg·m² (unused when θ is locked).
+    pub inertia: f64,
+    /// Whether θ is a degree of freedom.
+    pub rotation: bool,
+    /// Attachment points in the body frame, relative to the centre of mass, m.
+    pub attachments: Vec<Vector2<f64>>,
+    /// Horizontal viscous damping on the body relative to the ground, N·s/m.
+    pub damping: f64,
+}
+
+/// Model assembled from a scene variant.
+#[derive(Debug, Clone)]
+pub struct Model {
+    /// The body.
+    pub body: Body,
+    /// Number of massless nodes.
+    pub nodes: usize,
+    /// Elements.
+    pub links: Vec<Link>,
+    /// Supports, for outputs.
+    pub supports: Vec<Support>,
+    /// Gravity, m/s².
+    pub gravity: f64,
+    /// Kinematics of the attachment points.
+    pub kinematics: Kinematics,
+    /// Second-order rotation terms with small-rotation kinematics.
+    pub p_delta: bool,
+}
+
+/// Preallocated results of one assembly.
+#[derive(Debug, Clone)]
+pub struct Assembly {
+    /// Internal force on the body's (X, Z, θ), N and N·m.
+    pub pb: Vector3<f64>,
+    /// Tangent of `pb` with respect to q.
+    pub kbb: Matrix3<f64>,
+    /// Internal force on each node.
+    pub pn: Vec<Vector2<f64>>,
+    /// Node blocks ∂pn/∂un.
+    pub knn: Vec<Matrix2<f64>>,
+    /// ∂pb/∂un.
+    pub kbn: Vec<Matrix3x2<f64>>,
+    /// ∂pn/∂q.
+    pub knb: Vec<Matrix2x3<f64>>,
+    /// Inverses of the node blocks (filled by `solve`).
+    knn_inv: Vec<Matrix2<f64>>,
+    /// Kinematics of every body attachment at the current q (computed once per assembly).
+    points: Vec<PointKin>,
+}
+
+impl Assembly {
+    /// Room for a model's nodes and attachment points.
+    pub fn new(model: &Model) -> Self {
+        let nodes = model.nodes;
+        Self {
+            points: vec![PointKin::default(); model.body.attachments.len()],
+            pb: Vector3::zeros(),
+            kbb: Matrix3::zeros(),
+            pn: vec![Vector2::zeros(); nodes],
+            knn: vec![Matrix2::zeros(); nodes],
+            kbn: vec![Matrix3x2::zeros(); nodes],
+            knb: vec![Matrix2x3::zeros(); nodes],
+            knn_inv: vec![Matrix2::zeros(); nodes],
+        }
+    }
+}
+
+/// Displacement of a body point, the θ column g of its Jacobian G = ∂u/∂q = [I₂ | g],
+/// and h = ∂²u/∂θ².
+#[derive(Debug, Clone, Copy, Default)]
+struct PointKin {
+    u: Vector2<f64>,
+    g: Vector2<f64>,
+    h: Vector2<f64>,
+}
+
+/// Kinematics of a body point at body-frame offset `d` from the centre of mass.
+#[inline]
+fn point_kin(
+    kin: Kinematics,
+    p_delta: bool,
+    q: &Vector3<f64>,
+    cs: (f64, f64),
+    d: &Vector2<f64>,
+) -> PointKin {
+    let (dx, dz) = (d.x, d.y);
+    let th = q.z;
+    let (ux, uz, gx, gz, hx, hz) = match (kin, p_delta) {
+        (Kinematics::Exact, _) => {
+            // r = R(θ)·d, R = [[c, −s], [s, c]]: u = (R − I)·d
+            let (c, s) = cs;
+            (
+                (c - 1.0) * dx - s * dz,
+                s * dx + (c - 1.0) * dz,
+                -s * dx - c * dz,
+                c * dx - s * dz,
+                -c * dx + s * dz,
+                -s * dx - c * dz,
+            )
+        }
+        (Kinematics::SmallRotation, false) => (-th * dz, th * dx, -dz, dx, 0.0, 0.0),
+        // Second order in θ: cos θ ≈ 1 − θ²/2, sin θ ≈ θ.
+        (Kinematics::SmallRotation, true) => (
+            -th * dz - 0.5 * th * th * dx,
+            th * dx - 0.5 * th * th * dz,
+            -dz - th * dx,
+            dx - th * dz,
+            -dx,
+            -dz,
+        ),
+    };
+    PointKin {
+        u: Vector2::new(q.x + ux, q.y + uz),
+        g: Vector2::new(gx, gz),
+        h: Vector2::new(hx, hz),
+    }
+}
+
+/// The engine's stated rotational inertia when a case gives none: 0.01 % of that of a
+/// uniform solid block 2b wide and 2h tall about its centre, I = 1e-4·M(b² + h²)/3
+/// (21.35 kg·m² for the RPEPO). Measured on the RPEPO (docs/fe-engine.md): results with
+/// I and I/10 agree to about 1–3 % while 100·I (1 % of the block's) changes the peak
+/// sliding by 50 %, so this value stands for the paper's "no rotational inertia". The
+/// rapier engine applies the same rule in its own code; the shipped RPEPO cases state it.
+pub fn default_rotational_inertia(r: &RockingBody) -> f64 {
+    1e-4 * r.mass * (r.half_width.powi(2) + r.cm_height.powi(2)) / 3.0
+}
+
+fn element(c: &Contact, bonded: bool) -> Contact178 {
+    Contact178::new(c.kx, c.kz, c.mu, bonded)
+}
+
+impl Model {
+    /// The sliding oscillator, single element (`double` = None) or two in series.
+    pub fn oscillator(o: &Oscillator, double: Option<&DoubleContact>) -> Self {
+        let body = Body {
+            mass: o.mass,
+            inertia: 0.0,
+            rotation: false,
+            attachments: vec![Vector2::zeros()],
+            damping: o.damping(),
+        };
+        let (links, supports, nodes) = supports_for(1, &o.contact, double);
+        Model {
+            body,
+            nodes,
+            links,
+            supports,
+            gravity: o.gravity,
+            kinematics: Kinematics::SmallRotation,
+            p_delta: false,
+        }
+    }
+
+    /// The rocking body with its supports.
+    pub fn rocking(
+        r: &RockingBody,
+        double: Option<&DoubleContact>,
+        inertia: f64,
+        kinematics: Kinematics,
+        p_delta: bool,
+    ) -> Self {
+        let body = Body {
+            mass: r.mass,
+            inertia,
+            rotation: true,
+            attachments: r
+                .support_positions()
+                .into_iter()
+                .map(|x| Vector2::new(x, -r.cm_height))
+                .collect(),
+            damping: 0.0,
+        };
+        let (links, supports, nodes) = supports_for(r.supports, &r.contact, double);
+        Model {
+            body,
+            nodes,
+            links,
+            supports,
+            gravity: r.gravity,
+            kinematics,
+            p_delta,
+        }
+    }
+
+    /// Body mass matrix diagonal (M, M, I).
+    pub fn mass_diag(&self) -> Vector3<f64> {
+        Vector3::new(self.body.mass, self.body.mass, self.body.inertia)
+    }
+
+    /// Weight M·g, N.
+    pub fn weight(&self) -> f64 {
+        self.body.mass * self.gravity
+    }
+
+    /// Displacement of body attachment `i` (for outputs).
+    pub fn point_displacement(&self, q: &Vector3<f64>, i: usize) -> Vector2<f64> {
+        let cs = (q.z.cos(), q.z.sin());
+        point_kin(
+            self.kinematics,
+            self.p_delta,
+            q,
+            cs,
+            &self.body.attachments[i],
+        )
+        .u
+    }
+
+    /// Evaluate every element at the trial state (body q, nodes `un`, ground at `xg`)
+    /// and assemble internal forces and the consistent tangent into `a`.
+    /// The massless nodes are first put at their exact local equilibrium
+    /// (`relax_nodes`), so `un` is updated.
+    pub fn assemble(
+        &mut self,
+        q: &Vector3<f64>,
+        un: &mut [Vector2<f64>],
+        xg: f64,
+        a: &mut Assembly,
+    ) {
+        a.pb = Vector3::zeros();
+        a.kbb = Matrix3::zeros();
+        for k in 0..self.nodes {
+            a.pn[k] = Vector2::zeros();
+            a.knn[k] = Matrix2::zeros();
+            a.kbn[k] = Matrix3x2::zeros();
+            a.knb[k] = Matrix2x3::zeros();
+        }
+        let cs = if self.kinematics == Kinematics::Exact {
+            (q.z.cos(), q.z.sin())
+        } else {
+            (1.0, 0.0)
+        };
+        for (p, d) in a.points.iter_mut().zip(&self.body.attachments) {
+            *p = point_kin(self.kinematics, self.p_delta, q, cs, d);
+        }
+        self.relax_nodes(&a.points, un, xg);
+        let ground = Vector2::new(xg, 0.0);
+        let un: &[Vector2<f64>] = un;
+        for link in &mut self.links {
+            let at = |p: Point| match p {
+                Point::Ground => (ground, None),
+                Point::Node(k) => (un[k], None),
+                Point::Body(i) => {
+                    let pk = a.points[i];
+                    (pk.u, Some(pk))
+                }
+            };
+            let (ul, kl) = at(link.lower);
+            let (uu, ku) = at(link.upper);
+            let (f, d) = link.element.trial(uu - ul);
+            // Upper end gets +f, lower end −f; ∂f/∂u_upper = D, ∂f/∂u_lower = −D.
+            // With G = [I₂ | g]: Gᵀf = (f, g·f), GᵀDG = [[D, Dg], [gᵀD, gᵀDg]].
+            let body_end = match (&ku, &kl) {
+                (Some(pk), _) => Some((pk, 1.0)),
+                (_, Some(pk)) => Some((pk, -1.0)),
+                _ => None,
+            };
+            let mut coupling = None;
+            if let Some((pk, sign)) = body_end {
+                let dg = d * pk.g;
+                let gtd = d.tr_mul(&pk.g); // (gᵀD)ᵀ
+                a.pb += Vector3::new(f.x, f.y, pk.g.dot(&f)) * sign;
+                let k = &mut a.kbb;
+                k[(0, 0)] += d[(0, 0)];
+                k[(0, 1)] += d[(0, 1)];
+                k[(1, 0)] += d[(1, 0)];
+                k[(1, 1)] += d[(1, 1)];
+                k[(0, 2)] += dg.x;
+                k[(1, 2)] += dg.y;
+                k[(2, 0)] += gtd.x;
+                k[(2, 1)] += gtd.y;
+                // geometric stiffness ±f·∂²u/∂θ²
+                k[(2, 2)] += pk.g.dot(&dg) + sign * f.dot(&pk.h);
+                coupling = Some((dg, gtd));
+            }
+            let node = match (link.upper, link.lower) {
+                (Point::Node(k), _) => Some((k, 1.0)),
+                (_, Point::Node(k)) => Some((k, -1.0)),
+                _ => None,
+            };
+            if let Some((k, sign)) = node {
+                a.pn[k] += f * sign;
+                a.knn[k] += d;
+                if let Some((dg, gtd)) = coupling {
+                    // ∂pb/∂un = −GᵀD, ∂pn/∂q = −DG
+                    a.kbn[k] -=
+                        Matrix3x2::new(d[(0, 0)], d[(0, 1)], d[(1, 0)], d[(1, 1)], gtd.x, gtd.y);
+                    a.knb[k] -=
+                        Matrix2x3::new(d[(0, 0)], d[(0, 1)], dg.x, d[(1, 0)], d[(1, 1)], dg.y);
+                }
+            }
+        }
+    }
+
+    /// Commit every element's trial state.
+    pub fn commit(&mut self) {
+        for l in &mut self.links {
+            l.element.commit();
+        }
+    }
+
+    /// Restore every element's committed state.
+    pub fn restore(&mut self) {
+        for l in &mut self.links {
+            l.element.restore();
+        }
+    }
+}
+
+/// Links and supports for `n` supports (body attachment `i` each).
+fn supports_for(
+    n: usize,
+    single: &Contact,
+    double: Option<&DoubleContact>,
+) -> (Vec<Link>, Vec<Support>, usize) {
+    let mut links = Vec::new();
+    let mut supports = Vec::new();
+    for i in 0..n {
+        match double {
+            None => {
+                supports.push(Support {
+                    ground_link: links.len(),
+                    node: None,
+                });
+                links.push(Link {
+                    lower: Point::Ground,
+                    upper: Point::Body(i),
+                    element: element(single, false),
+                });
+            }
+            Some(dc) => {
+                supports.push(Support {
+                    ground_link: links.len(),
+                    node: Some(i),
+                });
+                links.push(Link {
+                    lower: Point::Ground,
+                    upper: Point::Node(i),
+                    element: element(&dc.lower, false),
+                });
+                // Element 2 is bonded: with element 1 compression-only in series the pair
+                // transmits exactly what two compression-only elements would (the
+                // massless node balances N2 = N1 ≥ 0), but the node stays determinate
+                // when element 1 opens.
+                links.push(Link {
+                    lower: Point::Node(i),
+                    upper: Point::Body(i),
+                    element: element(&dc.upper, true),
+                });
+            }
+        }
+    }
+    let nodes = if double.is_some() { n } else { 0 };
+    (links, supports, nodes)
+}
+
+/// Scaling of the Newton system: S·Δq = rhs with S = diag(M)·c0 + s·(Kbb − Σ Kbn Knn⁻¹ Knb)
+/// (+ c_damp on XX), rhs = rb − Σ Kbn Knn⁻¹ rn; nodes Δun = Knn⁻¹(rn/s − Knb Δq).
+pub struct System {
+    /// Coefficient of the mass matrix, 1/(β·Δt²) (0 for statics).
+    pub c0: f64,
+    /// Scale of the stiffness, 1 + α.
+    pub s: f64,
+    /// Extra XX stiffness (damping γ/(βΔt)·C·(1+α)).
+    pub damp_xx: f64,
+}
+
+/// Solve the Newton system; writes Δq and Δun. Returns false if a block is singular.
+pub fn solve(
+    model: &Model,
+    sys: &System,
+    a: &mut Assembly,
+    rb: &Vector3<f64>,
+    rn: &[Vector2<f64>],
+    dq: &mut Vector3<f64>,
+    dun: &mut [Vector2<f64>],
+) -> bool {
+    let m = model.mass_diag();
+    let mut s_mat = Matrix3::from_diagonal(&(m * sys.c0)) + a.kbb * sys.s;
+    s_mat[(0, 0)] += sys.damp_xx;
+    let mut rhs = *rb;
+    for (k, r) in rn.iter().enumerate().take(model.nodes) {
+        let Some(inv) = a.knn[k].try_inverse() else {
+            return false;
+        };
+        a.knn_inv[k] = inv;
+        let kbn_inv = a.kbn[k] * inv;
+        s_mat -= kbn_inv * a.knb[k] * sys.s;
+        rhs -= kbn_inv * r;
+    }
+    if !model.body.rotation {
+        for j in 0..3 {
+            s_mat[(2, j)] = 0.0;
+            s_mat[(j, 2)] = 0.0;
+        }
+        s_mat[(2, 2)] = 1.0;
+        rhs.z = 0.0;
+    }
+    // LU with partial pivoting: the closed-form 3×3 inverse is a little cheaper but
+    // loses digits, and the tight preset then needs more iterations.
+    let Some(x) = s_mat.lu().solve(&rhs) else {
+        return false;
+    };
+    *dq = x;
+    for k in 0..model.nodes {
+        dun[k] = a.knn_inv[k] * (rn[k] / sys.s - a.knb[k] * x);
+    }
+    true
+}
+
+/// The tangent stiffness condensed onto the body's (X, Z, θ) at the current element
+/// states (Schur complement of the node blocks); `None` if a node block is singular.
+pub fn condensed_tangent(model: &Model, a: &Assembly) -> Option<Matrix3<f64>> {
+    let mut k = a.kbb;
+    for n in 0..model.nodes {
+        let inv = a.knn[n].try_inverse()?;
+        k -= a.kbn[n] * inv * a.knb[n];
+    }
+    Some(k)
+}
+
+impl Model {
+    /// Displacement of any body-frame point `d` (e.g. the base centre O).
+    pub fn displacement_of(&self, q: &Vector3<f64>, d: &Vector2<f64>) -> Vector2<f64> {
+        let cs = (q.z.cos(), q.z.sin());
+        point_kin(self.kinematics, self.p_delta, q, cs, d).u
+    }
+}
+
+impl Model {
+    /// Put every intermediate node at its exact equilibrium for the current body
+    /// position and ground (a local solve, exact for the double arrangement: element 1
+    /// compression-only with friction from the ground, element 2 bonded with μ2 = ∞).
+    ///
+    /// The node's two equations f1(δ1) = f2(δt − δ1) are piecewise linear; Newton on them
+    /// cycles between stick and slip (a saturating force plus a soft spring behaves like
+    /// arctan), so they are solved in closed form:
+    ///   closed (δtz ≤ 0): δ1z = kz2·δtz/(kz1 + kz2);  open: δ1 = δt (no force).
+    ///   stick: T = ks(δtx − s1), δ1x = (kx1·s1 + kx2·δtx)/(kx1 + kx2), ks = series kx;
+    ///   slip (|T| > μ1·N): T = ±μ1·N, δ1x = δtx − T/kx2.
+    /// The global Newton then iterates on the body alone with the condensed (Schur)
+    /// tangent, which is the derivative of this local solution.
+    fn relax_nodes(&self, points: &[PointKin], un: &mut [Vector2<f64>], xg: f64) {
+        for sup in &self.supports {
+            let Some(k) = sup.node else { continue };
+            let (l1, l2) = (
+                &self.links[sup.ground_link],
+                &self.links[sup.ground_link + 1],
+            );
+            let Point::Body(i) = l2.upper else { continue };
+            let (e1, e2) = (&l1.element, &l2.element);
+            if !(e2.bonded && e2.mu.is_infinite()) || e1.bonded {
+                continue;
+            }
+            let ub = points[i].u;
+            let dt = ub - Vector2::new(xg, 0.0);
+            let d1 = if dt.y > 0.0 {
+                dt
+            } else {
+                let z1 = e2.kz * dt.y / (e1.kz + e2.kz);
+                let n = -e1.kz * z1;
+                let s1 = e1.state().slip;
+                let ks = e1.kx * e2.kx / (e1.kx + e2.kx);
+                let t = ks * (dt.x - s1);
+                let cap = e1.mu * n;
+                let x1 = if e1.mu.is_infinite() || t.abs() <= cap {
+                    (e1.kx * s1 + e2.kx * dt.x) / (e1.kx + e2.kx)
+                } else {
+                    dt.x - t.signum() * cap / e2.kx
+                };
+                Vector2::new(x1, z1)
+            };
+            un[k] = d1 + Vector2::new(xg, 0.0);
+        }
+    }
+}

@@ -1,0 +1,234 @@
+//! The FE engine's options (`[engines.fe]` in a case file): integrator, Newton presets,
+//! kinematics, P-Delta, rotational inertia. Each field says its unit and valid range; the
+//! paper's Newton tolerances are one named preset.
+
+use rockslide_core::case::Case;
+use rockslide_core::error::InputError;
+
+const ID: &str = "fe";
+
+/// Every option key the engine understands.
+pub const OPTION_KEYS: &[&str] = &[
+    "integrator",
+    "alpha",
+    "newton",
+    "max_iterations",
+    "kinematics",
+    "p_delta",
+    "rotational_inertia",
+    "sensitivity",
+];
+
+/// Time integrator.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Integrator {
+    /// Newmark average acceleration (β = 1/4, γ = 1/2): second order, no dissipation.
+    Newmark,
+    /// Hilber–Hughes–Taylor α (Hilber, Hughes & Taylor 1977): α in [−1/3, 0],
+    /// β = (1 − α)²/4, γ = 1/2 − α; damps modes with ω·Δt ≫ 1.
+    Hht {
+        /// α, in [−1/3, 0].
+        alpha: f64,
+    },
+}
+
+impl Integrator {
+    /// (α, β, γ) in the HHT convention (α = 0 for Newmark).
+    pub fn parameters(&self) -> (f64, f64, f64) {
+        match *self {
+            Integrator::Newmark => (0.0, 0.25, 0.5),
+            Integrator::Hht { alpha } => (alpha, (1.0 - alpha).powi(2) / 4.0, 0.5 - alpha),
+        }
+    }
+    /// Name as in case files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Integrator::Newmark => "newmark",
+            Integrator::Hht { .. } => "hht",
+        }
+    }
+}
+
+/// Newton–Raphson convergence control. A step has converged when both the residual
+/// force and the latest displacement correction are small (ANSYS-style criteria).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Newton {
+    /// Preset name.
+    pub preset: &'static str,
+    /// ‖residual‖ ≤ force_tol · (‖external‖ + ‖internal‖ + ‖inertial‖) of the body.
+    pub force_tol: f64,
+    /// ‖latest correction‖ ≤ displacement_tol · ‖displacement increment of the step‖.
+    pub displacement_tol: f64,
+    /// Equilibrium iterations allowed per step before the run is declared not converged.
+    pub max_iterations: usize,
+}
+
+impl Newton {
+    /// The paper's ANSYS defaults: 0.5 % on forces, 5 % on displacements (paper, RPEPO
+    /// and PEPO FE runs; ANSYS NEQIT default 25 iterations).
+    pub const PAPER: Newton = Newton {
+        preset: "paper",
+        force_tol: 5e-3,
+        displacement_tol: 5e-2,
+        max_iterations: 25,
+    };
+    /// Verification preset: converged to round-off for these scenes.
+    pub const TIGHT: Newton = Newton {
+        preset: "tight",
+        force_tol: 1e-9,
+        displacement_tol: 1e-9,
+        max_iterations: 50,
+    };
+}
+
+/// Rigid-body kinematics of the support points.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Kinematics {
+    /// Exact finite rotation: points move by (R(θ) − I)·d. Gravity acting through the
+    /// rotation (P-Delta) is part of it.
+    Exact,
+    /// Linearised rotation, u = (X − θ·dz, Z + θ·dx): what the paper's programs used.
+    SmallRotation,
+}
+
+impl Kinematics {
+    /// Name as in case files.
+    pub fn name(&self) -> &'static str {
+        match self {
+            Kinematics::Exact => "exact",
+            Kinematics::SmallRotation => "small-rotation",
+        }
+    }
+}
+
+/// Everything the FE engine runs with, beyond the scene and the time step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FeOptions {
+    /// Time integrator.
+    pub integrator: Integrator,
+    /// Newton control.
+    pub newton: Newton,
+    /// Kinematics of a rocking body.
+    pub kinematics: Kinematics,
+    /// P-Delta: second-order rotation terms (always on with exact kinematics; with small
+    /// rotation, adds the −θ²/2 terms so gravity acts through the rotation).
+    pub p_delta: bool,
+    /// Rotational inertia override, kg·m² (> 0); `None`: the case's value, or when that
+    /// is 0 the engine's stated default (see `model::default_rotational_inertia`).
+    pub rotational_inertia: Option<f64>,
+    /// For rocking bodies, rerun with I/10, 10·I and the paper's kinematics and report the
+    /// differences as findings.
+    pub sensitivity: bool,
+}
+
+impl Default for FeOptions {
+    fn default() -> Self {
+        Self {
+            integrator: Integrator::Newmark,
+            newton: Newton::TIGHT,
+            kinematics: Kinematics::Exact,
+            p_delta: true,
+            rotational_inertia: None,
+            sensitivity: true,
+        }
+    }
+}
+
+impl FeOptions {
+    /// Read and validate the case's `[engines.fe]` options; every problem is returned.
+    pub fn parse(case: &Case) -> (FeOptions, Vec<InputError>) {
+        let mut errors = Vec::new();
+        let mut o = FeOptions::default();
+        let field = |k: &str| format!("engines.{ID}.{k}");
+        if let Some(req) = case.engine(ID) {
+            for k in req.options.keys() {
+                if !OPTION_KEYS.contains(&k.as_str()) {
+                    errors.push(case.field_error(
+                        &field(k),
+                        format!(
+                            "unknown option of the fe engine; its options are {}",
+                            OPTION_KEYS.join(", ")
+                        ),
+                    ));
+                }
+            }
+        }
+        let mut take = |r: Result<(), InputError>| {
+            if let Err(e) = r {
+                errors.push(e);
+            }
+        };
+        take((|| {
+            let name = case.engine_text(ID, "integrator", "newmark", &["newmark", "hht"])?;
+            let has_alpha = case
+                .engine(ID)
+                .is_some_and(|r| r.options.contains_key("alpha"));
+            let alpha = case.engine_number(ID, "alpha", -0.05)?;
+            if name == "hht" {
+                if !(-1.0 / 3.0..=0.0).contains(&alpha) {
+                    return Err(case.field_error(
+                        &field("alpha"),
+                        format!("is {alpha}, but must be between −1/3 and 0 (HHT-α)"),
+                    ));
+                }
+                o.integrator = Integrator::Hht { alpha };
+            } else if has_alpha {
+                return Err(
+                    case.field_error(&field("alpha"), "applies only with integrator = \"hht\"")
+                );
+            }
+            Ok(())
+        })());
+        take((|| {
+            let preset = case.engine_text(ID, "newton", "tight", &["paper", "tight"])?;
+            o.newton = if preset == "paper" {
+                Newton::PAPER
+            } else {
+                Newton::TIGHT
+            };
+            let m = case.engine_number(ID, "max_iterations", o.newton.max_iterations as f64)?;
+            if !((1.0..=1000.0).contains(&m) && m.fract() == 0.0) {
+                return Err(case.field_error(
+                    &field("max_iterations"),
+                    format!("is {m}, but must be a whole number from 1 to 1000"),
+                ));
+            }
+            o.newton.max_iterations = m as usize;
+            Ok(())
+        })());
+        take((|| {
+            let k = case.engine_text(ID, "kinematics", "exact", &["exact", "small-rotation"])?;
+            o.kinematics = if k == "exact" {
+                Kinematics::Exact
+            } else {
+                Kinematics::SmallRotation
+            };
+            o.p_delta = case.engine_bool(ID, "p_delta", true)?;
+            if o.kinematics == Kinematics::Exact && !o.p_delta {
+                return Err(case.field_error(
+                    &field("p_delta"),
+                    "cannot be false with kinematics = \"exact\": finite rotation includes gravity acting through the rotation; use kinematics = \"small-rotation\" to leave it out",
+                ));
+            }
+            Ok(())
+        })());
+        take((|| {
+            if case
+                .engine(ID)
+                .is_some_and(|r| r.options.contains_key("rotational_inertia"))
+            {
+                let i = case.engine_number(ID, "rotational_inertia", 0.0)?;
+                if !(i > 0.0 && i.is_finite()) {
+                    return Err(case.field_error(
+                        &field("rotational_inertia"),
+                        format!("is {i}, but must be positive and finite, in kg·m²"),
+                    ));
+                }
+                o.rotational_inertia = Some(i);
+            }
+            o.sensitivity = case.engine_bool(ID, "sensitivity", true)?;
+            Ok(())
+        })());
+        (o, errors)
+    }
+}

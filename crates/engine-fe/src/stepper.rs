@@ -1,0 +1,372 @@
+//! The time loop: static preload under gravity, then Newmark average acceleration or
+//! HHT-α with Newton–Raphson equilibrium iterations on the consistent tangent.
+//!
+//! Newmark (Newmark 1959), with q the body's degrees of freedom:
+//!   a₊ = (q₊ − qₙ − Δt·vₙ)/(βΔt²) − (1/(2β) − 1)·aₙ,   v₊ = vₙ + Δt·((1 − γ)aₙ + γa₊)
+//! HHT-α (Hilber, Hughes & Taylor 1977), equilibrium at t_{n+1+α}:
+//!   M·a₊ + (1 + α)(p₊ + C·v₊ − f₊) − α(pₙ + C·vₙ − fₙ) = 0
+//! Massless nodes carry no inertia: their rows are (1 + α)·p₊ − α·pₙ = 0.
+//! Nothing is allocated inside the loop: every vector lives in a [`Workspace`].
+
+use nalgebra::{Vector2, Vector3};
+
+use super::model::{Assembly, Model, System, solve};
+use super::options::FeOptions;
+use rockslide_core::case::Excitation;
+use rockslide_engine_api::RunStatus;
+
+/// How the excitation drives the model.
+#[derive(Debug, Clone, Copy)]
+pub struct Drive<'a> {
+    excitation: &'a Excitation,
+    mass: f64,
+}
+
+impl<'a> Drive<'a> {
+    /// The drive of an excitation on a body of mass `mass`.
+    pub fn new(excitation: &'a Excitation, mass: f64) -> Self {
+        Self { excitation, mass }
+    }
+    /// Horizontal force applied to the body at `t`, N. A ground acceleration record is
+    /// run in relative coordinates (force −M·ag, ground fixed).
+    pub fn force(&self, t: f64) -> f64 {
+        match self.excitation {
+            Excitation::MassAcceleration(s) => self.mass * s.value(t),
+            Excitation::GroundAcceleration(s) => -self.mass * s.value(t),
+            _ => 0.0,
+        }
+    }
+    /// Prescribed ground (displacement, velocity, acceleration) at `t`, in the model.
+    pub fn ground(&self, t: f64) -> (f64, f64, f64) {
+        match self.excitation {
+            Excitation::GroundDisplacement(s) => {
+                (s.value(t), s.derivative(t), s.second_derivative(t))
+            }
+            _ => (0.0, 0.0, 0.0),
+        }
+    }
+    /// The horizontal force on the mass in relative coordinates (output channel `force`).
+    pub fn equivalent_force(&self, t: f64) -> f64 {
+        match self.excitation {
+            Excitation::GroundDisplacement(s) => -self.mass * s.second_derivative(t),
+            _ => self.force(t),
+        }
+    }
+}
+
+/// The model's state at one output instant.
+#[derive(Debug, Clone, Copy)]
+pub struct Snapshot<'a> {
+    /// Time, s.
+    pub t: f64,
+    /// Body displacement (X, Z, θ) from the unloaded position.
+    pub q: Vector3<f64>,
+    /// Body velocity.
+    pub v: Vector3<f64>,
+    /// Body acceleration.
+    pub a: Vector3<f64>,
+    /// Node displacements.
+    pub un: &'a [Vector2<f64>],
+    /// Ground (displacement, velocity, acceleration).
+    pub ground: (f64, f64, f64),
+    /// Body displacement at static equilibrium.
+    pub q_static: Vector3<f64>,
+}
+
+/// Deterministic counters of a run.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Counters {
+    /// Time steps taken.
+    pub steps: u64,
+    /// Equilibrium (Newton) iterations over all steps.
+    pub iterations: u64,
+    /// Most iterations in one step.
+    pub max_step_iterations: u64,
+    /// Iterations of the static preload.
+    pub static_iterations: u64,
+}
+
+/// Every vector the loop needs, allocated once.
+struct Workspace {
+    asm: Assembly,
+    un: Vec<Vector2<f64>>,
+    un_n: Vec<Vector2<f64>>,
+    pn_n: Vec<Vector2<f64>>,
+    rn: Vec<Vector2<f64>>,
+    dun: Vec<Vector2<f64>>,
+    /// Line search: the last accepted iterate and its Newton direction.
+    un_prev: Vec<Vector2<f64>>,
+    dun_prev: Vec<Vector2<f64>>,
+}
+
+impl Workspace {
+    fn new(model: &Model) -> Self {
+        let z = vec![Vector2::zeros(); model.nodes];
+        Self {
+            asm: Assembly::new(model),
+            un: z.clone(),
+            un_n: z.clone(),
+            pn_n: z.clone(),
+            rn: z.clone(),
+            dun: z.clone(),
+            un_prev: z.clone(),
+            dun_prev: z,
+        }
+    }
+}
+
+/// Static equilibrium under gravity from the unloaded, just-touching state (Newton,
+/// converged to round-off); commits the elements. Returns (q, iterations).
+fn static_preload(model: &mut Model, w: &mut Workspace) -> Result<(Vector3<f64>, u64), String> {
+    let f = Vector3::new(0.0, -model.weight(), 0.0);
+    let sys = System {
+        c0: 0.0,
+        s: 1.0,
+        damp_xx: 0.0,
+    };
+    let mut q = Vector3::zeros();
+    let mut dq = Vector3::zeros();
+    for it in 0..100 {
+        model.assemble(&q, &mut w.un, 0.0, &mut w.asm);
+        let rb = f - w.asm.pb;
+        let mut r2 = rb.norm_squared();
+        for k in 0..model.nodes {
+            w.rn[k] = -w.asm.pn[k];
+            r2 += w.rn[k].norm_squared();
+        }
+        if !solve(model, &sys, &mut w.asm, &rb, &w.rn, &mut dq, &mut w.dun) {
+            return Err("singular stiffness in the static preload".into());
+        }
+        let mut d2 = dq.norm_squared();
+        for k in 0..model.nodes {
+            d2 += w.dun[k].norm_squared();
+        }
+        if it > 0
+            && r2.sqrt() <= 1e-10 * f.norm().max(1.0)
+            && d2.sqrt() <= 1e-12 * q.norm().max(1e-9)
+        {
+            model.commit();
+            return Ok((q, it as u64 + 1));
+        }
+        q += dq;
+        for k in 0..model.nodes {
+            w.un[k] += w.dun[k];
+        }
+    }
+    Err("the static preload did not converge in 100 iterations".into())
+}
+
+/// The static equilibrium under gravity (body q and node displacements); commits the
+/// elements' states.
+pub fn preload(model: &mut Model) -> Result<(Vector3<f64>, Vec<Vector2<f64>>), String> {
+    let mut w = Workspace::new(model);
+    let (q, _) = static_preload(model, &mut w)?;
+    Ok((q, w.un))
+}
+
+/// Run the model from its static equilibrium for `steps` steps of `dt`, calling
+/// `observe` at t = 0 and after every converged step. Non-convergence and divergence
+/// end the run with a [`RunStatus`].
+pub fn integrate(
+    model: &mut Model,
+    drive: &Drive,
+    opts: &FeOptions,
+    dt: f64,
+    steps: usize,
+    mut observe: impl FnMut(&Model, &Snapshot),
+) -> (RunStatus, Counters) {
+    let mut w = Workspace::new(model);
+    let mut counters = Counters::default();
+    let q_static = match static_preload(model, &mut w) {
+        Ok((q, it)) => {
+            counters.static_iterations = it;
+            q
+        }
+        Err(reason) => return (RunStatus::NotConverged { time: 0.0, reason }, counters),
+    };
+    let m = model.mass_diag();
+    let c = model.body.damping;
+    let weight = model.weight();
+    let (alpha, beta, gamma) = opts.integrator.parameters();
+    let s = 1.0 + alpha;
+    let (c0, c1) = (1.0 / (beta * dt * dt), gamma / (beta * dt));
+    let sys = System {
+        c0,
+        s,
+        damp_xx: s * c * c1,
+    };
+    let newton = opts.newton;
+
+    // State at n.
+    let mut q_n = q_static;
+    let mut v_n = Vector3::zeros();
+    let g0 = drive.ground(0.0);
+    let mut f_n = Vector3::new(drive.force(0.0), -weight, 0.0);
+    model.assemble(&q_n, &mut w.un, g0.0, &mut w.asm);
+    let mut pb_n = w.asm.pb;
+    w.un_n.copy_from_slice(&w.un);
+    w.pn_n.copy_from_slice(&w.asm.pn);
+    let mut damp_n = c * (v_n.x - g0.1);
+    let mut g_n = g0.0;
+    let mut a_n = (f_n - pb_n - Vector3::new(damp_n, 0.0, 0.0))
+        .component_div(&m.map(|x| if x > 0.0 { x } else { f64::INFINITY }));
+    if !model.body.rotation {
+        a_n.z = 0.0;
+    }
+    model.restore();
+    observe(
+        model,
+        &Snapshot {
+            t: 0.0,
+            q: q_n,
+            v: v_n,
+            a: a_n,
+            un: &w.un_n,
+            ground: g0,
+            q_static,
+        },
+    );
+
+    let mut dq = Vector3::zeros();
+    for step in 1..=steps {
+        let t = step as f64 * dt;
+        let g = drive.ground(t);
+        let f = Vector3::new(drive.force(t), -weight, 0.0);
+        // Predictor: constant acceleration over the step.
+        let mut q = q_n + v_n * dt + a_n * (0.5 * dt * dt);
+        w.un.copy_from_slice(&w.un_n);
+        // Predictor: nodes on the ground move with it (element 1 is the stiff one); a
+        // node left behind would put element 1 far into slip and let Newton cycle.
+        for sup in &model.supports {
+            if let Some(k) = sup.node {
+                w.un[k].x += g.0 - g_n;
+            }
+        }
+        let mut converged = false;
+        let (mut a, mut v) = (a_n, v_n);
+        let mut last = (0.0, 0.0, 0.0);
+        let mut it = 0;
+        // Backtracking line search (Dennis & Schnabel 1983, §6.3): the friction law is
+        // piecewise linear, and a full Newton step can jump between stick and slip of
+        // several elements and cycle; halve the step while the residual does not fall.
+        let (mut q_prev, mut dq_prev) = (q, Vector3::zeros());
+        let (mut r_prev, mut lambda) = (f64::INFINITY, 1.0_f64);
+        while it < newton.max_iterations {
+            it += 1;
+            a = (q - q_n - v_n * dt) * c0 - a_n * (0.5 / beta - 1.0); // Newmark
+            v = v_n + (a_n * (1.0 - gamma) + a * gamma) * dt;
+            if !model.body.rotation {
+                a.z = 0.0;
+                v.z = 0.0;
+            }
+            model.assemble(&q, &mut w.un, g.0, &mut w.asm);
+            let damp = c * (v.x - g.1);
+            // HHT residual (α = 0: Newmark), paper Eq 2 generalised.
+            let rb = (f - w.asm.pb - Vector3::new(damp, 0.0, 0.0)) * s
+                - (f_n - pb_n - Vector3::new(damp_n, 0.0, 0.0)) * alpha
+                - m.component_mul(&a);
+            let mut r2 = rb.norm_squared();
+            for k in 0..model.nodes {
+                w.rn[k] = -w.asm.pn[k] * s + w.pn_n[k] * alpha;
+                r2 += w.rn[k].norm_squared();
+            }
+            let fref = f.norm() + w.asm.pb.norm() + m.component_mul(&a).norm();
+            if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
+                lambda *= 0.5;
+                q = q_prev + dq_prev * lambda;
+                for k in 0..model.nodes {
+                    w.un[k] = w.un_prev[k] + w.dun_prev[k] * lambda;
+                }
+                continue;
+            }
+            if !(r2.is_finite() && q.iter().all(|x| x.is_finite())) {
+                model.restore();
+                return (
+                    RunStatus::Diverged {
+                        time: t,
+                        reason: "displacement or residual is not finite".into(),
+                    },
+                    counters,
+                );
+            }
+            if !solve(model, &sys, &mut w.asm, &rb, &w.rn, &mut dq, &mut w.dun) {
+                model.restore();
+                return (
+                    RunStatus::NotConverged {
+                        time: t,
+                        reason: format!("singular tangent at iteration {it}"),
+                    },
+                    counters,
+                );
+            }
+            let (mut d2, mut inc2, mut u2) = (
+                dq.norm_squared(),
+                (q + dq - q_n).norm_squared(),
+                q.norm_squared(),
+            );
+            for k in 0..model.nodes {
+                d2 += w.dun[k].norm_squared();
+                inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
+                u2 += w.un[k].norm_squared();
+            }
+            let (rn, dn, incn) = (r2.sqrt(), d2.sqrt(), inc2.sqrt());
+            last = (rn / fref.max(f64::MIN_POSITIVE), dn, incn);
+            // Converged at the current iterate: its residual is small and the correction
+            // Newton would still make is small against the step's increment.
+            // A correction below 1e-12 of the displacement, or a residual below 1e-11 of
+            // the force scale, is round-off of the absolute positions: nothing to correct.
+            let force_ok = rn <= newton.force_tol * fref;
+            let disp_ok = dn <= (newton.displacement_tol * incn).max(1e-12 * u2.sqrt());
+            if (force_ok && disp_ok) || rn <= 1e-11 * fref {
+                converged = true;
+                break;
+            }
+            (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
+            q += dq;
+            for k in 0..model.nodes {
+                w.un_prev[k] = w.un[k];
+                w.dun_prev[k] = w.dun[k];
+                w.un[k] += w.dun[k];
+            }
+        }
+        counters.iterations += it as u64;
+        counters.max_step_iterations = counters.max_step_iterations.max(it as u64);
+        if !converged {
+            model.restore();
+            return (
+                RunStatus::NotConverged {
+                    time: t,
+                    reason: format!(
+                        "{} iterations: relative residual {:.3e} (limit {:.1e}), last correction {:.3e} m against a step increment of {:.3e} m (limit {:.1e})",
+                        it, last.0, newton.force_tol, last.1, last.2, newton.displacement_tol
+                    ),
+                },
+                counters,
+            );
+        }
+        model.commit();
+        counters.steps += 1;
+        q_n = q;
+        v_n = v;
+        a_n = a;
+        f_n = f;
+        pb_n = w.asm.pb;
+        damp_n = c * (v.x - g.1);
+        g_n = g.0;
+        w.un_n.copy_from_slice(&w.un);
+        w.pn_n.copy_from_slice(&w.asm.pn);
+        observe(
+            model,
+            &Snapshot {
+                t,
+                q: q_n,
+                v: v_n,
+                a: a_n,
+                un: &w.un_n,
+                ground: g,
+                q_static,
+            },
+        );
+    }
+    (RunStatus::Completed, counters)
+}

@@ -1,0 +1,216 @@
+//! Engine 3: the block as a rigid body on a ground body, simulated with rapier
+//! (rapier3d-f64, parry3d-f64 shapes): Coulomb friction with exactly the scene's μ,
+//! elasticity as spring joints to light foot bodies that touch the ground, ground motion
+//! as a moving kinematic ground or as an inertial force on a fixed-ground model
+//! (SPEC §2, engine 3). Shares nothing with the other engines but the scene and the trace.
+//!
+//! - `settings`: the `[engines.rapier]` options and rapier's integration parameters;
+//! - `world`: building the world (ground, structure, feet, joints);
+//! - `ground`: ground displacement and velocity tables for both ground-motion routes;
+//! - `simulate`: the time loop and the recorded channels.
+
+#![warn(missing_docs)]
+
+mod ground;
+mod settings;
+mod simulate;
+mod world;
+
+pub use settings::{KEYS, RapierSettings};
+pub use simulate::Drive;
+
+use rockslide_core::case::{Case, Excitation, Model, Scene};
+use rockslide_core::error::InputError;
+use rockslide_engine_api::{Engine, NotApplicable, Run};
+
+/// The rapier rigid-body engine.
+pub struct Rapier;
+
+/// Variant names.
+pub mod variant {
+    /// Mass acceleration as a force M·a(t) on the structure.
+    pub const APPLIED_FORCE: &str = "applied-force";
+    /// Free response on a fixed ground.
+    pub const FIXED_GROUND: &str = "fixed-ground";
+    /// Ground motion by a kinematic (position-driven) ground body.
+    pub const KINEMATIC_GROUND: &str = "kinematic-ground";
+    /// Ground motion as the inertial force −m·ag on every body over a fixed ground.
+    pub const INERTIAL_FORCE: &str = "inertial-force";
+}
+
+impl Engine for Rapier {
+    fn id(&self) -> &'static str {
+        "rapier"
+    }
+
+    fn description(&self) -> &'static str {
+        "rigid bodies with Coulomb contact (rapier3d-f64); elasticity as spring joints to light feet"
+    }
+
+    fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+        match &scene.model {
+            Model::Oscillator(o) => {
+                if o.double.is_some() {
+                    // Not an error: the foot *is* the double element's intermediate node.
+                }
+            }
+            Model::RigidBlock(_) => {}
+            Model::RockingBody(_) => {}
+        }
+        Ok(match scene.excitation {
+            Excitation::None => vec![variant::FIXED_GROUND],
+            Excitation::MassAcceleration(_) => vec![variant::APPLIED_FORCE],
+            Excitation::GroundDisplacement(_) | Excitation::GroundAcceleration(_) => {
+                vec![variant::KINEMATIC_GROUND, variant::INERTIAL_FORCE]
+            }
+        })
+    }
+
+    fn check_options(&self, case: &Case) -> Vec<InputError> {
+        RapierSettings::from_case(case).err().unwrap_or_default()
+    }
+
+    fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
+        let settings = RapierSettings::from_case(case).map_err(|mut e| e.remove(0))?;
+        let drive = match variant {
+            variant::KINEMATIC_GROUND => Drive::KinematicGround,
+            variant::INERTIAL_FORCE => Drive::InertialForce,
+            _ => Drive::AppliedForce,
+        };
+        let ex = &case.scene.excitation;
+        let duration = case.run.duration;
+        let mut described = settings.describe(dt);
+        let mut findings = Vec::new();
+        let outcome = match &case.scene.model {
+            Model::Oscillator(osc) => {
+                let rig = world::oscillator(osc, &settings, dt, drive.ground_kind());
+                let mf = rig.foot_mass;
+                let omega_f = (osc.contact.kx / mf).sqrt();
+                described.push(("foot mass [kg]".into(), format!("{mf}")));
+                described.push((
+                    "foot".into(),
+                    "one foot; gravity scale M/m_f (normal force M·g); joint: spring Kx on X (ForceBased motor), other axes locked".into(),
+                ));
+                described.push((
+                    "spring damping C [N·s/m]".into(),
+                    format!("{}", osc.damping()),
+                ));
+                if osc.contact.mu.is_infinite() {
+                    described.push(("μ = ∞ as".into(), format!("μ = {:e}", world::MU_INFINITE)));
+                }
+                findings.push(format!(
+                    "foot mode √(Kx/m_f) = {omega_f:.1} rad/s, ω_f·Δt = {:.3}; structure ω·Δt = {:.4}",
+                    omega_f * dt,
+                    osc.omega() * dt
+                ));
+                simulate::run_oscillator(rig, osc.contact.kx, drive, ex, dt, duration)
+            }
+            Model::RigidBlock(b) => {
+                let rig = world::rigid_block(b, &settings, dt, drive.ground_kind());
+                described.push((
+                    "block".into(),
+                    format!(
+                        "uniform cuboid 2b × 2h × 2b = {} × {} × {} m, mass {} kg",
+                        2.0 * b.half_width,
+                        2.0 * b.half_height,
+                        2.0 * b.half_width,
+                        b.mass
+                    ),
+                ));
+                simulate::run_block(rig, b, drive, ex, dt, duration)
+            }
+            Model::RockingBody(r) => {
+                let rig = world::rocking_body(r, &settings, dt, drive.ground_kind());
+                let inertia = world::rocking_inertia(r);
+                let omega_f = (r.contact.kz / rig.foot_mass).sqrt();
+                described.push(("foot mass (each) [kg]".into(), format!("{}", rig.foot_mass)));
+                described.push((
+                    "feet".into(),
+                    format!(
+                        "{} feet; joint per foot: springs Kx (X) and Kz (Z) as ForceBased motors in the foot's (ground) axes, rotation free; springs start with the static preload",
+                        r.supports
+                    ),
+                ));
+                described.push((
+                    "rotational inertia [kg·m²]".into(),
+                    format!(
+                        "{inertia}{}",
+                        if r.rotational_inertia > 0.0 {
+                            " (scene)"
+                        } else {
+                            " (scene has none: 0.01 % of a uniform block 2b × 2h, 1e-4·M(b² + h²)/3, as the fe engine)"
+                        }
+                    ),
+                ));
+                described.push((
+                    "gravity through rotation (P-Delta)".into(),
+                    "included (exact rigid-body kinematics)".into(),
+                ));
+                described.push((
+                    "settling steps before t = 0".into(),
+                    format!("{SETTLE_STEPS}"),
+                ));
+                findings.push(format!(
+                    "foot vertical mode √(Kz/m_f) = {omega_f:.0} rad/s, ω·h = {:.3} per substep",
+                    omega_f * dt / settings.substeps as f64
+                ));
+                // The stated inertia on the supports: the body's own rocking mode about the
+                // CM, √((n·Kx·h² + Kz·Σx_i²)/I); rapier resolves it only for ω·h ≲ 2
+                // (docs/rapier-engine.md, "Rotational inertia").
+                let sum_x2: f64 = (0..r.supports)
+                    .map(|i| {
+                        let x =
+                            -r.half_width + 2.0 * r.half_width * i as f64 / (r.supports - 1) as f64;
+                        x * x
+                    })
+                    .sum();
+                let omega_r = ((r.supports as f64 * r.contact.kx * r.cm_height.powi(2)
+                    + r.contact.kz * sum_x2)
+                    / inertia)
+                    .sqrt();
+                findings.push(format!(
+                    "rocking mode of the rotational inertia on the supports √((n·Kx·h² + Kz·Σx²)/I) = {omega_r:.0} rad/s, ω·h = {:.2} per substep",
+                    omega_r * dt / settings.substeps as f64
+                ));
+                simulate::run_rocking(rig, r, drive, ex, dt, duration, SETTLE_STEPS)
+            }
+        };
+        let ground = match drive {
+            Drive::AppliedForce => "fixed ground; mass acceleration as force M·a (step mean)",
+            Drive::KinematicGround => {
+                "kinematic position-based ground moved to xg(t_{n+1}) each step"
+            }
+            Drive::InertialForce => {
+                "fixed ground; −m·(vg(n+1) − vg(n))/Δt on every dynamic body, −vg(0⁺) initial velocity"
+            }
+        };
+        described.push(("ground motion".into(), ground.into()));
+        if matches!(
+            ex,
+            Excitation::GroundAcceleration(rockslide_core::case::Signal::Record { .. })
+        ) && drive != Drive::AppliedForce
+        {
+            described.push((
+                "record baseline".into(),
+                "cubic: least-squares c2·t² + c3·t³ removed from the integrated displacement (and its derivatives from v and a); both routes use this corrected ground".into(),
+            ));
+        }
+        Ok(Run {
+            engine: "rapier",
+            variant: variant.to_string(),
+            dt,
+            settings: described,
+            counters: vec![
+                ("steps".into(), outcome.steps),
+                ("substeps".into(), outcome.steps * settings.substeps as u64),
+            ],
+            findings,
+            trace: outcome.trace,
+            status: outcome.status,
+            wall_seconds: 0.0,
+        })
+    }
+}
+
+/// Quasi-static settling steps of a rocking body before t = 0 (static preload).
+const SETTLE_STEPS: usize = 400;

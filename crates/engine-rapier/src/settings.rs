@@ -1,0 +1,249 @@
+//! The rigid-body engine's options (`[engines.rapier]` in a case file), each with its
+//! unit, valid range and default, and how they map onto rapier's `IntegrationParameters`.
+//! Every value is echoed into `Run::settings`, so an output always says what it ran with.
+
+use rapier3d_f64::prelude::{FrictionModel, IntegrationParameters, SpringCoefficients};
+
+use rockslide_core::case::{Case, Model};
+use rockslide_core::error::InputError;
+
+const ID: &str = "rapier";
+
+/// What one rapier run uses besides the time step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RapierSettings {
+    /// `substeps`: solver substeps per step (rapier's `num_solver_iterations`), 1…1000,
+    /// default 4 (rapier's default).
+    pub substeps: usize,
+    /// `pgs_iterations`: Gauss–Seidel sweeps per substep (`num_internal_pgs_iterations`),
+    /// 1…1000, default 1 (8 for a rocking body, see [`RapierSettings::for_model`]).
+    pub pgs_iterations: usize,
+    /// `friction_model`: `"simplified"` (one Coulomb constraint per manifold plus a twist
+    /// constraint; rapier's default and ours: measured to give exactly the scene's μ) or
+    /// `"coulomb"` (one constraint per contact point; measured to give an effective μ
+    /// about 13 % low on a sliding block — see docs/rapier-engine.md).
+    pub friction: FrictionModel,
+    /// `foot_mass_ratio`: mass of each foot body over the structure's mass, in (0, 1),
+    /// default 1e-2 (scenes with elasticity only).
+    pub foot_mass_ratio: f64,
+    /// `contact_hz`: natural frequency of the contact softness, Hz, applied to contacts
+    /// with moving and with fixed bodies alike; default `None` = rapier's defaults
+    /// (30 Hz against moving bodies, 60 Hz against fixed ones), 1000 Hz for a rocking body.
+    pub contact_hz: Option<f64>,
+    /// `contact_damping_ratio`: damping ratio of the contact softness, default 10 (rapier's).
+    pub contact_damping_ratio: f64,
+}
+
+impl Default for RapierSettings {
+    fn default() -> Self {
+        Self {
+            substeps: 4,
+            pgs_iterations: 1,
+            friction: FrictionModel::Simplified,
+            foot_mass_ratio: 1e-2,
+            contact_hz: None,
+            contact_damping_ratio: 10.0,
+        }
+    }
+}
+
+impl RapierSettings {
+    /// Read and validate the options of a case; every problem is returned, located.
+    pub fn from_case(case: &Case) -> Result<Self, Vec<InputError>> {
+        let mut errors = Vec::new();
+        let d = Self::for_model(&case.scene.model);
+        let mut number = |key: &str, default: f64, lo: f64, hi: f64, what: &str| -> f64 {
+            match case.engine_number(ID, key, default) {
+                Ok(x) if x.is_finite() && x >= lo && x <= hi => x,
+                Ok(x) => {
+                    errors.push(case.field_error(
+                        &format!("engines.{ID}.{key}"),
+                        format!("is {x}, but must be {what}"),
+                    ));
+                    default
+                }
+                Err(e) => {
+                    errors.push(e);
+                    default
+                }
+            }
+        };
+        let whole = |x: f64| x.fract() == 0.0;
+        let substeps = number(
+            "substeps",
+            4.0,
+            1.0,
+            1000.0,
+            "a whole number from 1 to 1000",
+        );
+        let pgs = number(
+            "pgs_iterations",
+            d.pgs_iterations as f64,
+            1.0,
+            1000.0,
+            "a whole number from 1 to 1000",
+        );
+        let foot = number(
+            "foot_mass_ratio",
+            d.foot_mass_ratio,
+            1e-9,
+            0.999,
+            "a mass ratio between 1e-9 and 0.999",
+        );
+        let hz = number("contact_hz", 0.0, 0.0, 1e9, "a frequency in Hz, positive");
+        let zeta = number(
+            "contact_damping_ratio",
+            d.contact_damping_ratio,
+            0.0,
+            1e6,
+            "a damping ratio, zero or positive",
+        );
+        for (key, x) in [("substeps", substeps), ("pgs_iterations", pgs)] {
+            if !whole(x) {
+                errors.push(case.field_error(
+                    &format!("engines.{ID}.{key}"),
+                    format!("is {x}, but must be a whole number"),
+                ));
+            }
+        }
+        let has_hz = case
+            .engine(ID)
+            .is_some_and(|r| r.options.contains_key("contact_hz"));
+        if has_hz && hz <= 0.0 {
+            errors.push(case.field_error(
+                &format!("engines.{ID}.contact_hz"),
+                "must be a positive frequency in Hz",
+            ));
+        }
+        let friction = match case.engine_text(
+            ID,
+            "friction_model",
+            "simplified",
+            &["simplified", "coulomb"],
+        ) {
+            Ok(s) if s == "coulomb" => FrictionModel::Coulomb,
+            Ok(_) => FrictionModel::Simplified,
+            Err(e) => {
+                errors.push(e);
+                FrictionModel::Simplified
+            }
+        };
+        if let Some(r) = case.engine(ID) {
+            for key in r.options.keys() {
+                if !KEYS.contains(&key.as_str()) {
+                    errors.push(case.field_error(
+                        &format!("engines.{ID}.{key}"),
+                        format!(
+                            "unknown option of the rapier engine; options are {}",
+                            KEYS.join(", ")
+                        ),
+                    ));
+                }
+            }
+        }
+        if !errors.is_empty() {
+            return Err(errors);
+        }
+        Ok(Self {
+            substeps: substeps as usize,
+            pgs_iterations: pgs as usize,
+            friction,
+            foot_mass_ratio: foot,
+            contact_hz: if has_hz { Some(hz) } else { d.contact_hz },
+            contact_damping_ratio: zeta,
+        })
+    }
+
+    /// Defaults for a model. A rocking body's vertical load runs through ten spring joints
+    /// into light feet on the ground: there the ground must be far stiffer than a support
+    /// (rapier's default 60 Hz contact under a 1 t foot carrying W/10 sinks about as much
+    /// as the support spring Kz deflects, and its damping ratio of 10 in series with the
+    /// spring eats the response), and the coupled joint–friction system needs several
+    /// Gauss–Seidel sweeps to converge (with 1 sweep the loaded feet creep under zero
+    /// horizontal load). Measured (docs/rapier-engine.md): contact 1000 Hz vs 3000 Hz
+    /// change peak uplift and rotation by < 2 %; 8 vs 16 sweeps by < 0.5 %.
+    pub fn for_model(model: &Model) -> Self {
+        match model {
+            Model::RockingBody(_) => Self {
+                pgs_iterations: 8,
+                contact_hz: Some(1000.0),
+                ..Self::default()
+            },
+            _ => Self::default(),
+        }
+    }
+
+    /// rapier's integration parameters for step `dt`.
+    pub fn integration_parameters(&self, dt: f64) -> IntegrationParameters {
+        let mut p = IntegrationParameters {
+            dt,
+            num_solver_iterations: self.substeps,
+            num_internal_pgs_iterations: self.pgs_iterations,
+            friction_model: self.friction,
+            ..IntegrationParameters::default()
+        };
+        // FIELD-NOTES: friction in the bias pass makes stuck bodies creep; keep it off.
+        p.friction_in_bias_pass = false;
+        match self.contact_hz {
+            Some(hz) => {
+                let s = SpringCoefficients::new(hz, self.contact_damping_ratio);
+                p.contact_softness = s;
+                p.static_contact_softness = s;
+            }
+            None => {
+                p.contact_softness.damping_ratio = self.contact_damping_ratio;
+                p.static_contact_softness.damping_ratio = self.contact_damping_ratio;
+            }
+        }
+        p
+    }
+
+    /// (name, value) pairs for `Run::settings`.
+    pub fn describe(&self, dt: f64) -> Vec<(String, String)> {
+        let p = self.integration_parameters(dt);
+        let friction = match self.friction {
+            FrictionModel::Coulomb => "Coulomb (one constraint per contact point)",
+            FrictionModel::Simplified => "Simplified (one per manifold + twist)",
+        };
+        vec![
+            ("dt [s]".into(), format!("{dt}")),
+            ("substeps".into(), format!("{}", self.substeps)),
+            (
+                "solver iterations (PGS per substep)".into(),
+                format!("{}", self.pgs_iterations),
+            ),
+            (
+                "contact softness (moving body) [Hz, ζ]".into(),
+                format!(
+                    "{}, {}",
+                    p.contact_softness.natural_frequency, p.contact_softness.damping_ratio
+                ),
+            ),
+            (
+                "contact softness (fixed body) [Hz, ζ]".into(),
+                format!(
+                    "{}, {}",
+                    p.static_contact_softness.natural_frequency,
+                    p.static_contact_softness.damping_ratio
+                ),
+            ),
+            ("friction model".into(), friction.into()),
+            (
+                "friction combine".into(),
+                "both colliders carry the scene's μ (rule Average → μ)".into(),
+            ),
+            ("restitution".into(), "0 (both colliders, rule Min)".into()),
+            ("sleeping".into(), "disabled".into()),
+        ]
+    }
+}
+
+/// Option keys the engine accepts.
+pub const KEYS: &[&str] = &[
+    "substeps",
+    "pgs_iterations",
+    "friction_model",
+    "foot_mass_ratio",
+    "contact_hz",
+    "contact_damping_ratio",
+];

@@ -1,0 +1,460 @@
+//! The time loop: drive the rapier world step by step (applied force, inertial force or
+//! moving kinematic ground), read the bodies back relative to the ground, and record the
+//! scene's channels. Everything is allocated before the loop.
+
+use rapier3d_f64::prelude::*;
+
+use super::ground::GroundTable;
+use super::world::{GroundKind, Rig, angle_z};
+use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Signal};
+use rockslide_core::trace::{Quantity, Trace, q};
+use rockslide_engine_api::{RunStatus, step_count};
+
+/// How the excitation enters the rapier world.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Drive {
+    /// Force M·a(t) on the structure (mass acceleration), or nothing (free response).
+    AppliedForce,
+    /// Kinematic ground moved to xg(t).
+    KinematicGround,
+    /// Fixed ground, −m·ag on every dynamic body.
+    InertialForce,
+}
+
+impl Drive {
+    /// The ground body this drive needs.
+    pub fn ground_kind(self) -> GroundKind {
+        match self {
+            Drive::KinematicGround => GroundKind::Kinematic,
+            _ => GroundKind::Fixed,
+        }
+    }
+}
+
+/// What the loop produced.
+pub struct Outcome {
+    /// The recorded channels.
+    pub trace: Trace,
+    /// How it ended.
+    pub status: RunStatus,
+    /// Steps taken.
+    pub steps: u64,
+}
+
+/// Mean of a mass-acceleration signal over [t, t + dt] (Simpson's rule), m/s².
+fn mean_over_step(s: &Signal, t: f64, dt: f64) -> f64 {
+    (s.value(t) + 4.0 * s.value(t + 0.5 * dt) + s.value(t + dt)) / 6.0
+}
+
+/// The force channel: M·a(t) for mass acceleration, −M·ag(t) for ground motion.
+fn force_at(excitation: &Excitation, m: f64, t: f64) -> f64 {
+    match excitation {
+        Excitation::None => 0.0,
+        Excitation::MassAcceleration(s) => m * s.value(t),
+        Excitation::GroundDisplacement(s) => -m * s.second_derivative(t),
+        Excitation::GroundAcceleration(s) => -m * s.value(t),
+    }
+}
+
+/// Apply the step's forces (and, for the kinematic route, the ground's next position).
+fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: usize, dt: f64) {
+    let t = k as f64 * dt;
+    for &(h, _) in &rig.inertial_masses {
+        rig.world.bodies[h].reset_forces(false);
+    }
+    match drive {
+        Drive::AppliedForce => {
+            if let Excitation::MassAcceleration(s) = ex {
+                let f = rig.mass * mean_over_step(s, t, dt);
+                rig.world.bodies[rig.structure].add_force(Vector::new(f, 0.0, 0.0), false);
+            }
+        }
+        Drive::InertialForce => {
+            let ag = g.mean_acceleration(k, dt);
+            for &(h, m) in &rig.inertial_masses {
+                rig.world.bodies[h].add_force(Vector::new(-m * ag, 0.0, 0.0), false);
+            }
+        }
+        Drive::KinematicGround => {
+            let ground = &mut rig.world.bodies[rig.ground];
+            let y = ground.translation().y;
+            ground.set_next_kinematic_translation(Vector::new(g.disp[k + 1], y, 0.0));
+        }
+    }
+}
+
+/// Run the oscillator rig (one foot) and record its channels.
+pub fn run_oscillator(
+    mut rig: Rig,
+    kx: f64,
+    drive: Drive,
+    ex: &Excitation,
+    dt: f64,
+    duration: f64,
+) -> Outcome {
+    let n = step_count(duration, dt);
+    let g = GroundTable::new(ex, dt, n);
+    let moves = ex.moves_ground();
+    let mut channels: Vec<&'static Quantity> = q::sliding(moves);
+    channels.push(&q::NORMAL);
+    let trace = Trace::with_channels(&channels, n + 1);
+    let mut row = vec![0.0; channels.len()];
+    let foot = rig.feet[0];
+    let (m, mf) = (rig.mass, rig.foot_mass);
+    let weight = -rig.world.gravity.y * m;
+    start_in_ground_frame(&mut rig, drive, &g);
+    let x_m0 = rig.world.bodies[rig.structure].translation().x;
+    let x_f0 = rig.world.bodies[foot].translation().x;
+    let record = |trace: &mut Trace, rig: &Rig, k: usize, prev: &mut (f64, f64)| {
+        let t = k as f64 * dt;
+        let (bm, bf) = (&rig.world.bodies[rig.structure], &rig.world.bodies[foot]);
+        let x = bm.translation().x - x_m0 - ground_frame(drive, &g, k).0;
+        let xf = bf.translation().x - x_f0 - ground_frame(drive, &g, k).0;
+        let v = bm.linvel().x - ground_frame(drive, &g, k).1;
+        let a = if k == 0 { 0.0 } else { (v - prev.0) / dt };
+        // Normal force on the foot from its vertical momentum balance: N = W + m_f·dv_y/dt.
+        let vy = bf.linvel().y;
+        let normal = if k == 0 {
+            weight
+        } else {
+            weight + mf * (vy - prev.1) / dt
+        };
+        let vals = [
+            force_at(ex, m, t),
+            kx * (x - xf),
+            x,
+            xf,
+            v,
+            a,
+            g.disp[k],
+            normal,
+        ];
+        let len = row.len();
+        if moves {
+            row.copy_from_slice(&vals[..len]);
+        } else {
+            row[..6].copy_from_slice(&vals[..6]);
+            row[6] = normal;
+        }
+        trace.push(t, &row);
+        *prev = (v, vy);
+    };
+    time_loop(&mut rig, drive, ex, &g, n, dt, trace, (0.0, 0.0), record)
+}
+
+/// Where the recorder measures from at step `k`: the moving ground's (displacement,
+/// velocity) for a kinematic ground, zero for a fixed one.
+fn ground_frame(drive: Drive, g: &GroundTable, k: usize) -> (f64, f64) {
+    if drive == Drive::KinematicGround {
+        (g.disp[k], g.vel[k])
+    } else {
+        (0.0, 0.0)
+    }
+}
+
+/// With the inertial-force route a ground velocity that jumps at t = 0 gives every body
+/// the relative velocity −vg(0⁺) in the ground's frame.
+fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable) {
+    if drive == Drive::InertialForce && g.vel[0] != 0.0 {
+        for &(h, _) in &rig.inertial_masses {
+            rig.world.bodies[h].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
+        }
+    }
+}
+
+/// The common time loop: drive the ground, step the world, record after every step with
+/// the recorder's own memory; a body whose pose stops being finite ends the run as
+/// `Diverged` (a result, not a panic).
+#[allow(clippy::too_many_arguments)]
+fn time_loop<M>(
+    rig: &mut Rig,
+    drive: Drive,
+    ex: &Excitation,
+    g: &GroundTable,
+    n: usize,
+    dt: f64,
+    mut trace: Trace,
+    mut memory: M,
+    mut record: impl FnMut(&mut Trace, &Rig, usize, &mut M),
+) -> Outcome {
+    record(&mut trace, rig, 0, &mut memory);
+    let mut status = RunStatus::Completed;
+    for k in 0..n {
+        drive_step(rig, drive, ex, g, k, dt);
+        rig.world.step();
+        let finite = rig
+            .world
+            .bodies
+            .iter()
+            .all(|(_, b)| b.translation().is_finite() && b.rotation().is_finite());
+        if !finite {
+            status = RunStatus::Diverged {
+                time: (k + 1) as f64 * dt,
+                reason: "a body's position is not finite".into(),
+            };
+            break;
+        }
+        record(&mut trace, rig, k + 1, &mut memory);
+    }
+    Outcome {
+        steps: (trace.len() - 1) as u64,
+        trace,
+        status,
+    }
+}
+
+/// Run the rigid-block rig and record its channels (sliding and rocking).
+pub fn run_block(
+    mut rig: Rig,
+    block: &RigidBlock,
+    drive: Drive,
+    ex: &Excitation,
+    dt: f64,
+    duration: f64,
+) -> Outcome {
+    let n = step_count(duration, dt);
+    let g = GroundTable::new(ex, dt, n);
+    let moves = ex.moves_ground();
+    let mut channels: Vec<&'static Quantity> = vec![
+        &q::FORCE,
+        &q::RESISTANCE,
+        &q::REL_DISP,
+        &q::SLIDE,
+        &q::VEL,
+        &q::ACC,
+        &q::CM_X,
+        &q::CM_Z,
+        &q::ROTATION,
+        &q::UPLIFT,
+        &q::CONTACTS,
+        &q::NORMAL,
+    ];
+    if moves {
+        channels.push(&q::GROUND_DISP);
+    }
+    let trace = Trace::with_channels(&channels, n + 1);
+    let mut row = vec![0.0; channels.len()];
+    let (m, bw, hh) = (block.mass, block.half_width, block.half_height);
+    let grav = -rig.world.gravity.y;
+    // A corner is in contact when its gap is below the larger of 1e-3·b and twice the
+    // static sink of rapier's soft contact (g/ω², ω = 2π·30 Hz).
+    let soft_sink = grav / (2.0 * std::f64::consts::PI * 30.0_f64).powi(2);
+    let contact_gap = (1e-3 * bw).max(2.0 * soft_sink);
+    if drive == Drive::InertialForce && g.vel[0] != 0.0 {
+        rig.world.bodies[rig.structure].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
+    }
+    // Horizontal positions are measured from the block standing flat at x = 0 (the
+    // world is built that way), so a tilted start shows its offset as the reference does.
+    let b0 = &rig.world.bodies[rig.structure];
+    let phi_start = angle_z(b0);
+    let cm_start = b0.translation();
+    let mut state = BlockMemory {
+        v: 0.0,
+        vy: 0.0,
+        corners: [0.0; 2],
+        slide: 0.0,
+    };
+    let corners_of = |cm: Vector, phi: f64| -> [(f64, f64); 2] {
+        let (s, c) = phi.sin_cos();
+        [-bw, bw].map(|dx| (cm.x + c * dx + s * hh, cm.y + s * dx - c * hh))
+    };
+    {
+        let c = corners_of(cm_start, phi_start);
+        state.corners = [c[0].0, c[1].0];
+    }
+    let record = |trace: &mut Trace, rig: &Rig, k: usize, st: &mut BlockMemory| {
+        let t = k as f64 * dt;
+        let body = &rig.world.bodies[rig.structure];
+        let cm = body.translation();
+        let phi = angle_z(body);
+        let off = ground_frame(drive, &g, k).0;
+        let o_x = cm.x + phi.sin() * hh - off;
+        let v = body.linvel().x - ground_frame(drive, &g, k).1;
+        let vy = body.linvel().y;
+        let a = if k == 0 { 0.0 } else { (v - st.v) / dt };
+        let ay = if k == 0 { 0.0 } else { (vy - st.vy) / dt };
+        // Contact force on the block from its momentum balance (paper's R resists +x).
+        let ag = if k == 0 {
+            0.0
+        } else {
+            (g.vel[k] - g.vel[k - 1]) / dt
+        };
+        let f_true = match ex {
+            Excitation::MassAcceleration(s) if k > 0 => m * mean_over_step(s, t - dt, dt),
+            _ => 0.0,
+        };
+        let contact_x = m * (a + ag) - f_true;
+        let normal = m * (ay + grav);
+        let corners = corners_of(cm, phi);
+        let mut n_contact = 0.0;
+        let mut d_slide = 0.0;
+        let mut uplift: f64 = 0.0;
+        for (i, &(cx, cy)) in corners.iter().enumerate() {
+            uplift = uplift.max(cy);
+            let x_rel = cx - off;
+            if cy < contact_gap {
+                n_contact += 1.0;
+                d_slide += x_rel - st.corners[i];
+            }
+            st.corners[i] = x_rel;
+        }
+        if n_contact > 0.0 && k > 0 {
+            st.slide += d_slide / n_contact;
+        }
+        st.v = v;
+        st.vy = vy;
+        let vals = [
+            force_at(ex, m, t),
+            -contact_x,
+            o_x,
+            st.slide,
+            v,
+            a,
+            cm.x - off,
+            cm.y - hh,
+            phi,
+            uplift.max(0.0),
+            n_contact,
+            normal,
+            g.disp[k],
+        ];
+        let len = row.len();
+        row.copy_from_slice(&vals[..len]);
+        trace.push(t, &row);
+    };
+    time_loop(&mut rig, drive, ex, &g, n, dt, trace, state, record)
+}
+
+/// What the block recorder carries from one row to the next.
+struct BlockMemory {
+    v: f64,
+    vy: f64,
+    corners: [f64; 2],
+    slide: f64,
+}
+
+/// Settling under gravity before t = 0: `steps` steps in which every velocity is halved
+/// after the step (a strongly damped relaxation), then all velocities are zeroed, so the
+/// soft contacts and the preloaded springs start in equilibrium.
+fn settle(rig: &mut Rig, steps: usize) {
+    for _ in 0..steps {
+        rig.world.step();
+        for &(h, _) in &rig.inertial_masses {
+            let b = &mut rig.world.bodies[h];
+            let (v, w) = (b.linvel(), b.angvel());
+            b.set_linvel(0.5 * v, false);
+            b.set_angvel(0.5 * w, false);
+        }
+    }
+    for &(h, _) in &rig.inertial_masses {
+        let b = &mut rig.world.bodies[h];
+        b.set_linvel(Vector::ZERO, false);
+        b.set_angvel(Vector::ZERO, false);
+    }
+}
+
+/// Run the rocking-body rig (RPEPO) and record its channels. The rig is first settled
+/// under gravity (static preload); displacements are measured from the settled state.
+pub fn run_rocking(
+    mut rig: Rig,
+    body: &RockingBody,
+    drive: Drive,
+    ex: &Excitation,
+    dt: f64,
+    duration: f64,
+    settle_steps: usize,
+) -> Outcome {
+    let n = step_count(duration, dt);
+    let g = GroundTable::new(ex, dt, n);
+    let moves = ex.moves_ground();
+    let mut channels: Vec<&'static Quantity> = vec![
+        &q::FORCE,
+        &q::RESISTANCE,
+        &q::BASE_SHEAR,
+        &q::REL_DISP,
+        &q::SLIDE,
+        &q::SLIDE_SPREAD,
+        &q::VEL,
+        &q::ACC,
+        &q::CM_X,
+        &q::CM_Z,
+        &q::ROTATION,
+        &q::UPLIFT,
+        &q::CONTACTS,
+        &q::NORMAL,
+    ];
+    if moves {
+        channels.push(&q::GROUND_DISP);
+    }
+    settle(&mut rig, settle_steps);
+    let trace = Trace::with_channels(&channels, n + 1);
+    let mut row = vec![0.0; channels.len()];
+    let m = body.mass;
+    let (kx, kz, hh) = (body.contact.kx, body.contact.kz, body.cm_height);
+    let xs = body.support_positions();
+    let nf = rig.feet.len();
+    let mut foot0 = vec![(0.0, 0.0); nf];
+    for (i, &f) in rig.feet.iter().enumerate() {
+        let p = rig.world.bodies[f].translation();
+        foot0[i] = (p.x, p.y);
+    }
+    let b0 = &rig.world.bodies[rig.structure];
+    let (cm0, phi0) = (b0.translation(), angle_z(b0));
+    let o0 = cm0.x + phi0.sin() * hh;
+    // A support is open when its foot has risen more than 1 % of the static spring
+    // compression W/(n·Kz) above its settled level.
+    let open_gap = 0.01 * body.weight() / (nf as f64 * kz);
+    start_in_ground_frame(&mut rig, drive, &g);
+    let record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: &mut f64| {
+        let t = k as f64 * dt;
+        let b = &rig.world.bodies[rig.structure];
+        let cm = b.translation();
+        let phi = angle_z(b);
+        let (sn, cs) = phi.sin_cos();
+        let off = ground_frame(drive, &g, k).0;
+        let (mut shear, mut normal, mut contacts) = (0.0, 0.0, 0.0);
+        let (mut slide_sum, mut slide_min, mut slide_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
+        let mut uplift: f64 = 0.0;
+        for (i, &f) in rig.feet.iter().enumerate() {
+            let p = rig.world.bodies[f].translation();
+            // body anchor = CM + R(φ)·(x_i, −h); spring stretch d = anchor − foot centre
+            let ax = cm.x + cs * xs[i] + sn * hh;
+            let ay = cm.y + sn * xs[i] - cs * hh;
+            shear += kx * (ax - p.x);
+            normal += -kz * (ay - p.y);
+            let slip = p.x - off - foot0[i].0;
+            slide_sum += slip;
+            slide_min = slide_min.min(slip);
+            slide_max = slide_max.max(slip);
+            let gap = p.y - foot0[i].1;
+            uplift = uplift.max(gap);
+            if gap < open_gap {
+                contacts += 1.0;
+            }
+        }
+        let v = b.linvel().x - ground_frame(drive, &g, k).1;
+        let a = if k == 0 { 0.0 } else { (v - *v_prev) / dt };
+        *v_prev = v;
+        let vals = [
+            force_at(ex, m, t),
+            shear,
+            shear,
+            cm.x + sn * hh - off - o0,
+            slide_sum / nf as f64,
+            slide_max - slide_min,
+            v,
+            a,
+            cm.x - off - cm0.x,
+            cm.y - cm0.y,
+            phi - phi0,
+            uplift.max(0.0),
+            contacts,
+            normal,
+            g.disp[k],
+        ];
+        let len = row.len();
+        row.copy_from_slice(&vals[..len]);
+        trace.push(t, &row);
+    };
+    time_loop(&mut rig, drive, ex, &g, n, dt, trace, 0.0, record)
+}

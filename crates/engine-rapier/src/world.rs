@@ -1,0 +1,262 @@
+//! Building the rapier world for a scene: the ground body, the structure, and the light
+//! foot bodies that carry a scene's elasticity as spring joints.
+//!
+//! Axes: rapier's x is the scene's horizontal X, rapier's y the scene's vertical Z (up),
+//! rapier's z the out-of-plane depth. Rotations of the scene are about rapier's z axis,
+//! counter-clockwise (seen with X to the right and Z up) positive. The ground's top face
+//! is the plane y = 0.
+
+use rapier3d_f64::prelude::*;
+
+use super::settings::RapierSettings;
+use rockslide_core::case::{Oscillator, RigidBlock, RockingBody};
+
+/// Half-extents of the ground slab, m: wide enough for a block sliding or a ground
+/// coasting for many metres; its top face is y = 0.
+const GROUND_HALF: (f64, f64) = (1.0e4, 1.0);
+
+/// Friction coefficient standing in for μ = ∞ (a friction limit 1e6 times the weight).
+pub const MU_INFINITE: f64 = 1.0e6;
+
+/// Half-extents of a foot, m (it only needs a flat face on the ground).
+const FOOT_HALF: (f64, f64) = (0.1, 0.05);
+
+/// How the ground is modelled.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum GroundKind {
+    /// A fixed body (inertial-force route, or no ground motion).
+    Fixed,
+    /// A kinematic, position-driven body moved to xg(t) each step.
+    Kinematic,
+}
+
+/// A built world and the handles the time loop needs.
+pub struct Rig {
+    /// The rapier world.
+    pub world: PhysicsWorld,
+    /// The ground body.
+    pub ground: RigidBodyHandle,
+    /// The structure (mass of the oscillator, the rigid block).
+    pub structure: RigidBodyHandle,
+    /// Foot bodies (one for an oscillator, none for a rigid block).
+    pub feet: Vec<RigidBodyHandle>,
+    /// Dynamic bodies with their *inertial* mass, kg (the inertial-force route pushes
+    /// each with −m·ag; a foot's gravity scale does not change its inertia).
+    pub inertial_masses: Vec<(RigidBodyHandle, f64)>,
+    /// Structure's mass, kg.
+    pub mass: f64,
+    /// Foot mass, kg (0 without feet).
+    pub foot_mass: f64,
+}
+
+fn new_world(s: &RapierSettings, dt: f64, gravity: f64) -> PhysicsWorld {
+    PhysicsWorld {
+        gravity: Vector::new(0.0, -gravity, 0.0),
+        integration_parameters: s.integration_parameters(dt),
+        ..PhysicsWorld::default()
+    }
+}
+
+fn add_ground(world: &mut PhysicsWorld, kind: GroundKind, mu: f64) -> RigidBodyHandle {
+    let body = match kind {
+        GroundKind::Fixed => RigidBodyBuilder::fixed(),
+        GroundKind::Kinematic => RigidBodyBuilder::kinematic_position_based(),
+    }
+    .translation(Vector::new(0.0, -GROUND_HALF.1, 0.0));
+    let collider = ColliderBuilder::cuboid(GROUND_HALF.0, GROUND_HALF.1, GROUND_HALF.0)
+        .friction(mu)
+        .friction_combine_rule(CoefficientCombineRule::Average)
+        .restitution(0.0)
+        .restitution_combine_rule(CoefficientCombineRule::Min);
+    world.insert(body, collider).0
+}
+
+/// The oscillator (PEPO, linear SDOF): a point mass joined to one foot on the ground by
+/// a horizontal spring joint (stiffness Kx, viscous C = 2ζMω), locked in every other
+/// direction. Following FIELD-NOTES, the foot carries the mass's weight directly
+/// (gravity scale M/m_f, so its normal force is M·g exactly) and the mass has no gravity,
+/// so the joint carries only the horizontal spring: the vertical load path never goes
+/// through a 1000:1 mass ratio. Both bodies have their rotations locked (sliding only).
+pub fn oscillator(osc: &Oscillator, s: &RapierSettings, dt: f64, kind: GroundKind) -> Rig {
+    let mu = if osc.contact.mu.is_finite() {
+        osc.contact.mu
+    } else {
+        MU_INFINITE
+    };
+    let mut world = new_world(s, dt, osc.gravity);
+    let ground = add_ground(&mut world, kind, mu);
+    let m = osc.mass;
+    let mf = s.foot_mass_ratio * m;
+    let foot_y = FOOT_HALF.1;
+    let foot_body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, foot_y, 0.0))
+        .gravity_scale(m / mf) // foot weight = M·g: the normal force of the scene
+        .lock_rotations()
+        .can_sleep(false);
+    let foot_collider = ColliderBuilder::cuboid(FOOT_HALF.0, FOOT_HALF.1, FOOT_HALF.0)
+        .mass(mf)
+        .friction(mu)
+        .friction_combine_rule(CoefficientCombineRule::Average)
+        .restitution(0.0)
+        .restitution_combine_rule(CoefficientCombineRule::Min);
+    let foot = world.insert(foot_body, foot_collider).0;
+    let mass_body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, foot_y, 0.0))
+        .additional_mass_properties(MassProperties::new(Vector::ZERO, m, Vector::splat(m)))
+        .gravity_scale(0.0)
+        .lock_rotations()
+        .can_sleep(false);
+    let structure = world.insert_body(mass_body);
+    let joint = GenericJointBuilder::new(
+        JointAxesMask::LIN_Y | JointAxesMask::LIN_Z | JointAxesMask::ANG_AXES,
+    )
+    .motor_model(JointAxis::LinX, MotorModel::ForceBased)
+    .motor_position(JointAxis::LinX, 0.0, osc.contact.kx, osc.damping())
+    .contacts_enabled(false)
+    .build();
+    world.insert_impulse_joint(foot, structure, joint);
+    Rig {
+        world,
+        ground,
+        structure,
+        feet: vec![foot],
+        inertial_masses: vec![(structure, m), (foot, mf)],
+        mass: m,
+        foot_mass: mf,
+    }
+}
+
+/// The rigid block (Newmark, Housner): a uniform cuboid 2b × 2h (depth 2b) of mass M,
+/// friction μ and restitution 0 on the ground, standing on its base or tilted about its
+/// right corner by the scene's initial tilt (the left corner lifted: clockwise, so the
+/// rotation channel starts at −tilt).
+pub fn rigid_block(b: &RigidBlock, s: &RapierSettings, dt: f64, kind: GroundKind) -> Rig {
+    let mut world = new_world(s, dt, b.gravity);
+    let ground = add_ground(&mut world, kind, b.mu);
+    let phi0 = -b.initial_tilt;
+    // Centre of mass = right corner (b, 0) + R(φ0)·(−b, h).
+    let (sn, cs) = phi0.sin_cos();
+    let cm = Vector::new(
+        b.half_width + cs * (-b.half_width) - sn * b.half_height,
+        sn * (-b.half_width) + cs * b.half_height,
+        0.0,
+    );
+    let body = RigidBodyBuilder::dynamic()
+        .translation(cm)
+        .rotation(Vector::new(0.0, 0.0, phi0))
+        .can_sleep(false);
+    let collider = ColliderBuilder::cuboid(b.half_width, b.half_height, b.half_width)
+        .mass(b.mass)
+        .friction(b.mu)
+        .friction_combine_rule(CoefficientCombineRule::Average)
+        .restitution(0.0)
+        .restitution_combine_rule(CoefficientCombineRule::Min);
+    let structure = world.insert(body, collider).0;
+    Rig {
+        world,
+        ground,
+        structure,
+        feet: vec![],
+        inertial_masses: vec![(structure, b.mass)],
+        mass: b.mass,
+        foot_mass: 0.0,
+    }
+}
+
+/// Rotation of a body about rapier's z axis, rad (counter-clockwise positive).
+pub fn angle_z(body: &RigidBody) -> f64 {
+    let q = body.rotation();
+    2.0 * q.z.atan2(q.w)
+}
+
+/// Half-extents of a rocking body's foot, m (narrower than half the support spacing).
+const ROCK_FOOT_HALF: (f64, f64) = (0.02, 0.02);
+
+/// Rotational inertia of a rocking body: the scene's when it states one; when it gives
+/// 0 (the paper's model has none), 0.01 % of a uniform block 2b × 2h,
+/// I = 1e-4·M·(b² + h²)/3 (21.35 kg·m² for the RPEPO) — the rule the FE engine documents
+/// too (docs/findings.md), so that the two engines differ only by their physics. The
+/// shipped RPEPO cases state this value. A lifted foot hangs from the body and adds
+/// m_f·(x_i² + h²) to the rotating inertia (all ten feet: ≈ 4.9e3 kg·m², 230 × this
+/// value): the main cause of rapier's departures from the FE engine (docs/findings.md).
+pub fn rocking_inertia(r: &RockingBody) -> f64 {
+    if r.rotational_inertia > 0.0 {
+        r.rotational_inertia
+    } else {
+        1e-4 * r.mass * (r.half_width.powi(2) + r.cm_height.powi(2)) / 3.0
+    }
+}
+
+/// The rocking body (RPEPO): a point mass M with a small rotational inertia at height h
+/// above the base centre O, joined to n feet at x_i by spring joints carrying each
+/// support's Kx (horizontal) and Kz (vertical), both ForceBased motors. The joint axes
+/// are the foot's, and feet never rotate, so the springs act along the ground's X and Z
+/// as the paper's contact elements do; the body's rotation about Z is free at each foot.
+/// A foot whose spring goes into tension lifts off (compression-only support); each foot
+/// slides on its own with μ times its own normal force. The vertical load path runs
+/// through the joints: that is the hard part for rapier's solver (FIELD-NOTES).
+/// The springs start compressed by the static preload W/(n·Kz).
+pub fn rocking_body(r: &RockingBody, s: &RapierSettings, dt: f64, kind: GroundKind) -> Rig {
+    let mu = if r.contact.mu.is_finite() {
+        r.contact.mu
+    } else {
+        MU_INFINITE
+    };
+    let mut world = new_world(s, dt, r.gravity);
+    let ground = add_ground(&mut world, kind, mu);
+    let n = r.supports;
+    let m = r.mass;
+    let mf = s.foot_mass_ratio * m / n as f64;
+    let preload = r.weight() / (n as f64 * r.contact.kz);
+    let foot_y = ROCK_FOOT_HALF.1;
+    let cm = Vector::new(0.0, foot_y + r.cm_height - preload, 0.0);
+    let inertia = rocking_inertia(r);
+    let body = RigidBodyBuilder::dynamic()
+        .translation(cm)
+        .additional_mass_properties(MassProperties::new(
+            Vector::ZERO,
+            m,
+            Vector::new(inertia, inertia, inertia),
+        ))
+        .enabled_rotations(false, false, true)
+        .can_sleep(false);
+    let structure = world.insert_body(body);
+    let mut feet = Vec::with_capacity(n);
+    let mut inertial_masses = vec![(structure, m)];
+    for x in r.support_positions() {
+        let fb = RigidBodyBuilder::dynamic()
+            .translation(Vector::new(x, foot_y, 0.0))
+            .lock_rotations()
+            .can_sleep(false);
+        let fc = ColliderBuilder::cuboid(ROCK_FOOT_HALF.0, ROCK_FOOT_HALF.1, ROCK_FOOT_HALF.0)
+            .mass(mf)
+            .friction(mu)
+            .friction_combine_rule(CoefficientCombineRule::Average)
+            .restitution(0.0)
+            .restitution_combine_rule(CoefficientCombineRule::Min);
+        let foot = world.insert(fb, fc).0;
+        let joint = GenericJointBuilder::new(
+            JointAxesMask::LIN_Z | JointAxesMask::ANG_X | JointAxesMask::ANG_Y,
+        )
+        .local_anchor1(Vector::ZERO)
+        .local_anchor2(Vector::new(x, -r.cm_height, 0.0))
+        .motor_model(JointAxis::LinX, MotorModel::ForceBased)
+        .motor_position(JointAxis::LinX, 0.0, r.contact.kx, 0.0)
+        .motor_model(JointAxis::LinY, MotorModel::ForceBased)
+        .motor_position(JointAxis::LinY, 0.0, r.contact.kz, 0.0)
+        .contacts_enabled(false)
+        .build();
+        world.insert_impulse_joint(foot, structure, joint);
+        feet.push(foot);
+        inertial_masses.push((foot, mf));
+    }
+    Rig {
+        world,
+        ground,
+        structure,
+        feet,
+        inertial_masses,
+        mass: m,
+        foot_mass: mf,
+    }
+}

@@ -1,0 +1,566 @@
+//! The content of the reports, built once as [`Block`]s: for a case, the paper-style table,
+//! the tolerance checks, the cross-code matrix, the whole-history errors, the plots, each
+//! run's settings and findings, and provenance; for the suite, the verdict per case, the
+//! gate failures, and (in HTML) every case in full.
+
+use super::attachments::Attachments;
+use super::crosscode::{
+    CrossCode, HISTORY_KEY, LIFTOFF_KEY, PEAK_KEY, cross_code, normalised_rms, participants,
+};
+use super::doc::{Block, Cell, Table, Tone};
+use super::format::{display_unit, pct, ratio, show};
+use super::plots::figures;
+use super::provenance::Provenance;
+use super::sections;
+use super::table::{Column, paper_table};
+use crate::gate;
+use rockslide_verify::analysis::{Verdict, quantity_def};
+use rockslide_verify::suite::CaseResult;
+
+fn tone_of(verdict: Verdict, gated: bool) -> Tone {
+    match (verdict, gated) {
+        (Verdict::Pass, _) => Tone::Pass,
+        (_, true) => Tone::Fail,
+        (_, false) => Tone::Warn,
+    }
+}
+
+fn mark(verdict: Verdict, gated: bool) -> &'static str {
+    match (verdict, gated) {
+        (Verdict::Pass, _) => " ✓",
+        (_, true) => " ✗",
+        (_, false) => " (✗)",
+    }
+}
+
+/// Gated checks of a case that failed.
+fn gated_failures(r: &CaseResult) -> usize {
+    gate::failures(std::slice::from_ref(r)).len()
+}
+
+/// The paper-style table.
+fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
+    let t = paper_table(r);
+    let mut header = vec!["Quantity".to_string(), "Unit".into()];
+    let mut numeric = vec![false, false];
+    if let Some(name) = &t.reference {
+        header.push(name.clone());
+        numeric.push(true);
+    }
+    let mut notes = Vec::new();
+    for col in &t.columns {
+        match col {
+            Column::Run(i) => {
+                let run = &r.runs[*i];
+                let mut h = run.label();
+                if !run.status.completed() {
+                    h.push_str(&format!(" ({})", run.status.label()));
+                }
+                header.push(h);
+                numeric.push(true);
+                if t.reference.is_some() {
+                    header.push("Δ %".into());
+                    numeric.push(true);
+                }
+            }
+            // Engines that did not run get no column (a column of "n/a" only hides the
+            // numbers): the reason is listed right under the table.
+            Column::Absent { engine, why } => {
+                notes.push(format!("{engine}: n/a — {why}"));
+            }
+        }
+    }
+    header.extend(["Tolerance".to_string(), "Result".into()]);
+    numeric.extend([false, false]);
+    let mut rows = Vec::new();
+    for row in &t.rows {
+        let mut cells: Vec<Cell> = vec![row.label.into(), row.unit.into()];
+        if t.reference.is_some() {
+            cells.push(Cell::plain(
+                row.reference.map_or("—".into(), |v| show(row.key, v)),
+            ));
+        }
+        let mut k = 0;
+        for col in &t.columns {
+            match col {
+                Column::Run(_) => {
+                    let c = &row.cells[k];
+                    k += 1;
+                    let value = c.value.map_or("—".into(), |v| show(row.key, v));
+                    cells.push(match (t.reference.is_some(), c.mark) {
+                        // Without a reference, checks are against other runs: mark the value.
+                        (false, Some((v, g))) => Cell::toned(value + mark(v, g), tone_of(v, g)),
+                        _ => Cell::plain(value),
+                    });
+                    if t.reference.is_some() {
+                        let mut text = pct(c.percent);
+                        let tone = match c.mark {
+                            Some((v, g)) => {
+                                text.push_str(mark(v, g));
+                                tone_of(v, g)
+                            }
+                            None => Tone::Plain,
+                        };
+                        cells.push(Cell::toned(text, tone));
+                    }
+                }
+                Column::Absent { .. } => {}
+            }
+        }
+        cells.push(row.tolerance.clone().into());
+        let tone = match row.result.as_str() {
+            "PASS" | "info: PASS" => Tone::Pass,
+            s if s.starts_with("FAIL") || s.starts_with("MISSING") => Tone::Fail,
+            s if s.starts_with("PASS (info: ") || s.starts_with("info: ") => Tone::Warn,
+            _ => Tone::Plain,
+        };
+        cells.push(Cell::toned(row.result.clone(), tone));
+        rows.push(cells);
+    }
+    (
+        Table {
+            header,
+            numeric,
+            rows,
+        },
+        notes,
+    )
+}
+
+fn checks_table(r: &CaseResult) -> Table {
+    let mut t = Table {
+        header: [
+            "Quantity",
+            "Run",
+            "Against",
+            "Value",
+            "Basis",
+            "Unit",
+            "Δ %",
+            "Tolerance",
+            "Gated",
+            "Result",
+        ]
+        .map(String::from)
+        .to_vec(),
+        numeric: vec![
+            false, false, false, true, true, false, true, false, false, false,
+        ],
+        rows: Vec::new(),
+    };
+    for ch in &r.checks {
+        t.rows.push(vec![
+            ch.quantity.clone().into(),
+            ch.run.clone().into(),
+            ch.basis.clone().into(),
+            ch.value
+                .map_or("—".into(), |v| show(&ch.quantity, v))
+                .into(),
+            ch.basis_value
+                .map_or("—".into(), |v| show(&ch.quantity, v))
+                .into(),
+            display_unit(&ch.quantity).0.into(),
+            pct(ch.percent).into(),
+            gate::limit_text(r, ch).into(),
+            (if ch.gated { "yes" } else { "no" }).into(),
+            Cell::toned(ch.verdict.label(), tone_of(ch.verdict, ch.gated)),
+        ]);
+    }
+    t
+}
+
+fn matrix(x: &CrossCode, values: &[Vec<Option<f64>>], f: impl Fn(Option<f64>) -> String) -> Table {
+    let mut header = vec!["row vs column".to_string()];
+    header.extend(x.labels.iter().cloned());
+    let n = x.labels.len();
+    Table {
+        header,
+        numeric: std::iter::once(false)
+            .chain(std::iter::repeat_n(true, n))
+            .collect(),
+        rows: (0..n)
+            .map(|i| {
+                std::iter::once(Cell::plain(x.labels[i].clone()))
+                    .chain((0..n).map(|j| {
+                        if i == j {
+                            Cell::toned("·", Tone::Muted)
+                        } else {
+                            Cell::plain(f(values[i][j]))
+                        }
+                    }))
+                    .collect()
+            })
+            .collect(),
+    }
+}
+
+/// Normalised RMS difference of the relative displacement of every participant against
+/// every other one, up to the earlier first full lift-off of the two (`None` where neither
+/// lifts off). Same definition as the whole-history matrix, on a shorter window.
+fn liftoff_matrix(r: &CaseResult) -> (Vec<Vec<Option<f64>>>, Vec<Option<f64>>) {
+    let ps = participants(r);
+    let lift: Vec<Option<f64>> = ps
+        .iter()
+        .map(|p| p.responses.get(LIFTOFF_KEY).copied())
+        .collect();
+    let n = ps.len();
+    let mut m = vec![vec![None; n]; n];
+    for i in 0..n {
+        for j in 0..n {
+            if i == j {
+                continue;
+            }
+            let until = match (lift[i], lift[j]) {
+                (Some(a), Some(b)) => a.min(b),
+                (Some(a), None) | (None, Some(a)) => a,
+                (None, None) => continue,
+            };
+            m[i][j] = normalised_rms(ps[i].trace, ps[j].trace, HISTORY_KEY, until);
+        }
+    }
+    (m, lift)
+}
+
+fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
+    let x = cross_code(r);
+    let mut b = Vec::new();
+    if r.reference.is_err() {
+        b.push(Block::Para(
+            "No exact reference exists for this scene. The engines are therefore verified against each other (the matrices below, as the paper compares ANSYS with SAP2000) and against their own converged solutions (Δt → 0: the work-precision section below, from `rockslide sweep`).".into(),
+        ));
+    }
+    if x.labels.len() < 2 {
+        b.push(Block::Para(
+            "Fewer than two participants completed: nothing to compare.".into(),
+        ));
+        return b;
+    }
+    b.push(Block::Para(format!(
+        "Every participant (the reference, when there is one, and every run that completed) against every other one. Peaks: 100·(row/column − 1) of the peak relative displacement. History: RMS of the difference of the relative displacement, normalised by the column's peak over the same window; evaluated at the coarser trace's output times, the finer trace linearly interpolated there.{}",
+        if x.lifts_off {
+            " This scene lifts off: the airborne phase and the landing amplify small differences, so the history is compared first up to the first full lift-off (the part the engines must agree on), then over the whole run."
+        } else {
+            ""
+        }
+    )));
+    if x.lifts_off {
+        let (m, lift) = liftoff_matrix(r);
+        b.push(Block::Heading(
+            3,
+            "Up to the first full lift-off: normalised RMS difference of the relative displacement"
+                .into(),
+        ));
+        b.push(Block::Para(format!(
+            "Window: from the start to the earlier first full lift-off of the two participants. First full lift-off: {}.",
+            x.labels
+                .iter()
+                .zip(&lift)
+                .map(|(l, t)| format!(
+                    "{l} {}",
+                    t.map_or("none".to_string(), |t| format!("{t:.4} s"))
+                ))
+                .collect::<Vec<_>>()
+                .join(", ")
+        )));
+        b.push(Block::Table(matrix(&x, &m, ratio)));
+    }
+    b.push(Block::Heading(
+        3,
+        format!("Whole history: normalised RMS difference of {HISTORY_KEY}"),
+    ));
+    b.push(Block::Table(matrix(&x, &x.nrms, ratio)));
+    b.push(Block::Heading(3, "Peak relative displacement, Δ %".into()));
+    b.push(Block::Table(matrix(&x, &x.peak, pct)));
+    b.push(Block::Heading(3, "Every pair, every quantity".into()));
+    b.push(Block::Para(
+        "One column per pair “compared vs basis”: Δ % = 100·(compared/basis − 1) for values, compared − basis in ms for event times.".into(),
+    ));
+    // Quantities as rows and pairs as columns: the table stays as wide as the number of
+    // pairs, however many quantities a scene has.
+    let mut header = vec!["Quantity".to_string()];
+    for p in &x.pairs {
+        header.push(format!("{} vs {}", x.labels[p.b], x.labels[p.a]));
+    }
+    let numeric: Vec<bool> = std::iter::once(false)
+        .chain(std::iter::repeat_n(true, x.pairs.len()))
+        .collect();
+    let mut rows = Vec::new();
+    for (k, key) in x.keys.iter().enumerate() {
+        // A quantity no pair could compare (e.g. a minimum that is zero everywhere) is
+        // left out rather than shown as a row of dashes.
+        if x.pairs.iter().all(|p| p.entries[k].is_none()) {
+            continue;
+        }
+        let d = quantity_def(key).expect("catalogue key");
+        let label = if d.is_time() {
+            format!("{} Δt [ms]", d.label)
+        } else {
+            format!("{} Δ %", d.label)
+        };
+        let mut row: Vec<Cell> = vec![label.into()];
+        for p in &x.pairs {
+            row.push(Cell::plain(
+                p.entries[k].map_or("—".into(), |v| format!("{v:+.2}")),
+            ));
+        }
+        rows.push(row);
+    }
+    if x.lifts_off {
+        let mut row: Vec<Cell> = vec![Cell::plain("nRMS to first lift-off")];
+        row.extend(
+            x.pairs
+                .iter()
+                .map(|p| Cell::plain(ratio(p.nrms_to_liftoff))),
+        );
+        rows.push(row);
+    }
+    let mut row: Vec<Cell> = vec![Cell::plain("History nRMS (whole run)")];
+    row.extend(x.pairs.iter().map(|p| Cell::plain(ratio(p.nrms))));
+    rows.push(row);
+    b.push(Block::Table(Table {
+        header,
+        numeric,
+        rows,
+    }));
+    let _ = PEAK_KEY;
+    b
+}
+
+fn history_table(r: &CaseResult) -> Option<Table> {
+    if r.runs.is_empty() {
+        return None;
+    }
+    let mut t = Table {
+        header: [
+            "Run",
+            "dt [s]",
+            "max |Δ| / peak",
+            "RMS Δ / peak",
+            "status",
+            "wall time [ms]",
+        ]
+        .map(String::from)
+        .to_vec(),
+        numeric: vec![false, true, true, true, false, true],
+        rows: Vec::new(),
+    };
+    for (run, e) in r.runs.iter().zip(&r.history_errors) {
+        t.rows.push(vec![
+            run.label().into(),
+            format!("{}", run.dt).into(),
+            ratio(e.map(|e| e.max)).into(),
+            ratio(e.map(|e| e.rms)).into(),
+            run.status.to_string().into(),
+            format!("{:.2}", run.wall_seconds * 1e3).into(),
+        ]);
+    }
+    Some(t)
+}
+
+/// The blocks of one case's report.
+pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments) -> Vec<Block> {
+    let c = &r.case;
+    let mut b = vec![Block::Heading(1, format!("{} — {}", c.name, c.title))];
+    let mut facts = Vec::new();
+    if !c.source.is_empty() {
+        facts.push(("Source".to_string(), c.source.clone()));
+    }
+    if !c.requirement.is_empty() {
+        facts.push(("Requirement".to_string(), c.requirement.clone()));
+    }
+    if let Some(rockslide_core::case::Signal::Record { label, .. }) = c.scene.excitation.signal() {
+        facts.push(("Record".to_string(), label.clone()));
+    }
+    facts.push((
+        "Scene".into(),
+        format!(
+            "{} under {}, {} s",
+            c.scene.model.kind(),
+            c.scene.excitation.kind(),
+            c.run.duration
+        ),
+    ));
+    b.push(Block::Facts(facts));
+    let gated = r.checks.iter().filter(|c| c.gated).count();
+    let failed = gated_failures(r);
+    let informative = r.checks.len() - gated;
+    b.push(Block::Verdict {
+        passed: failed == 0,
+        text: format!(
+            "{gated} gated checks, {failed} failed; {informative} informative (not gated) checks"
+        ),
+    });
+    let lines: Vec<String> = gate::failures(std::slice::from_ref(r))
+        .iter()
+        .map(|f| f.to_string())
+        .collect();
+    if !lines.is_empty() {
+        b.push(Block::List(lines));
+    }
+    let notes = gate::informative(std::slice::from_ref(r));
+    if !notes.is_empty() {
+        b.push(Block::Para(
+            "Informative findings — checks outside their tolerance that are not gated (a known property of a method, reported rather than failed):".into(),
+        ));
+        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
+    }
+
+    b.push(Block::Heading(2, "Response quantities".into()));
+    let (table, notes) = response_table(r);
+    b.push(Block::Table(table));
+    let mut foot = vec![
+        "Δ % = 100·(run/reference − 1) (the SAP2000 verification convention); ✓ within a gated tolerance, ✗ outside it, (✗) outside an informative one.".to_string(),
+    ];
+    foot.extend(notes);
+    match &r.reference {
+        Ok(x) => foot.push(format!("Reference: {}.", x.solution.method())),
+        Err(why) => foot.push(format!("Reference: none — {why}.")),
+    }
+    b.push(Block::List(foot));
+
+    if !r.checks.is_empty() {
+        b.push(Block::Heading(2, "Tolerance checks".into()));
+        b.push(Block::Table(checks_table(r)));
+    }
+
+    b.push(Block::Heading(2, "Cross-code comparison".into()));
+    b.extend(cross_code_blocks(r));
+
+    if r.reference.is_ok()
+        && let Some(t) = history_table(r)
+    {
+        b.push(Block::Heading(
+            2,
+            "Whole-history error of the relative displacement against the reference".into(),
+        ));
+        b.push(Block::Table(t));
+    }
+
+    b.push(Block::Heading(2, "Time histories".into()));
+    for f in figures(r) {
+        b.push(Block::Figure {
+            file: format!("plot-{}.svg", f.id),
+            caption: f.caption,
+            svg: f.svg,
+        });
+    }
+
+    b.extend(sections::energy_blocks(r));
+    b.extend(sections::sweep_blocks(r, att.sweep.as_ref()));
+
+    b.push(Block::Heading(
+        2,
+        "Runs: settings, counters, findings".into(),
+    ));
+    for run in &r.runs {
+        b.push(Block::Heading(3, run.label()));
+        let mut facts = vec![("status".to_string(), run.status.to_string())];
+        facts.extend(run.settings.iter().cloned());
+        facts.extend(run.counters.iter().map(|(k, v)| (k.clone(), v.to_string())));
+        facts.extend(
+            run.findings
+                .iter()
+                .map(|f| ("finding".to_string(), f.clone())),
+        );
+        b.push(Block::Facts(facts));
+    }
+
+    b.push(Block::Heading(2, "Provenance".into()));
+    b.push(Block::Facts(prov.lines(r)));
+    b.push(Block::Details {
+        summary: format!("case file {}", c.path.display()),
+        text: c.text.clone(),
+    });
+    b
+}
+
+/// The blocks of the suite summary (without the cases' own reports).
+pub(crate) fn suite_document(
+    results: &[CaseResult],
+    prov: &Provenance,
+    att: &Attachments,
+) -> Vec<Block> {
+    let all = gate::failures(results);
+    let mut b = vec![Block::Heading(1, "rockslide — verification suite".into())];
+    b.push(Block::Verdict {
+        passed: all.is_empty(),
+        text: format!(
+            "{} cases, {} gated checks, {} gate failures",
+            results.len(),
+            results
+                .iter()
+                .map(|r| r.checks.iter().filter(|c| c.gated).count())
+                .sum::<usize>(),
+            all.len()
+        ),
+    });
+    if !all.is_empty() {
+        b.push(Block::List(all.iter().map(|f| f.to_string()).collect()));
+    }
+    let notes = gate::informative(results);
+    if !notes.is_empty() {
+        b.push(Block::Para("Informative findings (not gated):".into()));
+        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
+    }
+    let mut t = Table {
+        header: [
+            "Case",
+            "Title",
+            "Runs",
+            "n/a",
+            "Reference",
+            "Checks",
+            "Failed",
+            "Informative fails",
+            "Gate",
+        ]
+        .map(String::from)
+        .to_vec(),
+        numeric: vec![false, false, true, false, false, true, true, true, false],
+        rows: Vec::new(),
+    };
+    for r in results {
+        let failed = gated_failures(r);
+        let na: Vec<String> = super::table::absent_engines(r)
+            .into_iter()
+            .map(|(e, _)| e)
+            .collect();
+        t.rows.push(vec![
+            Cell::plain(r.case.name.clone()).link(r.case.name.clone()),
+            Cell::plain(r.case.title.clone()),
+            Cell::plain(r.runs.len().to_string()),
+            Cell::toned(na.join(", "), Tone::Muted),
+            Cell::plain(
+                r.reference
+                    .as_ref()
+                    .map_or("none".to_string(), |x| x.solution.name().to_string()),
+            ),
+            Cell::plain(r.checks.len().to_string()),
+            Cell::plain(failed.to_string()),
+            Cell::plain(gate::informative(std::slice::from_ref(r)).len().to_string()),
+            if failed == 0 {
+                Cell::toned("PASS", Tone::Pass)
+            } else {
+                Cell::toned("FAIL", Tone::Fail)
+            },
+        ]);
+    }
+    b.push(Block::Table(t));
+    b.extend(sections::stability_blocks(att.stability.as_ref()));
+    b.push(Block::Heading(2, "Provenance".into()));
+    b.push(Block::Facts(vec![
+        ("tool".into(), prov.tool.clone()),
+        ("commit".into(), prov.commit.clone()),
+        ("machine".into(), prov.machine()),
+        ("date".into(), prov.date.clone()),
+        (
+            "case files".into(),
+            results
+                .iter()
+                .map(|r| format!("{} (sha256 {})", r.case.path.display(), r.case.sha256))
+                .collect::<Vec<_>>()
+                .join("; "),
+        ),
+    ]));
+    b
+}

@@ -1,0 +1,210 @@
+//! Self-contained HTML rendering of the report documents: one file, inline CSS, the SVG
+//! plots embedded inline — no scripts, fonts, images or style sheets fetched from anywhere,
+//! so the page can be archived with a verification record and opened offline. Case names
+//! in the suite table link to the case's section of the same page.
+
+use std::fmt::Write;
+use std::path::Path;
+
+use super::attachments::Attachments;
+use super::doc::{Block, Cell, Table, Tone};
+use super::document::{case_document, suite_document};
+use super::format::esc;
+use super::provenance::Provenance;
+use rockslide_verify::suite::CaseResult;
+
+const STYLE: &str = r#"
+body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 2rem auto; max-width: 1400px; padding: 0 1rem; color: #1b1b1b; line-height: 1.45; }
+h1 { border-bottom: 2px solid #333; padding-bottom: .3rem; }
+h2 { border-bottom: 1px solid #ccc; padding-bottom: .2rem; margin-top: 2rem; }
+table { border-collapse: collapse; margin: .6rem 0 1rem; font-size: .88rem; display: block; max-width: 100%; overflow-x: auto; }
+th, td { border: 1px solid #c8c8c8; padding: .25rem .5rem; vertical-align: top; }
+th { background: #f0f0f0; text-align: left; }
+td:first-child { white-space: nowrap; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; white-space: nowrap; }
+td.pass { background: #e3f4e1; color: #14531a; }
+td.fail { background: #fbe0e0; color: #8a1010; font-weight: 600; }
+td.warn { background: #fff4d6; color: #7a5200; }
+td.muted { color: #888; font-style: italic; }
+.verdict { display: inline-block; padding: .35rem .8rem; border-radius: 4px; font-weight: 600; }
+.verdict.pass { background: #e3f4e1; color: #14531a; border: 1px solid #14531a; }
+.verdict.fail { background: #fbe0e0; color: #8a1010; border: 1px solid #8a1010; }
+figure { margin: 1rem 0 1.5rem; }
+figure svg { max-width: 100%; height: auto; border: 1px solid #ddd; }
+figcaption { font-size: .88rem; color: #444; }
+pre { background: #f6f6f6; padding: .6rem; overflow-x: auto; font-size: .82rem; }
+section.case { border-top: 3px double #999; margin-top: 2.5rem; }
+ul.facts li { margin: .1rem 0; }
+"#;
+
+/// A page-unique, URL-safe id for a case section.
+fn anchor(case: &str) -> String {
+    let id: String = case
+        .chars()
+        .map(|c| if c.is_ascii_alphanumeric() { c } else { '-' })
+        .collect();
+    format!("case-{id}")
+}
+
+fn cell(s: &mut String, c: &Cell, numeric: bool) {
+    let mut classes = Vec::new();
+    if numeric {
+        classes.push("num");
+    }
+    classes.push(match c.tone {
+        Tone::Plain => "",
+        Tone::Pass => "pass",
+        Tone::Fail => "fail",
+        Tone::Warn => "warn",
+        Tone::Muted => "muted",
+    });
+    classes.retain(|c| !c.is_empty());
+    let _ = write!(s, "<td");
+    if !classes.is_empty() {
+        let _ = write!(s, " class=\"{}\"", classes.join(" "));
+    }
+    if let Some(h) = &c.hint {
+        let _ = write!(s, " title=\"{}\"", esc(h));
+    }
+    s.push('>');
+    match &c.case_link {
+        Some(case) => {
+            let _ = write!(s, "<a href=\"#{}\">{}</a>", anchor(case), esc(&c.text));
+        }
+        None => s.push_str(&esc(&c.text)),
+    }
+    s.push_str("</td>");
+}
+
+fn table(s: &mut String, t: &Table) {
+    debug_assert!(
+        t.rows.iter().all(|r| r.len() == t.header.len()) && t.numeric.len() == t.header.len(),
+        "table rows must match the header: {:?}",
+        t.header
+    );
+    s.push_str("<table>\n<thead><tr>");
+    for h in &t.header {
+        let _ = write!(s, "<th>{}</th>", esc(h));
+    }
+    s.push_str("</tr></thead>\n<tbody>\n");
+    for row in &t.rows {
+        s.push_str("<tr>");
+        for (i, c) in row.iter().enumerate() {
+            cell(s, c, t.numeric.get(i).copied().unwrap_or(false));
+        }
+        s.push_str("</tr>\n");
+    }
+    s.push_str("</tbody>\n</table>\n");
+}
+
+/// Inline form of an SVG document: the XML prolog dropped and the namespace declaration
+/// removed (HTML parses inline `<svg>` into the SVG namespace by itself), so the page holds
+/// no URL at all.
+pub(crate) fn inline_svg(svg: &str) -> String {
+    let body = match svg.find("<svg") {
+        Some(i) => &svg[i..],
+        None => svg,
+    };
+    body.replacen(" xmlns=\"http://www.w3.org/2000/svg\"", "", 1)
+}
+
+/// Render blocks as HTML body content.
+pub(crate) fn render(blocks: &[Block]) -> String {
+    let mut s = String::new();
+    for b in blocks {
+        match b {
+            Block::Heading(l, t) => {
+                let _ = writeln!(s, "<h{l}>{}</h{l}>", esc(t));
+            }
+            Block::Para(t) => {
+                let _ = writeln!(s, "<p>{}</p>", esc(t));
+            }
+            Block::Verdict { passed, text } => {
+                let (c, v) = if *passed {
+                    ("pass", "PASS")
+                } else {
+                    ("fail", "FAIL")
+                };
+                let _ = writeln!(
+                    s,
+                    "<p><span class=\"verdict {c}\">Gate: {v}</span> {}</p>",
+                    esc(text)
+                );
+            }
+            Block::Facts(f) => {
+                s.push_str("<ul class=\"facts\">\n");
+                for (k, v) in f {
+                    let _ = writeln!(s, "<li><b>{}:</b> {}</li>", esc(k), esc(v));
+                }
+                s.push_str("</ul>\n");
+            }
+            Block::List(items) => {
+                s.push_str("<ul>\n");
+                for i in items {
+                    let _ = writeln!(s, "<li>{}</li>", esc(i));
+                }
+                s.push_str("</ul>\n");
+            }
+            Block::Table(t) => table(&mut s, t),
+            Block::Figure { caption, svg, .. } => {
+                let _ = writeln!(
+                    s,
+                    "<figure>\n{}\n<figcaption>{}</figcaption>\n</figure>",
+                    inline_svg(svg),
+                    esc(caption)
+                );
+            }
+            Block::Details { summary, text } => {
+                let _ = writeln!(
+                    s,
+                    "<details><summary>{}</summary><pre>{}</pre></details>",
+                    esc(summary),
+                    esc(text)
+                );
+            }
+        }
+    }
+    s
+}
+
+/// A whole page around body content.
+pub(crate) fn page(title: &str, body: &str) -> String {
+    format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{body}</body>\n</html>\n",
+        esc(title)
+    )
+}
+
+/// The self-contained HTML report of one case.
+pub fn case_html(r: &CaseResult) -> String {
+    let blocks = case_document(r, Provenance::current(), &Attachments::default());
+    page(&format!("rockslide — {}", r.case.name), &render(&blocks))
+}
+
+/// The self-contained HTML report of the suite: the summary, then every case in full.
+pub fn suite_html(results: &[CaseResult]) -> String {
+    suite_html_in(results, None)
+}
+
+/// The suite page, with the sweeps and the stability study found under `out` (when given).
+pub(crate) fn suite_html_in(results: &[CaseResult], out: Option<&Path>) -> String {
+    let prov = Provenance::current();
+    let att = out.map_or_else(Attachments::default, Attachments::for_suite);
+    let mut body = render(&suite_document(results, prov, &att));
+    for r in results {
+        let att = out.map_or_else(Attachments::default, |o| {
+            Attachments::for_case(&o.join(&r.case.name))
+        });
+        let blocks: Vec<Block> = case_document(r, prov, &att)
+            .into_iter()
+            .map(|b| b.demoted(1))
+            .collect();
+        let _ = writeln!(
+            body,
+            "<section class=\"case\" id=\"{}\">\n{}</section>",
+            anchor(&r.case.name),
+            render(&blocks)
+        );
+    }
+    page("rockslide — verification suite", &body)
+}

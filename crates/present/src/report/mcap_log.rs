@@ -1,0 +1,178 @@
+//! The MCAP trace of a case run: turns a [`CaseResult`] into a [`TraceLog`] (one state
+//! channel per engine run and for the reference, the 3D view when the scene has
+//! geometry, provenance and settings as metadata, the case file as an attachment) and
+//! writes `<case>.mcap`. The format itself lives in `trace::mcap_file`.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::sync::OnceLock;
+
+use rockslide_core::error::Error;
+use rockslide_core::trace::scene3d::Geometry;
+use rockslide_core::trace::{LoggedRun, SCENE_PERIOD_NS, TraceLog, write_mcap};
+use rockslide_engine_api::RunStatus;
+use rockslide_verify::suite::CaseResult;
+
+/// The commit the tool was built from: `ROCKSLIDE_GIT_COMMIT` at build time, else
+/// `git rev-parse HEAD` in the source tree (with `-dirty` for uncommitted changes to
+/// tracked files), else `unknown`.
+pub fn git_commit() -> &'static str {
+    static COMMIT: OnceLock<String> = OnceLock::new();
+    COMMIT.get_or_init(|| {
+        if let Some(c) = option_env!("ROCKSLIDE_GIT_COMMIT") {
+            return c.to_string();
+        }
+        let git = |args: &[&str]| {
+            std::process::Command::new("git")
+                .arg("-C")
+                .arg(env!("CARGO_MANIFEST_DIR"))
+                .args(args)
+                .output()
+                .ok()
+                .filter(|o| o.status.success())
+                .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
+        };
+        match git(&["rev-parse", "HEAD"]) {
+            Some(head) if !head.is_empty() => {
+                let dirty = git(&["status", "--porcelain", "--untracked-files=no"])
+                    .is_some_and(|s| !s.is_empty());
+                if dirty { format!("{head}-dirty") } else { head }
+            }
+            _ => "unknown".to_string(),
+        }
+    })
+}
+
+fn map<const N: usize>(pairs: [(&str, String); N]) -> BTreeMap<String, String> {
+    pairs.into_iter().map(|(k, v)| (k.to_string(), v)).collect()
+}
+
+/// The trace log of a case run.
+pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
+    let c = &result.case;
+    let geometry = Geometry::of(&c.scene.model);
+    let mut head = map([
+        ("tool", "rockslide".to_string()),
+        ("version", env!("CARGO_PKG_VERSION").to_string()),
+        ("commit", git_commit().to_string()),
+        ("case", c.name.clone()),
+        ("title", c.title.clone()),
+        ("source", c.source.clone()),
+        ("requirement", c.requirement.clone()),
+        ("case_file", c.path.display().to_string()),
+        ("case_sha256", c.sha256.clone()),
+        ("model", c.scene.model.kind().to_string()),
+        ("excitation", c.scene.excitation.kind().to_string()),
+        ("duration_s", format!("{:?}", c.run.duration)),
+        ("dt_s", format!("{:?}", c.run.dt)),
+        (
+            "log_time",
+            "simulation time in ns since t = 0 (publish time the same)".to_string(),
+        ),
+        (
+            "units",
+            "SI; each state field's unit is in its schema".to_string(),
+        ),
+        (
+            "gate",
+            if result.gate_passed() { "PASS" } else { "FAIL" }.to_string(),
+        ),
+    ]);
+    for (engine, why) in &result.not_applicable {
+        head.insert(format!("not_applicable.{engine}"), why.clone());
+    }
+    let mut metadata = vec![("rockslide".to_string(), head)];
+    let mut runs: Vec<LoggedRun> = result
+        .runs
+        .iter()
+        .map(|run| {
+            let mut m = map([
+                ("engine", run.engine.to_string()),
+                ("variant", run.variant.clone()),
+                ("dt_s", format!("{:?}", run.dt)),
+                ("wall_seconds", format!("{:?}", run.wall_seconds)),
+            ]);
+            for (k, v) in &run.settings {
+                m.insert(format!("setting.{k}"), v.clone());
+            }
+            for (k, v) in &run.counters {
+                m.insert(format!("counter.{k}"), v.to_string());
+            }
+            for (i, f) in run.findings.iter().enumerate() {
+                m.insert(format!("finding.{i}"), f.clone());
+            }
+            let stop = match &run.status {
+                RunStatus::Completed => None,
+                RunStatus::Diverged { time, reason } | RunStatus::NotConverged { time, reason } => {
+                    Some((*time, reason.clone()))
+                }
+            };
+            LoggedRun {
+                label: run.label(),
+                trace: &run.trace,
+                status: run.status.label().to_string(),
+                stop,
+                metadata: m,
+            }
+        })
+        .collect();
+    match &result.reference {
+        Ok(r) => {
+            metadata.push((
+                "reference".to_string(),
+                map([
+                    ("solution", r.solution.name().to_string()),
+                    ("method", r.solution.method()),
+                    ("topic", "/reference/state".to_string()),
+                ]),
+            ));
+            runs.push(LoggedRun {
+                label: "reference".to_string(),
+                trace: &r.trace,
+                status: "completed".to_string(),
+                stop: None,
+                metadata: map([("solution", r.solution.name().to_string())]),
+            });
+        }
+        Err(why) => metadata.push(("reference".to_string(), map([("none", why.clone())]))),
+    }
+    if let Some(g) = &geometry {
+        metadata.push((
+            "scene3d".to_string(),
+            map([
+                ("model", g.kind.to_string()),
+                (
+                    "frames",
+                    "world → <run>/ground (ground_disp, lane y) → <run>/body (centre of mass, rotation)"
+                        .to_string(),
+                ),
+                ("lane_spacing_m", format!("{:?}", g.lane_spacing())),
+                ("arrow_scale_m_per_N", format!("{:e}", g.arrow_scale())),
+                (
+                    "arrows",
+                    "green: total normal force, red: total tangential force on the body, drawn ending at base centre O".to_string(),
+                ),
+                ("period_ns", SCENE_PERIOD_NS.to_string()),
+            ]),
+        ));
+    }
+    let file_name = c.path.file_name().map_or_else(
+        || format!("{}.toml", c.name),
+        |f| f.to_string_lossy().into_owned(),
+    );
+    TraceLog {
+        runs,
+        geometry,
+        metadata,
+        attachments: vec![(
+            file_name,
+            "application/toml".to_string(),
+            c.text.clone().into_bytes(),
+        )],
+    }
+}
+
+/// Write the case's MCAP trace to `path` atomically.
+pub fn write_case_mcap(result: &CaseResult, path: &Path) -> Result<(), Error> {
+    write_mcap(&case_trace_log(result), path)
+}

@@ -1,0 +1,111 @@
+//! Reports: the verification document an engineer signs. For each case and for the whole
+//! suite, Markdown and a self-contained HTML page (plots inline as SVG) and a summary CSV;
+//! the content — paper-style table, tolerance checks, cross-code matrix, plots, settings,
+//! provenance — is built once (`document`) as a small document model (`doc`) and rendered
+//! by `markdown` and `html`. Every file is written atomically under the output folder.
+//!
+//! Table of contents:
+//! - `table`: the paper-style table as data; `crosscode`: pairwise discrepancies;
+//!   `plots`: time-history figures (plotters, SVG); `provenance`: tool, commit, machine, date;
+//! - `document`: the report content; `doc`: the document model;
+//! - `markdown`, `html`, `summary_csv`: the renderers; `format`: number formatting;
+//! - `sections`: energy audit, work-precision and stability sections; `attachments`: the
+//!   sweep and stability files picked up from the output folder (never recomputed);
+//!   `study_plots`: their figures and the legend strip under every figure;
+//! - `mcap_log`: the MCAP trace of a case run (Foxglove).
+
+mod attachments;
+mod crosscode;
+mod doc;
+mod document;
+mod format;
+mod html;
+mod markdown;
+mod mcap_log;
+mod plots;
+mod provenance;
+mod sections;
+mod study_plots;
+mod summary_csv;
+mod table;
+
+pub use html::{case_html, suite_html};
+pub use markdown::{case_markdown, suite_markdown};
+pub use mcap_log::{case_trace_log, git_commit, write_case_mcap};
+pub use provenance::Provenance;
+pub use summary_csv::{SUMMARY_HEADER, summary_csv};
+
+use std::path::{Path, PathBuf};
+
+use rockslide_core::error::Error;
+use rockslide_core::io::write_atomically;
+use rockslide_core::trace::write_csv;
+use rockslide_verify::suite::CaseResult;
+
+pub use rockslide_core::response::show_value;
+
+/// Write a case's outputs under `out/<case>/`: CSV traces, `report.md`, `report.html`,
+/// `summary.csv` and the plots as `plot-*.svg`; returns the folder.
+pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Error> {
+    let dir = out.join(&result.case.name);
+    for run in &result.runs {
+        write_csv(
+            &run.trace,
+            &dir.join(format!("{}-{}.csv", run.engine, run.variant)),
+        )?;
+    }
+    if let Ok(r) = &result.reference {
+        write_csv(
+            &r.trace,
+            &dir.join(format!("reference-{}.csv", r.solution.name())),
+        )?;
+    }
+    write_case_mcap(result, &dir.join(format!("{}.mcap", result.case.name)))?;
+    // The sweep of this case, when `rockslide sweep` left one here: picked up, not rerun.
+    let att = attachments::Attachments::for_case(&dir);
+    let blocks = document::case_document(result, Provenance::current(), &att);
+    for b in &blocks {
+        if let doc::Block::Figure { file, svg, .. } = b {
+            write_atomically(&dir.join(file), svg.as_bytes())?;
+        }
+    }
+    write_atomically(
+        &dir.join("report.md"),
+        markdown::render(&blocks, "").as_bytes(),
+    )?;
+    let page = html::page(
+        &format!("rockslide — {}", result.case.name),
+        &html::render(&blocks),
+    );
+    write_atomically(&dir.join("report.html"), page.as_bytes())?;
+    write_atomically(
+        &dir.join("summary.csv"),
+        &summary_csv(std::slice::from_ref(result))?,
+    )?;
+    Ok(dir)
+}
+
+/// Write the suite's outputs under `out/`: `summary.md`, `summary.html` (every case in
+/// full) and `summary.csv`, with the stability study (`out/stability/`) and each case's
+/// sweep (`out/<case>/sweep.csv`) when those commands left them there. Returns the HTML
+/// path.
+pub fn write_suite_outputs(results: &[CaseResult], out: &Path) -> Result<PathBuf, Error> {
+    let att = attachments::Attachments::for_suite(out);
+    let blocks = document::suite_document(results, Provenance::current(), &att);
+    for b in &blocks {
+        if let doc::Block::Figure { file, svg, .. } = b {
+            write_atomically(&out.join(file), svg.as_bytes())?;
+        }
+    }
+    write_atomically(
+        &out.join("summary.md"),
+        markdown::render(&blocks, "").as_bytes(),
+    )?;
+    let html = out.join("summary.html");
+    write_atomically(&html, html::suite_html_in(results, Some(out)).as_bytes())?;
+    write_atomically(&out.join("summary.csv"), &summary_csv(results)?)?;
+    Ok(html)
+}
+
+#[cfg(test)]
+mod tests;

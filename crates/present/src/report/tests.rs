@@ -1,0 +1,162 @@
+//! The reports are generic over runs: a synthetic rocking case with two engine runs and no
+//! reference (as the RPEPO will be once the FE and rapier engines exist) gets run columns
+//! without Δ % against a reference, an n/a reason for the predictor-corrector, a
+//! cross-code matrix with event-time differences and the history difference up to the
+//! first lift-off, CM and rotation figures, and a run-against-run gate failure. Every
+//! expected number is computed here from the synthetic signals.
+
+use std::f64::consts::PI;
+use std::path::Path;
+
+use super::crosscode::cross_code;
+use super::plots::figures;
+use rockslide_core::trace::{Trace, q};
+use rockslide_engine_api::{Run, RunStatus};
+use rockslide_verify::analysis::{evaluate_tolerances, responses};
+use rockslide_verify::registry::parse_case;
+use rockslide_verify::suite::CaseResult;
+
+const CASE: &str = r#"
+title = "Synthetic rocking case"
+source = "rockslide unit test"
+requirement = "reports shall be generic over runs"
+[model]
+kind = "rocking-body"
+mass = 1.0e6
+gravity = 9.81
+cm_height = 0.625
+half_width = 0.5
+supports = 10
+[model.contact]
+kx = 2.4e9
+kz = 3.94784e8
+mu = 0.5
+[excitation]
+kind = "mass-acceleration"
+shape = "sine-pulse"
+amplitude = 0.981
+omega = 31.41592653589793
+cycles = 5
+[run]
+duration = 1.0
+dt = 0.001
+[[tolerance]]
+quantity = "peak_cm_x"
+engine = "rapier"
+against = "fe/single"
+percent = 1.0
+"#;
+
+const N: usize = 1000;
+
+/// cm_x = s·10 mm·sin 2πt, rel_disp = s·1 mm·sin 2πt, rotation = s·1 mrad·sin 2πt,
+/// cm_z = 1 mm·t, contacts 10 until `liftoff`, then 0.
+fn run(engine: &'static str, variant: &str, s: f64, liftoff: f64) -> Run {
+    let ch = [&q::REL_DISP, &q::CM_X, &q::CM_Z, &q::ROTATION, &q::CONTACTS];
+    let mut trace = Trace::with_channels(&ch, N + 1);
+    for i in 0..=N {
+        let t = i as f64 / N as f64;
+        let w = (2.0 * PI * t).sin();
+        let contacts = if t < liftoff { 10.0 } else { 0.0 };
+        trace.push(
+            t,
+            &[s * 1e-3 * w, s * 1e-2 * w, 1e-3 * t, s * 1e-3 * w, contacts],
+        );
+    }
+    Run {
+        engine,
+        variant: variant.into(),
+        dt: 1e-3,
+        settings: vec![("dt [s]".into(), "0.001".into())],
+        counters: vec![],
+        findings: vec![],
+        trace,
+        status: RunStatus::Completed,
+        wall_seconds: 0.0,
+    }
+}
+
+fn result() -> CaseResult {
+    let case = parse_case(Path::new("synthetic-rocking.toml"), CASE).expect("valid case");
+    let runs = vec![
+        run("fe", "single", 1.0, 0.6),
+        run("rapier", "inertial", 1.03, 0.65),
+    ];
+    let run_responses: Vec<_> = runs.iter().map(|r| responses(&r.trace)).collect();
+    let checks = evaluate_tolerances(&case.tolerances, &runs, &run_responses, None);
+    CaseResult {
+        case,
+        runs,
+        run_responses,
+        history_errors: vec![None, None],
+        not_applicable: vec![(
+            "predictor-corrector",
+            "the predictor-corrector is a single-degree-of-freedom sliding method".into(),
+        )],
+        reference: Err("no exact solution exists for the rocking oscillator".into()),
+        checks,
+    }
+}
+
+#[test]
+fn cross_code_matrix_of_two_runs_without_reference() {
+    let r = result();
+    let x = cross_code(&r);
+    assert_eq!(x.labels, ["fe/single", "rapier/inertial"]);
+    assert!(x.lifts_off);
+    // Whole history: RMS over t_i = i/N of 0.03·sin 2πt_i, over fe's peak 1 (at t = 0.25).
+    let rms = |upto: usize| {
+        let s: f64 = (0..=upto)
+            .map(|i| (0.03 * (2.0 * PI * i as f64 / N as f64).sin()).powi(2))
+            .sum();
+        (s / (upto + 1) as f64).sqrt()
+    };
+    let whole = x.nrms[1][0].unwrap();
+    assert!((whole - rms(N)).abs() < 1e-12, "{whole}");
+    // rapier vs fe normalised by fe's peak; fe vs rapier by rapier's (1.03).
+    assert!((x.nrms[0][1].unwrap() - rms(N) / 1.03).abs() < 1e-12);
+    // Peak relative displacement: +3 % both ways round.
+    assert!((x.peak[1][0].unwrap() - 3.0).abs() < 1e-9);
+    assert!((x.peak[0][1].unwrap() - 100.0 * (1.0 / 1.03 - 1.0)).abs() < 1e-9);
+    // The pair: first lift-off 0.65 s vs 0.60 s → +50 ms; history up to 0.6 s.
+    let p = &x.pairs[0];
+    let k = x.keys.iter().position(|k| *k == "first_liftoff").unwrap();
+    assert!((p.entries[k].unwrap() - 50.0).abs() < 1e-9);
+    let to_liftoff = p.nrms_to_liftoff.unwrap();
+    assert!((to_liftoff - rms(600)).abs() < 1e-12, "{to_liftoff}");
+}
+
+#[test]
+fn reports_have_run_columns_na_column_figures_and_the_run_vs_run_failure() {
+    let r = result();
+    let md = super::case_markdown(&r);
+    assert!(
+        md.contains("| Quantity | Unit | fe/single | rapier/inertial | Tolerance | Result |"),
+        "{md}"
+    );
+    assert!(md.contains("- predictor-corrector: n/a — the predictor-corrector is a single-degree-of-freedom sliding method"));
+    assert!(md.contains("Reference: none — no exact solution exists for the rocking oscillator."));
+    assert!(md.contains(
+        "FAIL synthetic-rocking: peak_cm_x: rapier/inertial vs fe/single: Δ +3.000 % (10.30 vs 10.00 mm) (tolerance ≤ 1 %) [synthetic-rocking.toml: tolerance[0]]"
+    ), "{md}");
+    assert!(md.contains("nRMS to first lift-off"));
+    // Without a reference the check marks the value itself.
+    let row = md
+        .lines()
+        .find(|l| l.starts_with("| Peak CM horizontal |"))
+        .unwrap();
+    assert!(row.contains("| 10.00 | **10.30 ✗** |"), "{row}");
+    let ids: Vec<String> = figures(&r).into_iter().map(|f| f.id).collect();
+    assert_eq!(
+        ids,
+        [
+            "relative-displacement",
+            "cm-horizontal",
+            "cm-vertical",
+            "rotation"
+        ]
+    );
+    let html = super::case_html(&r);
+    assert_eq!(html.matches("<svg").count(), 4);
+    assert!(!html.contains("://"));
+}

@@ -1,0 +1,141 @@
+//! Response quantities in the paper's style — peak relative displacement, peak, minimum
+//! and residual sliding, slip start and end, peak resistance, and for rocking bodies peak
+//! rotation, uplift and centre-of-mass motion — read off any trace.
+
+use std::collections::BTreeMap;
+
+use rockslide_core::response::{DEFS, Reading};
+use rockslide_core::trace::Trace;
+
+/// Response quantities of one trace, by key (only those its channels allow).
+pub type Responses = BTreeMap<&'static str, f64>;
+
+/// Read every applicable response quantity off `trace`.
+pub fn responses(trace: &Trace) -> Responses {
+    let mut out = Responses::new();
+    for d in DEFS {
+        let Some(col) = trace.column(d.channel.key) else {
+            continue;
+        };
+        if col.is_empty() {
+            continue;
+        }
+        let value = match d.reading {
+            Reading::PeakAbs => Some(col.iter().fold(0.0_f64, |m, x| m.max(x.abs()))),
+            Reading::Max => Some(col.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
+            Reading::Min => Some(col.iter().copied().fold(f64::INFINITY, f64::min)),
+            Reading::Last => col.last().copied(),
+            Reading::SlipStart => slip_window(&trace.time, col).map(|w| w.0),
+            Reading::SlipEnd => slip_window(&trace.time, col).map(|w| w.1),
+            Reading::FirstZero => col.iter().position(|&c| c <= 0.0).map(|i| trace.time[i]),
+            Reading::FirstCrossing => sign_changes(&trace.time, col).first().copied(),
+            Reading::SecondCrossing => sign_changes(&trace.time, col).get(1).copied(),
+            Reading::PeakAbsAfterFirstCrossing => {
+                let c = sign_changes(&trace.time, col);
+                c.first().map(|&t0| {
+                    let t1 = c.get(1).copied().unwrap_or(f64::INFINITY);
+                    trace
+                        .time
+                        .iter()
+                        .zip(col)
+                        .filter(|(t, _)| **t > t0 && **t < t1)
+                        .fold(0.0_f64, |m, (_, x)| m.max(x.abs()))
+                })
+            }
+        };
+        if let Some(v) = value {
+            out.insert(d.key, v);
+        }
+    }
+    out
+}
+
+/// First and last instants of slipping, detected from the slip *rate* (never from
+/// |R| = Ru: an undamped oscillator that stopped sliding touches the limit every half
+/// period). A step slips when its slide increment exceeds 1e-3 of the largest increment
+/// of the run; the start is the beginning of the first slipping step, the end the end of
+/// the last.
+pub fn slip_window(time: &[f64], slide: &[f64]) -> Option<(f64, f64)> {
+    let rate = |i: usize| ((slide[i] - slide[i - 1]) / (time[i] - time[i - 1])).abs();
+    let peak = (1..slide.len()).map(rate).fold(0.0_f64, f64::max);
+    if peak.is_nan() || peak <= 0.0 {
+        return None;
+    }
+    let threshold = 1e-3 * peak;
+    let first = (1..slide.len()).find(|&i| rate(i) > threshold)?;
+    let last = (1..slide.len()).rev().find(|&i| rate(i) > threshold)?;
+    Some((time[first - 1], time[last]))
+}
+
+/// Times at which a channel changes sign, linearly interpolated. Samples smaller than
+/// 1e-3 of the channel's peak are ignored (a block resting flat has rotation noise).
+pub fn sign_changes(time: &[f64], col: &[f64]) -> Vec<f64> {
+    let peak = col.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let floor = 1e-3 * peak;
+    let mut out = Vec::new();
+    let mut last: Option<(usize, f64)> = None;
+    for (i, &x) in col.iter().enumerate() {
+        if x.abs() <= floor {
+            continue;
+        }
+        if let Some((j, s)) = last {
+            if x.signum() != s {
+                // the change lies between samples j and i: find the raw crossing
+                let k = (j..i)
+                    .find(|&k| col[k + 1].signum() != s || col[k + 1] == 0.0)
+                    .unwrap_or(i - 1);
+                let (x0, x1) = (col[k], col[k + 1]);
+                let f = if x1 != x0 { x0 / (x0 - x1) } else { 0.0 };
+                out.push(time[k] + f * (time[k + 1] - time[k]));
+            }
+        }
+        last = Some((i, x.signum()));
+    }
+    out
+}
+
+/// Discrepancy in percent, 100·(value/basis − 1) (the SAP2000 verification convention);
+/// `None` when the basis is zero.
+pub fn discrepancy_percent(value: f64, basis: f64) -> Option<f64> {
+    (basis != 0.0).then(|| 100.0 * (value / basis - 1.0))
+}
+
+/// Whole-history difference of channel `key` between a run and a basis sampled at the
+/// same times: (max |Δ|, RMS Δ), both normalised by the basis's peak |value|.
+pub fn history_difference(run: &Trace, basis: &Trace, key: &str) -> Option<(f64, f64)> {
+    let a = run.column(key)?;
+    let peak = basis
+        .column(key)?
+        .iter()
+        .fold(0.0_f64, |m, x| m.max(x.abs()));
+    if peak == 0.0 || run.is_empty() {
+        return None;
+    }
+    let (mut max, mut sum) = (0.0_f64, 0.0);
+    for (i, &t) in run.time.iter().enumerate() {
+        let b = basis.sample(key, t)?;
+        let d = a[i] - b;
+        max = max.max(d.abs());
+        sum += d * d;
+    }
+    Some((max / peak, (sum / run.len() as f64).sqrt() / peak))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn slip_window_ignores_a_constant_slide() {
+        let t = [0.0, 0.1, 0.2, 0.3, 0.4];
+        assert_eq!(slip_window(&t, &[0.0; 5]), None);
+        let w = slip_window(&t, &[0.0, 0.0, 1.0, 2.0, 2.0]).unwrap();
+        assert_eq!(w, (0.1, 0.3));
+    }
+
+    #[test]
+    fn discrepancy_follows_the_sap2000_convention() {
+        assert!((discrepancy_percent(1.05, 1.0).unwrap() - 5.0).abs() < 1e-12);
+        assert_eq!(discrepancy_percent(1.0, 0.0), None);
+    }
+}

@@ -1,0 +1,193 @@
+//! Error against time step: the Δt ladder, the error of one rung against a basis (the
+//! exact reference, or the engine's own finest rung where no reference exists), the
+//! observed order of accuracy, and Richardson extrapolation. Pure arithmetic on traces:
+//! running the engines is the `sweep` command's job (`crate::sweep`).
+//!
+//! Conventions (FIELD-NOTES, "Verification conventions"): errors are whole-history
+//! differences normalised by the basis's peak; the observed order between two rungs is
+//! p = ln(e₁/e₂)/ln(Δt₁/Δt₂); from three solutions at a constant refinement ratio r,
+//! p = ln((f₃ − f₂)/(f₂ − f₁))/ln r and the Richardson estimate is
+//! f ≈ f₁ + (f₁ − f₂)/(r^p − 1), with the Grid Convergence Index GCI = 1.25·|f₁ − f₂|/|f₁|/(r^p − 1)
+//! (Roache 1994).
+
+use rockslide_core::trace::{Trace, q};
+
+use super::metrics::{Responses, history_difference};
+
+/// Event-time quantities compared between a rung and its basis (slip and lift-off).
+pub const EVENT_KEYS: &[&str] = &["slip_start", "slip_end", "first_liftoff"];
+
+/// A Δt ladder: `rungs` steps from `coarsest` down, each `ratio` times smaller.
+pub fn ladder(coarsest: f64, ratio: f64, rungs: usize) -> Vec<f64> {
+    (0..rungs)
+        .map(|k| coarsest / ratio.powi(k as i32))
+        .collect()
+}
+
+/// The error of one rung against its basis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RungError {
+    /// max |Δx| / peak |x_basis| of the primary displacement (`rel_disp`).
+    pub max: f64,
+    /// RMS Δx / peak |x_basis|.
+    pub rms: f64,
+    /// |residual sliding − basis|, m (when both have a `slide` channel).
+    pub residual_sliding: Option<f64>,
+    /// Largest |event time − basis| over slip start, slip end and first lift-off, s
+    /// (events both have).
+    pub event_time: Option<f64>,
+    /// Events the basis has and the rung lacks (or the other way round).
+    pub events_missing: usize,
+}
+
+/// Error of a run against a basis. `basis_at_run` is the basis sampled at the run's row
+/// times; `run_resp` and `basis_resp` are both sides' response quantities.
+pub fn rung_error(
+    run: &Trace,
+    run_resp: &Responses,
+    basis_at_run: &Trace,
+    basis_resp: &Responses,
+) -> Option<RungError> {
+    let (max, rms) = history_difference(run, basis_at_run, q::REL_DISP.key)?;
+    let residual_sliding = match (
+        run_resp.get("residual_sliding"),
+        basis_resp.get("residual_sliding"),
+    ) {
+        (Some(a), Some(b)) => Some((a - b).abs()),
+        _ => None,
+    };
+    let mut event_time: Option<f64> = None;
+    let mut events_missing = 0;
+    for key in EVENT_KEYS {
+        match (run_resp.get(key), basis_resp.get(key)) {
+            (Some(a), Some(b)) => {
+                let d = (a - b).abs();
+                event_time = Some(event_time.map_or(d, |e| e.max(d)));
+            }
+            (None, None) => {}
+            _ => events_missing += 1,
+        }
+    }
+    Some(RungError {
+        max,
+        rms,
+        residual_sliding,
+        event_time,
+        events_missing,
+    })
+}
+
+/// `trace` linearly interpolated at `times`, every channel (a fine solution used as the
+/// basis of coarser ones).
+pub fn resample(trace: &Trace, times: &[f64]) -> Trace {
+    let mut out = Trace::with_channels(&trace.channels, times.len());
+    let mut row = vec![0.0; trace.channels.len()];
+    for &t in times {
+        for (j, c) in trace.channels.iter().enumerate() {
+            row[j] = trace.sample(c.key, t).unwrap_or(f64::NAN);
+        }
+        out.push(t, &row);
+    }
+    out
+}
+
+/// Observed order between consecutive rungs: p = ln(e₁/e₂)/ln(Δt₁/Δt₂), one per pair
+/// (`None` where either error is zero or not finite).
+pub fn local_orders(points: &[(f64, f64)]) -> Vec<Option<f64>> {
+    points
+        .windows(2)
+        .map(|w| {
+            let ((h1, e1), (h2, e2)) = (w[0], w[1]);
+            let ok = e1 > 0.0 && e2 > 0.0 && e1.is_finite() && e2.is_finite() && h1 != h2;
+            ok.then(|| (e1 / e2).ln() / (h1 / h2).ln())
+        })
+        .collect()
+}
+
+/// Observed order as the least-squares slope of ln e against ln Δt over the points with a
+/// positive finite error (`None` with fewer than two).
+pub fn fitted_order(points: &[(f64, f64)]) -> Option<f64> {
+    let pts: Vec<(f64, f64)> = points
+        .iter()
+        .filter(|(h, e)| *h > 0.0 && *e > 0.0 && e.is_finite())
+        .map(|(h, e)| (h.ln(), e.ln()))
+        .collect();
+    if pts.len() < 2 {
+        return None;
+    }
+    let n = pts.len() as f64;
+    let (sx, sy) = pts.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
+    let (mx, my) = (sx / n, sy / n);
+    let (mut sxy, mut sxx) = (0.0, 0.0);
+    for (x, y) in &pts {
+        sxy += (x - mx) * (y - my);
+        sxx += (x - mx) * (x - mx);
+    }
+    (sxx > 0.0).then(|| sxy / sxx)
+}
+
+/// Richardson extrapolation from three solutions at a constant refinement ratio.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Richardson {
+    /// Observed order p = ln((f₃ − f₂)/(f₂ − f₁))/ln r.
+    pub order: f64,
+    /// Extrapolated value f₁ + (f₁ − f₂)/(r^p − 1).
+    pub extrapolated: f64,
+    /// Grid Convergence Index of the finest solution, 1.25·|f₁ − f₂|/|f₁|/(r^p − 1).
+    pub gci: f64,
+}
+
+/// Richardson from `fine` (f₁), `mid` (f₂), `coarse` (f₃) at ratio `r`; `None` when the
+/// differences do not shrink monotonically (no asymptotic range).
+pub fn richardson(fine: f64, mid: f64, coarse: f64, r: f64) -> Option<Richardson> {
+    let (d21, d32) = (mid - fine, coarse - mid);
+    if d21 == 0.0 || d32 == 0.0 || d32 / d21 <= 1.0 || r <= 1.0 {
+        return None;
+    }
+    let order = (d32 / d21).ln() / r.ln();
+    let denom = r.powf(order) - 1.0;
+    let extrapolated = fine + (fine - mid) / denom;
+    let gci = if fine != 0.0 {
+        1.25 * (fine - mid).abs() / fine.abs() / denom
+    } else {
+        f64::NAN
+    };
+    Some(Richardson {
+        order,
+        extrapolated,
+        gci,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ladder_halves() {
+        let l = ladder(0.02, 2.0, 4);
+        assert_eq!(l, vec![0.02, 0.01, 0.005, 0.0025]);
+    }
+
+    #[test]
+    fn orders_of_a_second_order_error() {
+        let pts: Vec<(f64, f64)> = [0.1, 0.05, 0.025]
+            .iter()
+            .map(|&h| (h, 3.0 * h * h))
+            .collect();
+        for p in local_orders(&pts) {
+            assert!((p.unwrap() - 2.0).abs() < 1e-12);
+        }
+        assert!((fitted_order(&pts).unwrap() - 2.0).abs() < 1e-12);
+    }
+
+    /// f(h) = 1 + h²: from h = 0.1, 0.2, 0.4 Richardson recovers p = 2 and f(0) = 1.
+    #[test]
+    fn richardson_recovers_the_limit() {
+        let f = |h: f64| 1.0 + h * h;
+        let r = richardson(f(0.1), f(0.2), f(0.4), 2.0).unwrap();
+        assert!((r.order - 2.0).abs() < 1e-12);
+        assert!((r.extrapolated - 1.0).abs() < 1e-12);
+        assert!(richardson(1.0, 1.0, 2.0, 2.0).is_none());
+    }
+}

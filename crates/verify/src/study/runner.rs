@@ -1,0 +1,269 @@
+//! Running a study: every point of a grid (or of one shard of it) in parallel with rayon,
+//! a progress bar on a terminal, one result file per point written atomically as soon as
+//! the point is done. A point whose result file exists with the same hash is skipped, so
+//! an interrupted study resumes where it stopped; the counts of executed and skipped
+//! points are returned (deterministic counters, not times).
+
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::time::Instant;
+
+use indicatif::{ProgressBar, ProgressStyle};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use super::grid::{Grid, GridPoint};
+use crate::analysis::responses;
+use crate::registry;
+use crate::suite::{execute, plan};
+use rockslide_core::case::{Excitation, Model, Signal};
+use rockslide_core::error::{Error, InputErrors};
+use rockslide_core::io::write_atomically;
+use rockslide_reference::newmark_record::{Sliding, rigid_block};
+
+/// One engine run of a point, reduced to the numbers a study tabulates (SI units).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunSummary {
+    /// Engine id (`newmark-rigid` for the rigid-block reference).
+    pub engine: String,
+    /// Variant.
+    pub variant: String,
+    /// Time step, s.
+    pub dt: f64,
+    /// `completed`, `diverged`, `not converged`, with the reason when not completed.
+    pub status: String,
+    /// Sliding at the end of the run, m (mass minus ground, the PEPO's xp).
+    pub residual_sliding: Option<f64>,
+    /// Largest |sliding| during the run, m.
+    pub peak_abs_sliding: Option<f64>,
+    /// Largest |relative displacement|, m.
+    pub peak_relative_displacement: Option<f64>,
+    /// Steps taken (deterministic counter).
+    pub steps: u64,
+    /// Wall time of the run, s (informative only: never in summaries).
+    pub wall_seconds: f64,
+}
+
+/// The result file of one grid point.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PointResult {
+    /// Hash of everything that shaped the result ([`Grid::point_hash`]).
+    pub hash: String,
+    /// The point.
+    pub point: GridPoint,
+    /// Record name as written in the grid.
+    pub record: String,
+    /// PGA it ran at, m/s².
+    pub pga: f64,
+    /// Factor applied to the record as recorded (× polarity excluded).
+    pub scale_factor: f64,
+    /// Friction coefficient it ran with.
+    pub mu: f64,
+    /// The excitation's label (file, scaling, polarity, resampling note).
+    pub excitation: String,
+    /// Engines that do not apply to the model, with why.
+    pub not_applicable: Vec<(String, String)>,
+    /// One entry per engine run, then the rigid block when the grid asks for it.
+    pub runs: Vec<RunSummary>,
+}
+
+/// What a study invocation did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub struct StudyOutcome {
+    /// Points in the grid.
+    pub points: usize,
+    /// Points this invocation was responsible for (its shard).
+    pub assigned: usize,
+    /// Points run now.
+    pub executed: usize,
+    /// Points skipped because a matching result existed.
+    pub skipped: usize,
+    /// Engine runs made now (rigid-block runs included).
+    pub runs: usize,
+}
+
+/// Options of a study invocation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct StudyOptions {
+    /// Output folder: result files go to `<out>/runs/`.
+    pub out: PathBuf,
+    /// Shard `(k, n)`, 0-based k < n; `None` = the whole grid.
+    pub shard: Option<(usize, usize)>,
+    /// Show a progress bar (still hidden when stderr is not a terminal or `CI` is set).
+    pub progress: bool,
+}
+
+/// Folder of the per-point result files.
+pub fn runs_dir(out: &Path) -> PathBuf {
+    out.join("runs")
+}
+
+/// Path of a point's result file.
+pub fn result_path(out: &Path, p: &GridPoint) -> PathBuf {
+    runs_dir(out).join(format!("{}.json", p.id()))
+}
+
+/// Read a result file if it exists and parses.
+pub fn read_result(path: &Path) -> Option<PointResult> {
+    let text = std::fs::read_to_string(path).ok()?;
+    serde_json::from_str(&text).ok()
+}
+
+/// Whether a point already has a result matching its hash in `out`.
+pub fn is_done(grid: &Grid, out: &Path, p: &GridPoint) -> bool {
+    read_result(&result_path(out, p)).is_some_and(|r| r.hash == grid.point_hash(p))
+}
+
+fn progress_bar(len: usize, wanted: bool) -> ProgressBar {
+    let ci = std::env::var_os("CI").is_some_and(|v| !v.is_empty() && v != "false");
+    if !wanted || ci || !std::io::stderr().is_terminal() {
+        return ProgressBar::hidden();
+    }
+    let pb = ProgressBar::new(len as u64);
+    if let Ok(style) =
+        ProgressStyle::with_template("{bar:40} {pos}/{len} points  {elapsed_precise} (eta {eta})")
+    {
+        pb.set_style(style);
+    }
+    pb
+}
+
+/// Run the grid's points (or those of one shard) that have no matching result yet.
+pub fn run_study(grid: &Grid, opts: &StudyOptions) -> Result<StudyOutcome, Error> {
+    let assigned: Vec<&GridPoint> = match opts.shard {
+        Some((k, n)) => grid.shard(k, n),
+        None => grid.points.iter().collect(),
+    };
+    // Check the base case's engine plan once, before any work.
+    let engines = registry::all();
+    plan(&grid.base, &engines)?;
+    let todo: Vec<&GridPoint> = assigned
+        .iter()
+        .copied()
+        .filter(|p| !is_done(grid, &opts.out, p))
+        .collect();
+    let executed = AtomicUsize::new(0);
+    let runs = AtomicUsize::new(0);
+    let pb = progress_bar(todo.len(), opts.progress);
+    let results: Vec<Result<(), Error>> = todo
+        .par_iter()
+        .map(|p| {
+            let result = run_point(grid, p, &engines)?;
+            runs.fetch_add(result.runs.len(), Ordering::Relaxed);
+            let json = serde_json::to_string_pretty(&result)
+                .map_err(|e| Error::Other(format!("cannot serialise {}: {e}", p.id())))?;
+            write_atomically(&result_path(&opts.out, p), json.as_bytes())?;
+            executed.fetch_add(1, Ordering::Relaxed);
+            pb.inc(1);
+            Ok(())
+        })
+        .collect();
+    pb.finish_and_clear();
+    for r in results {
+        r?;
+    }
+    Ok(StudyOutcome {
+        points: grid.points.len(),
+        assigned: assigned.len(),
+        executed: executed.into_inner(),
+        skipped: assigned.len() - todo.len(),
+        runs: runs.into_inner(),
+    })
+}
+
+/// Run every engine the base case asks for on one point, and the rigid block.
+pub fn run_point(
+    grid: &Grid,
+    p: &GridPoint,
+    engines: &[Box<dyn rockslide_engine_api::Engine>],
+) -> Result<PointResult, Error> {
+    let case = grid.point_case(p)?;
+    let planned = plan(&case, engines)?;
+    let mut runs = Vec::new();
+    for pr in &planned.runs {
+        let start = Instant::now();
+        let run = execute(&case, engines, pr).map_err(InputErrors::from)?;
+        let wall = start.elapsed().as_secs_f64();
+        let resp = responses(&run.trace);
+        let peak_abs_sliding = match (resp.get("peak_sliding"), resp.get("min_sliding")) {
+            (Some(a), Some(b)) => Some(a.abs().max(b.abs())),
+            _ => None,
+        };
+        runs.push(RunSummary {
+            engine: run.engine.to_string(),
+            variant: run.variant.clone(),
+            dt: run.dt,
+            status: run.status.to_string(),
+            residual_sliding: resp.get("residual_sliding").copied(),
+            peak_abs_sliding,
+            peak_relative_displacement: resp.get("peak_relative_displacement").copied(),
+            steps: run
+                .counters
+                .iter()
+                .find(|(k, _)| k == "steps")
+                .map_or(run.trace.len().saturating_sub(1) as u64, |c| c.1),
+            wall_seconds: wall,
+        });
+    }
+    let excitation_signal = case.scene.excitation.signal();
+    if grid.newmark {
+        if let (Some(Signal::Record { dt, samples, .. }), Some(ky)) =
+            (excitation_signal, yield_acceleration(&case.scene.model))
+        {
+            let is_ground = matches!(case.scene.excitation, Excitation::GroundAcceleration(_));
+            let start = Instant::now();
+            // Level frictional base: sliding both ways. The tail lets it come to rest.
+            let tail = case.run.duration - dt * (samples.len() - 1) as f64;
+            let sign = if is_ground { 1.0 } else { -1.0 };
+            let acc: Vec<f64> = samples.iter().map(|a| sign * a).collect();
+            let r = rigid_block(*dt, &acc, ky, Sliding::TwoWay, tail.max(0.0));
+            let u = r.residual();
+            // Convert SLAMMER's u (ground relative to block) to mass minus ground: −u.
+            let peak = r.peak();
+            runs.push(RunSummary {
+                engine: "newmark-rigid".into(),
+                variant: "two-way".into(),
+                dt: *dt,
+                status: "completed".into(),
+                residual_sliding: Some(-u + 0.0), // + 0.0: no "-0" in tables
+                peak_abs_sliding: Some(peak),
+                peak_relative_displacement: None,
+                steps: r.disp.len().saturating_sub(1) as u64,
+                wall_seconds: start.elapsed().as_secs_f64(),
+            });
+        }
+    }
+    let rec = &grid.records[p.record];
+    let pga = grid.pga(p);
+    Ok(PointResult {
+        hash: grid.point_hash(p),
+        point: p.clone(),
+        record: rec.name.clone(),
+        pga,
+        scale_factor: pga / rec.record.pga(),
+        mu: grid.mu(p),
+        excitation: match excitation_signal {
+            Some(Signal::Record { label, .. }) => label.clone(),
+            _ => String::new(),
+        },
+        not_applicable: planned
+            .not_applicable
+            .into_iter()
+            .map(|(e, why)| (e.to_string(), why))
+            .collect(),
+        runs,
+    })
+}
+
+/// Newmark's yield acceleration of a model on a level frictional base, μ·g (m/s²); `None`
+/// when it never slides (μ = ∞) or has no gravity.
+pub fn yield_acceleration(model: &Model) -> Option<f64> {
+    let (mu, g) = match model {
+        Model::Oscillator(o) => (o.contact.mu, o.gravity),
+        Model::RockingBody(r) => (r.contact.mu, r.gravity),
+        Model::RigidBlock(b) => (b.mu, b.gravity),
+    };
+    let ky = mu * g;
+    (ky.is_finite() && ky > 0.0).then_some(ky)
+}

@@ -1,0 +1,204 @@
+//! Running a case: plan the engine runs it asks for (or say why an engine does not apply),
+//! run them in parallel, solve the reference, read the response quantities off every
+//! trace and apply the case's tolerances. The result feeds reports, traces and the gate.
+
+use std::time::Instant;
+
+use rayon::prelude::*;
+
+use crate::analysis::{Check, Responses, evaluate_tolerances, history_difference, responses};
+use crate::registry;
+use rockslide_core::case::Case;
+use rockslide_core::error::{InputError, InputErrors};
+use rockslide_core::trace::Trace;
+use rockslide_engine_api::{Engine, Run};
+use rockslide_reference::ExactSolution;
+
+/// One planned run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PlannedRun {
+    /// Engine id.
+    pub engine: &'static str,
+    /// Variant.
+    pub variant: String,
+    /// Time step, s.
+    pub dt: f64,
+}
+
+/// The runs a case asks for, and the engines that do not apply (with why).
+#[derive(Debug, Clone, Default)]
+pub struct Plan {
+    /// Runs to make.
+    pub runs: Vec<PlannedRun>,
+    /// (engine id, reason) for each engine that cannot represent the scene.
+    pub not_applicable: Vec<(&'static str, String)>,
+}
+
+/// Plan a case: every engine it names (all engines if it names none) with every variant
+/// it asks for (all that apply by default). Unknown variants are input errors.
+pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputErrors> {
+    let mut plan = Plan::default();
+    let mut errors: Vec<InputError> = Vec::new();
+    for e in engines {
+        let request = case.engine(e.id());
+        if !case.engines.is_empty() && request.is_none() {
+            continue;
+        }
+        errors.extend(e.check_options(case));
+        let available = match e.variants(&case.scene) {
+            Ok(v) => v,
+            Err(na) => {
+                plan.not_applicable.push((e.id(), na.0));
+                continue;
+            }
+        };
+        let wanted: Vec<String> = match request.and_then(|r| r.variants.clone()) {
+            Some(v) => v,
+            None => available.iter().map(|s| s.to_string()).collect(),
+        };
+        for (i, v) in wanted.iter().enumerate() {
+            if !available.contains(&v.as_str()) {
+                errors.push(case.field_error(
+                    &format!("engines.{}.variants[{i}]", e.id()),
+                    format!(
+                        "\"{v}\" is not a variant of {} for this scene; available: {}",
+                        e.id(),
+                        available.join(", ")
+                    ),
+                ));
+                continue;
+            }
+            plan.runs.push(PlannedRun {
+                engine: e.id(),
+                variant: v.clone(),
+                dt: case.dt_for(e.id()),
+            });
+        }
+    }
+    if errors.is_empty() {
+        Ok(plan)
+    } else {
+        Err(InputErrors(errors))
+    }
+}
+
+/// The reference of a case, sampled, with its response quantities.
+pub struct ReferenceResult {
+    /// The solution, for sampling at other times.
+    pub solution: Box<dyn ExactSolution>,
+    /// Sampled on a fine uniform grid.
+    pub trace: Trace,
+    /// Response quantities (exact event times where the solution knows them).
+    pub responses: Responses,
+}
+
+/// Whole-history difference of one run from the reference.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct HistoryError {
+    /// max |Δ| / peak of the primary displacement.
+    pub max: f64,
+    /// RMS Δ / peak of the primary displacement.
+    pub rms: f64,
+}
+
+/// Everything known about one case after running it.
+pub struct CaseResult {
+    /// The case.
+    pub case: Case,
+    /// The runs, in plan order.
+    pub runs: Vec<Run>,
+    /// Response quantities of each run.
+    pub run_responses: Vec<Responses>,
+    /// Relative-displacement history error of each run against the reference.
+    pub history_errors: Vec<Option<HistoryError>>,
+    /// Engines that do not apply, and why.
+    pub not_applicable: Vec<(&'static str, String)>,
+    /// The reference, or why there is none.
+    pub reference: Result<ReferenceResult, String>,
+    /// Tolerance checks.
+    pub checks: Vec<Check>,
+}
+
+impl CaseResult {
+    /// Whether the case passes the gate (as `rockslide check` decides it).
+    pub fn gate_passed(&self) -> bool {
+        // one truth with `check`: failed gated checks and gated tolerances that check nothing
+        crate::verdict::failures(std::slice::from_ref(self)).is_empty()
+    }
+}
+
+/// Run one planned run, timing it.
+pub fn execute(
+    case: &Case,
+    engines: &[Box<dyn Engine>],
+    p: &PlannedRun,
+) -> Result<Run, InputError> {
+    let e = engines
+        .iter()
+        .find(|e| e.id() == p.engine)
+        .expect("planned engines exist");
+    let start = Instant::now();
+    let mut run = e.run(case, &p.variant, p.dt)?;
+    run.wall_seconds = start.elapsed().as_secs_f64();
+    Ok(run)
+}
+
+/// Solve and sample the reference of a case.
+pub fn solve_reference(case: &Case) -> Result<ReferenceResult, String> {
+    let solution = rockslide_reference::for_case(case)?;
+    let n = ((case.run.duration / 1e-5).ceil() as usize).clamp(1000, 200_000);
+    let trace = rockslide_reference::sample_uniform(solution.as_ref(), case.run.duration, n);
+    let mut resp = responses(&trace);
+    for (k, v) in solution.exact_quantities() {
+        resp.insert(k, v);
+    }
+    Ok(ReferenceResult {
+        solution,
+        trace,
+        responses: resp,
+    })
+}
+
+/// Run a whole case: plan, run engines in parallel, reference, responses, checks.
+pub fn run_case(case: Case) -> Result<CaseResult, InputErrors> {
+    let engines = registry::all();
+    let plan = plan(&case, &engines)?;
+    let (runs, reference) = rayon::join(
+        || {
+            plan.runs
+                .par_iter()
+                .map(|p| execute(&case, &engines, p))
+                .collect::<Vec<_>>()
+        },
+        || solve_reference(&case),
+    );
+    let runs: Vec<Run> = runs
+        .into_iter()
+        .collect::<Result<_, _>>()
+        .map_err(InputErrors::from)?;
+    let run_responses: Vec<Responses> = runs.iter().map(|r| responses(&r.trace)).collect();
+    let history_errors = runs
+        .iter()
+        .map(|r| {
+            let reference = reference.as_ref().ok()?;
+            let sampled = rockslide_reference::sample(reference.solution.as_ref(), &r.trace.time);
+            history_difference(&r.trace, &sampled, "rel_disp")
+                .map(|(max, rms)| HistoryError { max, rms })
+        })
+        .collect();
+    let checks = evaluate_tolerances(
+        &case.tolerances,
+        &runs,
+        &run_responses,
+        reference.as_ref().ok().map(|r| &r.responses),
+    );
+    Ok(CaseResult {
+        case,
+        runs,
+        run_responses,
+        history_errors,
+        not_applicable: plan.not_applicable,
+        reference,
+        checks,
+    })
+}

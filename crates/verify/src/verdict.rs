@@ -1,0 +1,155 @@
+//! The verdict of a case: which checks fail the gate (and which are informative), as values
+//! with a one-line rendering for logs. The one pass/fail rule; `rockslide check`, the
+//! reports and the JUnit all ask it.
+
+use std::fmt;
+
+use crate::analysis::{Check, Verdict};
+use crate::suite::CaseResult;
+use rockslide_core::case::Tolerance;
+use rockslide_core::response::show_value;
+
+/// One failed check: a gated one fails the gate; an informative one (`gate = false`) is
+/// only reported.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Failure {
+    /// Case name.
+    pub case: String,
+    /// Quantity key.
+    pub quantity: String,
+    /// `run vs basis` (`predictor-corrector/paper vs reference`).
+    pub engines: String,
+    /// What was found, in words (`Δ -0.65 % (8.699 mm vs 8.756 mm)`).
+    pub value: String,
+    /// The tolerance in words (`≤ 0.1 %`).
+    pub tolerance: String,
+    /// Where the tolerance is in the case file (`cases/x.toml: tolerance[2]`).
+    pub field: String,
+    /// A gated tolerance that matched no run (rather than a check that failed).
+    pub checks_nothing: bool,
+    /// Whether the check is gated (informative failures come from [`informative`]).
+    pub gated: bool,
+}
+
+impl fmt::Display for Failure {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} {}: {}: {}: {} (tolerance {}) [{}]",
+            if self.gated { "FAIL" } else { "INFO" },
+            self.case,
+            self.quantity,
+            self.engines,
+            self.value,
+            self.tolerance,
+            self.field
+        )
+    }
+}
+
+/// What a check found, in words: the discrepancy and both values in display units.
+pub fn describe(c: &Check) -> String {
+    match (c.value, c.basis_value) {
+        (Some(v), Some(b)) => {
+            let both = format!(
+                "{} vs {} {}",
+                show_value(&c.quantity, v).0,
+                show_value(&c.quantity, b).0,
+                show_value(&c.quantity, b).1
+            );
+            match c.percent {
+                Some(p) => format!("Δ {p:+.3} % ({})", both.trim_end()),
+                None => {
+                    let (d, unit) = show_value(&c.quantity, v - b);
+                    format!("Δ {d} {unit} ({})", both.trim_end())
+                }
+            }
+        }
+        (None, _) => {
+            "missing: the run has no value (did not complete or lacks the quantity)".to_string()
+        }
+        (Some(_), None) => "missing: the basis has no value".to_string(),
+    }
+}
+
+/// The tolerance of a check in words with the quantity's display unit (`≤ 1 %`,
+/// `≤ 0.01000 s`), read from the case's tolerance the check came from.
+pub fn limit_text(r: &CaseResult, c: &Check) -> String {
+    r.case
+        .tolerances
+        .iter()
+        .find(|t| t.field == c.field)
+        .map_or_else(|| c.limit.clone(), tolerance_words)
+}
+
+/// A tolerance in words, absolute limits in the quantity's display unit.
+fn tolerance_words(t: &Tolerance) -> String {
+    let abs = t.absolute.map(|a| {
+        let (v, unit) = show_value(&t.quantity, a);
+        format!("≤ {v} {unit}").trim_end().to_string()
+    });
+    match (t.percent, abs) {
+        (Some(p), Some(a)) => format!("≤ {p} % or {a}"),
+        (Some(p), None) => format!("≤ {p} %"),
+        (None, Some(a)) => a,
+        (None, None) => "—".into(),
+    }
+}
+
+/// Whether a check fails the gate.
+pub fn fails(c: &Check) -> bool {
+    c.gated && c.verdict != Verdict::Pass
+}
+
+fn failed_check(r: &CaseResult, c: &Check) -> Failure {
+    Failure {
+        case: r.case.name.clone(),
+        quantity: c.quantity.clone(),
+        engines: format!("{} vs {}", c.run, c.basis),
+        value: describe(c),
+        tolerance: limit_text(r, c),
+        field: format!("{}: {}", r.case.path.display(), c.field),
+        checks_nothing: false,
+        gated: c.gated,
+    }
+}
+
+/// Checks that are not gated and did not pass: findings to report, never gate failures
+/// (e.g. the paper's literal Eq 12 route against the exact solution). Lines start `INFO`.
+pub fn informative(results: &[CaseResult]) -> Vec<Failure> {
+    results
+        .iter()
+        .flat_map(|r| {
+            r.checks
+                .iter()
+                .filter(|c| !c.gated && c.verdict != Verdict::Pass)
+                .map(move |c| failed_check(r, c))
+        })
+        .collect()
+}
+
+/// Every gate failure of the results, in case and tolerance order. Lines start `FAIL`.
+pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
+    let mut out = Vec::new();
+    for r in results {
+        let file = r.case.path.display().to_string();
+        for c in r.checks.iter().filter(|c| fails(c)) {
+            out.push(failed_check(r, c));
+        }
+        for t in r.case.tolerances.iter().filter(|t| t.gate) {
+            if r.checks.iter().all(|c| c.field != t.field) {
+                out.push(Failure {
+                    case: r.case.name.clone(),
+                    quantity: t.quantity.clone(),
+                    engines: t.runs.clone().unwrap_or_else(|| "any run".into()),
+                    value: "checks nothing: no run of this case matches the tolerance".into(),
+                    tolerance: tolerance_words(t),
+                    field: format!("{file}: {}", t.field),
+                    checks_nothing: true,
+                    gated: true,
+                });
+            }
+        }
+    }
+    out
+}

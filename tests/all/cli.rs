@@ -1,0 +1,69 @@
+//! The command line as a user meets it: `run` writes CSV traces with units and a
+//! paper-style report; `list` shows cases and engines.
+
+use std::process::Command;
+
+fn rockslide(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn run_writes_traces_with_units_and_a_report() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let o = rockslide(&["run", "cases/pepo-mass-accel.toml", "--out", out, "--quiet"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let csv = std::fs::read_to_string(
+        dir.path()
+            .join("pepo-mass-accel/predictor-corrector-paper.csv"),
+    )
+    .unwrap();
+    let header = csv.lines().next().unwrap();
+    assert_eq!(
+        header,
+        "time [s],force [N],resistance [N],rel_disp [m],slide [m],vel [m/s],acc [m/s²],pc_change []"
+    );
+    assert_eq!(
+        csv.lines().count(),
+        102,
+        "header + 101 rows at Δt = 0.01 s over 1 s"
+    );
+    let report = std::fs::read_to_string(dir.path().join("pepo-mass-accel/report.md")).unwrap();
+    assert!(
+        report.contains("| Slip start | s | 0.06287 | 0.06000 |"),
+        "{report}"
+    );
+    assert!(
+        report.contains("| Peak relative displacement | mm | 9.263 | 9.206 | -0.62 %"),
+        "{report}"
+    );
+}
+
+#[test]
+fn list_shows_engines_and_references() {
+    let o = rockslide(&["list", "cases/pepo-ground-disp.toml"]);
+    assert!(o.status.success());
+    let s = String::from_utf8_lossy(&o.stdout);
+    assert!(
+        s.contains("predictor-corrector  eq12, eq12-slip-once, ground-accel"),
+        "{s}"
+    );
+    assert!(s.contains("reference            exact"), "{s}");
+}
+
+#[test]
+fn help_and_version_follow_conventions() {
+    let o = rockslide(&["--help"]);
+    assert!(o.status.success());
+    assert!(String::from_utf8_lossy(&o.stdout).contains("Usage: rockslide"));
+    let o = rockslide(&["--version"]);
+    assert_eq!(
+        String::from_utf8_lossy(&o.stdout).trim(),
+        format!("rockslide {}", env!("CARGO_PKG_VERSION"))
+    );
+    assert_eq!(rockslide(&["frobnicate"]).status.code(), Some(2));
+}
