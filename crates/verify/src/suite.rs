@@ -6,7 +6,9 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use crate::analysis::{Check, Responses, evaluate_tolerances, history_difference, responses};
+use crate::analysis::{
+    Check, Responses, evaluate_tolerances, history_difference, quantity_def, responses,
+};
 use crate::registry;
 use rockslide_core::case::Case;
 use rockslide_core::error::{InputError, InputErrors};
@@ -86,10 +88,43 @@ pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputError
 pub struct ReferenceResult {
     /// The solution, for sampling at other times.
     pub solution: Box<dyn ExactSolution>,
-    /// Sampled on a fine uniform grid.
+    /// Sampled on a fine uniform grid, in memory only: response quantities, the energy
+    /// audit and history differences read it.
     pub trace: Trace,
+    /// Sampled where it is compared — every run's output times and the exact event times —
+    /// for the files and figures ([`ReferenceResult::at_compared_times`]); until then, the
+    /// fine trace.
+    pub output: Trace,
     /// Response quantities (exact event times where the solution knows them).
     pub responses: Responses,
+}
+
+impl ReferenceResult {
+    /// Resample the output trace at the union of the runs' output times and the exact
+    /// event times (what the CSV, the MCAP file and the figures show): no fixed fine grid.
+    pub fn at_compared_times(&mut self, runs: &[Run]) {
+        let mut times: Vec<f64> = runs
+            .iter()
+            .flat_map(|r| r.trace.time.iter().copied())
+            .chain(self.event_times())
+            .filter(|t| t.is_finite())
+            .collect();
+        if times.is_empty() {
+            return;
+        }
+        times.sort_by(f64::total_cmp);
+        times.dedup();
+        self.output = rockslide_reference::sample(self.solution.as_ref(), &times);
+    }
+
+    /// The exact instants the solution knows (slip start and end, lift-off, impacts).
+    fn event_times(&self) -> impl Iterator<Item = f64> + '_ {
+        self.solution
+            .exact_quantities()
+            .into_iter()
+            .filter(|(k, _)| quantity_def(k).is_some_and(|d| d.is_time()))
+            .map(|(_, t)| t)
+    }
 }
 
 /// Whole-history difference of one run from the reference.
@@ -154,6 +189,7 @@ pub fn solve_reference(case: &Case) -> Result<ReferenceResult, String> {
     }
     Ok(ReferenceResult {
         solution,
+        output: trace.clone(),
         trace,
         responses: resp,
     })
@@ -172,10 +208,14 @@ pub fn run_case(case: Case) -> Result<CaseResult, InputErrors> {
         },
         || solve_reference(&case),
     );
+    let mut reference = reference;
     let runs: Vec<Run> = runs
         .into_iter()
         .collect::<Result<_, _>>()
         .map_err(InputErrors::from)?;
+    if let Ok(r) = &mut reference {
+        r.at_compared_times(&runs);
+    }
     let run_responses: Vec<Responses> = runs.iter().map(|r| responses(&r.trace)).collect();
     let history_errors = runs
         .iter()

@@ -128,7 +128,7 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
             ));
             runs.push(LoggedRun {
                 label: "reference".to_string(),
-                trace: &r.trace,
+                trace: &r.output,
                 status: "completed".to_string(),
                 stop: None,
                 metadata: map([("solution", r.solution.name().to_string())]),

@@ -56,7 +56,7 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
     }
     if let Ok(r) = &result.reference {
         write_csv(
-            &r.trace,
+            &r.output,
             &dir.join(format!("reference-{}.csv", r.solution.name())),
         )?;
     }

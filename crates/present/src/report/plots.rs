@@ -107,7 +107,7 @@ fn lines(r: &CaseResult) -> Vec<Line<'_>> {
     if let Ok(x) = &r.reference {
         out.push(Line {
             label: format!("reference ({})", x.solution.name()),
-            trace: &x.trace,
+            trace: &x.output,
         });
     }
     for run in &r.runs {
