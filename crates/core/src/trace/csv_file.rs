@@ -21,22 +21,34 @@ pub fn write_csv(trace: &Trace, path: &Path) -> Result<(), Error> {
         );
         w.write_record(&header)
             .map_err(|e| Error::Other(e.to_string()))?;
-        let mut row = Vec::with_capacity(header.len());
+        let mut number = ryu::Buffer::new();
+        let csv_error = |e: csv::Error| Error::Other(e.to_string());
         for i in 0..trace.len() {
-            row.clear();
-            row.push(format_f64(trace.time[i]));
-            row.extend(trace.columns.iter().map(|c| format_f64(c[i])));
-            w.write_record(&row)
-                .map_err(|e| Error::Other(e.to_string()))?;
+            w.write_field(shortest(&mut number, trace.time[i]))
+                .map_err(csv_error)?;
+            for c in &trace.columns {
+                w.write_field(shortest(&mut number, c[i]))
+                    .map_err(csv_error)?;
+            }
+            w.write_record(None::<&[u8]>).map_err(csv_error)?;
         }
         w.flush().map_err(|e| Error::io(path, e))?;
     }
     write_atomically(path, &buf)
 }
 
-/// Shortest representation that reads back to the same f64.
-fn format_f64(x: f64) -> String {
-    format!("{x:?}")
+/// Shortest decimal that reads back to the same f64 (Ryū), without allocating; `NaN`,
+/// `inf` and `-inf` spelled as Rust parses them back.
+pub(crate) fn shortest(buf: &mut ryu::Buffer, x: f64) -> &str {
+    if x.is_finite() {
+        buf.format_finite(x)
+    } else if x.is_nan() {
+        "NaN"
+    } else if x > 0.0 {
+        "inf"
+    } else {
+        "-inf"
+    }
 }
 
 /// Read a CSV trace written by [`write_csv`].
