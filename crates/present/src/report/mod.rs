@@ -2,30 +2,34 @@
 //! suite, Markdown and a self-contained HTML page (plots inline as SVG) and a summary CSV;
 //! the content — paper-style table, tolerance checks, cross-code matrix, plots, settings,
 //! provenance — is built once (`document`) as a small document model (`doc`) and rendered
-//! by `markdown` and `html`. Every file is written atomically under the output folder.
+//! by `markdown` and `html`. The same model renders the sweep, stability and study pages
+//! (`crate::sweep`, `crate::stability`, `crate::study`). Every file is written atomically
+//! under the output folder.
 //!
 //! Table of contents:
 //! - `table`: the paper-style table as data; `crosscode`: pairwise discrepancies;
-//!   `plots`: time-history figures (plotters, SVG); `provenance`: tool, commit, machine, date;
+//!   `plots`: time-history figures (plotters, SVG); `figure`: the palette and legend
+//!   strip every figure shares; `provenance`: tool, commit, machine, date;
 //! - `document`: the report content; `doc`: the document model;
-//! - `markdown`, `html`, `summary_csv`: the renderers; `format`: number formatting;
-//! - `sections`: energy audit, work-precision and stability sections; `attachments`: the
-//!   sweep and stability files picked up from the output folder (never recomputed);
-//!   `study_plots`: their figures and the legend strip under every figure;
+//! - `markdown`, `html`, `summary_csv`: the renderers; `files`: writing a document and
+//!   CSV files; `format`: number formatting;
+//! - `sections`: the energy audit section; `attachments`: the typed results of `sweep`
+//!   and `stability` picked up from the output folder (never recomputed);
 //! - `mcap_log`: the MCAP trace of a case run (Foxglove).
 
 mod attachments;
 mod crosscode;
-mod doc;
+pub(crate) mod doc;
 mod document;
-mod format;
+pub(crate) mod figure;
+pub(crate) mod files;
+pub(crate) mod format;
 mod html;
 mod markdown;
 mod mcap_log;
 mod plots;
 mod provenance;
 mod sections;
-mod study_plots;
 mod summary_csv;
 mod table;
 
@@ -86,9 +90,9 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
 }
 
 /// Write the suite's outputs under `out/`: `summary.md`, `summary.html` (every case in
-/// full) and `summary.csv`, with the stability study (`out/stability/`) and each case's
-/// sweep (`out/<case>/sweep.csv`) when those commands left them there. Returns the HTML
-/// path.
+/// full) and `summary.csv`, with the stability study (`out/stability/stability.json`) and
+/// each case's sweep (`out/<case>/sweep.json`) when those commands left them there.
+/// Returns the HTML path.
 pub fn write_suite_outputs(results: &[CaseResult], out: &Path) -> Result<PathBuf, Error> {
     let att = attachments::Attachments::for_suite(out);
     let blocks = document::suite_document(results, Provenance::current(), &att);
