@@ -7,6 +7,7 @@
 use rockslide::case::Scene;
 use rockslide::engine::{self, Engine, NotApplicable, RunStatus};
 use rockslide::error::InputError;
+use rockslide::record::CaseRecord;
 use rockslide::run::{Outcome, guard, guarded};
 use rockslide::suite::run_case_with;
 
@@ -86,6 +87,20 @@ fn check_records_a_panicking_engine_and_runs_the_others() {
         md.contains("singular at dt = 0.001"),
         "the report names the panic"
     );
+    // The typed record beside it reads back with the panic, its unknown time and the
+    // gate's verdict.
+    let record = CaseRecord::load(&folder).unwrap();
+    assert!(!record.gate_passed);
+    assert_eq!(record.runs.len(), 5);
+    let p = record.runs.iter().find(|r| r.engine == "panicky").unwrap();
+    match &p.outcome {
+        Outcome::Diverged { time, reason } => {
+            assert!(time.is_nan() && reason.contains("singular at dt = 0.001"))
+        }
+        o => panic!("{o:?}"),
+    }
+    assert!(record.failures.iter().any(|f| f.contains("panicky/only")));
+    assert_eq!(record.runs[0], CaseRecord::of(&r).runs[0]);
 }
 
 /// The sweep's and the stability study's path: repeats stop at the panic, whose message

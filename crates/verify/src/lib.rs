@@ -11,7 +11,8 @@
 //!   tolerances.
 //! - [`analysis`]: response quantities, discrepancies, tolerance checks, the energy audit,
 //!   Δt ladders and observed orders, stability classes — numbers, no I/O.
-//! - [`verdict`]: the one pass/fail rule.
+//! - [`verdict`]: the one pass/fail rule; [`record`]: a case result as a typed record
+//!   (`result.json`).
 //! - [`sweep`]: work-precision sweeps and stability studies; [`study`]: record/PGA/μ grids.
 //!   Their results are typed serde structs, saved and read back as JSON ([`json`]);
 //!   `rockslide-present` renders them.
@@ -21,6 +22,7 @@
 pub mod analysis;
 pub mod json;
 pub mod progress;
+pub mod record;
 pub mod registry;
 pub mod run;
 pub mod study;

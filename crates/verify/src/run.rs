@@ -191,17 +191,7 @@ impl Outcome {
             Err(message) => Outcome::Panicked {
                 message: message.clone(),
             },
-            Ok(r) => match &r.status {
-                RunStatus::Completed => Outcome::Completed,
-                RunStatus::Diverged { time, reason } => Outcome::Diverged {
-                    time: *time,
-                    reason: reason.clone(),
-                },
-                RunStatus::NotConverged { time, reason } => Outcome::NotConverged {
-                    time: *time,
-                    reason: reason.clone(),
-                },
-            },
+            Ok(r) => Outcome::from(&r.status),
         }
     }
 
@@ -217,6 +207,22 @@ impl Outcome {
             Outcome::Diverged { .. } => "diverged",
             Outcome::NotConverged { .. } => "not converged",
             Outcome::Panicked { .. } => "panicked",
+        }
+    }
+}
+
+impl From<&RunStatus> for Outcome {
+    fn from(status: &RunStatus) -> Self {
+        match status {
+            RunStatus::Completed => Outcome::Completed,
+            RunStatus::Diverged { time, reason } => Outcome::Diverged {
+                time: *time,
+                reason: reason.clone(),
+            },
+            RunStatus::NotConverged { time, reason } => Outcome::NotConverged {
+                time: *time,
+                reason: reason.clone(),
+            },
         }
     }
 }

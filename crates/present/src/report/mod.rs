@@ -48,8 +48,9 @@ use rockslide_verify::suite::CaseResult;
 
 pub use rockslide_core::response::show_value;
 
-/// Write a case's outputs under `out/<case>/`: CSV traces, `report.md`, `report.html`,
-/// `summary.csv` and the plots as `plot-*.svg`; returns the folder.
+/// Write a case's outputs under `out/<case>/`: CSV traces, the MCAP log, the typed record
+/// `result.json`, `report.md`, `report.html`, `summary.csv` and the plots as
+/// `plot-*.svg`; returns the folder.
 pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Error> {
     let dir = out.join(&result.case.name);
     for run in &result.runs {
@@ -65,6 +66,8 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
         )?;
     }
     write_case_mcap(result, &dir.join(format!("{}.mcap", result.case.name)))?;
+    // The typed record of the result, for commands and tools that read numbers.
+    rockslide_verify::record::CaseRecord::of(result).save(&dir)?;
     // The sweep of this case, when `rockslide sweep` left one here: picked up, not rerun.
     let att = attachments::Attachments::for_case(&dir);
     let blocks = document::case_document(result, Provenance::current(), &att);
