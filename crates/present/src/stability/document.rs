@@ -161,6 +161,10 @@ pub(crate) fn document(r: &StabilityResult) -> Vec<Block> {
             r.criteria.growth_factor,
             r.threads
         )),
+        Block::Facts(vec![(
+            "Made by".into(),
+            format!("{}, commit {}", crate::stamp::tool(), crate::stamp::COMMIT),
+        )]),
         Block::Heading(2, "Practical stability limits".into()),
         Block::Table(limits_table(&r.limits)),
         Block::Heading(2, "Scenes".into()),

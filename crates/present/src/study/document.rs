@@ -83,6 +83,7 @@ pub(crate) fn document(c: &Study) -> Vec<Block> {
                 "Newmark 1965, ky = μ·g of the model, two-way sliding, exact for piecewise-linear records; sliding sign: mass minus ground".into(),
             ),
             ("tool".into(), crate::stamp::tool()),
+            ("commit".into(), crate::stamp::COMMIT.into()),
         ]),
         Block::Heading(2, "Headline".into()),
         Block::List(headline_sentences(c)),

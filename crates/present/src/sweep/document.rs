@@ -213,6 +213,10 @@ pub(crate) fn document(r: &SweepResult) -> Vec<Block> {
             .iter()
             .map(|(id, why)| (id.clone(), format!("not applicable — {why}"))),
     );
+    facts.push((
+        "Made by".into(),
+        format!("{}, commit {}", crate::stamp::tool(), crate::stamp::COMMIT),
+    ));
     b.push(Block::Facts(facts));
     for se in &r.series {
         b.push(Block::Heading(2, se.label.clone()));
