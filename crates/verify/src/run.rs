@@ -36,7 +36,7 @@ pub struct Timed {
     /// The first repeat's run (its `wall_seconds` set), or the message of a panic caught
     /// around the engine.
     pub run: Result<Run, String>,
-    /// Wall time of each completed repeat, s.
+    /// Wall time of each repeat, s (a panicking repeat included: it is the last).
     pub seconds: Vec<f64>,
     /// Whether every repeat gave a bit-identical trace.
     pub deterministic: bool,
@@ -54,7 +54,7 @@ pub struct TimeStats {
 }
 
 impl Timed {
-    /// Median, min and max of the wall times (`None` when no repeat finished).
+    /// Median, min and max of the wall times (`None` when nothing was timed).
     pub fn time_stats(&self) -> Option<TimeStats> {
         let mut s = self.seconds.clone();
         if s.is_empty() {
@@ -117,6 +117,7 @@ pub fn guarded(
         let elapsed = start.elapsed().as_secs_f64();
         match outcome {
             Err(message) => {
+                seconds.push(elapsed);
                 return Ok(Timed {
                     run: Err(message),
                     seconds,

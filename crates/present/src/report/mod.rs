@@ -25,7 +25,7 @@ pub(crate) mod figure;
 pub(crate) mod files;
 pub(crate) mod format;
 mod html;
-mod markdown;
+pub(crate) mod markdown;
 mod mcap_log;
 mod plots;
 mod provenance;

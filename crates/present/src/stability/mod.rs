@@ -61,3 +61,67 @@ pub fn write_stability(r: &StabilityResult, dir: &Path) -> Result<(), Error> {
         &document::document(r),
     )
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rockslide_verify::analysis::stability::{Class, Criteria};
+    use rockslide_verify::sweep::stability::{Limit, StabilityRun};
+
+    fn run(class: Class, error: Option<f64>) -> StabilityRun {
+        StabilityRun {
+            case: "mu-large".into(),
+            series: "predictor-corrector/paper".into(),
+            dt: 0.08,
+            dt_over_t: 0.4,
+            class,
+            error,
+            energy: Err("no audit".into()),
+            seconds: 1e-3,
+        }
+    }
+
+    /// A reason with commas and quotes survives `stability.csv` exactly (csv::Writer
+    /// quotes it; a hand-built row had to mangle the quotes), and the limit shows in
+    /// bold in both the study's page and the suite's section.
+    #[test]
+    fn csv_keeps_reasons_and_the_documents_state_the_limit() {
+        let why = "energy growth: \"2.3\" times, after the pulse";
+        let st = StabilityResult {
+            cases: Vec::new(),
+            runs: vec![
+                run(
+                    Class::Diverged {
+                        time: Some(3.28),
+                        reason: why.into(),
+                    },
+                    None,
+                ),
+                run(Class::Accurate, Some(7.16e-3)),
+            ],
+            limits: vec![Limit {
+                label: "predictor-corrector/paper".into(),
+                first_diverged: Some((0.4, vec!["mu-large".into()])),
+                stable_up_to: Some(0.3),
+                refined: Some((0.31829, 0.31831, "mu-large".into())),
+                accurate_up_to: Some(0.02),
+            }],
+            not_applicable: Vec::new(),
+            criteria: Criteria::default(),
+            threads: 1,
+        };
+        let bytes = stability_csv(&st).unwrap();
+        let mut r = csv::Reader::from_reader(bytes.as_slice());
+        assert_eq!(r.headers().unwrap().iter().collect::<Vec<_>>(), CSV_HEADER);
+        let rows: Vec<csv::StringRecord> = r.records().map(Result::unwrap).collect();
+        assert_eq!(&rows[0][8], why);
+        assert_eq!(rows[0][5].parse::<f64>().unwrap(), 3.28);
+        assert_eq!(&rows[1][4], "accurate");
+        assert_eq!(rows[1][6].parse::<f64>().unwrap(), 7.16e-3);
+        let md = |b: &[crate::report::doc::Block]| crate::report::markdown::render(b, "");
+        // Bracket midpoint 0.31830: the closed form 1/π = 0.318310 to four digits.
+        let row = "| predictor-corrector/paper | 0.4 (mu-large) | 0.3 | [0.31829, 0.31831] (mu-large) | **0.3183** | 0.02 |";
+        assert!(md(&document::document(&st)).contains(row));
+        assert!(md(&suite_section(Some(&Ok(st)))).contains(row));
+    }
+}

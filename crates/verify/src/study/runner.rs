@@ -41,8 +41,7 @@ pub struct RunSummary {
     pub peak_relative_displacement: Option<f64>,
     /// Steps taken (deterministic counter).
     pub steps: u64,
-    /// Wall time of the run, s (informative only: never in summaries; NaN when the
-    /// engine panicked).
+    /// Wall time of the run, s (informative only: never in summaries).
     #[serde(with = "crate::json::real")]
     pub wall_seconds: f64,
 }

@@ -57,7 +57,7 @@ pub struct StabilityRun {
     pub error: Option<f64>,
     /// Energy audit, or why there is none.
     pub energy: Result<EnergySummary, String>,
-    /// Wall time, s (NaN when the engine panicked).
+    /// Wall time, s.
     #[serde(with = "crate::json::real")]
     pub seconds: f64,
 }
