@@ -6,6 +6,8 @@ use std::process::ExitCode;
 
 use clap::{Parser, Subcommand};
 
+use crate::commands;
+
 use rockslide_core::case::discover;
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_present::gate;
@@ -66,7 +68,7 @@ pub enum Command {
         #[arg(long)]
         junit: Option<PathBuf>,
     },
-    // --- records and studies (src/study; docs/records-and-studies.md) ---
+    // --- records and studies (commands/study.rs; docs/records-and-studies.md) ---
     /// Run a study grid: one model under many records / PGAs / μ / polarities, resumable.
     Study {
         /// The grid file (TOML).
@@ -120,8 +122,9 @@ pub enum Command {
         /// The `.mcap` file (`reports/<case>/<case>.mcap`).
         file: PathBuf,
     },
-    /// Error against run time: a Δt ladder per engine and variant, with observed order,
-    /// table and log-log plot in `<out>/<case>/sweep.{md,csv,svg}`.
+    /// Error against run time: a Δt ladder per engine and variant, with observed order;
+    /// the typed result in `<out>/<case>/sweep.json`, table and log-log plot in
+    /// `sweep.{md,html,csv,svg}`.
     Sweep {
         /// Case files.
         cases: Vec<PathBuf>,
@@ -145,7 +148,8 @@ pub enum Command {
         budget: f64,
     },
     /// Run the stiff and extreme scenes and classify every run (accurate, inaccurate,
-    /// diverged, not converged); map and stability limits in `<out>/stability/`.
+    /// diverged, not converged); the typed result, map and stability limits in
+    /// `<out>/stability/`.
     Stability {
         /// Case files or folders (default: `cases/stability/`).
         cases: Vec<PathBuf>,
@@ -175,16 +179,9 @@ pub fn main(cli: Cli) -> ExitCode {
             shard,
             merge,
             from,
-        }) => rockslide_verify::study::cli_study(
-            &grid,
-            &out,
-            shard.as_deref(),
-            merge,
-            &from,
-            cli.quiet,
-        ),
+        }) => commands::study::run(&grid, &out, shard.as_deref(), merge, &from, cli.quiet),
         Some(Command::StudyMerge { grid, out, from }) => {
-            rockslide_verify::study::cli_study(&grid, &out, None, true, &from, cli.quiet)
+            commands::study::run(&grid, &out, None, true, &from, cli.quiet)
         }
         Some(Command::Newmark {
             record,
@@ -193,7 +190,7 @@ pub fn main(cli: Cli) -> ExitCode {
             pga,
             two_way,
             csv,
-        }) => rockslide_verify::study::cli_newmark(rockslide_verify::study::NewmarkArgs {
+        }) => commands::study::newmark(rockslide_verify::study::NewmarkArgs {
             record,
             ky,
             unit,
@@ -213,7 +210,7 @@ pub fn main(cli: Cli) -> ExitCode {
             repeats,
             jobs,
             budget,
-        }) => rockslide_verify::sweep::work_precision::command(
+        }) => commands::sweep::run(
             &cases,
             &out,
             &rockslide_verify::sweep::Options {
@@ -225,17 +222,15 @@ pub fn main(cli: Cli) -> ExitCode {
                 budget: (budget > 0.0).then_some(budget),
             },
         ),
-        Some(Command::Stability { cases, out, jobs }) => {
-            rockslide_verify::sweep::stability::command(
-                &cases,
-                &out,
-                &rockslide_verify::sweep::Options {
-                    jobs,
-                    quiet: cli.quiet,
-                    ..Default::default()
-                },
-            )
-        }
+        Some(Command::Stability { cases, out, jobs }) => commands::stability::run(
+            &cases,
+            &out,
+            &rockslide_verify::sweep::Options {
+                jobs,
+                quiet: cli.quiet,
+                ..Default::default()
+            },
+        ),
     };
     match result {
         Ok(code) => code,
@@ -257,11 +252,7 @@ fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     };
     let stability_cases = Path::new("cases/stability");
     if stability_cases.is_dir() {
-        rockslide_verify::sweep::stability::command(
-            &[stability_cases.to_path_buf()],
-            out,
-            &options,
-        )?;
+        commands::stability::run(&[stability_cases.to_path_buf()], out, &options)?;
     }
     let oscillators: Vec<PathBuf> = load_all(&case_paths(&[])?)?
         .into_iter()
@@ -269,15 +260,20 @@ fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
         .map(|c| c.path)
         .collect();
     if !oscillators.is_empty() {
-        rockslide_verify::sweep::work_precision::command(&oscillators, out, &options)?;
+        commands::sweep::run(&oscillators, out, &options)?;
     }
     run(&[], out, quiet, None)
 }
 
 /// Expand case arguments: files as given, folders to their `*.toml`, default `cases/`.
 fn case_paths(args: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
+    case_paths_or(args, "cases")
+}
+
+/// Expand case arguments: files as given, folders to their `*.toml`, default `default`.
+pub(crate) fn case_paths_or(args: &[PathBuf], default: &str) -> Result<Vec<PathBuf>, Error> {
     let args = if args.is_empty() {
-        vec![PathBuf::from("cases")]
+        vec![PathBuf::from(default)]
     } else {
         args.to_vec()
     };
@@ -293,7 +289,7 @@ fn case_paths(args: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
 }
 
 /// Load every case first, so that all input errors are reported before any work.
-fn load_all(paths: &[PathBuf]) -> Result<Vec<rockslide_core::case::Case>, Error> {
+pub(crate) fn load_all(paths: &[PathBuf]) -> Result<Vec<rockslide_core::case::Case>, Error> {
     let mut cases = Vec::new();
     let mut errors = Vec::new();
     for p in paths {

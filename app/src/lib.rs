@@ -13,11 +13,15 @@
 #![warn(missing_docs)]
 
 pub mod cli;
+pub mod commands;
 
 pub use rockslide_core::{error, io, response, trace};
-pub use rockslide_present::{gate, report};
+/// The renderers of every human output (`present::sweep`, `present::stability`,
+/// `present::study` beside the reports).
+pub use rockslide_present as present;
+pub use rockslide_present::{gate, report, stamp};
 pub use rockslide_reference as reference;
-pub use rockslide_verify::{analysis, registry, study, suite, sweep, verdict};
+pub use rockslide_verify::{analysis, json, record, registry, run, study, suite, sweep, verdict};
 
 /// Case files; [`case::load_case`] and [`case::parse_case`] validate against the engine
 /// registry.

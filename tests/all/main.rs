@@ -9,6 +9,7 @@ mod fe_pepo;
 mod fe_rpepo;
 mod gate_check;
 mod golden;
+mod guarded_run;
 mod mcap_cli;
 mod mcap_traces;
 mod paper_values;

@@ -13,9 +13,8 @@
 
 use std::path::{Path, PathBuf};
 
-use rockslide::study::{
-    StudyOptions, load_grid, merge_command, result_path, run_study, study_command,
-};
+use rockslide::commands::study::{merge_command, study_command};
+use rockslide::study::{Study, StudyOptions, load_grid, result_path, run_study};
 
 fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).to_path_buf()
@@ -123,15 +122,25 @@ fn shards_merged_equal_the_unsharded_summary() {
     assert!(err.to_string().contains("(p0002, p0005)"), "{err}");
     let c = merge_command(&grid_path, &merged, &shard_dirs, true).unwrap();
     assert_eq!(c.results.len(), 8);
-    for f in ["summary.csv", "summary.md", "residual-vs-pga.svg"] {
+    for f in [
+        "summary.csv",
+        "summary.md",
+        "summary.html",
+        "residual-vs-pga.svg",
+    ] {
         let a = std::fs::read(whole.join(f)).unwrap();
         let b = std::fs::read(merged.join(f)).unwrap();
         assert!(a == b, "{f} differs between unsharded and merged");
     }
+    // The typed result the summary is rendered from: what merge gathered, read back.
+    assert_eq!(Study::load(&merged).unwrap(), c);
     // The summary has one row per point and run, polarity mirroring the sliding exactly
     // (the PEPO is symmetric: inverting the record inverts the response).
-    let csv = std::fs::read_to_string(merged.join("summary.csv")).unwrap();
-    assert_eq!(csv.lines().count(), 1 + 8 * 6);
+    let mut reader = csv::Reader::from_path(merged.join("summary.csv")).unwrap();
+    let header: Vec<String> = reader.headers().unwrap().iter().map(String::from).collect();
+    let rows: Vec<csv::StringRecord> = reader.records().map(Result::unwrap).collect();
+    assert_eq!(rows.len(), 8 * 6);
+    let col = |name: &str| header.iter().position(|h| h == name).unwrap();
     for f in [
         "residual-vs-pga-predictor-corrector-ground-accel.svg",
         "residual-vs-pga-fe-single.svg",
@@ -139,24 +148,28 @@ fn shards_merged_equal_the_unsharded_summary() {
     ] {
         assert!(merged.join(f).exists(), "per-engine plot {f}");
     }
-    let residual = |point: &str, engine: &str| -> f64 {
-        let line = csv
-            .lines()
-            .find(|l| l.starts_with(point) && l.contains(engine))
+    let residual = |point: &str, engine: &str, variant: &str| -> f64 {
+        let row = rows
+            .iter()
+            .find(|r| {
+                r[col("point")] == *point
+                    && r[col("engine")] == *engine
+                    && r[col("variant")].starts_with(variant)
+            })
             .unwrap();
-        line.split(',').nth(11).unwrap().parse().unwrap()
+        row[col("residual_sliding_m")].parse().unwrap()
     };
     for (a, b) in [("p0000", "p0002"), ("p0001", "p0003")] {
         // Every engine mirrors exactly (measured: bit for bit for all five runs).
-        for e in [
-            "predictor-corrector",
-            "newmark-rigid",
-            "fe,single",
-            "fe,double",
-            "rapier,kinematic",
-            "rapier,inertial",
+        for (e, v) in [
+            ("predictor-corrector", ""),
+            ("newmark-rigid", ""),
+            ("fe", "single"),
+            ("fe", "double"),
+            ("rapier", "kinematic"),
+            ("rapier", "inertial"),
         ] {
-            assert_eq!(residual(a, e), -residual(b, e), "{a} {b} {e}");
+            assert_eq!(residual(a, e, v), -residual(b, e, v), "{a} {b} {e}/{v}");
         }
     }
     // Engines against the predictor-corrector, residual sliding at all 8 points (1.5 to

@@ -1,11 +1,15 @@
 //! The report sections of issues 6 and 7, checked with real numbers from small runs: the
 //! energy audit of every run and of the reference, the work-precision section picked up
-//! from `rockslide sweep`'s CSV (not recomputed), the stability section of the suite picked
-//! up from `rockslide stability`, and the RPEPO comparison up to the first full lift-off
-//! with the paper's Figs 8–11 overlaid. Requirement: SPEC §3 "Report", §4; issues 6, 7.
+//! from `rockslide sweep`'s typed result `sweep.json` (not recomputed), the stability
+//! section of the suite picked up from `rockslide stability`'s `stability.json`, and the
+//! RPEPO comparison up to the first full lift-off with the paper's Figs 8–11 overlaid.
+//! Requirement: SPEC §3 "Report", §4; issues 6, 7 and 11 (typed results between
+//! commands).
 
 use std::path::Path;
 use std::process::Command;
+
+use rockslide::sweep::{StabilityResult, SweepResult};
 
 fn rockslide(args: &[&str], out: &Path) {
     let o = Command::new(env!("CARGO_BIN_EXE_rockslide"))
@@ -105,7 +109,7 @@ fn pepo_report_has_energy_audit_and_the_picked_up_sweep() {
     // The sweep: picked up, order as the least-squares slope of ln e against ln Δt of
     // the CSV's own rows.
     assert!(md.contains("## Error against run time (work-precision)"));
-    assert!(md.contains("Picked up from pepo-mass-accel/sweep.csv"));
+    assert!(md.contains("Picked up from pepo-mass-accel/sweep.json"));
     let (h, rows) = csv(&case.join("sweep.csv"));
     let c = |n: &str| h.iter().position(|x| x == n).unwrap();
     let pts: Vec<(f64, f64)> = rows
@@ -155,16 +159,17 @@ fn without_a_sweep_the_report_says_how_to_make_one() {
     let dir = tempfile::tempdir().unwrap();
     rockslide(&["run", "cases/linear-sdof.toml"], dir.path());
     let case = dir.path().join("linear-sdof");
-    assert!(!case.join("sweep.csv").exists());
+    assert!(!case.join("sweep.json").exists());
     let md = read(&case.join("report.md"));
-    assert!(md.contains("No sweep in the output folder (linear-sdof/sweep.csv): `rockslide sweep cases/linear-sdof.toml"), "{md}");
+    assert!(md.contains("No sweep in the output folder (linear-sdof/sweep.json): `rockslide sweep cases/linear-sdof.toml"), "{md}");
     let summary = read(&dir.path().join("summary.md"));
     assert!(summary.contains("No stability study in the output folder"));
 }
 
 /// The suite report carries the stability study `rockslide stability` left in the output
-/// folder: the stated limits exactly as the study wrote them, one map row per scene and
-/// engine variant of its CSV, with each run's class, and the map figure.
+/// folder: the stated limits exactly as the study's own page shows them and as its typed
+/// result holds them, one map row per scene and engine variant of its CSV, with each
+/// run's class, and the map figure.
 #[test]
 fn suite_report_has_the_stability_section() {
     let dir = tempfile::tempdir().unwrap();
@@ -177,17 +182,23 @@ fn suite_report_has_the_stability_section() {
         "{md}"
     );
     assert!(md.contains("### Stated stability limits"));
-    // The limit of the predictor-corrector as stability.md states it.
+    // The limit of the predictor-corrector as stability.md states it and as
+    // stability.json holds it (measured 0.3183: 1/π, tests/all/stability_classify.rs).
     let study = read(&out.join("stability/stability.md"));
     let stated = row(&study, "predictor-corrector/paper");
     let shown = row(&md, "predictor-corrector/paper");
-    assert_eq!(
-        shown,
-        stated
-            .iter()
-            .map(|c| c.replace("**", ""))
-            .collect::<Vec<_>>()
-    );
+    assert_eq!(shown, stated);
+    let typed = StabilityResult::load(&out.join("stability"))
+        .unwrap()
+        .unwrap();
+    let limit = typed
+        .limits
+        .iter()
+        .find(|l| l.label == "predictor-corrector/paper")
+        .and_then(|l| l.limit())
+        .unwrap();
+    assert!((limit - 1.0 / std::f64::consts::PI).abs() < 1e-4, "{limit}");
+    assert_eq!(shown[4], format!("**{limit:.4}**"));
     // One map row per scene · series, each class as the CSV says.
     let (h, rows) = csv(&out.join("stability/stability.csv"));
     let c = |n: &str| h.iter().position(|x| x == n).unwrap();
@@ -250,17 +261,24 @@ fn rpepo_report_compares_up_to_first_liftoff_and_draws_figs_8_to_11() {
     let case = dir.path().join("rpepo-mass-accel");
     let md = read(&case.join("report.md"));
     // The sweep against each engine's own finest rung, said so, with the Richardson
-    // rows of sweep.md carried over cell for cell.
+    // estimates of sweep.json carried over.
     assert!(md.contains("Without an exact reference these are convergence errors against each engine's own finest solution"));
+    let sweep = SweepResult::load(&case).unwrap().unwrap();
+    assert!(!sweep.exact_basis);
+    let rich = &sweep.series("fe/single").unwrap().richardson[0];
+    assert_eq!(rich.quantity, "peak relative displacement");
+    let expected = match &rich.estimate {
+        Some(e) => format!(
+            "| fe/single | peak relative displacement | {:.3} | {:.6e} m | {:.3e} |",
+            e.order, e.extrapolated, e.gci
+        ),
+        None => "| fe/single | peak relative displacement | — | — (differences do not shrink monotonically: not in the asymptotic range) | — |".into(),
+    };
+    assert!(md.contains(&expected), "{expected}");
     let sweep_md = read(&case.join("sweep.md"));
-    let first = sweep_md
-        .lines()
-        .skip_while(|l| !l.starts_with("Richardson extrapolation"))
-        .find(|l| l.starts_with("| peak relative displacement |"))
-        .unwrap();
     assert!(
-        md.contains(&format!("| fe/single {}", first.replace("**", ""))),
-        "{first}"
+        sweep_md.contains(expected.trim_start_matches("| fe/single ")),
+        "the sweep's own page shows the same row"
     );
     assert!(md.contains("No exact reference exists for this scene. The engines are therefore verified against each other"));
     let lift = md

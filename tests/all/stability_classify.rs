@@ -16,8 +16,9 @@ use rockslide::case::{Case, Scene, load_case};
 use rockslide::engine::{self, Engine, NotApplicable, Run};
 use rockslide::error::InputError;
 use rockslide::reference;
+use rockslide::run::guarded;
 use rockslide::sweep::stability::study;
-use rockslide::sweep::{Options, characteristic_period, run_timed};
+use rockslide::sweep::{Options, characteristic_period};
 
 fn pc() -> Box<dyn Engine> {
     engine::all()
@@ -84,6 +85,16 @@ fn measured_limit_of_the_predictor_corrector_is_one_over_pi() {
     assert!(lo <= theory + 2e-5 && hi >= theory - 2e-5, "[{lo}, {hi}]");
     assert!(hi - lo < 1e-4);
     assert_eq!(l.accurate_up_to, Some(0.02));
+    // The typed result survives `stability.json` exactly — diverged runs' non-finite
+    // energies included (serialised again, the text is the same).
+    let dir = tempfile::tempdir().unwrap();
+    r.save(dir.path()).unwrap();
+    let back = rockslide::sweep::StabilityResult::load(dir.path())
+        .unwrap()
+        .unwrap();
+    let text = |x: &rockslide::sweep::StabilityResult| serde_json::to_string(x).unwrap();
+    assert_eq!(text(&back), text(&r));
+    assert_eq!(back.limits, r.limits);
 }
 
 /// An engine that panics half-way: the guarded runner turns it into a result.
@@ -107,7 +118,7 @@ impl Engine for Panicky {
 #[test]
 fn a_panicking_engine_is_a_diverged_result() {
     let case = load_case(Path::new("cases/pepo-mass-accel.toml")).unwrap();
-    let timed = run_timed(&Panicky, &case, "only", 0.01, 3).expect("no input error");
+    let timed = guarded(&Panicky, &case, "only", 0.01, 3).expect("no input error");
     let msg = timed.run.as_ref().unwrap_err();
     assert!(msg.contains("singular at dt = 0.01"), "{msg}");
     let c = classify(
@@ -132,7 +143,7 @@ fn starved_newton_is_not_converged_with_time_and_residual() {
     let t = characteristic_period(&case).0;
     let exact = reference::for_case(&case).unwrap();
     let class = |ratio: f64| {
-        let timed = run_timed(fe.as_ref(), &case, "double", ratio * t, 1).unwrap();
+        let timed = guarded(fe.as_ref(), &case, "double", ratio * t, 1).unwrap();
         let run = timed.run.unwrap();
         let at = reference::sample(exact.as_ref(), &run.trace.time);
         let error = if run.status.completed() {

@@ -47,7 +47,8 @@ fn predictor_corrector_is_second_order_on_the_linear_sdof() {
     let fitted = s.fitted_order.unwrap();
     assert!((fitted - 1.963).abs() < 0.01, "fitted order {fitted}");
     // Richardson on the peak displacement recovers the order too (measured 2.047).
-    let rich = s.richardson[0].1.expect("monotone convergence");
+    assert_eq!(s.richardson[0].quantity, "peak relative displacement");
+    let rich = s.richardson[0].estimate.expect("monotone convergence");
     assert!(
         (rich.order - 2.0).abs() < 0.06,
         "Richardson order {}",
@@ -107,7 +108,7 @@ fn fe_is_second_order_on_the_linear_sdof() {
             let p = p.expect("finite errors");
             assert!((p - 2.0).abs() < 0.01, "{label}: local order {p}");
         }
-        let fine = s.fine_orders.0.unwrap();
+        let fine = s.fine_order.unwrap();
         assert!((fine - 2.0).abs() < 0.01, "{label}: fine order {fine}");
         for g in &s.rungs {
             let e = g.energy.as_ref().unwrap().relative_error;
@@ -117,7 +118,8 @@ fn fe_is_second_order_on_the_linear_sdof() {
 }
 
 /// The cost budget: with a budget far below the cost of the ladder every series keeps
-/// its three coarsest rungs, the finer ones are skipped and the report says so.
+/// its three coarsest rungs, the finer ones are skipped and the sweep's page says so. The
+/// typed result written as `sweep.json` reads back equal, field for field.
 #[test]
 fn the_cost_budget_caps_rungs_and_says_so() {
     let case = load_case(Path::new("cases/linear-sdof.toml")).unwrap();
@@ -138,6 +140,15 @@ fn the_cost_budget_caps_rungs_and_says_so() {
             k.from_dt
         );
     }
-    let md = rockslide::sweep::work_precision::sweep_markdown(&r);
+    let dir = tempfile::tempdir().unwrap();
+    r.save(dir.path()).unwrap();
+    assert_eq!(SweepResult::load(dir.path()).unwrap().unwrap(), r);
+    rockslide::present::sweep::write_sweep(&r, dir.path()).unwrap();
+    let md = std::fs::read_to_string(dir.path().join("sweep.md")).unwrap();
     assert!(md.contains("**Cost budget:** 3 of 8 rungs run"), "{md}");
+    // sweep.csv: one row per rung run, as csv::Reader reads it.
+    let mut csv = csv::Reader::from_path(dir.path().join("sweep.csv")).unwrap();
+    let rows = csv.records().collect::<Result<Vec<_>, _>>().unwrap();
+    let rungs: usize = r.series.iter().map(|s| s.rungs.len()).sum();
+    assert_eq!(rows.len(), rungs);
 }

@@ -6,17 +6,25 @@
 //! ```
 //!
 //! - [`registry`]: the engines and the case loader that knows them.
-//! - [`suite`]: plan a case's runs, run them (guarded and timed), solve the reference, read
-//!   responses, apply tolerances.
+//! - [`run`]: the one guarded, timed engine run every command goes through.
+//! - [`suite`]: plan a case's runs, run them, solve the reference, read responses, apply
+//!   tolerances.
 //! - [`analysis`]: response quantities, discrepancies, tolerance checks, the energy audit,
 //!   Δt ladders and observed orders, stability classes — numbers, no I/O.
-//! - [`verdict`]: the one pass/fail rule.
-//! - [`sweep`]: work-precision and stability commands; [`study`]: record/PGA/μ grids.
+//! - [`verdict`]: the one pass/fail rule; [`record`]: a case result as a typed record
+//!   (`result.json`).
+//! - [`sweep`]: work-precision sweeps and stability studies; [`study`]: record/PGA/μ grids.
+//!   Their results are typed serde structs, saved and read back as JSON ([`json`]);
+//!   `rockslide-present` renders them.
 
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod json;
+pub mod progress;
+pub mod record;
 pub mod registry;
+pub mod run;
 pub mod study;
 pub mod suite;
 pub mod sweep;

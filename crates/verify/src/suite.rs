@@ -1,8 +1,8 @@
 //! Running a case: plan the engine runs it asks for (or say why an engine does not apply),
-//! run them in parallel, solve the reference, read the response quantities off every
-//! trace and apply the case's tolerances. The result feeds reports, traces and the gate.
-
-use std::time::Instant;
+//! run them in parallel through the one guarded run ([`crate::run::guarded`]: an engine
+//! that panics is a diverged run carrying the panic's message, never an aborted `check`),
+//! solve the reference, read the response quantities off every trace and apply the case's
+//! tolerances. The result feeds reports, traces and the gate.
 
 use rayon::prelude::*;
 
@@ -162,7 +162,8 @@ impl CaseResult {
     }
 }
 
-/// Run one planned run, timing it.
+/// Run one planned run, guarded and timed: a panic inside the engine becomes a run that
+/// diverged at an unknown time with the panic's message ([`crate::run::Timed::into_run`]).
 pub fn execute(
     case: &Case,
     engines: &[Box<dyn Engine>],
@@ -172,10 +173,8 @@ pub fn execute(
         .iter()
         .find(|e| e.id() == p.engine)
         .expect("planned engines exist");
-    let start = Instant::now();
-    let mut run = e.run(case, &p.variant, p.dt)?;
-    run.wall_seconds = start.elapsed().as_secs_f64();
-    Ok(run)
+    let timed = crate::run::guarded(e.as_ref(), case, &p.variant, p.dt, 1)?;
+    Ok(timed.into_run(e.id(), &p.variant, p.dt))
 }
 
 /// Solve and sample the reference of a case.
@@ -197,13 +196,17 @@ pub fn solve_reference(case: &Case) -> Result<ReferenceResult, String> {
 
 /// Run a whole case: plan, run engines in parallel, reference, responses, checks.
 pub fn run_case(case: Case) -> Result<CaseResult, InputErrors> {
-    let engines = registry::all();
-    let plan = plan(&case, &engines)?;
+    run_case_with(case, &registry::all())
+}
+
+/// [`run_case`] with the given engines instead of the registry's.
+pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResult, InputErrors> {
+    let plan = plan(&case, engines)?;
     let (runs, reference) = rayon::join(
         || {
             plan.runs
                 .par_iter()
-                .map(|p| execute(&case, &engines, p))
+                .map(|p| execute(&case, engines, p))
                 .collect::<Vec<_>>()
         },
         || solve_reference(&case),

@@ -1,7 +1,8 @@
-//! A small document model — headings, paragraphs, tables, figures — that the case and
-//! suite reports are built in once, then rendered to Markdown (`markdown.rs`) and to
-//! self-contained HTML (`html.rs`). One builder, two renderers: the two formats cannot
-//! drift apart in content.
+//! A small document model — headings, paragraphs, tables, figures — that every human
+//! output is built in once (the case and suite reports, the sweep, the stability study,
+//! the study summary), then rendered to Markdown (`markdown.rs`) and to self-contained
+//! HTML (`html.rs`). One builder, two renderers: the two formats cannot drift apart in
+//! content.
 
 /// How a table cell is shown (HTML colours it; Markdown bolds failures).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -16,6 +17,8 @@ pub(crate) enum Tone {
     Warn,
     /// Not applicable / not run.
     Muted,
+    /// An emphasised value (a stated result, e.g. a stability limit): bold in both formats.
+    Strong,
 }
 
 /// A table cell.

@@ -446,7 +446,7 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     }
 
     b.extend(sections::energy_blocks(r));
-    b.extend(sections::sweep_blocks(r, att.sweep.as_ref()));
+    b.extend(crate::sweep::case_section(r, att.sweep.as_ref()));
 
     b.push(Block::Heading(
         2,
@@ -546,7 +546,7 @@ pub(crate) fn suite_document(
         ]);
     }
     b.push(Block::Table(t));
-    b.extend(sections::stability_blocks(att.stability.as_ref()));
+    b.extend(crate::stability::suite_section(att.stability.as_ref()));
     b.push(Block::Heading(2, "Provenance".into()));
     b.push(Block::Facts(vec![
         ("tool".into(), prov.tool.clone()),

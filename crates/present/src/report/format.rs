@@ -13,6 +13,16 @@ pub(crate) fn ratio(x: Option<f64>) -> String {
     x.map_or("—".into(), |x| format!("{x:.3e}"))
 }
 
+/// A number in engineering notation with 3 decimals, `—` when absent.
+pub(crate) fn sci(x: Option<f64>) -> String {
+    x.map_or("—".into(), |v| format!("{v:.3e}"))
+}
+
+/// An order of accuracy with `digits` decimals, `—` when there is none.
+pub(crate) fn order(p: Option<f64>, digits: usize) -> String {
+    p.map_or("—".into(), |p| format!("{p:.digits$}"))
+}
+
 /// Escape text for HTML element content and attribute values.
 pub(crate) fn esc(s: &str) -> String {
     let mut out = String::with_capacity(s.len());

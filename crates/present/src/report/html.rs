@@ -57,6 +57,7 @@ fn cell(s: &mut String, c: &Cell, numeric: bool) {
         Tone::Fail => "fail",
         Tone::Warn => "warn",
         Tone::Muted => "muted",
+        Tone::Strong => "",
     });
     classes.retain(|c| !c.is_empty());
     let _ = write!(s, "<td");
@@ -67,11 +68,15 @@ fn cell(s: &mut String, c: &Cell, numeric: bool) {
         let _ = write!(s, " title=\"{}\"", esc(h));
     }
     s.push('>');
+    let text = match c.tone {
+        Tone::Strong => format!("<b>{}</b>", esc(&c.text)),
+        _ => esc(&c.text),
+    };
     match &c.case_link {
         Some(case) => {
-            let _ = write!(s, "<a href=\"#{}\">{}</a>", anchor(case), esc(&c.text));
+            let _ = write!(s, "<a href=\"#{}\">{text}</a>", anchor(case));
         }
-        None => s.push_str(&esc(&c.text)),
+        None => s.push_str(&text),
     }
     s.push_str("</td>");
 }

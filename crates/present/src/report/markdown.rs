@@ -17,7 +17,7 @@ fn cell(c: &Cell) -> String {
         t = format!("[{t}]({case}/report.md)");
     }
     match c.tone {
-        Tone::Fail => format!("**{t}**"),
+        Tone::Fail | Tone::Strong => format!("**{t}**"),
         _ => t,
     }
 }

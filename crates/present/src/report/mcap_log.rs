@@ -5,7 +5,6 @@
 
 use std::collections::BTreeMap;
 use std::path::Path;
-use std::sync::OnceLock;
 
 use rockslide_core::error::Error;
 use rockslide_core::trace::scene3d::Geometry;
@@ -13,34 +12,10 @@ use rockslide_core::trace::{LoggedRun, SCENE_PERIOD_NS, TraceLog, write_mcap};
 use rockslide_engine_api::RunStatus;
 use rockslide_verify::suite::CaseResult;
 
-/// The commit the tool was built from: `ROCKSLIDE_GIT_COMMIT` at build time, else
-/// `git rev-parse HEAD` in the source tree (with `-dirty` for uncommitted changes to
-/// tracked files), else `unknown`.
+/// The commit the tool was built from: the build's one stamp ([`crate::stamp::COMMIT`],
+/// the same string the reports' provenance shows).
 pub fn git_commit() -> &'static str {
-    static COMMIT: OnceLock<String> = OnceLock::new();
-    COMMIT.get_or_init(|| {
-        if let Some(c) = option_env!("ROCKSLIDE_GIT_COMMIT") {
-            return c.to_string();
-        }
-        let git = |args: &[&str]| {
-            std::process::Command::new("git")
-                .arg("-C")
-                .arg(env!("CARGO_MANIFEST_DIR"))
-                .args(args)
-                .output()
-                .ok()
-                .filter(|o| o.status.success())
-                .map(|o| String::from_utf8_lossy(&o.stdout).trim().to_string())
-        };
-        match git(&["rev-parse", "HEAD"]) {
-            Some(head) if !head.is_empty() => {
-                let dirty = git(&["status", "--porcelain", "--untracked-files=no"])
-                    .is_some_and(|s| !s.is_empty());
-                if dirty { format!("{head}-dirty") } else { head }
-            }
-            _ => "unknown".to_string(),
-        }
-    })
+    crate::stamp::COMMIT
 }
 
 fn map<const N: usize>(pairs: [(&str, String); N]) -> BTreeMap<String, String> {

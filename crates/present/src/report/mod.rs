@@ -2,30 +2,34 @@
 //! suite, Markdown and a self-contained HTML page (plots inline as SVG) and a summary CSV;
 //! the content — paper-style table, tolerance checks, cross-code matrix, plots, settings,
 //! provenance — is built once (`document`) as a small document model (`doc`) and rendered
-//! by `markdown` and `html`. Every file is written atomically under the output folder.
+//! by `markdown` and `html`. The same model renders the sweep, stability and study pages
+//! (`crate::sweep`, `crate::stability`, `crate::study`). Every file is written atomically
+//! under the output folder.
 //!
 //! Table of contents:
 //! - `table`: the paper-style table as data; `crosscode`: pairwise discrepancies;
-//!   `plots`: time-history figures (plotters, SVG); `provenance`: tool, commit, machine, date;
+//!   `plots`: time-history figures (plotters, SVG); `figure`: the palette and legend
+//!   strip every figure shares; `provenance`: tool, commit, machine, date;
 //! - `document`: the report content; `doc`: the document model;
-//! - `markdown`, `html`, `summary_csv`: the renderers; `format`: number formatting;
-//! - `sections`: energy audit, work-precision and stability sections; `attachments`: the
-//!   sweep and stability files picked up from the output folder (never recomputed);
-//!   `study_plots`: their figures and the legend strip under every figure;
+//! - `markdown`, `html`, `summary_csv`: the renderers; `files`: writing a document and
+//!   CSV files; `format`: number formatting;
+//! - `sections`: the energy audit section; `attachments`: the typed results of `sweep`
+//!   and `stability` picked up from the output folder (never recomputed);
 //! - `mcap_log`: the MCAP trace of a case run (Foxglove).
 
 mod attachments;
 mod crosscode;
-mod doc;
+pub(crate) mod doc;
 mod document;
-mod format;
+pub(crate) mod figure;
+pub(crate) mod files;
+pub(crate) mod format;
 mod html;
-mod markdown;
+pub(crate) mod markdown;
 mod mcap_log;
 mod plots;
 mod provenance;
 mod sections;
-mod study_plots;
 mod summary_csv;
 mod table;
 
@@ -44,8 +48,9 @@ use rockslide_verify::suite::CaseResult;
 
 pub use rockslide_core::response::show_value;
 
-/// Write a case's outputs under `out/<case>/`: CSV traces, `report.md`, `report.html`,
-/// `summary.csv` and the plots as `plot-*.svg`; returns the folder.
+/// Write a case's outputs under `out/<case>/`: CSV traces, the MCAP log, the typed record
+/// `result.json`, `report.md`, `report.html`, `summary.csv` and the plots as
+/// `plot-*.svg`; returns the folder.
 pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Error> {
     let dir = out.join(&result.case.name);
     for run in &result.runs {
@@ -61,6 +66,8 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
         )?;
     }
     write_case_mcap(result, &dir.join(format!("{}.mcap", result.case.name)))?;
+    // The typed record of the result, for commands and tools that read numbers.
+    rockslide_verify::record::CaseRecord::of(result).save(&dir)?;
     // The sweep of this case, when `rockslide sweep` left one here: picked up, not rerun.
     let att = attachments::Attachments::for_case(&dir);
     let blocks = document::case_document(result, Provenance::current(), &att);
@@ -86,9 +93,9 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
 }
 
 /// Write the suite's outputs under `out/`: `summary.md`, `summary.html` (every case in
-/// full) and `summary.csv`, with the stability study (`out/stability/`) and each case's
-/// sweep (`out/<case>/sweep.csv`) when those commands left them there. Returns the HTML
-/// path.
+/// full) and `summary.csv`, with the stability study (`out/stability/stability.json`) and
+/// each case's sweep (`out/<case>/sweep.json`) when those commands left them there.
+/// Returns the HTML path.
 pub fn write_suite_outputs(results: &[CaseResult], out: &Path) -> Result<PathBuf, Error> {
     let att = attachments::Attachments::for_suite(out);
     let blocks = document::suite_document(results, Provenance::current(), &att);

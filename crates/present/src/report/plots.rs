@@ -10,7 +10,9 @@
 
 use plotters::prelude::*;
 
-use super::study_plots::{Entry, draw_legend, legend_height};
+use super::figure::{
+    Entry, GRID, NOTE, REFERENCE, draw_legend, failed_svg, legend_height, palette,
+};
 use rockslide_core::trace::{Quantity, Trace, q};
 use rockslide_verify::suite::CaseResult;
 
@@ -126,9 +128,9 @@ fn lines(r: &CaseResult) -> Vec<Line<'_>> {
 /// Colour of the i-th participant: the reference black, then the shared palette.
 fn colour(i: usize, has_reference: bool) -> RGBColor {
     match (has_reference, i) {
-        (true, 0) => RGBColor(0, 0, 0),
-        (true, i) => super::study_plots::palette(i - 1),
-        (false, i) => super::study_plots::palette(i),
+        (true, 0) => REFERENCE,
+        (true, i) => palette(i - 1),
+        (false, i) => palette(i),
     }
 }
 
@@ -348,10 +350,10 @@ fn draw(
                 .x_desc("time [s]")
                 .y_desc(ylabel.as_str())
                 .label_style(("sans-serif", 13))
-                .light_line_style(RGBColor(235, 235, 235))
+                .light_line_style(GRID)
                 .draw()?;
             if let Some(t) = liftoff {
-                let grey = RGBColor(120, 120, 120);
+                let grey = NOTE;
                 chart.draw_series(DashedLineSeries::new(
                     [(t, y0), (t, y1)],
                     4,
@@ -380,11 +382,7 @@ fn draw(
         })();
         if let Err(e) = result {
             drop(root);
-            return format!(
-                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{}\" height=\"40\"><text x=\"8\" y=\"24\">plot failed: {}</text></svg>",
-                SIZE.0,
-                super::format::esc(&e.to_string())
-            );
+            return failed_svg(SIZE.0, &e.to_string());
         }
     }
     svg

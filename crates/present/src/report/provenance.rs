@@ -1,8 +1,8 @@
-//! Provenance: what a reader needs to reproduce a report — the tool's version, the git
-//! commit of the sources it ran from, the case file's SHA-256, every engine setting, the
-//! machine and the date. Machine facts are gathered once per process.
+//! Provenance: what a reader needs to reproduce a report — the tool's version and the git
+//! commit of the sources it was built from (the build's one stamp, `crate::stamp`), the
+//! case file's SHA-256, every engine setting, the machine and the date. Machine facts are
+//! gathered once per process.
 
-use std::process::Command;
 use std::sync::OnceLock;
 
 use rockslide_verify::suite::CaseResult;
@@ -12,8 +12,8 @@ use rockslide_verify::suite::CaseResult;
 pub struct Provenance {
     /// `rockslide <version>`.
     pub tool: String,
-    /// `git rev-parse HEAD` in the working folder, `+dirty` when it has local changes,
-    /// `unknown` outside a git checkout.
+    /// The commit the tool was built from ([`crate::stamp::COMMIT`]: fixed at build time,
+    /// `+dirty` when the sources had local changes).
     pub commit: String,
     /// Host name.
     pub host: String,
@@ -35,8 +35,8 @@ impl Provenance {
     /// Gather the facts now.
     pub fn collect() -> Provenance {
         Provenance {
-            tool: format!("rockslide {}", env!("CARGO_PKG_VERSION")),
-            commit: git_commit().unwrap_or_else(|| "unknown".into()),
+            tool: crate::stamp::tool(),
+            commit: crate::stamp::COMMIT.to_string(),
             host: hostname().unwrap_or_else(|| "unknown".into()),
             os: os_name(),
             cpus: std::thread::available_parallelism().map_or(1, |n| n.get()),
@@ -81,26 +81,6 @@ impl Provenance {
     pub fn machine(&self) -> String {
         format!("{} ({}, {} CPUs)", self.host, self.os, self.cpus)
     }
-}
-
-fn git_commit() -> Option<String> {
-    let out = Command::new("git")
-        .args(["rev-parse", "HEAD"])
-        .output()
-        .ok()?;
-    if !out.status.success() {
-        return None;
-    }
-    let mut commit = String::from_utf8(out.stdout).ok()?.trim().to_string();
-    let dirty = Command::new("git")
-        .args(["status", "--porcelain", "--untracked-files=no"])
-        .output()
-        .ok()
-        .is_some_and(|o| o.status.success() && !o.stdout.is_empty());
-    if dirty {
-        commit.push_str("+dirty");
-    }
-    Some(commit)
 }
 
 fn hostname() -> Option<String> {

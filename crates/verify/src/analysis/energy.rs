@@ -57,30 +57,41 @@ pub struct EnergyHistory {
 }
 
 /// The audit of one run in a few numbers.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct EnergySummary {
     /// Energy supplied over the run (E0 + W at the end), J.
+    #[serde(with = "crate::json::real")]
     pub supplied: f64,
     /// Kinetic energy at the end, J.
+    #[serde(with = "crate::json::real")]
     pub kinetic: f64,
     /// Strain energy at the end, J.
+    #[serde(with = "crate::json::real")]
     pub strain: f64,
     /// Friction work at the end, J.
+    #[serde(with = "crate::json::real")]
     pub friction: f64,
     /// Damping work at the end, J.
+    #[serde(with = "crate::json::real")]
     pub damping: f64,
     /// Gravity potential at the end, J.
+    #[serde(with = "crate::json::real")]
     pub potential: f64,
     /// Impact losses at the end, J.
+    #[serde(with = "crate::json::real")]
     pub impact: f64,
     /// Largest |balance error| over the run, J.
+    #[serde(with = "crate::json::real")]
     pub max_error: f64,
     /// Balance error at the end (supplied − accounted), J: positive means energy lost
     /// (numerical dissipation), negative energy created.
+    #[serde(with = "crate::json::real")]
     pub end_error: f64,
     /// Normalising energy: the largest of supplied and accounted energy over the run, J.
+    #[serde(with = "crate::json::real")]
     pub scale: f64,
     /// `max_error / scale`: the audit's relative error.
+    #[serde(with = "crate::json::real")]
     pub relative_error: f64,
 }
 

@@ -10,7 +10,7 @@ use rockslide_engine_api::RunStatus;
 use super::energy::EnergyHistory;
 
 /// What the classification demands.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Criteria {
     /// Largest max-error of the primary displacement, normalised by its peak, that still
     /// counts as accurate (default 0.05: the SAP2000 verification manual's "Acceptable",
@@ -37,7 +37,8 @@ impl Default for Criteria {
 }
 
 /// The class of one run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(tag = "class", rename_all = "snake_case")]
 pub enum Class {
     /// Completed, error within the accuracy criterion.
     Accurate,
@@ -46,6 +47,7 @@ pub enum Class {
     /// NaN/Inf, energy growth or an engine panic.
     Diverged {
         /// When, s (`None` when unknown, e.g. a panic).
+        #[serde(with = "crate::json::real_opt")]
         time: Option<f64>,
         /// What was seen.
         reason: String,
@@ -53,6 +55,7 @@ pub enum Class {
     /// An iterative solver did not converge.
     NotConverged {
         /// When, s.
+        #[serde(with = "crate::json::real")]
         time: f64,
         /// Residual and iterations, in words.
         reason: String,

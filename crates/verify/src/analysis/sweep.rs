@@ -25,16 +25,20 @@ pub fn ladder(coarsest: f64, ratio: f64, rungs: usize) -> Vec<f64> {
 }
 
 /// The error of one rung against its basis.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct RungError {
     /// max |Δx| / peak |x_basis| of the primary displacement (`rel_disp`).
+    #[serde(with = "crate::json::real")]
     pub max: f64,
     /// RMS Δx / peak |x_basis|.
+    #[serde(with = "crate::json::real")]
     pub rms: f64,
     /// |residual sliding − basis|, m (when both have a `slide` channel).
+    #[serde(with = "crate::json::real_opt")]
     pub residual_sliding: Option<f64>,
     /// Largest |event time − basis| over slip start, slip end and first lift-off, s
     /// (events both have).
+    #[serde(with = "crate::json::real_opt")]
     pub event_time: Option<f64>,
     /// Events the basis has and the rung lacks (or the other way round).
     pub events_missing: usize,
@@ -127,13 +131,16 @@ pub fn fitted_order(points: &[(f64, f64)]) -> Option<f64> {
 }
 
 /// Richardson extrapolation from three solutions at a constant refinement ratio.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Richardson {
     /// Observed order p = ln((f₃ − f₂)/(f₂ − f₁))/ln r.
+    #[serde(with = "crate::json::real")]
     pub order: f64,
     /// Extrapolated value f₁ + (f₁ − f₂)/(r^p − 1).
+    #[serde(with = "crate::json::real")]
     pub extrapolated: f64,
     /// Grid Convergence Index of the finest solution, 1.25·|f₁ − f₂|/|f₁|/(r^p − 1).
+    #[serde(with = "crate::json::real")]
     pub gci: f64,
 }
 

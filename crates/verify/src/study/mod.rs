@@ -1,180 +1,19 @@
 //! Many-run studies: one model (a base case) under many records, PGA levels or scale
-//! factors, friction coefficients and polarities, from a small TOML grid. Points run in
-//! parallel and resume after interruption (`runner`), split into shards for cluster job
-//! arrays and merge back (`summary`), and are summarised as CSV, Markdown and an SVG plot
-//! (`summary`, `plot`). `newmark` is the SLAMMER-style rigid-block command on one record.
-//! User documentation: docs/records-and-studies.md.
+//! factors, friction coefficients and polarities, from a small TOML grid (`grid`). Points
+//! run in parallel and resume after interruption (`runner`), split into shards for cluster
+//! job arrays, and are gathered back into one typed [`Study`] (`collect`), written as
+//! `study.json` and rendered by `rockslide-present`. `newmark` is the SLAMMER-style
+//! rigid-block table of one record. User documentation: docs/records-and-studies.md.
 
+mod collect;
 mod grid;
 mod newmark;
-mod plot;
 mod runner;
-mod summary;
 
-pub use grid::{Amplitude, DEFAULT_TAIL, Grid, GridPoint, GridRecord, load_grid};
+pub use collect::{FILE, Headline, RIGID, Stamp, Study, agreement, collect, headline, label};
+pub use grid::{Amplitude, DEFAULT_TAIL, Grid, GridPoint, GridRecord, load_grid, short_name};
 pub use newmark::{NewmarkArgs, newmark_command};
 pub use runner::{
     PointResult, RunSummary, StudyOptions, StudyOutcome, read_result, result_path, run_study,
     runs_dir, yield_acceleration,
 };
-pub use summary::{
-    Collected, agreement, collect, headline, run_labels, summary_csv, summary_markdown,
-    write_summary,
-};
-
-use std::path::{Path, PathBuf};
-
-use rockslide_core::error::Error;
-
-/// Parse a shard `K/N` (0-based K < N, as Slurm's `--array=0-(N-1)` and Kubernetes'
-/// `JOB_COMPLETION_INDEX` count).
-pub fn parse_shard(s: &str) -> Result<(usize, usize), String> {
-    let (k, n) = s
-        .split_once('/')
-        .ok_or_else(|| format!("shard \"{s}\" must be K/N, e.g. 0/8"))?;
-    let k: usize = k
-        .trim()
-        .parse()
-        .map_err(|_| format!("shard \"{s}\": K must be a whole number"))?;
-    let n: usize = n
-        .trim()
-        .parse()
-        .map_err(|_| format!("shard \"{s}\": N must be a whole number"))?;
-    if n == 0 || k >= n {
-        return Err(format!(
-            "shard \"{s}\": need 0 ≤ K < N (shards are numbered from 0)"
-        ));
-    }
-    Ok((k, n))
-}
-
-/// `rockslide study`: run (the shard of) a grid, then — unsharded — write the summary.
-/// Returns the outcome for callers that count.
-pub fn study_command(
-    grid_path: &Path,
-    out: &Path,
-    shard: Option<(usize, usize)>,
-    quiet: bool,
-) -> Result<StudyOutcome, Error> {
-    let grid = load_grid(grid_path)?;
-    let start = std::time::Instant::now();
-    let outcome = run_study(
-        &grid,
-        &StudyOptions {
-            out: out.to_path_buf(),
-            shard,
-            progress: !quiet,
-        },
-    )?;
-    let secs = start.elapsed().as_secs_f64();
-    if !quiet {
-        let shard_text = shard.map_or_else(String::new, |(k, n)| format!(" (shard {k}/{n})"));
-        println!(
-            "{}{shard_text}: {} of {} points assigned, {} run now ({} engine runs, {:.2} s, {:.1} runs/s), {} already done",
-            grid.title,
-            outcome.assigned,
-            outcome.points,
-            outcome.executed,
-            outcome.runs,
-            secs,
-            if secs > 0.0 {
-                outcome.runs as f64 / secs
-            } else {
-                0.0
-            },
-            outcome.skipped
-        );
-    }
-    match shard {
-        Some(_) => {
-            if !quiet {
-                println!(
-                    "results in {}; when every shard is done: rockslide study-merge {} --out {} [--from <shard folders>]",
-                    runs_dir(out).display(),
-                    grid_path.display(),
-                    out.display()
-                );
-            }
-        }
-        None => {
-            let collected = collect(&grid, &[], out)?;
-            write_summary(&grid, &collected, out)?;
-            if !quiet {
-                for h in headline(&collected) {
-                    println!("  {h}");
-                }
-                println!("summary: {}", out.join("summary.md").display());
-            }
-        }
-    }
-    Ok(outcome)
-}
-
-/// `rockslide study-merge`: gather the shards' results into `out` and write the summary.
-pub fn merge_command(
-    grid_path: &Path,
-    out: &Path,
-    from: &[PathBuf],
-    quiet: bool,
-) -> Result<Collected, Error> {
-    let grid = load_grid(grid_path)?;
-    let collected = collect(&grid, from, out)?;
-    write_summary(&grid, &collected, out)?;
-    if !quiet {
-        println!(
-            "{}: merged {} points from {} folder(s)",
-            grid.title,
-            collected.results.len(),
-            from.len() + 1
-        );
-        for h in headline(&collected) {
-            println!("  {h}");
-        }
-        println!("summary: {}", out.join("summary.md").display());
-    }
-    Ok(collected)
-}
-
-/// The `study` / `study-merge` commands for the command line (exit code 0 on success).
-pub fn cli_study(
-    grid: &Path,
-    out: &Path,
-    shard: Option<&str>,
-    merge: bool,
-    from: &[PathBuf],
-    quiet: bool,
-) -> Result<std::process::ExitCode, Error> {
-    if merge {
-        if shard.is_some() {
-            return Err(Error::Other(
-                "--merge and --shard do not go together".into(),
-            ));
-        }
-        merge_command(grid, out, from, quiet)?;
-    } else {
-        let shard = shard.map(parse_shard).transpose().map_err(Error::Other)?;
-        study_command(grid, out, shard, quiet)?;
-    }
-    Ok(std::process::ExitCode::SUCCESS)
-}
-
-/// The `newmark` command for the command line: print the table.
-pub fn cli_newmark(args: NewmarkArgs) -> Result<std::process::ExitCode, Error> {
-    print!("{}", newmark_command(&args)?);
-    Ok(std::process::ExitCode::SUCCESS)
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn shards_are_k_of_n_from_zero() {
-        assert_eq!(parse_shard("0/8"), Ok((0, 8)));
-        assert_eq!(parse_shard(" 7 / 8 "), Ok((7, 8)));
-        assert!(parse_shard("8/8").unwrap_err().contains("0 ≤ K < N"));
-        assert!(parse_shard("1/0").is_err());
-        assert!(parse_shard("3").unwrap_err().contains("K/N"));
-        assert!(parse_shard("a/2").is_err());
-    }
-}

@@ -87,7 +87,16 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
             format!(" ({})", rec.note)
         }
     );
-    let mut csv = String::from("record,ky_g,polarity,displacement_cm,displacement_m\n");
+    let csv_error = |e: csv::Error| Error::Other(format!("newmark CSV: {e}"));
+    let mut csv = csv::Writer::from_writer(Vec::new());
+    csv.write_record([
+        "record",
+        "ky_g",
+        "polarity",
+        "displacement_cm",
+        "displacement_m",
+    ])
+    .map_err(csv_error)?;
     for (i, &ky) in a.ky.iter().enumerate() {
         let s = NewmarkSummary::of(rec.dt, &rec.samples, ky * STANDARD_GRAVITY, sliding, 0.0);
         let table = s.table(&name);
@@ -102,11 +111,21 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
             ("inverse", s.inverse),
             ("mean", s.mean()),
         ] {
-            csv.push_str(&format!("{name},{ky},{pol},{},{d}\n", d * 100.0));
+            csv.write_record([
+                name.clone(),
+                ky.to_string(),
+                pol.to_string(),
+                (d * 100.0).to_string(),
+                d.to_string(),
+            ])
+            .map_err(csv_error)?;
         }
     }
     if let Some(path) = &a.csv {
-        write_atomically(path, csv.as_bytes())?;
+        let bytes = csv
+            .into_inner()
+            .map_err(|e| Error::Other(format!("newmark CSV: {e}")))?;
+        write_atomically(path, &bytes)?;
     }
     Ok(md)
 }

@@ -4,19 +4,18 @@
 //! an interrupted study resumes where it stopped; the counts of executed and skipped
 //! points are returned (deterministic counters, not times).
 
-use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::grid::{Grid, GridPoint};
 use crate::analysis::responses;
 use crate::registry;
-use crate::suite::{execute, plan};
+use crate::run::{Outcome, guarded};
+use crate::suite::plan;
 use rockslide_core::case::{Excitation, Model, Signal};
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::io::write_atomically;
@@ -31,7 +30,8 @@ pub struct RunSummary {
     pub variant: String,
     /// Time step, s.
     pub dt: f64,
-    /// `completed`, `diverged`, `not converged`, with the reason when not completed.
+    /// `completed`, `diverged`, `not converged`, `panicked`, with the reason when not
+    /// completed.
     pub status: String,
     /// Sliding at the end of the run, m (mass minus ground, the PEPO's xp).
     pub residual_sliding: Option<f64>,
@@ -42,6 +42,7 @@ pub struct RunSummary {
     /// Steps taken (deterministic counter).
     pub steps: u64,
     /// Wall time of the run, s (informative only: never in summaries).
+    #[serde(with = "crate::json::real")]
     pub wall_seconds: f64,
 }
 
@@ -115,20 +116,6 @@ pub fn is_done(grid: &Grid, out: &Path, p: &GridPoint) -> bool {
     read_result(&result_path(out, p)).is_some_and(|r| r.hash == grid.point_hash(p))
 }
 
-fn progress_bar(len: usize, wanted: bool) -> ProgressBar {
-    let ci = std::env::var_os("CI").is_some_and(|v| !v.is_empty() && v != "false");
-    if !wanted || ci || !std::io::stderr().is_terminal() {
-        return ProgressBar::hidden();
-    }
-    let pb = ProgressBar::new(len as u64);
-    if let Ok(style) =
-        ProgressStyle::with_template("{bar:40} {pos}/{len} points  {elapsed_precise} (eta {eta})")
-    {
-        pb.set_style(style);
-    }
-    pb
-}
-
 /// Run the grid's points (or those of one shard) that have no matching result yet.
 pub fn run_study(grid: &Grid, opts: &StudyOptions) -> Result<StudyOutcome, Error> {
     let assigned: Vec<&GridPoint> = match opts.shard {
@@ -145,7 +132,7 @@ pub fn run_study(grid: &Grid, opts: &StudyOptions) -> Result<StudyOutcome, Error
         .collect();
     let executed = AtomicUsize::new(0);
     let runs = AtomicUsize::new(0);
-    let pb = progress_bar(todo.len(), opts.progress);
+    let pb = crate::progress::bar(todo.len(), opts.progress, "points", "study");
     let results: Vec<Result<(), Error>> = todo
         .par_iter()
         .map(|p| {
@@ -182,9 +169,29 @@ pub fn run_point(
     let planned = plan(&case, engines)?;
     let mut runs = Vec::new();
     for pr in &planned.runs {
-        let start = Instant::now();
-        let run = execute(&case, engines, pr).map_err(InputErrors::from)?;
-        let wall = start.elapsed().as_secs_f64();
+        let engine = engines
+            .iter()
+            .find(|e| e.id() == pr.engine)
+            .expect("planned engines exist");
+        let timed =
+            guarded(engine.as_ref(), &case, &pr.variant, pr.dt, 1).map_err(InputErrors::from)?;
+        let wall = timed.seconds.first().copied().unwrap_or(f64::NAN);
+        let status = Outcome::of(&timed.run).to_string();
+        let Ok(run) = timed.run else {
+            // A panic is a result: recorded with its message, no numbers.
+            runs.push(RunSummary {
+                engine: pr.engine.to_string(),
+                variant: pr.variant.clone(),
+                dt: pr.dt,
+                status,
+                residual_sliding: None,
+                peak_abs_sliding: None,
+                peak_relative_displacement: None,
+                steps: 0,
+                wall_seconds: wall,
+            });
+            continue;
+        };
         let resp = responses(&run.trace);
         let peak_abs_sliding = match (resp.get("peak_sliding"), resp.get("min_sliding")) {
             (Some(a), Some(b)) => Some(a.abs().max(b.abs())),
@@ -194,7 +201,7 @@ pub fn run_point(
             engine: run.engine.to_string(),
             variant: run.variant.clone(),
             dt: run.dt,
-            status: run.status.to_string(),
+            status,
             residual_sliding: resp.get("residual_sliding").copied(),
             peak_abs_sliding,
             peak_relative_displacement: resp.get("peak_relative_displacement").copied(),

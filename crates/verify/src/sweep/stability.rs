@@ -3,28 +3,35 @@
 //! classified as accurate, inaccurate, diverged (with its time) or not converged, and for
 //! each engine variant the practical stability limit in Δt/T: the ladder brackets the
 //! first divergence, then bisection on the scenes that diverged there narrows it.
-//! Output: `<out>/stability/stability.md`, `stability.csv` and the map `stability.svg`.
+//!
+//! The result, [`StabilityResult`], is written as `<out>/stability/stability.json`
+//! ([`StabilityResult::save`]) and read back by the suite report
+//! ([`StabilityResult::load`]); `rockslide-present` renders its map and limits.
 
 use std::collections::BTreeSet;
-use std::fmt::Write;
-use std::path::{Path, PathBuf};
-use std::process::ExitCode;
+use std::path::Path;
 
 use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
 
-use super::{Options, Series, applicable, characteristic_period, progress, run_timed, sci};
+use super::Options;
+use super::plan::{Series, applicable, characteristic_period};
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::stability::{Class, Criteria, classify};
 use crate::analysis::sweep::resample;
 use crate::registry;
-use crate::registry::load_case;
-use rockslide_core::case::{Case, discover};
+use crate::run::{Timed, guarded};
+use rockslide_core::case::Case;
 use rockslide_core::error::{Error, InputErrors};
-use rockslide_core::io::write_atomically;
 use rockslide_engine_api::Engine;
 
 use crate::suite::{ReferenceResult, solve_reference};
+
+/// Folder of the study in the output folder, and the typed result's file name in it.
+pub const DIR: &str = "stability";
+/// File name of the typed result in [`DIR`].
+pub const FILE: &str = "stability.json";
 
 /// The Δt/T ladder every stability scene is run at: from T/100 to T (beyond T/2).
 pub const DT_OVER_T: &[f64] = &[0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0];
@@ -33,7 +40,7 @@ pub const DT_OVER_T: &[f64] = &[0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 
 const BISECTIONS: usize = 12;
 
 /// One classified run.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StabilityRun {
     /// Case name.
     pub case: String,
@@ -46,10 +53,12 @@ pub struct StabilityRun {
     /// The class.
     pub class: Class,
     /// Max error of the primary displacement, normalised by its peak, against the basis.
+    #[serde(with = "crate::json::real_opt")]
     pub error: Option<f64>,
     /// Energy audit, or why there is none.
     pub energy: Result<EnergySummary, String>,
     /// Wall time, s.
+    #[serde(with = "crate::json::real")]
     pub seconds: f64,
 }
 
@@ -61,7 +70,7 @@ impl StabilityRun {
 }
 
 /// The stability limit of one engine variant.
-#[derive(Debug, Clone)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct Limit {
     /// `engine/variant`.
     pub label: String,
@@ -87,17 +96,41 @@ impl Limit {
     }
 }
 
-/// The whole study.
-#[derive(Debug, Clone)]
+/// A scene of the study.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Scene {
+    /// Case name.
+    pub name: String,
+    /// Case title.
+    pub title: String,
+    /// Characteristic period T, s.
+    pub period: f64,
+    /// What errors are measured against, in words.
+    pub basis: String,
+}
+
+/// An engine that does not apply to a scene.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct NotApplicable {
+    /// Case name.
+    pub scene: String,
+    /// Engine id.
+    pub engine: String,
+    /// Why.
+    pub why: String,
+}
+
+/// The whole study: the typed result of `rockslide stability`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct StabilityResult {
-    /// (name, title, T in s, basis description) of each scene.
-    pub cases: Vec<(String, String, f64, String)>,
+    /// The scenes.
+    pub cases: Vec<Scene>,
     /// Every run, scene by scene, series by series, Δt ascending.
     pub runs: Vec<StabilityRun>,
     /// One per engine variant.
     pub limits: Vec<Limit>,
-    /// (scene, engine, why) for engines that do not apply.
-    pub not_applicable: Vec<(String, &'static str, String)>,
+    /// Engines that do not apply to a scene.
+    pub not_applicable: Vec<NotApplicable>,
     /// The classification criteria.
     pub criteria: Criteria,
     /// Worker threads used.
@@ -105,6 +138,23 @@ pub struct StabilityResult {
 }
 
 impl StabilityResult {
+    /// The Δt/T ladder every scene was run at.
+    pub fn ladder(&self) -> &'static [f64] {
+        DT_OVER_T
+    }
+
+    /// Write `stability.json` into `dir` (`<out>/stability/`).
+    pub fn save(&self, dir: &Path) -> Result<(), Error> {
+        crate::json::write(&dir.join(FILE), self)
+    }
+
+    /// Read `stability.json` from `dir`: `None` when there is none, else the result or
+    /// why it could not be read.
+    pub fn load(dir: &Path) -> Option<Result<StabilityResult, String>> {
+        let path = dir.join(FILE);
+        path.exists().then(|| crate::json::read(&path))
+    }
+
     /// Row labels of the map, in order.
     pub fn rows(&self) -> Vec<String> {
         let mut seen = BTreeSet::new();
@@ -121,7 +171,7 @@ impl StabilityResult {
 fn classify_run(
     case: &Case,
     variant: &str,
-    timed: &super::Timed,
+    timed: &Timed,
     reference: Option<&ReferenceResult>,
     own: Option<&rockslide_core::trace::Trace>,
     criteria: &Criteria,
@@ -197,7 +247,11 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
     for c in cases {
         match applicable(c, &engines) {
             Ok((series, na)) => {
-                not_applicable.extend(na.into_iter().map(|(e, w)| (c.name.clone(), e, w)));
+                not_applicable.extend(na.into_iter().map(|(engine, why)| NotApplicable {
+                    scene: c.name.clone(),
+                    engine,
+                    why,
+                }));
                 plans.push(series);
             }
             Err(e) => errors.extend(e.0),
@@ -217,7 +271,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                 .flat_map(move |s| DT_OVER_T.iter().map(move |x| (ci, s, x * t)))
         })
         .collect();
-    let bar = progress(tasks.len(), opts.quiet, "stability");
+    let bar = crate::progress::bar(tasks.len(), !opts.quiet, "runs", "stability");
     let (timed, references, threads) = opts.install(|| {
         let (timed, references) = rayon::join(
             || {
@@ -225,7 +279,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                     .par_iter()
                     .map(|(ci, s, dt)| {
                         let r =
-                            run_timed(engines[s.engine].as_ref(), &cases[*ci], &s.variant, *dt, 1);
+                            guarded(engines[s.engine].as_ref(), &cases[*ci], &s.variant, *dt, 1);
                         bar.inc(1);
                         r
                     })
@@ -236,7 +290,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
         (timed, references, rayon::current_num_threads())
     })?;
     bar.finish_and_clear();
-    let timed: Vec<super::Timed> = timed
+    let timed: Vec<Timed> = timed
         .into_iter()
         .collect::<Result<_, _>>()
         .map_err(InputErrors::from)?;
@@ -309,7 +363,12 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                     Ok(r) => format!("exact reference: {}", r.solution.name()),
                     Err(_) => "own finest run (no exact reference)".into(),
                 };
-                (c.name.clone(), c.title.clone(), *t, basis)
+                Scene {
+                    name: c.name.clone(),
+                    title: c.title.clone(),
+                    period: *t,
+                    basis,
+                }
             })
             .collect(),
         runs,
@@ -374,7 +433,7 @@ fn limit_of(
                 let (mut lo, mut hi) = (lo0, first);
                 for _ in 0..BISECTIONS {
                     let mid = 0.5 * (lo + hi);
-                    let timed = run_timed(engine, case, variant, mid * t, 1).ok()?;
+                    let timed = guarded(engine, case, variant, mid * t, 1).ok()?;
                     let (class, _, _) =
                         classify_run(case, variant, &timed, reference, None, criteria);
                     if class.diverged() {
@@ -394,210 +453,4 @@ fn limit_of(
         refined,
         accurate_up_to,
     }
-}
-
-/// Short cell of the map: class symbol and, for failures, the time.
-fn cell(r: &StabilityRun) -> String {
-    match &r.class {
-        Class::Accurate => format!("✓ {}", sci(r.error)),
-        Class::Inaccurate => format!("~ {}", sci(r.error)),
-        Class::Diverged { time, .. } => match time {
-            Some(t) => format!("✗ t={t:.4}"),
-            None => "✗ panic".into(),
-        },
-        Class::NotConverged { time, .. } => format!("NC t={time:.4}"),
-    }
-}
-
-/// The study as Markdown.
-pub fn stability_markdown(r: &StabilityResult) -> String {
-    let mut s = String::from("# Stability on stiff and extreme scenes\n\n");
-    let _ = writeln!(
-        s,
-        "Classes: **accurate** (✓) max error of the relative displacement ≤ {} % of its peak (SAP2000 \"Acceptable\"); **inaccurate** (~) completed, stable, larger error; **diverged** (✗) NaN/Inf in the trace, divergence reported by the engine, an engine panic, or energy growth (stored + dissipated energy above 1 + {} times the most energy ever supplied); **not converged** (NC) an iterative solver gave up. Cells show the max error or the time of the failure. {} worker threads.\n",
-        100.0 * r.criteria.accuracy,
-        r.criteria.growth_factor,
-        r.threads
-    );
-    let _ = writeln!(s, "## Practical stability limits\n");
-    let _ = writeln!(
-        s,
-        "| engine/variant | first diverging rung Δt/T (scenes) | stable up to (ladder) | bisection bracket Δt/T (scene) | **limit Δt/T** | accurate on every scene up to Δt/T |"
-    );
-    let _ = writeln!(s, "|---|---|---:|---|---:|---:|");
-    for l in &r.limits {
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {} | **{}** | {} |",
-            l.label,
-            l.first_diverged
-                .as_ref()
-                .map_or("none up to 1.0".into(), |(x, c)| format!(
-                    "{x} ({})",
-                    c.join(", ")
-                )),
-            l.stable_up_to.map_or("—".into(), |x| format!("{x}")),
-            l.refined
-                .as_ref()
-                .map_or("—".into(), |(a, b, c)| format!("[{a:.5}, {b:.5}] ({c})")),
-            l.limit()
-                .map_or("> 1.0 (none found)".into(), |x| format!("{x:.4}")),
-            l.accurate_up_to.map_or("—".into(), |x| format!("{x}")),
-        );
-    }
-    let _ = writeln!(s, "\n## Scenes\n");
-    let _ = writeln!(s, "| scene | title | T [s] | basis |");
-    let _ = writeln!(s, "|---|---|---:|---|");
-    for (n, t, p, b) in &r.cases {
-        let _ = writeln!(s, "| {n} | {t} | {p:.6} | {b} |");
-    }
-    for (c, e, why) in &r.not_applicable {
-        let _ = writeln!(s, "\n- {c}: {e} not applicable — {why}");
-    }
-    let _ = writeln!(s, "\n## Map\n");
-    let mut header = "| scene · engine/variant |".to_string();
-    let mut rule = "|---|".to_string();
-    for x in DT_OVER_T {
-        let _ = write!(header, " Δt/T = {x} |");
-        rule.push_str("---|");
-    }
-    let _ = writeln!(s, "{header}\n{rule}");
-    for row in r.rows() {
-        let _ = write!(s, "| {row} |");
-        for x in DT_OVER_T {
-            let c = r
-                .runs
-                .iter()
-                .find(|q| q.row_label() == row && q.dt_over_t == *x)
-                .map_or("".into(), cell);
-            let _ = write!(s, " {c} |");
-        }
-        s.push('\n');
-    }
-    let _ = writeln!(s, "\n![stability map](stability.svg)\n");
-    let _ = writeln!(s, "## Every run\n");
-    let _ = writeln!(
-        s,
-        "| scene | engine/variant | Δt/T | Δt [s] | class | at t [s] | max error | energy rel. err | energy lost at end [% of supplied] | reason |"
-    );
-    let _ = writeln!(s, "|---|---|---:|---:|---|---:|---:|---:|---:|---|");
-    for q in &r.runs {
-        let (energy, lost) = match &q.energy {
-            Ok(e) => (
-                format!("{:.2e}", e.relative_error),
-                if e.supplied != 0.0 {
-                    format!("{:+.2}", 100.0 * e.end_error / e.supplied)
-                } else {
-                    "—".into()
-                },
-            ),
-            Err(_) => ("n/a".into(), "—".into()),
-        };
-        let _ = writeln!(
-            s,
-            "| {} | {} | {} | {:.4e} | {} | {} | {} | {} | {} | {} |",
-            q.case,
-            q.series,
-            q.dt_over_t,
-            q.dt,
-            q.class.label(),
-            q.class.time().map_or("—".into(), |t| format!("{t:.5}")),
-            sci(q.error),
-            energy,
-            lost,
-            q.class.reason()
-        );
-    }
-    if let Some((c, why)) = r
-        .runs
-        .iter()
-        .find_map(|q| q.energy.as_ref().err().map(|w| (&q.case, w)))
-    {
-        let _ = writeln!(
-            s,
-            "\nEnergy audit not available for some runs (e.g. {c}): {why}."
-        );
-    }
-    s
-}
-
-/// The study as CSV, one row per run.
-pub fn stability_csv(r: &StabilityResult) -> String {
-    let mut s = String::from(
-        "scene,series,dt_over_T,dt_s,class,time_s,max_error,energy_relative_error,reason\n",
-    );
-    for q in &r.runs {
-        let _ = writeln!(
-            s,
-            "{},{},{},{:e},{},{},{},{},\"{}\"",
-            q.case,
-            q.series,
-            q.dt_over_t,
-            q.dt,
-            q.class.label(),
-            q.class.time().map_or(String::new(), |t| format!("{t:e}")),
-            q.error.map_or(String::new(), |e| format!("{e:e}")),
-            q.energy
-                .as_ref()
-                .map_or(String::new(), |e| format!("{:e}", e.relative_error)),
-            q.class.reason().replace('"', "'")
-        );
-    }
-    s
-}
-
-/// Write `stability.md`, `.csv` and `.svg` under `out/stability/`; returns the folder.
-pub fn write_stability(r: &StabilityResult, out: &Path) -> Result<PathBuf, Error> {
-    let dir = out.join("stability");
-    let svg = super::plot::stability_svg(r)?;
-    write_atomically(&dir.join("stability.svg"), svg.as_bytes())?;
-    write_atomically(&dir.join("stability.csv"), stability_csv(r).as_bytes())?;
-    write_atomically(&dir.join("stability.md"), stability_markdown(r).as_bytes())?;
-    Ok(dir)
-}
-
-/// The `stability` command: the given case files or folders (default
-/// `cases/stability/`).
-pub fn command(args: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Error> {
-    let args = if args.is_empty() {
-        vec![PathBuf::from("cases/stability")]
-    } else {
-        args.to_vec()
-    };
-    let mut paths = Vec::new();
-    for a in args {
-        if a.is_dir() {
-            paths.extend(discover(&a).map_err(|e| Error::io(&a, e))?);
-        } else {
-            paths.push(a);
-        }
-    }
-    let mut cases = Vec::new();
-    let mut errors = Vec::new();
-    for p in &paths {
-        match load_case(p) {
-            Ok(c) => cases.push(c),
-            Err(e) => errors.extend(e.0),
-        }
-    }
-    if !errors.is_empty() {
-        return Err(InputErrors(errors).into());
-    }
-    if cases.is_empty() {
-        return Err(Error::Other("stability: no case files found".into()));
-    }
-    let r = study(&cases, opts)?;
-    let dir = write_stability(&r, out)?;
-    if !opts.quiet {
-        for l in &r.limits {
-            println!(
-                "{}: practical stability limit Δt/T = {}",
-                l.label,
-                l.limit()
-                    .map_or("> 1.0 (no divergence found)".into(), |x| format!("{x:.4}"))
-            );
-        }
-        println!("→ {}", dir.join("stability.md").display());
-    }
-    Ok(ExitCode::SUCCESS)
 }

@@ -1,0 +1,156 @@
+//! The study summary as a document, built from the typed [`Study`]: provenance of the
+//! grid and base case, the headline (largest sliding, engine agreement, ratios to the
+//! rigid block) in sentences, one table row per point and run in display units, and the
+//! figures. Wall times are in the result files but never here, so a sharded study merged
+//! afterwards gives the same summary, byte for byte, as the study run in one go.
+
+use super::figure::{residual_vs_pga, run_slug};
+use crate::report::doc::{Block, Table};
+use rockslide_core::case::record::STANDARD_GRAVITY;
+use rockslide_verify::study::{Headline, Study, headline, short_name};
+
+/// A headline item as a sentence.
+pub fn sentence(h: &Headline) -> String {
+    match h {
+        Headline::Largest {
+            label,
+            value,
+            point,
+        } => format!(
+            "{label}: largest |residual sliding| {:.2} cm ({:.4} m) — {} at PGA {:.3} g, μ = {}, polarity {:+}",
+            value * 100.0,
+            value,
+            short_name(&point.record),
+            point.pga / STANDARD_GRAVITY,
+            point.mu,
+            point.point.polarity
+        ),
+        Headline::Against {
+            label,
+            basis,
+            median,
+            largest,
+            points,
+        } => format!(
+            "{label} against {basis}, residual sliding: median |Δ| {median:.2} %, largest {largest:.2} % over {points} points with |sliding| > 0.1 mm"
+        ),
+        Headline::OverRigid {
+            label,
+            median,
+            min,
+            max,
+            points,
+        } => format!(
+            "{label} / newmark-rigid |residual sliding|: median {median:.2}, range {min:.2}–{max:.2} over {points} points with rigid-block sliding > 0.1 mm"
+        ),
+    }
+}
+
+/// The headline of a study as sentences.
+pub fn headline_sentences(c: &Study) -> Vec<String> {
+    headline(c).iter().map(sentence).collect()
+}
+
+/// The first 12 hex digits of a SHA-256.
+fn short(sha: &str) -> &str {
+    &sha[..sha.len().min(12)]
+}
+
+/// The summary page of a study.
+pub(crate) fn document(c: &Study) -> Vec<Block> {
+    let mut b = vec![
+        Block::Heading(1, format!("Study: {}", c.title)),
+        Block::Facts(vec![
+            (
+                "grid".into(),
+                format!("{} (sha256 {})", c.grid.path, short(&c.grid.sha256)),
+            ),
+            (
+                "base case".into(),
+                format!(
+                    "{} — {} (sha256 {})",
+                    c.base.path,
+                    c.base_title,
+                    short(&c.base.sha256)
+                ),
+            ),
+            (
+                "points".into(),
+                format!("{}, runs: {}", c.results.len(), c.rows().count()),
+            ),
+            (
+                "rigid block".into(),
+                "Newmark 1965, ky = μ·g of the model, two-way sliding, exact for piecewise-linear records; sliding sign: mass minus ground".into(),
+            ),
+            ("tool".into(), crate::stamp::tool()),
+            ("commit".into(), crate::stamp::COMMIT.into()),
+        ]),
+        Block::Heading(2, "Headline".into()),
+        Block::List(headline_sentences(c)),
+        Block::Heading(2, "Runs".into()),
+    ];
+    let mut t = Table {
+        header: [
+            "point",
+            "record",
+            "PGA [g]",
+            "μ",
+            "pol.",
+            "run",
+            "status",
+            "residual sliding [cm]",
+            "peak abs. sliding [cm]",
+        ]
+        .map(String::from)
+        .to_vec(),
+        numeric: vec![false, false, true, true, true, false, false, true, true],
+        rows: Vec::new(),
+    };
+    let cm = |x: Option<f64>| x.map_or_else(|| "—".into(), |v| format!("{:.3}", v * 100.0));
+    for (r, run) in c.rows() {
+        t.rows.push(vec![
+            r.point.id().into(),
+            short_name(&r.record).into(),
+            format!("{:.3}", r.pga / STANDARD_GRAVITY).into(),
+            format!("{}", r.mu).into(),
+            format!("{:+}", r.point.polarity).into(),
+            format!("{}/{}", run.engine, run.variant).into(),
+            run.status.clone().into(),
+            cm(run.residual_sliding).into(),
+            cm(run.peak_abs_sliding).into(),
+        ]);
+    }
+    b.push(Block::Table(t));
+    if let Some(first) = c.results.first()
+        && !first.not_applicable.is_empty()
+    {
+        b.push(Block::Heading(2, "Engines not applicable".into()));
+        b.push(Block::List(
+            first
+                .not_applicable
+                .iter()
+                .map(|(e, why)| format!("{e}: not applicable — {why}"))
+                .collect(),
+        ));
+    }
+    b.push(Block::Figure {
+        file: "residual-vs-pga.svg".into(),
+        caption: "Residual sliding against PGA, every run of the study.".into(),
+        svg: residual_vs_pga(c, None),
+    });
+    let engines = c.engine_labels();
+    if engines.len() > 1 {
+        b.push(Block::Heading(
+            2,
+            "Per engine (with the rigid block)".into(),
+        ));
+        for l in engines {
+            b.push(Block::Figure {
+                file: format!("residual-vs-pga-{}.svg", run_slug(&l)),
+                caption: format!("Residual sliding against PGA: {l}, with the rigid block."),
+                svg: residual_vs_pga(c, Some(&l)),
+            });
+        }
+    }
+    b
+}

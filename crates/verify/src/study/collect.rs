@@ -1,0 +1,270 @@
+//! A study's results gathered: the per-point result files read back (from one output
+//! folder or from several shards' folders), every grid point checked to be there with a
+//! matching hash, and the numbers the summary's headline states. The collection is built
+//! only from result files, never from in-memory runs, so a sharded study merged
+//! afterwards gives the same summary, byte for byte, as the study run in one go. It is the
+//! typed result of a study, written as `<out>/study.json`; `rockslide-present` renders the
+//! summary from it.
+
+use std::path::{Path, PathBuf};
+
+use serde::{Deserialize, Serialize};
+
+use super::grid::Grid;
+use super::runner::{PointResult, RunSummary, read_result, result_path};
+use rockslide_core::error::Error;
+use rockslide_core::io::write_atomically;
+
+/// File name of the typed result in the study's output folder.
+pub const FILE: &str = "study.json";
+
+/// A file a study was made from, and its SHA-256.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Stamp {
+    /// Path as given.
+    pub path: String,
+    /// SHA-256 of its content.
+    pub sha256: String,
+}
+
+/// A whole study: the grid it ran and the result of every point, in point order.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Study {
+    /// The grid's title.
+    pub title: String,
+    /// The grid file.
+    pub grid: Stamp,
+    /// The base case file.
+    pub base: Stamp,
+    /// The base case's title.
+    pub base_title: String,
+    /// One result per point.
+    pub results: Vec<PointResult>,
+}
+
+impl Study {
+    /// Write `study.json` into `out`.
+    pub fn save(&self, out: &Path) -> Result<(), Error> {
+        crate::json::write(&out.join(FILE), self)
+    }
+
+    /// Read `study.json` from `out`.
+    pub fn load(out: &Path) -> Result<Study, String> {
+        crate::json::read(&out.join(FILE))
+    }
+
+    /// Every (point, run) pair, in point order.
+    pub fn rows(&self) -> impl Iterator<Item = (&PointResult, &RunSummary)> {
+        self.results
+            .iter()
+            .flat_map(|r| r.runs.iter().map(move |run| (r, run)))
+    }
+
+    /// The run labels `engine/variant` in the order they first appear (engines in the
+    /// order the base case plans them, the rigid block last).
+    pub fn run_labels(&self) -> Vec<String> {
+        let mut labels: Vec<String> = Vec::new();
+        for (_, run) in self.rows() {
+            let l = label(run);
+            if !labels.contains(&l) {
+                labels.push(l);
+            }
+        }
+        labels
+    }
+
+    /// The run labels of the engines (the rigid block left out).
+    pub fn engine_labels(&self) -> Vec<String> {
+        self.run_labels()
+            .into_iter()
+            .filter(|l| !l.starts_with(RIGID))
+            .collect()
+    }
+}
+
+/// Engine id of Newmark's rigid block in study results.
+pub const RIGID: &str = "newmark-rigid";
+
+/// `engine/variant` of a run.
+pub fn label(run: &RunSummary) -> String {
+    format!("{}/{}", run.engine, run.variant)
+}
+
+/// Gather the result of every grid point from the `from` folders (first match wins),
+/// copying each into `<out>/runs/` when it is not there yet. Error when a point is
+/// missing everywhere: the message lists the missing points.
+pub fn collect(grid: &Grid, from: &[PathBuf], out: &Path) -> Result<Study, Error> {
+    let mut results = Vec::with_capacity(grid.points.len());
+    let mut missing = Vec::new();
+    for p in &grid.points {
+        let hash = grid.point_hash(p);
+        let mut found = None;
+        for dir in std::iter::once(out).chain(from.iter().map(PathBuf::as_path)) {
+            let path = result_path(dir, p);
+            if let Some(r) = read_result(&path).filter(|r| r.hash == hash) {
+                if dir != out {
+                    let bytes = std::fs::read(&path).map_err(|e| Error::io(&path, e))?;
+                    write_atomically(&result_path(out, p), &bytes)?;
+                }
+                found = Some(r);
+                break;
+            }
+        }
+        match found {
+            Some(r) => results.push(r),
+            None => missing.push(p.id()),
+        }
+    }
+    if !missing.is_empty() {
+        let shown: Vec<&str> = missing.iter().take(20).map(String::as_str).collect();
+        return Err(Error::Other(format!(
+            "{} of {} grid points have no matching result ({}{}): run the missing shards (or `rockslide study` without --shard) first",
+            missing.len(),
+            grid.points.len(),
+            shown.join(", "),
+            if missing.len() > shown.len() {
+                ", …"
+            } else {
+                ""
+            }
+        )));
+    }
+    Ok(Study {
+        title: grid.title.clone(),
+        grid: Stamp {
+            path: grid.path.display().to_string(),
+            sha256: grid.sha256.clone(),
+        },
+        base: Stamp {
+            path: grid.base.path.display().to_string(),
+            sha256: grid.base.sha256.clone(),
+        },
+        base_title: grid.base.title.clone(),
+        results,
+    })
+}
+
+/// Residual sliding of run `label` at every point where it and `basis` both have one and
+/// |basis| > 0.1 mm: the relative differences 100·(label/basis − 1), in point order.
+pub fn agreement(c: &Study, label: &str, basis: &str) -> Vec<f64> {
+    c.results
+        .iter()
+        .filter_map(|r| match (residual(r, label), residual(r, basis)) {
+            (Some(a), Some(b)) if b.abs() > 1e-4 => Some(100.0 * (a / b - 1.0)),
+            _ => None,
+        })
+        .collect()
+}
+
+/// Residual sliding of run `label` at a point.
+fn residual(r: &PointResult, l: &str) -> Option<f64> {
+    r.runs
+        .iter()
+        .find(|x| label(x) == l)
+        .and_then(|x| x.residual_sliding)
+}
+
+/// One line of a study's headline, as numbers.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Headline {
+    /// The largest |residual sliding| of one run label, and where.
+    Largest {
+        /// `engine/variant`.
+        label: String,
+        /// |residual sliding|, m.
+        value: f64,
+        /// The point it happened at.
+        point: PointResult,
+    },
+    /// One engine against the first engine planned, point by point (residual sliding,
+    /// points where |basis| > 0.1 mm).
+    Against {
+        /// `engine/variant`.
+        label: String,
+        /// The first engine planned.
+        basis: String,
+        /// Median |Δ|, %.
+        median: f64,
+        /// Largest |Δ|, %.
+        largest: f64,
+        /// Points compared.
+        points: usize,
+    },
+    /// |residual sliding| of an engine over the rigid block's, point by point (points
+    /// where the block slides more than 0.1 mm).
+    OverRigid {
+        /// `engine/variant`.
+        label: String,
+        /// Median ratio.
+        median: f64,
+        /// Smallest ratio.
+        min: f64,
+        /// Largest ratio.
+        max: f64,
+        /// Points compared.
+        points: usize,
+    },
+}
+
+/// The headline: per run label the largest |residual sliding| and where; each engine
+/// against the first one planned; and engine-to-rigid-block ratios when both are present.
+pub fn headline(c: &Study) -> Vec<Headline> {
+    let mut out = Vec::new();
+    for l in c.run_labels() {
+        let best = c
+            .rows()
+            .filter(|(_, run)| label(run) == l)
+            .filter_map(|(r, run)| run.residual_sliding.map(|v| (v.abs(), r)))
+            .max_by(|a, b| a.0.total_cmp(&b.0));
+        if let Some((value, r)) = best {
+            out.push(Headline::Largest {
+                label: l,
+                value,
+                point: r.clone(),
+            });
+        }
+    }
+    let engines = c.engine_labels();
+    if let Some((basis, others)) = engines.split_first() {
+        for l in others {
+            let mut d: Vec<f64> = agreement(c, l, basis).iter().map(|x| x.abs()).collect();
+            if d.is_empty() {
+                continue;
+            }
+            d.sort_by(f64::total_cmp);
+            out.push(Headline::Against {
+                label: l.clone(),
+                basis: basis.clone(),
+                median: d[d.len() / 2],
+                largest: d[d.len() - 1],
+                points: d.len(),
+            });
+        }
+    }
+    for l in &engines {
+        let mut ratios = Vec::new();
+        for r in &c.results {
+            let rigid = r
+                .runs
+                .iter()
+                .find(|x| x.engine == RIGID)
+                .and_then(|x| x.residual_sliding);
+            if let (Some(a), Some(b)) = (residual(r, l), rigid)
+                && b.abs() > 1e-4
+            {
+                ratios.push(a.abs() / b.abs());
+            }
+        }
+        if !ratios.is_empty() {
+            ratios.sort_by(f64::total_cmp);
+            out.push(Headline::OverRigid {
+                label: l.clone(),
+                median: ratios[ratios.len() / 2],
+                min: ratios[0],
+                max: ratios[ratios.len() - 1],
+                points: ratios.len(),
+            });
+        }
+    }
+    out
+}
