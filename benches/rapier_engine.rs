@@ -68,11 +68,7 @@ fn bench(c: &mut Criterion) {
             let start = Instant::now();
             let run = Rapier.run(&case, variant, dt).expect("runs");
             let wall = start.elapsed().as_secs_f64();
-            let substeps = run
-                .counters
-                .iter()
-                .find(|(k, _)| k == "substeps")
-                .map_or(0, |c| c.1);
+            let substeps = run.stats.steps * run.stats.substeps_per_step.unwrap_or(0);
             println!(
                 "{name}/{variant}: dt = {dt} s, {} steps, {substeps} substeps, {:.3} s wall per simulated s, {:.2} µs per step",
                 run.trace.len() - 1,

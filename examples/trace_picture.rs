@@ -134,7 +134,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         variant: "exact".into(),
         dt: 1e-3,
         settings: Vec::new(),
-        counters: Vec::new(),
+        stats: rockslide::engine::SolverStats::default(),
         findings: Vec::new(),
         trace: trace.clone(),
         status: RunStatus::Completed,

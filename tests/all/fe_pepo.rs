@@ -156,7 +156,7 @@ fn runs_are_bit_identical() {
     let c = case("cases/pepo-ground-disp.toml", "");
     let (a, b) = (run(&c, "double", 1e-3), run(&c, "double", 1e-3));
     assert_eq!(a.trace, b.trace);
-    assert_eq!(a.counters, b.counters);
+    assert_eq!(a.stats, b.stats);
 }
 
 #[test]
@@ -166,8 +166,8 @@ fn newton_counters_are_deterministic() {
     // 1000 steps: 2 iterations per sticking step, 3 when stick/slip changes, and 1 for
     // each of the 100 steps sliding under a constant friction force after the pulse
     // (0.2–0.3 s), where the constant-acceleration predictor is exact.
-    assert_eq!(r.counters[0], ("steps".to_string(), 1000));
-    assert_eq!(r.counters[1], ("Newton iterations".to_string(), 1900));
+    assert_eq!(r.stats.steps, 1000);
+    assert_eq!(r.stats.newton_iterations, Some(1900));
 }
 
 #[test]

@@ -308,7 +308,7 @@ fn run(engine: &'static str, variant: &str, trace: Trace, status: RunStatus) -> 
         variant: variant.into(),
         dt: 0.0005,
         settings: vec![("integrator".into(), "test".into())],
-        counters: vec![("steps".into(), trace.len() as u64)],
+        stats: rockslide::engine::SolverStats::steps(trace.len() as u64),
         findings: Vec::new(),
         trace,
         status,

@@ -65,5 +65,6 @@ fn runs_record_their_settings() {
     assert_eq!(get("solver iterations"), "3");
     assert_eq!(get("contact softness (fixed body)"), "120, 10");
     assert!(get("friction model").starts_with("Simplified"));
-    assert_eq!(run.counters[0], ("steps".to_string(), 250));
+    assert_eq!(run.stats.steps, 250);
+    assert_eq!(run.stats.substeps_per_step, Some(16));
 }

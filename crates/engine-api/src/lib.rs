@@ -10,6 +10,7 @@
 use rockslide_core::case::{Case, Scene};
 use rockslide_core::error::InputError;
 use rockslide_core::trace::Trace;
+use serde::{Deserialize, Serialize};
 
 /// Why an engine cannot represent a scene.
 #[derive(Debug, Clone, PartialEq)]
@@ -65,6 +66,50 @@ impl std::fmt::Display for RunStatus {
     }
 }
 
+/// What a solver did during a run, counted deterministically (no times): the same case gives
+/// the same numbers on every machine. Fields an engine has no notion of stay `None`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct SolverStats {
+    /// Time steps taken.
+    pub steps: u64,
+    /// Solver substeps per time step (rapier).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub substeps_per_step: Option<u64>,
+    /// Equilibrium (Newton) iterations over all steps (fe).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub newton_iterations: Option<u64>,
+    /// Most equilibrium iterations in one step (fe).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_step_iterations: Option<u64>,
+    /// Iterations of the static preload before t = 0 (fe).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub static_iterations: Option<u64>,
+}
+
+impl SolverStats {
+    /// Only `steps` known: the statistics of an engine without an iterative solver.
+    pub fn steps(steps: u64) -> Self {
+        SolverStats {
+            steps,
+            ..Self::default()
+        }
+    }
+
+    /// The statistics an engine recorded, as (label, value) for tables and metadata, in a
+    /// fixed order; unknown fields are left out.
+    pub fn entries(&self) -> Vec<(&'static str, u64)> {
+        let optional = [
+            ("substeps per step", self.substeps_per_step),
+            ("Newton iterations", self.newton_iterations),
+            ("max iterations in a step", self.max_step_iterations),
+            ("static preload iterations", self.static_iterations),
+        ];
+        std::iter::once(("steps", self.steps))
+            .chain(optional.into_iter().filter_map(|(k, v)| v.map(|v| (k, v))))
+            .collect()
+    }
+}
+
 /// The outcome of one engine run: its trace, how it ended, and what it ran with.
 #[derive(Debug, Clone)]
 pub struct Run {
@@ -76,8 +121,8 @@ pub struct Run {
     pub dt: f64,
     /// Every setting that shaped the result, as (name, value) — recorded in all outputs.
     pub settings: Vec<(String, String)>,
-    /// Deterministic counters (steps, iterations, cut-backs).
-    pub counters: Vec<(String, u64)>,
+    /// What the solver did, counted deterministically (steps, iterations, substeps).
+    pub stats: SolverStats,
     /// Things the engine measured about itself worth reporting (Eq. 9 change, eigenfrequencies).
     pub findings: Vec<String>,
     /// Time histories.

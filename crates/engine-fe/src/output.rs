@@ -13,7 +13,7 @@ use super::variant;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
 use rockslide_core::error::InputError;
 use rockslide_core::trace::{Quantity, Trace, q};
-use rockslide_engine_api::{Run, RunStatus, step_count};
+use rockslide_engine_api::{Run, RunStatus, SolverStats, step_count};
 
 const PI: f64 = std::f64::consts::PI;
 
@@ -241,18 +241,13 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
         variant: variant.to_string(),
         dt,
         settings,
-        counters: vec![
-            ("steps".into(), counters.steps),
-            ("Newton iterations".into(), counters.iterations),
-            (
-                "max iterations in a step".into(),
-                counters.max_step_iterations,
-            ),
-            (
-                "static preload iterations".into(),
-                counters.static_iterations,
-            ),
-        ],
+        stats: SolverStats {
+            steps: counters.steps,
+            substeps_per_step: None,
+            newton_iterations: Some(counters.iterations),
+            max_step_iterations: Some(counters.max_step_iterations),
+            static_iterations: Some(counters.static_iterations),
+        },
         findings,
         trace,
         status,

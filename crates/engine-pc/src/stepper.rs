@@ -3,7 +3,7 @@
 use super::resistance::resistance;
 use rockslide_core::case::{Excitation, Jump, Oscillator};
 use rockslide_core::trace::{Trace, q};
-use rockslide_engine_api::{Run, RunStatus, step_count};
+use rockslide_engine_api::{Run, RunStatus, SolverStats, step_count};
 
 /// How support motion enters the equation of motion (paper Eqs 10–12).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -168,7 +168,7 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
             ("damping C [N·s/m]".into(), format!("{c}")),
             ("support route".into(), route.into()),
         ],
-        counters: vec![("steps".into(), trace.len() as u64 - 1)],
+        stats: SolverStats::steps(trace.len() as u64 - 1),
         findings: vec![format!(
             "largest Eq 9 change |x_correct − x_predict|/|x_correct| = {:.3e} (steps with |x| ≥ 1 % of peak)",
             max_change

@@ -21,7 +21,7 @@ pub use simulate::Drive;
 
 use rockslide_core::case::{Case, Excitation, Model, Scene};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Engine, NotApplicable, Run};
+use rockslide_engine_api::{Engine, NotApplicable, Run, SolverStats};
 
 /// The rapier rigid-body engine.
 pub struct Rapier;
@@ -200,10 +200,10 @@ impl Engine for Rapier {
             variant: variant.to_string(),
             dt,
             settings: described,
-            counters: vec![
-                ("steps".into(), outcome.steps),
-                ("substeps".into(), outcome.steps * settings.substeps as u64),
-            ],
+            stats: SolverStats {
+                substeps_per_step: Some(settings.substeps as u64),
+                ..SolverStats::steps(outcome.steps)
+            },
             findings,
             trace: outcome.trace,
             status: outcome.status,

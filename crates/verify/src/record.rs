@@ -1,5 +1,5 @@
 //! The typed record of a case result, written as `<out>/<case>/result.json` beside the
-//! case's report: every run (outcome, settings, counters, findings, response quantities,
+//! case's report: every run (outcome, settings, solver statistics, findings, response quantities,
 //! whole-history error), the reference, the tolerance checks and the gate's verdict — the
 //! numbers of the report without its prose, for any later command or tool to read back
 //! as structs. Traces are not in it: they are the CSV and MCAP files beside it.
@@ -13,7 +13,7 @@ use crate::run::Outcome;
 use crate::suite::CaseResult;
 use crate::verdict;
 use rockslide_core::error::Error;
-use rockslide_engine_api::Run;
+use rockslide_engine_api::{Run, SolverStats};
 
 /// File name of the record in the case's output folder.
 pub const FILE: &str = "result.json";
@@ -50,8 +50,8 @@ pub struct RunRecord {
     pub outcome: Outcome,
     /// Every setting that shaped the result.
     pub settings: Vec<(String, String)>,
-    /// Deterministic counters (steps, iterations, cut-backs).
-    pub counters: Vec<(String, u64)>,
+    /// What the solver did, counted deterministically.
+    pub stats: SolverStats,
     /// What the engine measured about itself.
     pub findings: Vec<String>,
     /// Wall time, s.
@@ -82,7 +82,7 @@ impl RunRecord {
             dt: run.dt,
             outcome: Outcome::from(&run.status),
             settings: run.settings.clone(),
-            counters: run.counters.clone(),
+            stats: run.stats,
             findings: run.findings.clone(),
             wall_seconds: run.wall_seconds,
             responses: quantities(responses),

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use rockslide_core::case::Case;
 use rockslide_core::error::InputError;
 use rockslide_core::trace::Trace;
-use rockslide_engine_api::{Engine, Run, RunStatus};
+use rockslide_engine_api::{Engine, Run, RunStatus, SolverStats};
 
 /// Run `f`, catching a panic as its message.
 pub fn guard<T>(f: impl FnOnce() -> T) -> Result<T, String> {
@@ -85,7 +85,7 @@ impl Timed {
                 variant: variant.to_string(),
                 dt,
                 settings: Vec::new(),
-                counters: Vec::new(),
+                stats: SolverStats::default(),
                 findings: Vec::new(),
                 trace: Trace::default(),
                 status: RunStatus::Diverged {

@@ -62,7 +62,7 @@ pub struct LoggedRun<'a> {
     pub status: String,
     /// Time and reason when it stopped early.
     pub stop: Option<(f64, String)>,
-    /// Its `run <label>` metadata record (settings, counters, ...).
+    /// Its `run <label>` metadata record (settings, solver statistics, ...).
     pub metadata: BTreeMap<String, String>,
 }
 

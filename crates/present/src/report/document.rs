@@ -450,13 +450,18 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
 
     b.push(Block::Heading(
         2,
-        "Runs: settings, counters, findings".into(),
+        "Runs: settings, solver statistics, findings".into(),
     ));
     for run in &r.runs {
         b.push(Block::Heading(3, run.label()));
         let mut facts = vec![("status".to_string(), run.status.to_string())];
         facts.extend(run.settings.iter().cloned());
-        facts.extend(run.counters.iter().map(|(k, v)| (k.clone(), v.to_string())));
+        facts.extend(
+            run.stats
+                .entries()
+                .into_iter()
+                .map(|(k, v)| (k.to_string(), v.to_string())),
+        );
         facts.extend(
             run.findings
                 .iter()

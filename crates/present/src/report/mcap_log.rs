@@ -70,7 +70,7 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
             for (k, v) in &run.settings {
                 m.insert(format!("setting.{k}"), v.clone());
             }
-            for (k, v) in &run.counters {
+            for (k, v) in run.stats.entries() {
                 m.insert(format!("counter.{k}"), v.to_string());
             }
             for (i, f) in run.findings.iter().enumerate() {

@@ -11,7 +11,7 @@ use std::path::Path;
 use super::crosscode::cross_code;
 use super::plots::figures;
 use rockslide_core::trace::{Trace, q};
-use rockslide_engine_api::{Run, RunStatus};
+use rockslide_engine_api::{Run, RunStatus, SolverStats};
 use rockslide_verify::analysis::{evaluate_tolerances, responses};
 use rockslide_verify::registry::parse_case;
 use rockslide_verify::suite::CaseResult;
@@ -68,7 +68,7 @@ fn run(engine: &'static str, variant: &str, s: f64, liftoff: f64) -> Run {
         variant: variant.into(),
         dt: 1e-3,
         settings: vec![("dt [s]".into(), "0.001".into())],
-        counters: vec![],
+        stats: SolverStats::default(),
         findings: vec![],
         trace,
         status: RunStatus::Completed,

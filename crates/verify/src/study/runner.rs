@@ -205,11 +205,7 @@ pub fn run_point(
             residual_sliding: resp.get("residual_sliding").copied(),
             peak_abs_sliding,
             peak_relative_displacement: resp.get("peak_relative_displacement").copied(),
-            steps: run
-                .counters
-                .iter()
-                .find(|(k, _)| k == "steps")
-                .map_or(run.trace.len().saturating_sub(1) as u64, |c| c.1),
+            steps: run.stats.steps,
             wall_seconds: wall,
         });
     }

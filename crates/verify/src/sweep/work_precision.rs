@@ -385,16 +385,8 @@ fn measure_rungs(
                 return rung;
             };
             let resp = responses(&run.trace);
-            let counter = |name: &str| {
-                run.counters
-                    .iter()
-                    .find(|(k, _)| k == name)
-                    .map(|(_, v)| *v)
-            };
-            rung.steps = counter("steps").unwrap_or(run.trace.len().saturating_sub(1) as u64);
-            rung.substeps = counter("substeps")
-                .filter(|_| rung.steps > 0)
-                .map(|n| n as f64 / rung.steps as f64);
+            rung.steps = run.stats.steps;
+            rung.substeps = run.stats.substeps_per_step.map(|n| n as f64);
             rung.error = if !run.status.completed() {
                 None
             } else if let Ok(r) = reference {
