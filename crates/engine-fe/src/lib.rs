@@ -12,22 +12,28 @@
 //! - `stepper`: static preload and the time loop.
 //! - `modes`: the model's own eigenfrequencies.
 //! - `options`: the `[engines.fe]` options.
-//! - `output`: trace channels and the self-checks reported as findings.
+//! - `simulate`: one run: build the model, integrate, gather settings and findings.
+//! - `recording`: the trace channels and the row recorded at every step.
+//! - `energy`: the energy bookkeeping of rocking runs.
+//! - `findings`: eigenfrequencies, self-checks and sensitivity reported as findings.
 
 #![warn(missing_docs)]
 
 mod element;
+mod energy;
+mod findings;
 mod model;
 mod modes;
 mod options;
-mod output;
+mod recording;
+mod simulate;
 mod stepper;
 
 pub use element::{Contact178, ContactState, Element, Status};
 pub use model::{Model, default_rotational_inertia};
 pub use modes::{Modes, eigenfrequencies};
 pub use options::{FeOptions, Integrator, Kinematics, Newton, OPTION_KEYS};
-pub use output::simulate;
+pub use simulate::simulate;
 
 use rockslide_core::case::{Case, Model as SceneModel, Scene};
 use rockslide_core::error::InputError;

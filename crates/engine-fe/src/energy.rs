@@ -1,0 +1,148 @@
+//! Energy bookkeeping of a rocking run from the engine's own element states.
+
+use nalgebra::Vector2;
+
+use super::model::Model;
+use super::stepper::Snapshot;
+
+/// The energy terms of a run, accumulated from the engine's own element states and
+/// kinematics at every converged step (rocking bodies; `analysis::energy` audits them):
+///
+/// - input work W: ½(Fₙ + Fₙ₊₁)·ΔX_cm of the applied horizontal force, plus the moving
+///   ground's work −½(Tₙ + Tₙ₊₁)·Δxg on each ground element (T the element's force on
+///   its upper end; the ground pushes its lower end with −T);
+/// - kinetic K = ½M(vx² + vz²) + ½I·ω² (absolute velocities in the model's frame);
+/// - strain U = Σ ½T²/Kx + ½N²/Kz over every element, both of a double arrangement;
+/// - friction D = Σ ½(Tₙ + Tₙ₊₁)·Δs over elements closed at both ends of the step (the
+///   origin shift of an open element follows the point and is no slip), counted when
+///   ≥ 0, so D never decreases;
+/// - potential V = M·g·(Z − Z_static): gravity's work, −M·g·ΔZ, booked as potential.
+///
+/// Newmark average acceleration conserves this balance exactly for elements closed over
+/// the step (ΔK = ½(aₙ + aₙ₊₁)·M·Δq; ½(Tₙ + Tₙ₊₁)·Δδx = Δ(½T²/Kx) + ½(Tₙ + Tₙ₊₁)·Δs since
+/// T = Kx(δx − s)), so its residual E0 + W − (K + U + V + D) is the Newton tolerance,
+/// the kink of an element opening or closing inside a step, and the exact kinematics'
+/// curvature. HHT-α's numerical dissipation is not computed separately: it is that
+/// residual (a loss, positive). Rocking bodies have no viscous damping in this engine.
+/// The part of the residual made by the contact law's kinks inside a step is also
+/// recorded on its own (`energy_nonsmooth`): for an element opening or closing, its
+/// trapezoidal work ½(fₙ + fₙ₊₁)·Δδ minus its strain-energy change; for a slip reversal,
+/// the negative trapezoid ½(Tₙ + Tₙ₊₁)·Δs left out of D. It is a numerical error of
+/// stepping across a kink (the penalty contact itself is elastic), kept in the balance
+/// error; E0 + W − (K + U + D + V) − energy_nonsmooth is what is left for the Newton
+/// tolerance, the exact kinematics and HHT-α (measured: round-off, 1e-13 of the energy,
+/// for Newmark with small-rotation kinematics).
+pub(crate) struct EnergyBook {
+    /// Per element at the last recorded step.
+    prev: Vec<ElementEnergy>,
+    /// Applied horizontal force, X_cm and ground displacement at the last step.
+    last: (f64, f64, f64),
+    /// E0 = K + U + V at t = 0.
+    initial: f64,
+    input: f64,
+    friction: f64,
+    /// Non-smooth part of the residual (`energy_nonsmooth`), J.
+    contact: f64,
+    started: bool,
+}
+
+/// What the energy book keeps of one element between steps.
+#[derive(Debug, Clone, Copy, Default)]
+struct ElementEnergy {
+    /// Force on the upper end (T, −N), N.
+    force: Vector2<f64>,
+    /// Relative displacement δ, m.
+    delta: Vector2<f64>,
+    /// Slip, m.
+    slip: f64,
+    /// Strain energy, J.
+    strain: f64,
+    /// Gap open.
+    open: bool,
+}
+
+impl EnergyBook {
+    pub(crate) fn new(links: usize) -> Self {
+        Self {
+            prev: vec![ElementEnergy::default(); links],
+            last: (0.0, 0.0, 0.0),
+            initial: 0.0,
+            input: 0.0,
+            friction: 0.0,
+            contact: 0.0,
+            started: false,
+        }
+    }
+
+    /// Book the converged state `s` (applied force `f`); returns
+    /// (W, K, U, D, V, E0 + W − (K + U + D + V), non-smooth part). Allocation-free.
+    pub(crate) fn record(&mut self, m: &Model, s: &Snapshot, f: f64) -> [f64; 7] {
+        let xg = s.ground.0;
+        let body = &m.body;
+        let kinetic =
+            0.5 * body.mass * (s.v.x * s.v.x + s.v.y * s.v.y) + 0.5 * body.inertia * s.v.z * s.v.z;
+        let potential = m.weight() * (s.q.y - s.q_static.y);
+        let mut strain = 0.0;
+        let mut ground_force = 0.0; // Σ ½(Tₙ + Tₙ₊₁) over ground elements
+        for (link, prev) in m.links.iter().zip(self.prev.iter_mut()) {
+            let e = &link.element;
+            let st = e.state();
+            let (t, n) = (e.tangential(), e.normal());
+            let open = st.status == super::element::Status::Open;
+            let mut u = 0.0;
+            if e.kx.is_finite() && e.kx > 0.0 {
+                u += 0.5 * t * t / e.kx;
+            }
+            if e.kz.is_finite() && e.kz > 0.0 {
+                u += 0.5 * n * n / e.kz;
+            }
+            strain += u;
+            if self.started {
+                if !open && !prev.open {
+                    // Trapezoidal, as Newmark's work: ½(Tₙ + Tₙ₊₁)·Δs. It is ≥ 0 unless
+                    // T reverses inside the step (|Tₙ| > |Tₙ₊₁|, opposite signs); such
+                    // a step is not dissipation and goes to the non-smooth part.
+                    let d = 0.5 * (prev.force.x + t) * (st.slip - prev.slip);
+                    if d >= 0.0 {
+                        self.friction += d;
+                    } else {
+                        self.contact += d;
+                    }
+                } else if open != prev.open {
+                    // Opening or closing inside the step: the element's trapezoidal work
+                    // minus its strain-energy change is what the step's kink lost.
+                    let work = 0.5 * (prev.force + st.force).dot(&(st.delta - prev.delta));
+                    self.contact += work - (u - prev.strain);
+                }
+                if link.lower == super::model::Point::Ground {
+                    ground_force += 0.5 * (prev.force.x + t);
+                }
+            }
+            *prev = ElementEnergy {
+                force: st.force,
+                delta: st.delta,
+                slip: st.slip,
+                strain: u,
+                open,
+            };
+        }
+        if self.started {
+            let (f_n, x_n, xg_n) = self.last;
+            self.input += 0.5 * (f_n + f) * (s.q.x - x_n) - ground_force * (xg - xg_n);
+        } else {
+            self.initial = kinetic + strain + potential;
+            self.started = true;
+        }
+        self.last = (f, s.q.x, xg);
+        let error = self.initial + self.input - (kinetic + strain + self.friction + potential);
+        [
+            self.input,
+            kinetic,
+            strain,
+            self.friction,
+            potential,
+            error,
+            self.contact,
+        ]
+    }
+}

@@ -1,0 +1,156 @@
+//! The time loop's recorder: which channels a scene's trace has, and the row written at
+//! every converged step (relative quantities: mass or base point O against the ground;
+//! energy terms for rocking bodies).
+
+use nalgebra::Vector2;
+
+use super::energy::EnergyBook;
+use super::model::Model;
+use super::options::FeOptions;
+use super::stepper::{Counters, Drive, Snapshot, integrate};
+use rockslide_core::case::{Case, Model as SceneModel};
+use rockslide_core::trace::{Quantity, Trace, q};
+use rockslide_engine_api::{RunStatus, step_count};
+
+/// Self-checks gathered while recording.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct SelfCheck {
+    /// max |node x − ground − element-1 slip| over supports and time, m.
+    pub node_minus_slip: f64,
+}
+
+/// The channels of a scene.
+fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Quantity> {
+    let mut c = vec![&q::FORCE, &q::RESISTANCE, &q::REL_DISP, &q::SLIDE];
+    if rocking {
+        c.push(&q::SLIDE_SPREAD);
+    }
+    c.extend([&q::VEL, &q::ACC]);
+    if moves_ground {
+        c.push(&q::GROUND_DISP);
+    }
+    if rocking {
+        c.extend([
+            &q::CM_X,
+            &q::CM_Z,
+            &q::ROTATION,
+            &q::UPLIFT,
+            &q::CONTACTS,
+            &q::BASE_SHEAR,
+        ]);
+    }
+    c.push(&q::NORMAL);
+    if double {
+        c.push(&q::NODE_DISP);
+    }
+    if rocking {
+        // Energy bookkeeping from the element states (see `EnergyBook`); last, so the
+        // columns before them are those of every other engine.
+        c.extend([
+            &q::ENERGY_INPUT,
+            &q::ENERGY_KINETIC,
+            &q::ENERGY_STRAIN,
+            &q::ENERGY_FRICTION,
+            &q::ENERGY_POTENTIAL,
+            &q::ENERGY_ERROR,
+            &q::ENERGY_NONSMOOTH,
+        ]);
+    }
+    c
+}
+
+/// Run a built model and record its trace.
+pub(crate) fn run_model(
+    case: &Case,
+    mut model: Model,
+    dt: f64,
+    opts: &FeOptions,
+) -> (Trace, RunStatus, Counters, SelfCheck) {
+    let excitation = &case.scene.excitation;
+    let moves_ground = matches!(
+        excitation,
+        rockslide_core::case::Excitation::GroundDisplacement(_)
+    );
+    let rocking = model.body.rotation;
+    let double = model.nodes > 0;
+    let chans = channels(rocking, moves_ground, double);
+    let steps = step_count(case.run.duration, dt);
+    let mut trace = Trace::with_channels(&chans, steps + 1);
+    let drive = Drive::new(excitation, model.body.mass);
+    let o_offset = match &case.scene.model {
+        SceneModel::RockingBody(r) => Vector2::new(0.0, -r.cm_height),
+        _ => Vector2::zeros(),
+    };
+    let mut check = SelfCheck::default();
+    let mut book = EnergyBook::new(model.links.len());
+    let mut row = [0.0_f64; 24];
+    let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s: &Snapshot| {
+        let (xg, vg, ag) = s.ground;
+        let (mut shear, mut normal) = (0.0, 0.0);
+        let (mut slip_sum, mut slip_min, mut slip_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
+        let (mut uplift, mut contacts) = (0.0_f64, 0.0);
+        let mut node_sum = 0.0;
+        for sup in &m.supports {
+            let e = &m.links[sup.ground_link].element;
+            let st = e.state();
+            shear += e.tangential();
+            normal += e.normal();
+            // The sliding is element 1's own accumulated slip (return-mapping state). In
+            // the double arrangement the node shows it too, plus element 1's deflection.
+            let slip = st.slip;
+            if let Some(k) = sup.node {
+                let node = s.un[k].x - xg;
+                node_sum += node;
+                check.node_minus_slip = check.node_minus_slip.max((node - slip).abs());
+            }
+            slip_sum += slip;
+            slip_min = slip_min.min(slip);
+            slip_max = slip_max.max(slip);
+            uplift = uplift.max(st.delta.y);
+            if st.status != super::element::Status::Open && e.normal() > 0.0 {
+                contacts += 1.0;
+            }
+        }
+        let slide = slip_sum / m.supports.len() as f64;
+        let mut i = 0;
+        let mut put = |v: f64| {
+            row[i] = v;
+            i += 1;
+        };
+        put(drive.equivalent_force(s.t));
+        put(shear);
+        if rocking {
+            put(m.displacement_of(&s.q, &o_offset).x - xg);
+        } else {
+            put(s.q.x - xg);
+        }
+        put(slide);
+        if rocking {
+            put(slip_max - slip_min);
+        }
+        put(s.v.x - vg);
+        put(s.a.x - ag);
+        if moves_ground {
+            put(xg);
+        }
+        if rocking {
+            put(s.q.x - xg);
+            put(s.q.y - s.q_static.y);
+            put(s.q.z);
+            put(uplift.max(0.0));
+            put(contacts);
+            put(shear);
+        }
+        put(normal);
+        if double {
+            put(node_sum / m.supports.len() as f64);
+        }
+        if rocking {
+            for v in book.record(m, s, drive.force(s.t)) {
+                put(v);
+            }
+        }
+        trace.push(s.t, &row[..i]);
+    });
+    (trace, status, counters, check)
+}
