@@ -21,10 +21,11 @@ fn bench(c: &mut Criterion) {
         ("rpepo-single", "cases/rpepo-mass-accel.toml", "single"),
         ("rpepo-double", "cases/rpepo-mass-accel.toml", "double"),
     ] {
-        let text = std::fs::read_to_string(path).expect("case file") + "\nsensitivity = false\n";
+        let text = std::fs::read_to_string(path).expect("case file");
         let case = parse_case(Path::new(path), &text).expect("valid case");
-        let (opts, errors) = FeOptions::parse(&case);
+        let (mut opts, errors) = FeOptions::parse(&case);
         assert!(errors.is_empty());
+        opts.sensitivity = false;
         let dt = 1e-3;
         let steps = step_count(case.run.duration, dt) as u64;
         group.throughput(Throughput::Elements(steps));
