@@ -224,10 +224,11 @@ pub fn run_point(
             let tail = case.run.duration - dt * (samples.len() - 1) as f64;
             let sign = if is_ground { 1.0 } else { -1.0 };
             let acc: Vec<f64> = samples.iter().map(|a| sign * a).collect();
-            let r = rigid_block(*dt, &acc, ky, Sliding::TwoWay, tail.max(0.0));
+            let r = rigid_block(*dt, &acc, ky, Sliding::TwoWay, tail.max(0.0))
+                .map_err(|why| Error::Other(format!("rigid block: {why}")))?;
             let u = r.residual();
             // Convert SLAMMER's u (ground relative to block) to mass minus ground: −u.
-            let peak = r.peak();
+            let peak = r.peak_abs;
             runs.push(RunSummary {
                 engine: "newmark-rigid".into(),
                 variant: "two-way".into(),
