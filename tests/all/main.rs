@@ -23,6 +23,7 @@ mod records_input;
 mod records_newmark;
 mod records_study;
 mod references;
+mod references_records;
 mod references_rigid;
 mod report_outputs;
 mod report_sections;
