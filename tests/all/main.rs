@@ -19,6 +19,7 @@ mod rapier_options;
 mod rapier_pepo;
 mod rapier_rigid_block;
 mod rapier_rpepo;
+mod records_formats;
 mod records_input;
 mod records_newmark;
 mod records_study;

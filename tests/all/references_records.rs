@@ -448,3 +448,13 @@ fn inputs_that_would_hang_give_an_error() {
     let exact = EpoRecord::new(osc, dt, acc, c.run.duration).unwrap();
     assert!(exact.method().contains("piecewise linear between samples"));
 }
+
+#[test]
+fn sine_pulse_reference_bounds_its_work() {
+    // kx = 1e300 (ω ≈ 3e146 rad/s) and mass = 1e-300 used to scan forever.
+    for (from, to) in [("kx = ", "kx = 1e300 #"), ("mass = ", "mass = 1e-300 #")] {
+        let c = crate::common::case_with("pepo-mass-accel", from, to);
+        let why = rockslide::reference::for_case(&c).err().expect("refused");
+        assert!(why.contains("too fast"), "{why}");
+    }
+}

@@ -75,6 +75,8 @@ pub struct EpoRecord {
     pub peak_abs_u: f64,
     /// Slip at the onset of the current slip, m.
     slip_up0: f64,
+    /// End of the run, s.
+    end: f64,
 }
 
 type State = (f64, f64, f64, f64);
@@ -130,6 +132,7 @@ impl EpoRecord {
             slips: Vec::new(),
             peak_abs_u: 0.0,
             slip_up0: 0.0,
+            end: duration,
         };
         sol.solve(duration)?;
         Ok(sol)
@@ -405,6 +408,18 @@ impl EpoRecord {
         seg.a0 + seg.beta * (t - seg.t0)
     }
 
+    /// Largest |slip| over the run, m (slip changes only while slipping, monotonically, so
+    /// its extremes are at the segment starts and the end).
+    pub fn peak_abs_slip(&self) -> f64 {
+        let end = self
+            .segments
+            .last()
+            .map_or(0.0, |s| self.state_in(s, self.end).3.abs());
+        self.segments
+            .iter()
+            .fold(end, |m, s| m.max(s.up0.abs()))
+    }
+
     /// Sum of |slip| over the slips, m.
     pub fn total_slid(&self) -> f64 {
         self.slips.iter().map(|s| s.distance.abs()).sum()
@@ -417,7 +432,7 @@ fn check(omega: f64, ru: f64, dt: f64, samples: &[f64], duration: f64) -> Result
             "natural frequency ω = √(Kx/M) = {omega} rad/s is not a positive finite number"
         ));
     }
-    if !(ru >= 0.0) {
+    if ru.is_nan() || ru < 0.0 {
         return Err(format!("friction limit Ru = μ·M·g = {ru} N is not ≥ 0"));
     }
     if !(dt.is_finite() && dt > 0.0) {
