@@ -51,6 +51,9 @@ pub struct EpoExact {
     pub segments: Vec<Segment>,
 }
 
+/// Most scan steps the event search may take over a run.
+const MAX_SCAN_STEPS: f64 = 5e7;
+
 /// State at one instant: (u, v, R, up).
 type State = (f64, f64, f64, f64);
 
@@ -77,6 +80,15 @@ impl EpoExact {
             forcing,
             segments: Vec::new(),
         };
+        // The events are bracketed on a scan of 64 points per period: bound that work
+        // (a stiff contact or a fast pulse would otherwise run for minutes).
+        let scans = duration / sol.scan_step();
+        if scans.is_nan() || scans > MAX_SCAN_STEPS {
+            return Err(format!(
+                "the exact reference would scan {scans:.3e} steps (ω = {omega:.3e} rad/s, θ = {:.3e} rad/s over {duration} s): more than {MAX_SCAN_STEPS:e}; the oscillator or the pulse is too fast for it",
+                sol.forcing.theta
+            ));
+        }
         sol.solve(duration)?;
         Ok(sol)
     }

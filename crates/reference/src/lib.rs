@@ -4,8 +4,10 @@
 
 #![warn(missing_docs)]
 
+pub mod block_record;
 mod duhamel;
 mod epo_exact;
+mod epo_record;
 mod housner;
 mod newmark_block;
 pub mod newmark_record;
@@ -13,6 +15,7 @@ mod root;
 
 pub use duhamel::Duhamel;
 pub use epo_exact::{EpoExact, Phase, Segment};
+pub use epo_record::{EpoRecord, Slip};
 pub use housner::HousnerRocking;
 pub use newmark_block::{BlockSegment, NewmarkBlock};
 
@@ -39,6 +42,9 @@ pub trait ExactSolution: Send + Sync {
 pub fn for_case(case: &Case) -> Result<Box<dyn ExactSolution>, String> {
     let scene = &case.scene;
     match &scene.model {
+        Model::Oscillator(osc) if is_record(&scene.excitation) => Ok(Box::new(
+            EpoRecord::for_excitation(osc, &scene.excitation, case.run.duration)?,
+        )),
         Model::Oscillator(osc) => {
             let forcing = SineForcing::of(&scene.excitation, osc.mass)?;
             if osc.contact.mu.is_infinite() {
@@ -63,6 +69,11 @@ pub fn for_case(case: &Case) -> Result<Box<dyn ExactSolution>, String> {
             }
         }
     }
+}
+
+/// Whether an excitation is a sampled record.
+fn is_record(excitation: &Excitation) -> bool {
+    matches!(excitation.signal(), Some(Signal::Record { .. }))
 }
 
 /// Sample a solution at the given times (e.g. an engine's output times).

@@ -22,164 +22,20 @@
 
 use rockslide_core::case::record::STANDARD_GRAVITY;
 
-/// Whether the block may slide both ways (level frictional base) or only one way (SLAMMER's
-/// downslope rigid block, yield in the other direction taken as infinite).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Sliding {
-    /// Slides only with u increasing (SLAMMER's rigid-block convention).
-    OneWay,
-    /// Slides either way with the same ky (a block on a level frictional base).
-    TwoWay,
-}
-
-/// The history of one rigid-block run, at the record's samples.
-#[derive(Debug, Clone, PartialEq)]
-pub struct NewmarkRun {
-    /// Sample interval, s.
-    pub dt: f64,
-    /// Sliding velocity relative to the ground, m/s (SLAMMER sign convention).
-    pub vel: Vec<f64>,
-    /// Accumulated sliding displacement u, m (SLAMMER sign convention).
-    pub disp: Vec<f64>,
-    /// Number of separate sliding episodes (deterministic counter).
-    pub episodes: usize,
-}
-
-impl NewmarkRun {
-    /// Final displacement, m.
-    pub fn residual(&self) -> f64 {
-        self.disp.last().copied().unwrap_or(0.0)
-    }
-    /// Largest |displacement| over the run, m.
-    pub fn peak(&self) -> f64 {
-        self.disp.iter().fold(0.0_f64, |m, d| m.max(d.abs()))
-    }
-}
+pub use crate::block_record::{BlockRecord as NewmarkRun, Slide, Sliding};
 
 /// Run the rigid block under `acc` (m/s², samples every `dt` s, linear in between, then
 /// held at zero for `tail` extra seconds so a block still sliding at the record's end comes
-/// to rest), yield acceleration `ky` (m/s², ≥ 0).
-pub fn rigid_block(dt: f64, acc: &[f64], ky: f64, sliding: Sliding, tail: f64) -> NewmarkRun {
-    let extra = (tail / dt).ceil().max(0.0) as usize;
-    let n = acc.len() + extra;
-    let a_at = |i: usize| acc.get(i).copied().unwrap_or(0.0);
-    let mut vel = Vec::with_capacity(n);
-    let mut disp = Vec::with_capacity(n);
-    let (mut v, mut u) = (0.0_f64, 0.0_f64);
-    let mut sigma = 0.0_f64; // direction of the current slide, 0 when stuck
-    let mut episodes = 0;
-    if n > 0 {
-        vel.push(0.0);
-        disp.push(0.0);
-    }
-    for i in 1..n {
-        let (a0, a1) = (a_at(i - 1), a_at(i));
-        let mut s = 0.0; // time already used within this step
-        // At most a few events per step: onset, stop (and a renewed onset after a stop).
-        for _ in 0..4 {
-            if s >= dt {
-                break;
-            }
-            let (b0, b1) = (lerp(a0, a1, s / dt), a1);
-            let h = dt - s;
-            if sigma == 0.0 {
-                // Stuck: find where the ground acceleration first exceeds the yield level.
-                let Some((dir, f)) = onset(b0, b1, ky, sliding) else {
-                    break;
-                };
-                sigma = dir;
-                episodes += 1;
-                s += f * h;
-                continue;
-            }
-            // Sliding in direction σ: r(τ) = a(τ) − σ·ky, linear over the rest of the step.
-            let (r0, r1) = (b0 - sigma * ky, b1 - sigma * ky);
-            let dr = (r1 - r0) / h;
-            // v(τ) = v + r0·τ + dr·τ²/2; stop at the first τ in (0, h] where σ·v(τ) ≤ 0.
-            match first_zero(v, r0, dr, h, sigma) {
-                Some(tau) => {
-                    u += v * tau + r0 * tau * tau / 2.0 + dr * tau * tau * tau / 6.0;
-                    v = 0.0;
-                    sigma = 0.0;
-                    s += tau.max(1e-12 * dt);
-                }
-                None => {
-                    u += v * h + r0 * h * h / 2.0 + dr * h * h * h / 6.0;
-                    v += r0 * h + dr * h * h / 2.0;
-                    s = dt;
-                }
-            }
-        }
-        vel.push(v);
-        disp.push(u);
-    }
-    NewmarkRun {
-        dt,
-        vel,
-        disp,
-        episodes,
-    }
-}
-
-fn lerp(a: f64, b: f64, f: f64) -> f64 {
-    a + (b - a) * f
-}
-
-/// Direction and fraction of the interval at which a linear a(τ) from `b0` to `b1` first
-/// exceeds the yield level (strictly, and heading further out), if it does.
-fn onset(b0: f64, b1: f64, ky: f64, sliding: Sliding) -> Option<(f64, f64)> {
-    let mut best: Option<(f64, f64)> = None;
-    let dirs: &[f64] = match sliding {
-        Sliding::OneWay => &[1.0],
-        Sliding::TwoWay => &[1.0, -1.0],
-    };
-    for &d in dirs {
-        let (c0, c1) = (d * b0 - ky, d * b1 - ky); // > 0: beyond yield in direction d
-        let f = if c0 > 0.0 {
-            0.0 // beyond yield at the start of the interval: slips at once
-        } else if c1 > 0.0 {
-            c0 / (c0 - c1)
-        } else {
-            continue;
-        };
-        if best.is_none_or(|(_, g)| f < g) {
-            best = Some((d, f));
-        }
-    }
-    best
-}
-
-/// First τ in (0, h] at which σ·(v + r0·τ + dr·τ²/2) reaches 0 from above.
-fn first_zero(v: f64, r0: f64, dr: f64, h: f64, sigma: f64) -> Option<f64> {
-    let end = sigma * (v + r0 * h + dr * h * h / 2.0);
-    // Roots of (dr/2)τ² + r0τ + v = 0, smallest positive one within (0, h].
-    let mut roots = [f64::NAN; 2];
-    if dr.abs() < 1e-300 || (dr * h * h).abs() < 1e-12 * (r0 * h).abs() {
-        if r0 != 0.0 {
-            roots[0] = -v / r0;
-        }
-    } else {
-        let disc = r0 * r0 - 2.0 * dr * v;
-        if disc >= 0.0 {
-            // Stable quadratic roots (Numerical Recipes §5.6): q / (dr/2) and v / q.
-            let sgn = if r0 >= 0.0 { 1.0 } else { -1.0 };
-            let q = -0.5 * (r0 + sgn * disc.sqrt());
-            if q != 0.0 {
-                roots[0] = q / (dr / 2.0);
-                roots[1] = v / q;
-            }
-        }
-    }
-    let mut first: Option<f64> = None;
-    for t in roots {
-        if t.is_finite() && t > 0.0 && t <= h {
-            first = Some(first.map_or(t, |f: f64| f.min(t)));
-        }
-    }
-    if first.is_none() && end <= 0.0 {
-        return Some(h); // rounding: it ends at or past zero within the step
-    }
-    first
+/// to rest), yield acceleration `ky` (m/s², ≥ 0): the exact solution for that
+/// piecewise-linear input ([`crate::block_record`]), or why it cannot be computed.
+pub fn rigid_block(
+    dt: f64,
+    acc: &[f64],
+    ky: f64,
+    sliding: Sliding,
+    tail: f64,
+) -> Result<NewmarkRun, String> {
+    NewmarkRun::solve(dt, acc, ky, sliding, tail)
 }
 
 /// A record's SLAMMER-style rigid-block summary: both polarities, m and cm.
@@ -193,62 +49,77 @@ pub struct NewmarkSummary {
     pub inverse: f64,
     /// Sliding episodes (normal, inverse).
     pub episodes: (usize, usize),
+    /// Total distance slid (normal, inverse), m.
+    pub total_slid: (f64, f64),
+    /// First onset and last stop (normal, inverse), s; `None` when it never slides.
+    pub span: (Option<(f64, f64)>, Option<(f64, f64)>),
+}
+
+/// First onset and last stop of a run, s.
+fn slide_span(run: &NewmarkRun) -> Option<(f64, f64)> {
+    Some((run.slides.first()?.start, run.slides.last()?.end))
 }
 
 impl NewmarkSummary {
     /// Run a record both ways.
-    pub fn of(dt: f64, acc: &[f64], ky: f64, sliding: Sliding, tail: f64) -> Self {
+    pub fn of(dt: f64, acc: &[f64], ky: f64, sliding: Sliding, tail: f64) -> Result<Self, String> {
         let inverted: Vec<f64> = acc.iter().map(|a| -a).collect();
-        let n = rigid_block(dt, acc, ky, sliding, tail);
-        let i = rigid_block(dt, &inverted, ky, sliding, tail);
-        Self {
+        let n = rigid_block(dt, acc, ky, sliding, tail)?;
+        let i = rigid_block(dt, &inverted, ky, sliding, tail)?;
+        Ok(Self {
             ky,
             normal: n.residual(),
             inverse: i.residual(),
-            episodes: (n.episodes, i.episodes),
-        }
+            episodes: (n.episodes(), i.episodes()),
+            total_slid: (n.total_slid(), i.total_slid()),
+            span: (slide_span(&n), slide_span(&i)),
+        })
     }
     /// Mean of the two polarities' |displacement|, m (SLAMMER's "average").
     pub fn mean(&self) -> f64 {
         (self.normal.abs() + self.inverse.abs()) / 2.0
     }
-    /// Table in SLAMMER's units: ky in g, displacements in cm (and m).
+    /// Table in SLAMMER's units: ky in g, displacements in cm (and m), with the slides'
+    /// count, total distance, first onset and last stop.
     pub fn table(&self, label: &str) -> String {
         let cm = |m: f64| m * 100.0;
-        format!(
-            "| record | ky [g] | polarity | displacement [cm] | displacement [m] |\n|---|---:|---|---:|---:|\n\
-             | {label} | {ky:.4} | normal | {n:.3} | {nm:.5} |\n\
-             | {label} | {ky:.4} | inverse | {i:.3} | {im:.5} |\n\
-             | {label} | {ky:.4} | mean | {a:.3} | {am:.5} |\n",
-            ky = self.ky / STANDARD_GRAVITY,
-            n = cm(self.normal),
-            nm = self.normal,
-            i = cm(self.inverse),
-            im = self.inverse,
-            a = cm(self.mean()),
-            am = self.mean(),
-        )
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn below_yield_nothing_slides() {
-        let acc: Vec<f64> = (0..100).map(|i| 0.9 * (i as f64 * 0.3).sin()).collect();
-        let r = rigid_block(0.01, &acc, 1.0, Sliding::TwoWay, 1.0);
-        assert_eq!(r.residual(), 0.0);
-        assert_eq!(r.episodes, 0);
-    }
-
-    #[test]
-    fn constant_acceleration_from_rest_is_exact() {
-        // a = 3, ky = 1 throughout 1 s: v = 2t, u = t² (exact for linear input).
-        let acc = vec![3.0; 101];
-        let r = rigid_block(0.01, &acc, 1.0, Sliding::OneWay, 0.0);
-        assert!((r.disp[100] - 1.0).abs() < 1e-12, "{}", r.disp[100]);
-        assert!((r.vel[100] - 2.0).abs() < 1e-12);
+        let ky = self.ky / STANDARD_GRAVITY;
+        let span = |s: Option<(f64, f64)>| {
+            s.map_or("– | –".to_string(), |(a, b)| format!("{a:.4} | {b:.4}"))
+        };
+        let mut t = String::from(
+            "| record | ky [g] | polarity | displacement [cm] | displacement [m] | slip episodes | total slid [cm] | first onset [s] | last stop [s] |\n\
+             |---|---:|---|---:|---:|---:|---:|---:|---:|\n",
+        );
+        let rows = [
+            (
+                "normal",
+                self.normal,
+                self.episodes.0,
+                self.total_slid.0,
+                self.span.0,
+            ),
+            (
+                "inverse",
+                self.inverse,
+                self.episodes.1,
+                self.total_slid.1,
+                self.span.1,
+            ),
+        ];
+        for (pol, d, n, total, s) in rows {
+            t.push_str(&format!(
+                "| {label} | {ky:.4} | {pol} | {:.3} | {d:.5} | {n} | {:.3} | {} |\n",
+                cm(d),
+                cm(total),
+                span(s)
+            ));
+        }
+        t.push_str(&format!(
+            "| {label} | {ky:.4} | mean | {:.3} | {:.5} | | | | |\n",
+            cm(self.mean()),
+            self.mean()
+        ));
+        t
     }
 }

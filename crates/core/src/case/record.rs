@@ -15,10 +15,24 @@
 //! - A CSV whose time column is not uniform (to 1e-3 of a step) is resampled by linear
 //!   interpolation to a uniform step equal to its smallest interval, and the record's
 //!   `note` says so.
+//! - Read as engineers receive them: a UTF-8 byte-order mark is skipped, CRLF line ends,
+//!   tab, comma or semicolon separators, trailing separators and blank fields, Fortran `D`
+//!   exponents (`0.1234D-02`) are accepted. A file that is not UTF-8 is refused at the line
+//!   and column of its first invalid byte.
+//! - Resources are bounded before any work: only regular files of at most
+//!   [`MAX_RECORD_BYTES`] are read, an AT2 header's NPTS is checked against what the file
+//!   can hold before anything is allocated, and a sample interval below [`MIN_DT`] is
+//!   refused.
 
 use std::path::Path;
 
 use crate::error::{InputError, InputErrors};
+
+/// Largest record file read, bytes (256 MiB: a 10⁷-sample record takes about 150 MB).
+pub const MAX_RECORD_BYTES: u64 = 256 * 1024 * 1024;
+
+/// Smallest sample interval accepted, s (1 µs: no accelerogram is sampled faster).
+pub const MIN_DT: f64 = 1e-6;
 
 /// Standard gravity, m/s² (the unit "g" of every record).
 pub const STANDARD_GRAVITY: f64 = 9.80665;
@@ -119,8 +133,7 @@ impl Record {
 /// as two-column CSV. `unit` is required for CSV (the file does not say) and, for AT2,
 /// must agree with the header's units line when given.
 pub fn read_record(path: &Path, unit: Option<AccelUnit>) -> Result<Record, InputErrors> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(path, "", format!("cannot read the record: {e}")))?;
+    let text = read_text(path)?;
     let is_at2 = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("at2"));
@@ -139,6 +152,64 @@ pub fn read_record(path: &Path, unit: Option<AccelUnit>) -> Result<Record, Input
     }
 }
 
+/// The text of a record file: a regular file of at most [`MAX_RECORD_BYTES`], UTF-8, its
+/// byte-order mark removed.
+fn read_text(path: &Path) -> Result<String, InputError> {
+    use std::io::Read;
+    let cannot =
+        |e: std::io::Error| InputError::new(path, "", format!("cannot read the record: {e}"));
+    let meta = std::fs::metadata(path).map_err(cannot)?;
+    if !meta.is_file() {
+        return Err(InputError::new(
+            path,
+            "",
+            "the record is not a regular file (a device, pipe or folder): give a file of samples",
+        ));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .map_err(cannot)?
+        .take(MAX_RECORD_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(cannot)?;
+    if bytes.len() as u64 > MAX_RECORD_BYTES {
+        return Err(InputError::new(
+            path,
+            "",
+            format!("the record is larger than {MAX_RECORD_BYTES} bytes: not read"),
+        ));
+    }
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
+        let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+        let column = String::from_utf8_lossy(&good[start..]).chars().count() + 1;
+        at(
+            path,
+            line,
+            Some(column),
+            "the record is not UTF-8 text (an invalid byte here): save it as UTF-8 or ASCII",
+        )
+    })?;
+    Ok(strip_bom(&text).to_string())
+}
+
+/// The text without a leading UTF-8 byte-order mark.
+fn strip_bom(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
+}
+
+/// A number as records write them: Rust's float syntax, or Fortran's `D` exponent.
+fn parse_float(token: &str) -> Option<f64> {
+    token.parse::<f64>().ok().or_else(|| {
+        if token.contains(['D', 'd']) && !token.contains(['E', 'e']) {
+            token.replace(['D', 'd'], "E").parse::<f64>().ok()
+        } else {
+            None
+        }
+    })
+}
+
 /// A record error at a 1-based line (and column, when known).
 fn at(path: &Path, line: usize, column: Option<usize>, reason: impl Into<String>) -> InputError {
     let mut e = InputError::new(path, "", reason);
@@ -149,7 +220,7 @@ fn at(path: &Path, line: usize, column: Option<usize>, reason: impl Into<String>
 
 /// Parse one numeric token, rejecting text and non-finite values (NaN, inf).
 fn number(path: &Path, line: usize, column: usize, token: &str) -> Result<f64, InputError> {
-    match token.parse::<f64>() {
+    match parse_float(token).ok_or(()) {
         Ok(x) if x.is_finite() => Ok(x),
         Ok(x) => Err(at(
             path,
@@ -202,7 +273,7 @@ fn npts_dt(line: &str) -> Option<(f64, f64)> {
             words.push(w.to_string());
         }
     }
-    let num = |w: &str| w.parse::<f64>().ok().filter(|x| x.is_finite());
+    let num = |w: &str| parse_float(w).filter(|x| x.is_finite());
     let after = |key: &str| {
         words
             .iter()
@@ -226,6 +297,7 @@ fn npts_dt(line: &str) -> Option<(f64, f64)> {
 /// Parse the text of a PEER NGA `.AT2` file: four header lines (title; event, date,
 /// station, component; units; NPTS and DT), then the values row by row.
 pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Record, InputError> {
+    let text = strip_bom(text);
     let lines: Vec<&str> = text.lines().collect();
     if text.trim().is_empty() {
         return Err(at(
@@ -313,6 +385,28 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
             format!("DT is {dt} s, but must be positive"),
         ));
     }
+    if dt < MIN_DT {
+        return Err(at(
+            path,
+            4,
+            None,
+            format!("DT is {dt:e} s, below the smallest sample interval accepted ({MIN_DT:e} s)"),
+        ));
+    }
+    // Each value takes at least two bytes (a digit and a separator): a larger NPTS cannot
+    // be right, and must not be allocated.
+    let room = text.len().div_ceil(2) as f64;
+    if npts > room {
+        return Err(at(
+            path,
+            4,
+            None,
+            format!(
+                "NPTS = {npts}, but the file ({} bytes) cannot hold more than {room} values",
+                text.len()
+            ),
+        ));
+    }
     let npts = npts as usize;
     let mut samples = Vec::with_capacity(npts);
     let mut last_line = 4;
@@ -367,6 +461,7 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
 /// lines are skipped, one header row of column names is allowed before the data, the
 /// separator is a comma, semicolon or whitespace.
 pub fn parse_csv(path: &Path, text: &str, unit: AccelUnit) -> Result<Record, InputError> {
+    let text = strip_bom(text);
     let mut description = String::new();
     let mut times: Vec<f64> = Vec::new();
     let mut samples: Vec<f64> = Vec::new();
@@ -385,7 +480,7 @@ pub fn parse_csv(path: &Path, text: &str, unit: AccelUnit) -> Result<Record, Inp
             continue;
         }
         let toks: Vec<(usize, &str)> = tokens(line).collect();
-        let numeric = |t: &str| t.parse::<f64>().is_ok();
+        let numeric = |t: &str| parse_float(t).is_some();
         if times.is_empty() && !seen_header && toks.iter().all(|(_, t)| !numeric(t)) {
             seen_header = true; // column names
             continue;
@@ -448,6 +543,16 @@ pub fn parse_csv(path: &Path, text: &str, unit: AccelUnit) -> Result<Record, Inp
         .iter()
         .enumerate()
         .all(|(i, &t)| (t - t0 - i as f64 * dt_mean).abs() <= 1e-3 * dt_mean);
+    if dt_mean < MIN_DT {
+        return Err(at(
+            path,
+            last_line,
+            None,
+            format!(
+                "the time step is {dt_mean:e} s, below the smallest sample interval accepted ({MIN_DT:e} s)"
+            ),
+        ));
+    }
     let (dt, samples) = if uniform {
         (dt_mean, samples)
     } else {

@@ -20,7 +20,7 @@ use rockslide_verify::study::{Study, short_name};
 use crate::report::files::{csv_bytes, write_document};
 
 /// Columns of `summary.csv`.
-pub const CSV_HEADER: [&str; 16] = [
+pub const CSV_HEADER: [&str; 20] = [
     "point",
     "record",
     "pga_m_s2",
@@ -36,6 +36,10 @@ pub const CSV_HEADER: [&str; 16] = [
     "residual_sliding_cm",
     "peak_abs_sliding_m",
     "peak_relative_displacement_m",
+    "slip_episodes",
+    "total_slid_m",
+    "slip_start_s",
+    "slip_end_s",
     "steps",
 ];
 
@@ -59,6 +63,11 @@ pub fn summary_csv(c: &Study) -> Result<Vec<u8>, Error> {
             opt(run.residual_sliding.map(|m| m * 100.0)),
             opt(run.peak_abs_sliding),
             opt(run.peak_relative_displacement),
+            run.slip_episodes
+                .map_or_else(String::new, |n| n.to_string()),
+            opt(run.total_slid),
+            opt(run.slip_start),
+            opt(run.slip_end),
             run.steps.to_string(),
         ]
     });

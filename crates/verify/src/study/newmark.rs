@@ -95,10 +95,15 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
         "polarity",
         "displacement_cm",
         "displacement_m",
+        "slip_episodes",
+        "total_slid_m",
+        "slip_start_s",
+        "slip_end_s",
     ])
     .map_err(csv_error)?;
     for (i, &ky) in a.ky.iter().enumerate() {
-        let s = NewmarkSummary::of(rec.dt, &rec.samples, ky * STANDARD_GRAVITY, sliding, 0.0);
+        let s = NewmarkSummary::of(rec.dt, &rec.samples, ky * STANDARD_GRAVITY, sliding, 0.0)
+            .map_err(|why| Error::Other(format!("{name}: rigid block at ky {ky} g: {why}")))?;
         let table = s.table(&name);
         if i == 0 {
             md.push_str(&table);
@@ -106,10 +111,23 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
             // Same columns: drop the header rows.
             md.extend(table.lines().skip(2).map(|l| format!("{l}\n")));
         }
-        for (pol, d) in [
-            ("normal", s.normal),
-            ("inverse", s.inverse),
-            ("mean", s.mean()),
+        let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+        for (pol, d, episodes, total, span) in [
+            (
+                "normal",
+                s.normal,
+                Some(s.episodes.0),
+                Some(s.total_slid.0),
+                s.span.0,
+            ),
+            (
+                "inverse",
+                s.inverse,
+                Some(s.episodes.1),
+                Some(s.total_slid.1),
+                s.span.1,
+            ),
+            ("mean", s.mean(), None, None, None),
         ] {
             csv.write_record([
                 name.clone(),
@@ -117,6 +135,10 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
                 pol.to_string(),
                 (d * 100.0).to_string(),
                 d.to_string(),
+                episodes.map_or(String::new(), |n| n.to_string()),
+                opt(total),
+                opt(span.map(|s| s.0)),
+                opt(span.map(|s| s.1)),
             ])
             .map_err(csv_error)?;
         }

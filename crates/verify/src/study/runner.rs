@@ -19,6 +19,7 @@ use crate::suite::plan;
 use rockslide_core::case::{Excitation, Model, Signal};
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::io::write_atomically;
+use rockslide_reference::EpoRecord;
 use rockslide_reference::newmark_record::{Sliding, rigid_block};
 
 /// One engine run of a point, reduced to the numbers a study tabulates (SI units).
@@ -39,6 +40,18 @@ pub struct RunSummary {
     pub peak_abs_sliding: Option<f64>,
     /// Largest |relative displacement|, m.
     pub peak_relative_displacement: Option<f64>,
+    /// Number of slip episodes (the exact references count them; engines leave it empty).
+    #[serde(default)]
+    pub slip_episodes: Option<u64>,
+    /// Total distance slid, m (sum of |slip| over the episodes; exact references only).
+    #[serde(default)]
+    pub total_slid: Option<f64>,
+    /// First slip onset, s.
+    #[serde(default)]
+    pub slip_start: Option<f64>,
+    /// Last slip stop, s.
+    #[serde(default)]
+    pub slip_end: Option<f64>,
     /// Steps taken (deterministic counter).
     pub steps: u64,
     /// Wall time of the run, s (informative only: never in summaries).
@@ -159,6 +172,59 @@ pub fn run_study(grid: &Grid, opts: &StudyOptions) -> Result<StudyOutcome, Error
     })
 }
 
+/// The study's anchor: the PEPO's exact solution under the point's record (ground
+/// acceleration piecewise linear between samples), when the model is an oscillator.
+/// A point the exact reference cannot solve gets a status saying why.
+fn exact_summary(case: &rockslide_core::case::Case) -> Option<RunSummary> {
+    let Model::Oscillator(osc) = &case.scene.model else {
+        return None;
+    };
+    let start = Instant::now();
+    let dt = match case.scene.excitation.signal() {
+        Some(Signal::Record { dt, .. }) => *dt,
+        _ => return None,
+    };
+    let exact = match EpoRecord::for_excitation(osc, &case.scene.excitation, case.run.duration) {
+        Ok(exact) => exact,
+        Err(why) => {
+            return Some(RunSummary {
+                engine: EXACT.into(),
+                variant: "epo-record".into(),
+                dt,
+                status: format!("no exact reference: {why}"),
+                residual_sliding: None,
+                peak_abs_sliding: None,
+                peak_relative_displacement: None,
+                slip_episodes: None,
+                total_slid: None,
+                slip_start: None,
+                slip_end: None,
+                steps: 0,
+                wall_seconds: start.elapsed().as_secs_f64(),
+            });
+        }
+    };
+    let (_, _, _, residual) = exact.state(case.run.duration);
+    Some(RunSummary {
+        engine: EXACT.into(),
+        variant: "epo-record".into(),
+        dt,
+        status: "completed".into(),
+        residual_sliding: Some(residual + 0.0),
+        peak_abs_sliding: Some(exact.peak_abs_slip()),
+        peak_relative_displacement: Some(exact.peak_abs_u),
+        slip_episodes: Some(exact.slips.len() as u64),
+        total_slid: Some(exact.total_slid()),
+        slip_start: exact.slips.first().map(|s| s.start),
+        slip_end: exact.slips.last().map(|s| s.end),
+        steps: 0,
+        wall_seconds: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// Engine id of the exact reference in a study.
+pub const EXACT: &str = "exact";
+
 /// Run every engine the base case asks for on one point, and the rigid block.
 pub fn run_point(
     grid: &Grid,
@@ -187,6 +253,10 @@ pub fn run_point(
                 residual_sliding: None,
                 peak_abs_sliding: None,
                 peak_relative_displacement: None,
+                slip_episodes: None,
+                total_slid: None,
+                slip_start: None,
+                slip_end: None,
                 steps: 0,
                 wall_seconds: wall,
             });
@@ -205,9 +275,16 @@ pub fn run_point(
             residual_sliding: resp.get("residual_sliding").copied(),
             peak_abs_sliding,
             peak_relative_displacement: resp.get("peak_relative_displacement").copied(),
+            slip_episodes: None,
+            total_slid: None,
+            slip_start: resp.get("slip_start").copied(),
+            slip_end: resp.get("slip_end").copied(),
             steps: run.stats.steps,
             wall_seconds: wall,
         });
+    }
+    if let Some(exact) = exact_summary(&case) {
+        runs.push(exact);
     }
     let excitation_signal = case.scene.excitation.signal();
     if grid.newmark {
@@ -220,10 +297,11 @@ pub fn run_point(
             let tail = case.run.duration - dt * (samples.len() - 1) as f64;
             let sign = if is_ground { 1.0 } else { -1.0 };
             let acc: Vec<f64> = samples.iter().map(|a| sign * a).collect();
-            let r = rigid_block(*dt, &acc, ky, Sliding::TwoWay, tail.max(0.0));
+            let r = rigid_block(*dt, &acc, ky, Sliding::TwoWay, tail.max(0.0))
+                .map_err(|why| Error::Other(format!("rigid block: {why}")))?;
             let u = r.residual();
             // Convert SLAMMER's u (ground relative to block) to mass minus ground: −u.
-            let peak = r.peak();
+            let peak = r.peak_abs;
             runs.push(RunSummary {
                 engine: "newmark-rigid".into(),
                 variant: "two-way".into(),
@@ -232,6 +310,10 @@ pub fn run_point(
                 residual_sliding: Some(-u + 0.0), // + 0.0: no "-0" in tables
                 peak_abs_sliding: Some(peak),
                 peak_relative_displacement: None,
+                slip_episodes: Some(r.episodes() as u64),
+                total_slid: Some(r.total_slid()),
+                slip_start: r.slides.first().map(|s| s.start),
+                slip_end: r.slides.last().map(|s| s.end),
                 steps: r.disp.len().saturating_sub(1) as u64,
                 wall_seconds: start.elapsed().as_secs_f64(),
             });
