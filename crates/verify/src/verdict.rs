@@ -5,6 +5,7 @@
 use std::fmt;
 
 use crate::analysis::{Check, Verdict};
+use crate::invariants::InvariantCheck;
 use crate::suite::CaseResult;
 use rockslide_core::case::Tolerance;
 use rockslide_core::response::show_value;
@@ -128,28 +129,150 @@ pub fn informative(results: &[CaseResult]) -> Vec<Failure> {
         .collect()
 }
 
-/// Every gate failure of the results, in case and tolerance order. Lines start `FAIL`.
+/// Every gate failure of the results, in case order: failed gated checks, gated tolerances
+/// that match no run, a case whose gate checks nothing, runs that did not end as the case
+/// declares (completed unless `[[expected_outcome]]` says otherwise), and physical
+/// invariants broken beyond the engine's tolerance and not declared. Lines start `FAIL`.
 pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
     let mut out = Vec::new();
     for r in results {
-        let file = r.case.path.display().to_string();
+        let before = out.len();
         for c in r.checks.iter().filter(|c| fails(c)) {
             out.push(failed_check(r, c));
         }
-        for t in r.case.tolerances.iter().filter(|t| t.gate) {
-            if r.checks.iter().all(|c| c.field != t.field) {
-                out.push(Failure {
-                    case: r.case.name.clone(),
-                    quantity: t.quantity.clone(),
-                    engines: t.runs.clone().unwrap_or_else(|| "any run".into()),
-                    value: "checks nothing: no run of this case matches the tolerance".into(),
-                    tolerance: tolerance_words(t),
-                    field: format!("{file}: {}", t.field),
-                    checks_nothing: true,
-                    gated: true,
-                });
-            }
+        out.extend(unmatched_tolerances(r));
+        let unmatched = out[before..].iter().any(|f| f.checks_nothing);
+        if !unmatched && !checks_something(r) {
+            out.push(case_failure(
+                r,
+                "gate",
+                "any run",
+                "checks nothing: the case has no gated check (add a gated [[tolerance]] or an [[expected_outcome]])".into(),
+                "at least one gated check".into(),
+                String::new(),
+                true,
+            ));
+        }
+        out.extend(outcome_failures(r));
+        out.extend(
+            r.invariants
+                .iter()
+                .filter(|i| i.fails())
+                .map(|i| invariant_failure(r, i)),
+        );
+    }
+    out
+}
+
+/// Whether the case's gate checks anything: a gated tolerance check or a declared outcome.
+fn checks_something(r: &CaseResult) -> bool {
+    r.checks.iter().any(|c| c.gated) || !r.case.expected_outcomes.is_empty()
+}
+
+fn case_failure(
+    r: &CaseResult,
+    quantity: &str,
+    engines: &str,
+    value: String,
+    tolerance: String,
+    field: String,
+    checks_nothing: bool,
+) -> Failure {
+    let file = r.case.path.display().to_string();
+    Failure {
+        case: r.case.name.clone(),
+        quantity: quantity.into(),
+        engines: engines.into(),
+        value,
+        tolerance,
+        field: if field.is_empty() {
+            file
+        } else {
+            format!("{file}: {field}")
+        },
+        checks_nothing,
+        gated: true,
+    }
+}
+
+fn unmatched_tolerances(r: &CaseResult) -> Vec<Failure> {
+    r.case
+        .tolerances
+        .iter()
+        .filter(|t| t.gate && r.checks.iter().all(|c| c.field != t.field))
+        .map(|t| {
+            case_failure(
+                r,
+                &t.quantity,
+                &t.runs.clone().unwrap_or_else(|| "any run".into()),
+                "checks nothing: no run of this case matches the tolerance".into(),
+                tolerance_words(t),
+                t.field.clone(),
+                true,
+            )
+        })
+        .collect()
+}
+
+/// Runs that did not end as declared: a run that did not complete without an
+/// `[[expected_outcome]]` saying so, a run whose declared outcome did not happen, and a
+/// declaration that matches no run.
+fn outcome_failures(r: &CaseResult) -> Vec<Failure> {
+    let mut out = Vec::new();
+    for run in &r.runs {
+        let declared = r
+            .case
+            .expected_outcomes
+            .iter()
+            .find(|o| o.applies_to(run.engine, &run.variant));
+        let (value, field) = match declared {
+            None if run.status.completed() => continue,
+            None => (
+                format!("run did not complete: {}", run.status),
+                String::new(),
+            ),
+            Some(o) if o.status == run.status.label() => continue,
+            Some(o) => (
+                format!("expected {}, run {}", o.status, run.status),
+                o.field.clone(),
+            ),
+        };
+        let expected = declared.map_or("completed", |o| o.status.as_str());
+        out.push(case_failure(
+            r,
+            "run status",
+            &run.label(),
+            value,
+            expected.to_string(),
+            field,
+            false,
+        ));
+    }
+    for o in &r.case.expected_outcomes {
+        if !r.runs.iter().any(|run| o.applies_to(run.engine, &run.variant)) {
+            out.push(case_failure(
+                r,
+                "run status",
+                &o.engine,
+                "checks nothing: no run of this case matches the expected outcome".into(),
+                o.status.clone(),
+                o.field.clone(),
+                true,
+            ));
         }
     }
     out
+}
+
+fn invariant_failure(r: &CaseResult, i: &InvariantCheck) -> Failure {
+    let at = i.at.map(|t| format!(" at t = {t:.4} s")).unwrap_or_default();
+    case_failure(
+        r,
+        i.invariant,
+        &i.run,
+        format!("invariant broken: {:.3e}{at}", i.worst),
+        format!("≤ {:.1e} ({})", i.limit, crate::invariants::meaning(i.invariant)),
+        String::new(),
+        false,
+    )
 }
