@@ -276,3 +276,41 @@ fn invariant_failure(r: &CaseResult, i: &InvariantCheck) -> Failure {
         false,
     )
 }
+
+/// Ungated disagreements at least this large (in per cent) are warnings, shown first.
+pub const WARN_PERCENT: f64 = 10.0;
+
+/// What must not hide under a green PASS, one line each starting `WARN`: informative
+/// (ungated) checks whose discrepancy is at least [`WARN_PERCENT`], and declared invariant
+/// violations with their measured size.
+pub fn warnings(results: &[CaseResult]) -> Vec<String> {
+    let mut out = Vec::new();
+    for r in results {
+        for c in r.checks.iter().filter(|c| !c.gated) {
+            if let Some(p) = c.percent.filter(|p| p.abs() >= WARN_PERCENT) {
+                out.push(format!(
+                    "WARN {}: {}: {} vs {}: disagree by {p:+.1} % (not gated) [{}: {}]",
+                    r.case.name,
+                    c.quantity,
+                    c.run,
+                    c.basis,
+                    r.case.path.display(),
+                    c.field
+                ));
+            }
+        }
+        for i in r.invariants.iter().filter(|i| !i.holds()) {
+            if let Some((field, reason)) = &i.expected {
+                out.push(format!(
+                    "WARN {}: {}: {}: {} — declared known: {reason} [{}: {field}]",
+                    r.case.name,
+                    i.invariant,
+                    i.run,
+                    i.describe(),
+                    r.case.path.display()
+                ));
+            }
+        }
+    }
+    out
+}
