@@ -177,7 +177,11 @@ fn annotate(f: &gate::Failure) {
         return;
     }
     let file = f.field.split(": ").next().unwrap_or_default();
-    let escape = |s: &str| s.replace('%', "%25").replace('\r', "%0D").replace('\n', "%0A");
+    let escape = |s: &str| {
+        s.replace('%', "%25")
+            .replace('\r', "%0D")
+            .replace('\n', "%0A")
+    };
     say!(
         "::error file={},title=rockslide {}::{}",
         escape(file).replace(',', "%2C").replace(':', "%3A"),
@@ -339,7 +343,11 @@ fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Resul
         let shown: Vec<String> = args.iter().map(|a| a.display().to_string()).collect();
         eprintln!(
             "FAIL checks nothing: no case file (*.toml) in {}",
-            if shown.is_empty() { "cases".into() } else { shown.join(", ") }
+            if shown.is_empty() {
+                "cases".into()
+            } else {
+                shown.join(", ")
+            }
         );
         return Ok(ExitCode::from(1));
     }

@@ -56,8 +56,14 @@ impl InvariantCheck {
     }
     /// The measure in words, with where it was found.
     pub fn describe(&self) -> String {
-        let at = self.at.map(|t| format!(" at t = {t:.4} s")).unwrap_or_default();
-        format!("{} {:.3e}{at} (limit {:.1e})", self.invariant, self.worst, self.limit)
+        let at = self
+            .at
+            .map(|t| format!(" at t = {t:.4} s"))
+            .unwrap_or_default();
+        format!(
+            "{} {:.3e}{at} (limit {:.1e})",
+            self.invariant, self.worst, self.limit
+        )
     }
 }
 
@@ -73,7 +79,9 @@ pub const INVARIANTS: &[&str] = &[
 /// What each invariant means, in one line (for reports).
 pub fn meaning(invariant: &str) -> &'static str {
     match invariant {
-        "friction_bound" => "max (|T| − μN) / (μ·M·g): the tangential force within the friction cone",
+        "friction_bound" => {
+            "max (|T| − μN) / (μ·M·g): the tangential force within the friction cone"
+        }
         "compression" => "max (−N) / (M·g): compression-only contact",
         "stick_slip" => "slip while |T| < μN (stuck) / slip path: no creep while stuck",
         "dissipation" => "negative friction work / |friction work|: friction dissipates",
@@ -200,11 +208,15 @@ fn worst(values: impl Iterator<Item = f64>, time: &[f64]) -> (f64, f64) {
     values
         .zip(time)
         .map(|(v, t)| (if v.is_nan() { f64::INFINITY } else { v }, *t))
-        .fold((f64::NEG_INFINITY, 0.0), |a, b| if b.0 > a.0 { b } else { a })
+        .fold(
+            (f64::NEG_INFINITY, 0.0),
+            |a, b| if b.0 > a.0 { b } else { a },
+        )
 }
 
 fn friction_bound(c: &ContactSeries, mu: f64, weight: f64, time: &[f64]) -> (f64, f64) {
-    let excess = (0..time.len()).map(|i| (c.tangential[i].abs() - mu * c.normal.at(i)) / (mu * weight));
+    let excess =
+        (0..time.len()).map(|i| (c.tangential[i].abs() - mu * c.normal.at(i)) / (mu * weight));
     worst(excess, time)
 }
 

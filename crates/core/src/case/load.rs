@@ -600,7 +600,10 @@ impl Validator<'_> {
             );
         }
         if o.reason.trim().is_empty() {
-            self.fail(&format!("{field}.reason"), "must say why the violation is accepted");
+            self.fail(
+                &format!("{field}.reason"),
+                "must say why the violation is accepted",
+            );
         }
         ExpectedViolation {
             engine: o.engine.clone(),
