@@ -388,6 +388,9 @@ fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Resul
         }
     }
     let Some(junit) = junit else {
+        if !quiet {
+            say!("summary: {}", html.display());
+        }
         return Ok(ExitCode::SUCCESS);
     };
     gate::write_junit(&results, junit)?;
