@@ -148,6 +148,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         not_applicable: Vec::new(),
         reference: Err("none".into()),
         checks: Vec::new(),
+        invariants: Vec::new(),
     };
     let bytes = mcap_bytes(&case_trace_log(&rock))?;
     let mut scene = Value::Null;

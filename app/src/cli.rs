@@ -162,6 +162,34 @@ pub enum Command {
     },
 }
 
+/// Print one line on stdout; a reader that went away (`rockslide list | head -1`) is not an
+/// error: the rest of the output is dropped.
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// A GitHub Actions annotation for a gate failure (`::error file=…::…`), when run there.
+fn annotate(f: &gate::Failure) {
+    if std::env::var_os("GITHUB_ACTIONS").is_none() {
+        return;
+    }
+    let file = f.field.split(": ").next().unwrap_or_default();
+    let escape = |s: &str| {
+        s.replace('%', "%25")
+            .replace('\r', "%0D")
+            .replace('\n', "%0A")
+    };
+    say!(
+        "::error file={},title=rockslide {}::{}",
+        escape(file).replace(',', "%2C").replace(':', "%3A"),
+        escape(&f.case),
+        escape(&f.to_string())
+    );
+}
+
 /// Run the command line; returns the process exit code.
 pub fn main(cli: Cli) -> ExitCode {
     let result = match cli.command {
@@ -199,7 +227,7 @@ pub fn main(cli: Cli) -> ExitCode {
             csv,
         }),
         Some(Command::TraceInfo { file }) => rockslide_core::trace::mcap_info(&file).map(|s| {
-            print!("{s}");
+            let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), s.as_bytes());
             ExitCode::SUCCESS
         }),
         Some(Command::Sweep {
@@ -235,7 +263,9 @@ pub fn main(cli: Cli) -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {e}");
+            for line in e.to_string().lines() {
+                eprintln!("error: {line}");
+            }
             ExitCode::from(2)
         }
     }
@@ -309,6 +339,18 @@ pub(crate) fn load_all(paths: &[PathBuf]) -> Result<Vec<rockslide_core::case::Ca
 /// JUnit XML and return exit code 1 when the gate fails.
 fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Result<ExitCode, Error> {
     let cases = load_all(&case_paths(args)?)?;
+    if cases.is_empty() && junit.is_some() {
+        let shown: Vec<String> = args.iter().map(|a| a.display().to_string()).collect();
+        eprintln!(
+            "FAIL checks nothing: no case file (*.toml) in {}",
+            if shown.is_empty() {
+                "cases".into()
+            } else {
+                shown.join(", ")
+            }
+        );
+        return Ok(ExitCode::from(1));
+    }
     let engines = registry::all();
     for c in &cases {
         plan(c, &engines)?;
@@ -320,7 +362,7 @@ fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Resul
         let dir = write_case_outputs(&result, out)?;
         if !quiet {
             let passed = gate::failures(std::slice::from_ref(&result)).is_empty();
-            println!(
+            say!(
                 "{name}: {} runs, gate {} → {}",
                 result.runs.len(),
                 if passed { "PASS" } else { "FAIL" },
@@ -330,22 +372,31 @@ fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Resul
         results.push(result);
     }
     let html = write_suite_outputs(&results, out)?;
+    if !quiet {
+        for w in rockslide_verify::verdict::warnings(&results) {
+            say!("{w}");
+        }
+    }
     let failures = gate::failures(&results);
     for f in &failures {
         eprintln!("{f}");
+        annotate(f);
     }
     if !quiet {
         for f in gate::informative(&results) {
-            println!("{f}");
+            say!("{f}");
         }
     }
     let Some(junit) = junit else {
+        if !quiet {
+            say!("summary: {}", html.display());
+        }
         return Ok(ExitCode::SUCCESS);
     };
     gate::write_junit(&results, junit)?;
     gate::write_step_summary(&results);
     if !quiet {
-        println!(
+        say!(
             "gate: {} — {} failure(s); report {}, JUnit {}",
             if failures.is_empty() { "PASS" } else { "FAIL" },
             failures.len(),
@@ -364,8 +415,8 @@ fn list(args: &[PathBuf]) -> Result<ExitCode, Error> {
     let cases = load_all(&case_paths(args)?)?;
     let engines = registry::all();
     for c in &cases {
-        println!("{} — {}", c.name, c.title);
-        println!(
+        say!("{} — {}", c.name, c.title);
+        say!(
             "    {} under {}, {} s",
             c.scene.model.kind(),
             c.scene.excitation.kind(),
@@ -374,14 +425,14 @@ fn list(args: &[PathBuf]) -> Result<ExitCode, Error> {
         for e in &engines {
             let listed = c.engines.is_empty() || c.engine(e.id()).is_some();
             match e.variants(&c.scene) {
-                Err(na) => println!("    {:<20} n/a — {}", e.id(), na.0),
-                Ok(_) if !listed => println!("    {:<20} not requested by the case", e.id()),
+                Err(na) => say!("    {:<20} n/a — {}", e.id(), na.0),
+                Ok(_) if !listed => say!("    {:<20} not requested by the case", e.id()),
                 Ok(v) => {
                     let wanted = c
                         .engine(e.id())
                         .and_then(|r| r.variants.clone())
                         .unwrap_or_else(|| v.iter().map(|s| s.to_string()).collect());
-                    println!(
+                    say!(
                         "    {:<20} {} (dt {} s)",
                         e.id(),
                         wanted.join(", "),
@@ -391,8 +442,8 @@ fn list(args: &[PathBuf]) -> Result<ExitCode, Error> {
             }
         }
         match rockslide_reference::for_case(c) {
-            Ok(r) => println!("    {:<20} {}", "reference", r.name()),
-            Err(why) => println!("    {:<20} none — {why}", "reference"),
+            Ok(r) => say!("    {:<20} {}", "reference", r.name()),
+            Err(why) => say!("    {:<20} none — {why}", "reference"),
         }
     }
     Ok(ExitCode::SUCCESS)
@@ -409,6 +460,6 @@ fn write_reference(path: &Path, dt: f64, out: &Path) -> Result<ExitCode, Error> 
     let times: Vec<f64> = (0..=n).map(|i| i as f64 * dt).collect();
     let trace = rockslide_reference::sample(solution.as_ref(), &times);
     rockslide_core::trace::write_csv(&trace, out)?;
-    println!("{}: {} → {}", case.name, solution.method(), out.display());
+    say!("{}: {} → {}", case.name, solution.method(), out.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -85,7 +85,9 @@ fn a_too_tight_tolerance_fails_the_gate_with_one_line_and_exit_1() {
 
     let xml = std::fs::read_to_string(&junit).expect("JUnit written where asked");
     let (declared, cases, failures, skipped) = junit_counts(&xml);
-    assert_eq!((declared, cases, failures, skipped), (3, 3, 1, 1), "{xml}");
+    // Three tolerance checks plus the run's three invariants (friction bound, stick-slip,
+    // dissipation: μ finite, one contact), which hold for the predictor-corrector.
+    assert_eq!((declared, cases, failures, skipped), (6, 6, 1, 1), "{xml}");
 }
 
 #[test]
@@ -161,4 +163,64 @@ fn the_suite_summary_is_appended_to_the_github_step_summary() {
         text.contains("- FAIL too-tight: peak_relative_displacement:"),
         "{text}"
     );
+}
+
+#[test]
+fn a_case_whose_gate_checks_nothing_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = check(&["tests/data/no-gated-check.toml"], dir.path(), None);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains(
+            "FAIL no-gated-check: gate: any run: checks nothing: the case has no gated check"
+        ),
+        "{err}"
+    );
+    let xml = std::fs::read_to_string(dir.path().join("junit.xml")).unwrap();
+    let (_, _, failures, _) = junit_counts(&xml);
+    assert_eq!(failures, 1, "{xml}");
+}
+
+#[test]
+fn check_on_an_empty_selection_fails() {
+    let dir = tempfile::tempdir().unwrap();
+    let empty = dir.path().join("no-cases");
+    std::fs::create_dir(&empty).unwrap();
+    let o = check(&[empty.to_str().unwrap()], &dir.path().join("out"), None);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(
+        err.contains("FAIL checks nothing: no case file (*.toml) in"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_closed_pipe_is_not_a_panic() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .arg("list")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Close the reading end before `list` has loaded its cases: every write meets a closed
+    // pipe (`rockslide list | head -0`).
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+#[test]
+fn error_lines_carry_the_error_prefix() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = check(&["tests/data/bad-case.toml"], &dir.path().join("out"), None);
+    let err = stderr(&o);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(err.lines().count() >= 2, "{err}");
+    assert!(err.lines().all(|l| l.starts_with("error: ")), "{err}");
 }

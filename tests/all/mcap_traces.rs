@@ -293,6 +293,7 @@ fn case(text: &str, name: &str) -> Case {
 fn result_with(case: Case, runs: Vec<Run>) -> CaseResult {
     CaseResult {
         run_responses: runs.iter().map(|r| responses(&r.trace)).collect(),
+        invariants: Vec::new(),
         history_errors: runs.iter().map(|_| None).collect(),
         runs,
         case,

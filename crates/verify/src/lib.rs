@@ -20,6 +20,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod invariants;
 pub mod json;
 pub mod progress;
 pub mod record;

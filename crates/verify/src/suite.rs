@@ -152,6 +152,8 @@ pub struct CaseResult {
     pub reference: Result<ReferenceResult, String>,
     /// Tolerance checks.
     pub checks: Vec<Check>,
+    /// Physical invariants of every completed run ([`crate::invariants`]).
+    pub invariants: Vec<crate::invariants::InvariantCheck>,
 }
 
 impl CaseResult {
@@ -235,7 +237,12 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
         &run_responses,
         reference.as_ref().ok().map(|r| &r.responses),
     );
+    let invariants = runs
+        .iter()
+        .flat_map(|r| crate::invariants::check_run(&case, r))
+        .collect();
     Ok(CaseResult {
+        invariants,
         case,
         runs,
         run_responses,

@@ -5,6 +5,7 @@
 use std::fmt;
 
 use crate::analysis::{Check, Verdict};
+use crate::invariants::InvariantCheck;
 use crate::suite::CaseResult;
 use rockslide_core::case::Tolerance;
 use rockslide_core::response::show_value;
@@ -128,28 +129,388 @@ pub fn informative(results: &[CaseResult]) -> Vec<Failure> {
         .collect()
 }
 
-/// Every gate failure of the results, in case and tolerance order. Lines start `FAIL`.
+/// Every gate failure of the results, in case order: failed gated checks, gated tolerances
+/// that match no run, a case whose gate checks nothing, runs that did not end as the case
+/// declares (completed unless `[[expected_outcome]]` says otherwise), and physical
+/// invariants broken beyond the engine's tolerance and not declared. Lines start `FAIL`.
 pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
     let mut out = Vec::new();
     for r in results {
-        let file = r.case.path.display().to_string();
+        let before = out.len();
         for c in r.checks.iter().filter(|c| fails(c)) {
             out.push(failed_check(r, c));
         }
-        for t in r.case.tolerances.iter().filter(|t| t.gate) {
-            if r.checks.iter().all(|c| c.field != t.field) {
-                out.push(Failure {
-                    case: r.case.name.clone(),
-                    quantity: t.quantity.clone(),
-                    engines: t.runs.clone().unwrap_or_else(|| "any run".into()),
-                    value: "checks nothing: no run of this case matches the tolerance".into(),
-                    tolerance: tolerance_words(t),
-                    field: format!("{file}: {}", t.field),
-                    checks_nothing: true,
-                    gated: true,
-                });
+        out.extend(unmatched_tolerances(r));
+        let unmatched = out[before..].iter().any(|f| f.checks_nothing);
+        if !unmatched && !checks_something(r) {
+            out.push(case_failure(
+                r,
+                "gate",
+                "any run",
+                "checks nothing: the case has no gated check (add a gated [[tolerance]] or an [[expected_outcome]])".into(),
+                "at least one gated check".into(),
+                String::new(),
+                true,
+            ));
+        }
+        out.extend(outcome_failures(r));
+        out.extend(
+            r.invariants
+                .iter()
+                .filter(|i| i.fails())
+                .map(|i| invariant_failure(r, i)),
+        );
+    }
+    out
+}
+
+/// Whether the case's gate checks anything: a gated tolerance check or a declared outcome.
+fn checks_something(r: &CaseResult) -> bool {
+    r.checks.iter().any(|c| c.gated) || !r.case.expected_outcomes.is_empty()
+}
+
+fn case_failure(
+    r: &CaseResult,
+    quantity: &str,
+    engines: &str,
+    value: String,
+    tolerance: String,
+    field: String,
+    checks_nothing: bool,
+) -> Failure {
+    let file = r.case.path.display().to_string();
+    Failure {
+        case: r.case.name.clone(),
+        quantity: quantity.into(),
+        engines: engines.into(),
+        value,
+        tolerance,
+        field: if field.is_empty() {
+            file
+        } else {
+            format!("{file}: {field}")
+        },
+        checks_nothing,
+        gated: true,
+    }
+}
+
+fn unmatched_tolerances(r: &CaseResult) -> Vec<Failure> {
+    r.case
+        .tolerances
+        .iter()
+        .filter(|t| t.gate && r.checks.iter().all(|c| c.field != t.field))
+        .map(|t| {
+            case_failure(
+                r,
+                &t.quantity,
+                &t.runs.clone().unwrap_or_else(|| "any run".into()),
+                "checks nothing: no run of this case matches the tolerance".into(),
+                tolerance_words(t),
+                t.field.clone(),
+                true,
+            )
+        })
+        .collect()
+}
+
+/// Runs that did not end as declared: a run that did not complete without an
+/// `[[expected_outcome]]` saying so, a run whose declared outcome did not happen, and a
+/// declaration that matches no run.
+fn outcome_failures(r: &CaseResult) -> Vec<Failure> {
+    let mut out = Vec::new();
+    for run in &r.runs {
+        let declared = r
+            .case
+            .expected_outcomes
+            .iter()
+            .find(|o| o.applies_to(run.engine, &run.variant));
+        let (value, field) = match declared {
+            None if run.status.completed() => continue,
+            None => (
+                format!("run did not complete: {}", run.status),
+                String::new(),
+            ),
+            Some(o) if o.status == run.status.label() => continue,
+            Some(o) => (
+                format!("expected {}, run {}", o.status, run.status),
+                o.field.clone(),
+            ),
+        };
+        let expected = declared.map_or("completed", |o| o.status.as_str());
+        out.push(case_failure(
+            r,
+            "run status",
+            &run.label(),
+            value,
+            expected.to_string(),
+            field,
+            false,
+        ));
+    }
+    for o in &r.case.expected_outcomes {
+        if !r
+            .runs
+            .iter()
+            .any(|run| o.applies_to(run.engine, &run.variant))
+        {
+            out.push(case_failure(
+                r,
+                "run status",
+                &o.engine,
+                "checks nothing: no run of this case matches the expected outcome".into(),
+                o.status.clone(),
+                o.field.clone(),
+                true,
+            ));
+        }
+    }
+    out
+}
+
+fn invariant_failure(r: &CaseResult, i: &InvariantCheck) -> Failure {
+    let at =
+        i.at.map(|t| format!(" at t = {t:.4} s"))
+            .unwrap_or_default();
+    case_failure(
+        r,
+        i.invariant,
+        &i.run,
+        format!("invariant broken: {:.3e}{at}", i.worst),
+        format!(
+            "≤ {:.1e} ({})",
+            i.limit,
+            crate::invariants::meaning(i.invariant)
+        ),
+        String::new(),
+        false,
+    )
+}
+
+/// Ungated disagreements at least this large (in per cent) are warnings, shown first.
+pub const WARN_PERCENT: f64 = 10.0;
+
+/// What must not hide under a green PASS, one line each starting `WARN`: informative
+/// (ungated) checks whose discrepancy is at least [`WARN_PERCENT`], and declared invariant
+/// violations with their measured size.
+pub fn warnings(results: &[CaseResult]) -> Vec<String> {
+    let mut out = Vec::new();
+    for r in results {
+        for c in r.checks.iter().filter(|c| !c.gated) {
+            if let Some(p) = c.percent.filter(|p| p.abs() >= WARN_PERCENT) {
+                out.push(format!(
+                    "WARN {}: {}: {} vs {}: disagree by {p:+.1} % (not gated) [{}: {}]",
+                    r.case.name,
+                    c.quantity,
+                    c.run,
+                    c.basis,
+                    r.case.path.display(),
+                    c.field
+                ));
+            }
+        }
+        for i in r.invariants.iter().filter(|i| !i.holds()) {
+            if let Some((field, reason)) = &i.expected {
+                out.push(format!(
+                    "WARN {}: {}: {}: {} — declared known: {reason} [{}: {field}]",
+                    r.case.name,
+                    i.invariant,
+                    i.run,
+                    i.describe(),
+                    r.case.path.display()
+                ));
             }
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::invariants::check_run;
+    use rockslide_core::trace::{Trace, q};
+    use rockslide_engine_api::{Run, RunStatus};
+
+    /// A PEPO (M = 1000 kg, g = 10 m/s², μ = 0.5: μ·M·g = 5 kN) with `extra` appended.
+    fn case(extra: &str) -> rockslide_core::case::Case {
+        let text = format!(
+            r#"
+[model]
+kind = "oscillator"
+mass = 1000.0
+gravity = 10.0
+[model.contact]
+kx = 1.0e6
+kz = 4.0e6
+mu = 0.5
+[excitation]
+kind = "mass-acceleration"
+shape = "sine-pulse"
+amplitude = 1.0
+omega = 10.0
+cycles = 0.5
+[run]
+duration = 1.0
+dt = 0.1
+{extra}
+"#
+        );
+        crate::registry::parse_case(std::path::Path::new("t.toml"), &text).expect("valid case")
+    }
+
+    /// A run whose contact force and slip are the given rows (t = 0, 0.1, …).
+    fn run(engine: &'static str, status: RunStatus, rows: &[(f64, f64)]) -> Run {
+        let mut trace = Trace::with_channels(&[&q::RESISTANCE, &q::SLIDE], rows.len());
+        for (i, (r, s)) in rows.iter().enumerate() {
+            trace.push(i as f64 * 0.1, &[*r, *s]);
+        }
+        Run {
+            engine,
+            variant: "v".into(),
+            dt: 0.1,
+            settings: Vec::new(),
+            counters: Vec::new(),
+            findings: Vec::new(),
+            trace,
+            status,
+            wall_seconds: 0.0,
+        }
+    }
+
+    fn result(case: rockslide_core::case::Case, runs: Vec<Run>) -> CaseResult {
+        let invariants = runs.iter().flat_map(|r| check_run(&case, r)).collect();
+        CaseResult {
+            run_responses: runs.iter().map(|_| Default::default()).collect(),
+            history_errors: runs.iter().map(|_| None).collect(),
+            case,
+            runs,
+            not_applicable: Vec::new(),
+            reference: Err("none".into()),
+            checks: Vec::new(),
+            invariants,
+        }
+    }
+
+    fn diverged() -> RunStatus {
+        RunStatus::Diverged {
+            time: 0.5,
+            reason: "NaN".into(),
+        }
+    }
+
+    const STUCK: &[(f64, f64)] = &[(0.0, 0.0), (1000.0, 0.0), (-1000.0, 0.0)];
+
+    #[test]
+    fn a_case_that_checks_nothing_fails_and_a_declared_divergence_passes() {
+        let f = failures(&[result(
+            case(""),
+            vec![run("fe", RunStatus::Completed, STUCK)],
+        )]);
+        assert_eq!(f.len(), 1, "{f:?}");
+        assert!(f[0].checks_nothing && f[0].value.starts_with("checks nothing: the case"));
+
+        let declared = case("[[expected_outcome]]\nengine = \"fe\"\nstatus = \"diverged\"");
+        assert!(failures(&[result(declared, vec![run("fe", diverged(), STUCK)])]).is_empty());
+    }
+
+    #[test]
+    fn an_undeclared_divergence_and_a_declared_one_that_did_not_happen_fail() {
+        let outcome = "[[expected_outcome]]\nengine = \"rapier\"\nstatus = \"diverged\"";
+        let runs = vec![
+            run("fe", diverged(), STUCK),
+            run("rapier", RunStatus::Completed, STUCK),
+        ];
+        let f = failures(&[result(case(outcome), runs)]);
+        let values: Vec<&str> = f.iter().map(|f| f.value.as_str()).collect();
+        assert_eq!(
+            values,
+            [
+                "run did not complete: diverged at t = 0.500000 s: NaN",
+                "expected diverged, run completed"
+            ]
+        );
+        assert_eq!(f[1].field, "t.toml: expected_outcome[0]");
+    }
+
+    #[test]
+    fn a_force_beyond_mu_n_breaks_the_friction_bound_unless_declared() {
+        // |T| = 6 kN against μN = 5 kN: excess (6 − 5)/5 = 0.2 at t = 0.1 s.
+        let rows = [(0.0, 0.0), (6000.0, 0.0), (0.0, 0.0)];
+        let outcome = "[[expected_outcome]]\nengine = \"fe\"\nstatus = \"diverged\"\n";
+        let plain = result(case(outcome), vec![run("fe", RunStatus::Completed, &rows)]);
+        let bound = &plain.invariants[0];
+        assert_eq!(
+            (bound.invariant, bound.worst, bound.at),
+            ("friction_bound", 0.2, Some(0.1))
+        );
+        // The declared outcome did not happen (one failure) and the bound is broken (another).
+        let f = failures(std::slice::from_ref(&plain));
+        assert!(f.iter().any(|f| f.quantity == "friction_bound"), "{f:?}");
+
+        let declared = format!(
+            "{outcome}[[expected_violation]]\nengine = \"fe\"\ninvariant = \"friction_bound\"\nreason = \"measured 0.2\""
+        );
+        let known = result(
+            case(&declared),
+            vec![run("fe", RunStatus::Completed, &rows)],
+        );
+        assert!(
+            !failures(std::slice::from_ref(&known))
+                .iter()
+                .any(|f| f.quantity == "friction_bound")
+        );
+        let w = warnings(std::slice::from_ref(&known));
+        assert!(
+            w[0].starts_with("WARN t: friction_bound: fe/v: friction_bound 2.000e-1"),
+            "{w:?}"
+        );
+    }
+
+    #[test]
+    fn creep_while_stuck_and_negative_friction_work_are_measured() {
+        // Stuck (|T| = 1 kN < μN) while slipping 2 mm: all of the slip path is creep.
+        let creep = [(1000.0, 0.0), (1000.0, 0.001), (1000.0, 0.002)];
+        let r = result(case(""), vec![run("fe", RunStatus::Completed, &creep)]);
+        let stick = r
+            .invariants
+            .iter()
+            .find(|i| i.invariant == "stick_slip")
+            .unwrap();
+        assert_eq!(stick.worst, 1.0);
+        // Slipping at T = +μN towards −x for 2 mm: the friction work is all negative.
+        let pumping = [(5000.0, 0.0), (5000.0, -0.001), (5000.0, -0.002)];
+        let r = result(case(""), vec![run("fe", RunStatus::Completed, &pumping)]);
+        let d = r
+            .invariants
+            .iter()
+            .find(|i| i.invariant == "dissipation")
+            .unwrap();
+        assert_eq!(d.worst, 1.0);
+        let stick = r
+            .invariants
+            .iter()
+            .find(|i| i.invariant == "stick_slip")
+            .unwrap();
+        assert_eq!(stick.worst, 0.0);
+    }
+
+    #[test]
+    fn unknown_expected_keys_are_located_errors() {
+        let text = "[[expected_violation]]\nengine = \"fe\"\ninvariant = \"wobble\"\nreason = \"x\"\n[[expected_outcome]]\nengine = \"fe\"\nstatus = \"exploded\"";
+        let full = format!(
+            "[model]\nkind = \"oscillator\"\nmass = 1.0\ngravity = 1.0\n[model.contact]\nkx = 1.0\nkz = 1.0\nmu = 0.5\n[excitation]\nkind = \"none\"\n[run]\nduration = 1.0\ndt = 0.1\n{text}"
+        );
+        let err = crate::registry::parse_case(std::path::Path::new("t.toml"), &full)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("expected_violation[0].invariant: unknown invariant \"wobble\""),
+            "{err}"
+        );
+        assert!(
+            err.contains("expected_outcome[0].status: unknown status \"exploded\""),
+            "{err}"
+        );
+    }
 }

@@ -9,7 +9,8 @@ use sha2::{Digest, Sha256};
 
 use super::locate::Locator;
 use super::raw::{
-    RawCase, RawContact, RawDouble, RawEngine, RawExcitation, RawModel, RawTolerance,
+    RawCase, RawContact, RawDouble, RawEngine, RawExcitation, RawExpectedOutcome,
+    RawExpectedViolation, RawModel, RawTolerance,
 };
 use super::record::{AccelUnit, STANDARD_GRAVITY, read_record};
 use super::scene::*;
@@ -43,6 +44,18 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
         .enumerate()
         .filter_map(|(i, t)| v.tolerance(i, t))
         .collect();
+    let expected_outcomes = raw
+        .expected_outcome
+        .iter()
+        .enumerate()
+        .map(|(i, o)| v.expected_outcome(i, o))
+        .collect();
+    let expected_violations = raw
+        .expected_violation
+        .iter()
+        .enumerate()
+        .map(|(i, o)| v.expected_violation(i, o))
+        .collect();
     if !v.errors.is_empty() {
         return Err(InputErrors(v.errors));
     }
@@ -66,6 +79,8 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
         run,
         engines,
         tolerances,
+        expected_outcomes,
+        expected_violations,
         locator,
     })
 }
@@ -535,6 +550,67 @@ impl Validator<'_> {
             );
         }
         out
+    }
+
+    fn engine_id(&mut self, field: &str, engine: &str) {
+        if !self.engine_ids.contains(&engine) {
+            self.fail(
+                field,
+                format!(
+                    "unknown engine \"{engine}\"; known: {}",
+                    quoted(self.engine_ids)
+                ),
+            );
+        }
+    }
+
+    fn expected_outcome(&mut self, i: usize, o: &RawExpectedOutcome) -> ExpectedOutcome {
+        let field = format!("expected_outcome[{i}]");
+        self.engine_id(&format!("{field}.engine"), &o.engine);
+        if !EXPECTED_STATUSES.contains(&o.status.as_str()) {
+            self.fail(
+                &format!("{field}.status"),
+                format!(
+                    "unknown status \"{}\"; a run expected not to complete is one of: {}",
+                    o.status,
+                    quoted(EXPECTED_STATUSES)
+                ),
+            );
+        }
+        ExpectedOutcome {
+            engine: o.engine.clone(),
+            variant: o.variant.clone(),
+            status: o.status.clone(),
+            reason: o.reason.clone(),
+            field,
+        }
+    }
+
+    fn expected_violation(&mut self, i: usize, o: &RawExpectedViolation) -> ExpectedViolation {
+        let field = format!("expected_violation[{i}]");
+        self.engine_id(&format!("{field}.engine"), &o.engine);
+        if !INVARIANT_KEYS.contains(&o.invariant.as_str()) {
+            self.fail(
+                &format!("{field}.invariant"),
+                format!(
+                    "unknown invariant \"{}\"; known: {}",
+                    o.invariant,
+                    quoted(INVARIANT_KEYS)
+                ),
+            );
+        }
+        if o.reason.trim().is_empty() {
+            self.fail(
+                &format!("{field}.reason"),
+                "must say why the violation is accepted",
+            );
+        }
+        ExpectedViolation {
+            engine: o.engine.clone(),
+            invariant: o.invariant.clone(),
+            reason: o.reason.clone(),
+            field,
+        }
     }
 
     fn tolerance(&mut self, i: usize, t: &RawTolerance) -> Option<Tolerance> {

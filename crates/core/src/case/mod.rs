@@ -13,7 +13,8 @@ mod signal;
 pub use load::{discover, load_case, parse_case};
 pub use locate::Locator;
 pub use scene::{
-    Case, Contact, DoubleContact, EngineRequest, Excitation, Model, OptionValue, Oscillator,
-    RigidBlock, RockingBody, RunSettings, Scene, Tolerance, ToleranceBasis,
+    Case, Contact, DoubleContact, EXPECTED_STATUSES, EngineRequest, Excitation, ExpectedOutcome,
+    ExpectedViolation, INVARIANT_KEYS, Model, OptionValue, Oscillator, RigidBlock, RockingBody,
+    RunSettings, Scene, Tolerance, ToleranceBasis,
 };
 pub use signal::{Jump, Signal};

@@ -20,6 +20,31 @@ pub struct RawCase {
     pub engines: BTreeMap<String, RawEngine>,
     #[serde(default)]
     pub tolerance: Vec<RawTolerance>,
+    #[serde(default)]
+    pub expected_outcome: Vec<RawExpectedOutcome>,
+    #[serde(default)]
+    pub expected_violation: Vec<RawExpectedViolation>,
+}
+
+/// `[[expected_outcome]]`: a run that is meant not to complete (a stability scene that
+/// must diverge).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawExpectedOutcome {
+    pub engine: String,
+    pub variant: Option<String>,
+    pub status: String,
+    pub reason: Option<String>,
+}
+
+/// `[[expected_violation]]`: a physical invariant an engine is known to break on this case,
+/// declared with the reason; still measured and reported.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawExpectedViolation {
+    pub engine: String,
+    pub invariant: String,
+    pub reason: String,
 }
 
 #[derive(Debug, Deserialize)]

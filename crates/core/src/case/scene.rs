@@ -292,6 +292,55 @@ impl Tolerance {
     }
 }
 
+/// How a run is declared to end when it is not meant to complete.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpectedOutcome {
+    /// Engine id.
+    pub engine: String,
+    /// Variant; `None` = every variant of the engine.
+    pub variant: Option<String>,
+    /// `diverged` or `not converged` (the run status label).
+    pub status: String,
+    /// Why, in words.
+    pub reason: Option<String>,
+    /// Where it is in the case file (`expected_outcome[i]`).
+    pub field: String,
+}
+
+impl ExpectedOutcome {
+    /// Whether this declaration is about the run `engine/variant`.
+    pub fn applies_to(&self, engine: &str, variant: &str) -> bool {
+        self.engine == engine && self.variant.as_deref().is_none_or(|v| v == variant)
+    }
+}
+
+/// An engine's known violation of a physical invariant on this case: still measured and
+/// reported with its size, but not a gate failure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpectedViolation {
+    /// Engine id.
+    pub engine: String,
+    /// Invariant key (`friction_bound`, `compression`, `stick_slip`, `dissipation`,
+    /// `energy_balance`).
+    pub invariant: String,
+    /// Why it is accepted, in words (with the measured size).
+    pub reason: String,
+    /// Where it is in the case file (`expected_violation[i]`).
+    pub field: String,
+}
+
+/// Run statuses an `[[expected_outcome]]` may name.
+pub const EXPECTED_STATUSES: &[&str] = &["diverged", "not converged"];
+
+/// Invariant keys an `[[expected_violation]]` may name.
+pub const INVARIANT_KEYS: &[&str] = &[
+    "friction_bound",
+    "compression",
+    "stick_slip",
+    "dissipation",
+    "energy_balance",
+];
+
 /// A validated case file.
 #[derive(Debug, Clone)]
 pub struct Case {
@@ -317,6 +366,10 @@ pub struct Case {
     pub engines: BTreeMap<String, EngineRequest>,
     /// Tolerances, in file order.
     pub tolerances: Vec<Tolerance>,
+    /// Runs declared not to complete (`[[expected_outcome]]`), in file order.
+    pub expected_outcomes: Vec<ExpectedOutcome>,
+    /// Invariant violations declared known (`[[expected_violation]]`), in file order.
+    pub expected_violations: Vec<ExpectedViolation>,
     /// Locates fields of the file for error messages.
     pub locator: Locator,
 }

@@ -59,13 +59,39 @@ pub fn junit_report(results: &[CaseResult]) -> Report {
             tc.set_system_out(what);
             suite.add_test_case(tc);
         }
-        // Gated tolerances that matched no run: a check that checks nothing fails.
+        for i in &r.invariants {
+            let what = i.describe();
+            let status = match (&i.expected, i.holds()) {
+                (_, true) => TestCaseStatus::success(),
+                (Some((field, reason)), false) => {
+                    let mut s = TestCaseStatus::skipped();
+                    s.set_message(format!("declared known [{field}]: {reason} — {what}"));
+                    s
+                }
+                (None, false) => {
+                    let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);
+                    s.set_message(what.as_str()).set_type("INVARIANT");
+                    s
+                }
+            };
+            let mut tc = TestCase::new(format!("invariant {}: {}", i.invariant, i.run), status);
+            tc.set_classname(class.as_str());
+            tc.set_system_out(what);
+            suite.add_test_case(tc);
+        }
+        // Failures that are no tolerance check: gated tolerances that matched no run, a case
+        // whose gate checks nothing, runs that did not end as declared.
         for f in all
             .iter()
-            .filter(|f| f.case == r.case.name && f.checks_nothing)
+            .filter(|f| f.case == r.case.name && (f.checks_nothing || f.quantity == "run status"))
         {
             let mut s = TestCaseStatus::non_success(NonSuccessKind::Failure);
-            s.set_message(f.to_string()).set_type("CHECKS NOTHING");
+            let kind = if f.checks_nothing {
+                "CHECKS NOTHING"
+            } else {
+                "RUN STATUS"
+            };
+            s.set_message(f.to_string()).set_type(kind);
             let mut tc = TestCase::new(format!("{}: {}", f.quantity, f.engines), s);
             tc.set_classname(class.as_str());
             suite.add_test_case(tc);

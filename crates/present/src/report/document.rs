@@ -390,6 +390,10 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
             "{gated} gated checks, {failed} failed; {informative} informative (not gated) checks"
         ),
     });
+    let warnings = rockslide_verify::verdict::warnings(std::slice::from_ref(r));
+    if !warnings.is_empty() {
+        b.push(Block::List(warnings));
+    }
     let lines: Vec<String> = gate::failures(std::slice::from_ref(r))
         .iter()
         .map(|f| f.to_string())
@@ -421,6 +425,19 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     if !r.checks.is_empty() {
         b.push(Block::Heading(2, "Tolerance checks".into()));
         b.push(Block::Table(checks_table(r)));
+    }
+    if !r.invariants.is_empty() {
+        b.push(Block::Heading(
+            2,
+            "Physical invariants (every completed run, no reference)".into(),
+        ));
+        b.push(Block::Table(invariants_table(r)));
+        b.push(Block::List(
+            rockslide_verify::invariants::INVARIANTS
+                .iter()
+                .map(|k| format!("{k}: {}", rockslide_verify::invariants::meaning(k)))
+                .collect(),
+        ));
     }
 
     b.push(Block::Heading(2, "Cross-code comparison".into()));
@@ -479,6 +496,35 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     b
 }
 
+/// One row per invariant and run: measured worst value, where, the engine's limit, verdict.
+fn invariants_table(r: &CaseResult) -> Table {
+    let mut t = Table {
+        header: ["Invariant", "Run", "Worst", "At t (s)", "Limit", "Verdict"]
+            .map(String::from)
+            .to_vec(),
+        numeric: vec![false, false, true, true, true, false],
+        rows: Vec::new(),
+    };
+    for i in &r.invariants {
+        let verdict = match (i.holds(), &i.expected) {
+            (true, _) => Cell::toned("PASS", Tone::Pass),
+            (false, Some((field, reason))) => {
+                Cell::toned(format!("declared ({field})"), Tone::Warn).hint(reason.clone())
+            }
+            (false, None) => Cell::toned("FAIL", Tone::Fail),
+        };
+        t.rows.push(vec![
+            Cell::plain(i.invariant),
+            Cell::plain(i.run.clone()),
+            Cell::plain(format!("{:.3e}", i.worst)),
+            Cell::plain(i.at.map_or("—".into(), |t| format!("{t:.4}"))),
+            Cell::plain(format!("{:.1e}", i.limit)),
+            verdict,
+        ]);
+    }
+    t
+}
+
 /// The blocks of the suite summary (without the cases' own reports).
 pub(crate) fn suite_document(
     results: &[CaseResult],
@@ -499,6 +545,10 @@ pub(crate) fn suite_document(
             all.len()
         ),
     });
+    let warnings = rockslide_verify::verdict::warnings(results);
+    if !warnings.is_empty() {
+        b.push(Block::List(warnings));
+    }
     if !all.is_empty() {
         b.push(Block::List(all.iter().map(|f| f.to_string()).collect()));
     }

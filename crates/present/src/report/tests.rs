@@ -88,6 +88,7 @@ fn result() -> CaseResult {
         case,
         runs,
         run_responses,
+        invariants: Vec::new(),
         history_errors: vec![None, None],
         not_applicable: vec![(
             "predictor-corrector",
