@@ -370,7 +370,7 @@ dt = 0.1
             variant: "v".into(),
             dt: 0.1,
             settings: Vec::new(),
-            counters: Vec::new(),
+            stats: rockslide_engine_api::SolverStats::default(),
             findings: Vec::new(),
             trace,
             status,
