@@ -436,9 +436,82 @@ impl McapContents {
 /// Read and check an MCAP file: structure, CRCs, summary, every message's JSON; the
 /// state channels become traces. Any damage is one clear error naming the file.
 pub fn read_mcap(path: &Path) -> Result<McapContents, InputErrors> {
-    let bytes = std::fs::read(path)
+    let bytes = read_bounded(path, MAX_MCAP_BYTES)
         .map_err(|e| InputError::new(path, "", format!("cannot read the MCAP file: {e}")))?;
     read_mcap_bytes(path, &bytes)
+}
+
+/// Largest MCAP file `trace-info` reads (1 GiB; rockslide's own are a few MB).
+pub const MAX_MCAP_BYTES: u64 = 1 << 30;
+
+/// Largest uncompressed chunk accepted (256 MiB; rockslide writes chunks under 1 MB).
+pub const MAX_CHUNK_BYTES: u64 = 256 << 20;
+
+/// The file's bytes, refusing more than `limit` (read through a bounded reader, so that a
+/// device such as `/dev/zero` or a file growing while read cannot exhaust memory).
+pub(crate) fn read_bounded(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let file = std::fs::File::open(path)?;
+    let mut bytes = Vec::new();
+    file.take(limit + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::other(format!(
+            "larger than the limit of {limit} bytes"
+        )));
+    }
+    Ok(bytes)
+}
+
+/// Walk the top-level records of an MCAP file before the `mcap` crate parses them: every
+/// record's length must fit in the file, and every chunk's declared uncompressed size must
+/// be within [`MAX_CHUNK_BYTES`] — so that a flipped byte gives an error instead of an
+/// allocation of exabytes.
+fn check_framing(bytes: &[u8]) -> Result<(), String> {
+    const MAGIC: &[u8] = b"\x89MCAP0\r\n";
+    const CHUNK: u8 = 0x06;
+    const FOOTER: u8 = 0x02;
+    if !bytes.starts_with(MAGIC) {
+        return Err("does not start with the MCAP magic bytes".into());
+    }
+    let mut at = MAGIC.len();
+    loop {
+        let Some(head) = bytes.get(at..at + 9) else {
+            return Err(format!("record header cut short at byte {at}"));
+        };
+        let op = head[0];
+        let len = u64_at(head, 1);
+        let body_start = at + 9;
+        let remaining = (bytes.len() - body_start) as u64;
+        if len > remaining {
+            return Err(format!(
+                "record 0x{op:02x} at byte {at} claims {len} bytes, only {remaining} follow"
+            ));
+        }
+        let body = &bytes[body_start..body_start + len as usize];
+        if op == CHUNK {
+            let declared = body.get(16..24).map_or(0, |b| u64_at(b, 0));
+            if declared > MAX_CHUNK_BYTES {
+                return Err(format!(
+                    "chunk at byte {at} claims {declared} uncompressed bytes, above the limit \
+                     of {MAX_CHUNK_BYTES}"
+                ));
+            }
+        }
+        at = body_start + len as usize;
+        if op == FOOTER {
+            return if bytes[at..].starts_with(MAGIC) {
+                Ok(())
+            } else {
+                Err("no closing magic bytes after the footer".into())
+            };
+        }
+    }
+}
+
+fn u64_at(b: &[u8], i: usize) -> u64 {
+    let mut le = [0u8; 8];
+    le.copy_from_slice(&b[i..i + 8]);
+    u64::from_le_bytes(le)
 }
 
 /// [`read_mcap`] on bytes already in memory (`path` names them in messages).
@@ -450,6 +523,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             format!("not a readable MCAP file ({what}: {e}); it may be truncated or corrupt"),
         )
     };
+    check_framing(bytes).map_err(|why| damaged("framing", &why))?;
     let summary = mcap::read::Summary::read(bytes)
         .map_err(|e| damaged("summary", &e))?
         .ok_or_else(|| {
