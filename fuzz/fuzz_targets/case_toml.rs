@@ -1,0 +1,14 @@
+//! A case file's text through parsing and validation: any bytes give a case or located
+//! errors, never a panic.
+#![no_main]
+
+use std::path::Path;
+
+use libfuzzer_sys::fuzz_target;
+use rockslide_verify::registry::parse_case;
+
+fuzz_target!(|data: &[u8]| {
+    if let Ok(text) = std::str::from_utf8(data) {
+        let _ = parse_case(Path::new("fuzz/case.toml"), text);
+    }
+});
