@@ -200,11 +200,13 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
         ));
     }
     findings.push(format!(
-        "Newton: {} iterations in {} steps (at most {} in one step); static preload {} iterations",
+        "Newton: {} iterations in {} steps (at most {} in one step); static preload {} iterations; {} step cuts; {} steps accepted at round-off",
         counters.iterations,
         counters.steps,
         counters.max_step_iterations,
-        counters.static_iterations
+        counters.static_iterations,
+        counters.step_cuts,
+        counters.roundoff_accepted
     ));
     if rocking && opts.sensitivity && status.completed() {
         let base = Summary::of(&trace);
@@ -251,6 +253,11 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
             (
                 "static preload iterations".into(),
                 counters.static_iterations,
+            ),
+            ("step cuts".into(), counters.step_cuts),
+            (
+                "steps accepted at round-off".into(),
+                counters.roundoff_accepted,
             ),
         ],
         findings,

@@ -44,7 +44,7 @@ pub fn check_steps(duration: f64, dt: f64) -> Result<(), String> {
     let limit = max_steps();
     if n > limit as f64 {
         return Err(format!(
-            "is {dt} s, which needs {n:.3e} steps to cover {duration} s; the limit is \
+            "is {dt:e} s, which needs {n:.3e} steps to cover {duration} s; the limit is \
              {limit} (set {MAX_STEPS_VARIABLE} to raise it)"
         ));
     }
