@@ -5,7 +5,7 @@
 set -u
 SECONDS_EACH=${1:-600}
 mkdir -p fuzz/logs
-for t in case_toml record mcap_read study_grid; do
+for t in ${TARGETS:-mcap_read record case_toml}; do
     mkdir -p "fuzz/corpus/$t"
     cargo +nightly fuzz run "$t" "fuzz/corpus/$t" -- \
         -max_total_time="$SECONDS_EACH" -rss_limit_mb=2048 -malloc_limit_mb=1024 \

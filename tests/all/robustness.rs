@@ -233,6 +233,24 @@ fn command_line_sizes_are_refused_before_work() {
 }
 
 #[test]
+fn a_study_tail_above_the_step_limit_is_a_located_error() {
+    let dir = tempfile::tempdir().unwrap();
+    let grid = dir.path().join("grid.toml");
+    let base = repo("cases/records/pepo-loma-prieta.toml");
+    std::fs::write(
+        &grid,
+        format!(
+            "title = \"t\"\nbase = {:?}\npga = [1.0]\ntail = 1e6\n",
+            base.display().to_string()
+        ),
+    )
+    .unwrap();
+    let e = rockslide::study::load_grid(&grid).unwrap_err().to_string();
+    assert!(e.contains("grid.toml:4:8: tail: with record"), "{e}");
+    assert!(e.contains("steps to cover"), "{e}");
+}
+
+#[test]
 fn worker_counts_are_clamped_to_the_work() {
     assert_eq!(clamp_jobs(Some(100_000), 6), 6);
     assert_eq!(clamp_jobs(Some(100_000), 10_000), MAX_JOBS);
@@ -254,10 +272,11 @@ fn the_seed_mcap_reads() {
 #[test]
 fn a_huge_chunk_size_is_an_error_not_an_allocation() {
     let mut bytes = valid_mcap();
-    // the first chunk (op 0x06) after the header record: its uncompressed size at +9+16
-    let header_len = u64::from_le_bytes(bytes[9..17].try_into().unwrap()) as usize;
-    let chunk = 8 + 9 + header_len;
-    assert_eq!(bytes[chunk], 0x06, "a chunk follows the header");
+    // the first chunk (op 0x06): its uncompressed size at +9+16
+    let mut chunk = 8;
+    while bytes[chunk] != 0x06 {
+        chunk += 9 + u64::from_le_bytes(bytes[chunk + 1..chunk + 9].try_into().unwrap()) as usize;
+    }
     bytes[chunk + 9 + 16..chunk + 9 + 24].copy_from_slice(&(5u64 << 60).to_le_bytes());
     let e = read_mcap_bytes(Path::new("x.mcap"), &bytes)
         .unwrap_err()

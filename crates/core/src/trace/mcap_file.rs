@@ -488,14 +488,9 @@ fn check_framing(bytes: &[u8]) -> Result<(), String> {
             ));
         }
         let body = &bytes[body_start..body_start + len as usize];
+        check_fields(op, body).map_err(|why| format!("record 0x{op:02x} at byte {at}: {why}"))?;
         if op == CHUNK {
-            let declared = body.get(16..24).map_or(0, |b| u64_at(b, 0));
-            if declared > MAX_CHUNK_BYTES {
-                return Err(format!(
-                    "chunk at byte {at} claims {declared} uncompressed bytes, above the limit \
-                     of {MAX_CHUNK_BYTES}"
-                ));
-            }
+            check_chunk(body).map_err(|why| format!("chunk at byte {at}: {why}"))?;
         }
         at = body_start + len as usize;
         if op == FOOTER {
@@ -506,6 +501,109 @@ fn check_framing(bytes: &[u8]) -> Result<(), String> {
             };
         }
     }
+}
+
+/// The fields of a record's body, in the MCAP specification's layout: fixed-size
+/// integers (`1`, `2`, `4`, `8` bytes), strings and byte arrays with a u32 length (`s`),
+/// byte arrays with a u64 length (`b`), maps with a u32 byte length (`m`); `r` the rest.
+fn layout(op: u8) -> &'static [u8] {
+    match op {
+        0x01 => b"ss",        // header: profile, library
+        0x02 => b"884",       // footer
+        0x03 => b"2sss",      // schema: id, name, encoding, data (u32 length)
+        0x04 => b"22ssm",     // channel
+        0x05 => b"2488r",     // message
+        0x06 => b"8884sb",    // chunk
+        0x07 => b"2m",        // message index: channel, records (u32 byte length)
+        0x08 => b"8888m8s88", // chunk index
+        0x09 => b"88ssb4",    // attachment
+        0x0A => b"88888ss",   // attachment index
+        0x0B => b"82444488m", // statistics
+        0x0C => b"sm",        // metadata
+        0x0D => b"88s",       // metadata index
+        0x0E => b"188",       // summary offset
+        0x0F => b"4",         // data end
+        _ => b"r",            // unknown: skipped by readers
+    }
+}
+
+/// Every length prefix of the record's fields fits inside its body.
+fn check_fields(op: u8, body: &[u8]) -> Result<(), String> {
+    let mut at = 0usize;
+    let take = |at: &mut usize, n: u64, what: &str| -> Result<(), String> {
+        let left = (body.len() - *at) as u64;
+        if n > left {
+            return Err(format!(
+                "{what} of {n} bytes, only {left} left in the record"
+            ));
+        }
+        *at += n as usize;
+        Ok(())
+    };
+    for &f in layout(op) {
+        match f {
+            b'1' | b'2' | b'4' | b'8' => take(&mut at, u64::from(f - b'0'), "a field")?,
+            b's' | b'm' => {
+                let n = body
+                    .get(at..at + 4)
+                    .map(|b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])));
+                take(&mut at, 4, "a length")?;
+                take(&mut at, n.unwrap_or(0), "a string, array or map")?;
+            }
+            b'b' => {
+                let n = body.get(at..at + 8).map(|b| u64_at(b, 0));
+                take(&mut at, 8, "a length")?;
+                take(&mut at, n.unwrap_or(0), "a byte array")?;
+            }
+            _ => return Ok(()),
+        }
+    }
+    Ok(())
+}
+
+/// A chunk's declared size within [`MAX_CHUNK_BYTES`], and the records inside it (after
+/// decompression, itself bounded by the declared size) framed as the file's are: the
+/// `mcap` crate's chunk reader trusts the inner records' lengths.
+fn check_chunk(body: &[u8]) -> Result<(), String> {
+    // layout 8884sb, checked by `check_fields`
+    let declared = u64_at(body, 16);
+    if declared > MAX_CHUNK_BYTES {
+        return Err(format!(
+            "claims {declared} uncompressed bytes, above the limit of {MAX_CHUNK_BYTES}"
+        ));
+    }
+    let name_len = u32::from_le_bytes([body[28], body[29], body[30], body[31]]) as usize;
+    let compression = &body[32..32 + name_len];
+    let records = &body[32 + name_len + 8..];
+    let inner: std::borrow::Cow<'_, [u8]> = match compression {
+        b"" => records.into(),
+        b"zstd" => zstd::bulk::decompress(records, declared as usize)
+            .map_err(|e| format!("does not decompress: {e}"))?
+            .into(),
+        other => {
+            return Err(format!(
+                "compression \"{}\" is not read (rockslide writes zstd)",
+                String::from_utf8_lossy(other)
+            ));
+        }
+    };
+    let mut at = 0usize;
+    while at < inner.len() {
+        let Some(head) = inner.get(at..at + 9) else {
+            return Err(format!("inner record header cut short at byte {at}"));
+        };
+        let (op, len) = (head[0], u64_at(head, 1));
+        let remaining = (inner.len() - at - 9) as u64;
+        if len > remaining {
+            return Err(format!(
+                "inner record 0x{op:02x} claims {len} bytes, only {remaining} follow"
+            ));
+        }
+        let body = &inner[at + 9..at + 9 + len as usize];
+        check_fields(op, body).map_err(|why| format!("inner record 0x{op:02x}: {why}"))?;
+        at += 9 + len as usize;
+    }
+    Ok(())
 }
 
 fn u64_at(b: &[u8], i: usize) -> u64 {
