@@ -8,8 +8,9 @@ use clap::{Parser, Subcommand};
 
 use crate::commands;
 
-use rockslide_core::case::discover;
+use rockslide_core::case::{discover, limits};
 use rockslide_core::error::{Error, InputErrors};
+use rockslide_core::io::{inside, remove_stale_temporaries};
 use rockslide_present::gate;
 use rockslide_present::report::{write_case_outputs, write_suite_outputs};
 use rockslide_verify::registry;
@@ -238,23 +239,25 @@ pub fn main(cli: Cli) -> ExitCode {
             repeats,
             jobs,
             budget,
-        }) => commands::sweep::run(
-            &cases,
-            &out,
-            &rockslide_verify::sweep::Options {
-                rungs,
-                ratio,
-                repeats,
-                jobs,
-                quiet: cli.quiet,
-                budget: (budget > 0.0).then_some(budget),
-            },
-        ),
+        }) => check_ladder(rungs, ratio).and_then(|()| {
+            commands::sweep::run(
+                &cases,
+                &out,
+                &rockslide_verify::sweep::Options {
+                    rungs,
+                    ratio,
+                    repeats,
+                    jobs: bounded_jobs(jobs),
+                    quiet: cli.quiet,
+                    budget: (budget > 0.0).then_some(budget),
+                },
+            )
+        }),
         Some(Command::Stability { cases, out, jobs }) => commands::stability::run(
             &cases,
             &out,
             &rockslide_verify::sweep::Options {
-                jobs,
+                jobs: bounded_jobs(jobs),
                 quiet: cli.quiet,
                 ..Default::default()
             },
@@ -269,6 +272,34 @@ pub fn main(cli: Cli) -> ExitCode {
             ExitCode::from(2)
         }
     }
+}
+
+/// Largest number of rungs of a sweep's Δt ladder.
+const MAX_RUNGS: usize = 30;
+/// Largest refinement between the first and the last rung (`ratio^(rungs-1)`).
+const MAX_REFINEMENT: f64 = 1e7;
+
+/// The Δt ladder stays within [`MAX_RUNGS`] and [`MAX_REFINEMENT`] (checked before work).
+fn check_ladder(rungs: usize, ratio: f64) -> Result<(), Error> {
+    if rungs > MAX_RUNGS {
+        return Err(Error::Other(format!(
+            "--rungs is {rungs}, but the limit is {MAX_RUNGS}"
+        )));
+    }
+    let refinement = ratio.powf(rungs.saturating_sub(1) as f64);
+    if ratio > 1.0 && !(refinement <= MAX_REFINEMENT) {
+        return Err(Error::Other(format!(
+            "--ratio {ratio:e} over {rungs} rungs refines Δt by {refinement:.3e}; the limit is \
+             {MAX_REFINEMENT:.0e}"
+        )));
+    }
+    Ok(())
+}
+
+/// Worker threads: a request above [`limits::MAX_JOBS`] is lowered to it (0 stays, and
+/// is refused by the options' own check).
+fn bounded_jobs(jobs: Option<usize>) -> Option<usize> {
+    jobs.map(|j| j.min(limits::MAX_JOBS))
 }
 
 /// The default command: the complete document. Stability map of `cases/stability/`,
@@ -328,6 +359,9 @@ pub(crate) fn load_all(paths: &[PathBuf]) -> Result<Vec<rockslide_core::case::Ca
             Err(e) => errors.extend(e.0),
         }
     }
+    if let Err(e) = rockslide_core::case::slug::check_unique(&cases) {
+        errors.extend(e.0);
+    }
     if errors.is_empty() {
         Ok(cases)
     } else {
@@ -356,8 +390,10 @@ fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Resul
         plan(c, &engines)?;
     }
     let mut results: Vec<CaseResult> = Vec::new();
+    remove_stale_temporaries(out)?;
     for case in cases {
         let name = case.name.clone();
+        remove_stale_temporaries(&inside(out, &name)?)?;
         let result = run_case(case)?;
         let dir = write_case_outputs(&result, out)?;
         if !quiet {
@@ -454,6 +490,8 @@ fn write_reference(path: &Path, dt: f64, out: &Path) -> Result<ExitCode, Error> 
     if !(dt > 0.0 && dt.is_finite()) {
         return Err(Error::Other(format!("--dt must be positive, got {dt}")));
     }
+    limits::check_steps(case.run.duration, dt)
+        .map_err(|why| Error::Other(format!("--dt {why}")))?;
     let solution = rockslide_reference::for_case(&case)
         .map_err(|why| Error::Other(format!("{}: no reference: {why}", path.display())))?;
     let n = rockslide_engine_api::step_count(case.run.duration, dt);

@@ -28,6 +28,7 @@ mod references_records;
 mod references_rigid;
 mod report_outputs;
 mod report_sections;
+mod robustness;
 mod stability_classify;
 mod sweep_energy;
 mod sweep_order;

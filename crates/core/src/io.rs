@@ -1,10 +1,68 @@
-//! Atomic output: every file is written to a temporary sibling and renamed into place, so
-//! a reader never sees a half-written report, trace or JUnit file.
+//! Safe, atomic output.
+//!
+//! - [`inside`]: every output path is built from the output folder and a relative part
+//!   that may not be absolute, may not climb (`..`) and may not pass through a symbolic
+//!   link leading out of the folder — a case file from someone else cannot make rockslide
+//!   write anywhere but the output folder.
+//! - [`write_atomically`]: every file is written to a temporary sibling and renamed into
+//!   place, so a reader never sees a half-written report, trace or JUnit file. The
+//!   temporary sibling has a fixed name (`.<file>.rockslide-tmp`), so one left behind by an
+//!   interrupted run is reused and renamed away by the next run writing that file, and
+//!   [`remove_stale_temporaries`] clears the others from a folder.
 
 use std::io::Write;
-use std::path::Path;
+use std::path::{Component, Path, PathBuf};
 
 use crate::error::Error;
+
+/// Suffix of the temporary sibling a file is written to before it is renamed into place.
+pub const TEMP_SUFFIX: &str = ".rockslide-tmp";
+
+/// `root/relative`, checked to lie inside `root`: `relative` must be non-empty, relative,
+/// made of plain names only (no `..`, no `.`, no root or drive prefix), and the part of
+/// the joined path that already exists must resolve (symbolic links followed) inside
+/// `root`.
+pub fn inside(root: &Path, relative: impl AsRef<Path>) -> Result<PathBuf, Error> {
+    let relative = relative.as_ref();
+    let refuse = |why: &str| {
+        Error::Other(format!(
+            "refusing to write {} under the output folder {}: {why}",
+            relative.display(),
+            root.display()
+        ))
+    };
+    if relative.as_os_str().is_empty() {
+        return Err(refuse("the path is empty"));
+    }
+    if !relative
+        .components()
+        .all(|c| matches!(c, Component::Normal(_)))
+    {
+        return Err(refuse(
+            "only plain names are allowed (no absolute path, `.` or `..`)",
+        ));
+    }
+    let joined = root.join(relative);
+    if let Ok(real_root) = root.canonicalize() {
+        // the deepest existing ancestor of the target must resolve inside the root
+        let existing = joined.ancestors().find(|p| p.exists());
+        if let Some(real) = existing.and_then(|p| p.canonicalize().ok())
+            && !real.starts_with(&real_root)
+        {
+            return Err(refuse("a symbolic link leads out of the output folder"));
+        }
+    }
+    Ok(joined)
+}
+
+/// The temporary sibling `path` is written to before being renamed into place.
+pub fn temporary_for(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}{TEMP_SUFFIX}"))
+}
 
 /// Write `bytes` to `path` atomically, creating parent folders.
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
@@ -13,17 +71,81 @@ pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let mut tmp = tempfile::NamedTempFile::new_in(dir).map_err(|e| Error::io(dir, e))?;
-    tmp.write_all(bytes).map_err(|e| Error::io(path, e))?;
-    // temporary files are created private (0600); outputs are ordinary files
-    #[cfg(unix)]
-    {
-        use std::os::unix::fs::PermissionsExt;
-        let perms = std::fs::Permissions::from_mode(0o644);
-        tmp.as_file()
-            .set_permissions(perms)
-            .map_err(|e| Error::io(path, e))?;
+    let tmp = temporary_for(path);
+    let result = write_and_rename(&tmp, path, bytes);
+    if result.is_err() {
+        // best effort: a failed write leaves nothing behind
+        let _ = std::fs::remove_file(&tmp);
     }
-    tmp.persist(path).map_err(|e| Error::io(path, e.error))?;
-    Ok(())
+    result
+}
+
+fn write_and_rename(tmp: &Path, path: &Path, bytes: &[u8]) -> Result<(), Error> {
+    // never follow a symbolic link planted where the temporary file goes
+    if tmp.symlink_metadata().is_ok() {
+        std::fs::remove_file(tmp).map_err(|e| Error::io(tmp, e))?;
+    }
+    let mut file = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(tmp)
+        .map_err(|e| Error::io(tmp, e))?;
+    file.write_all(bytes).map_err(|e| Error::io(path, e))?;
+    file.flush().map_err(|e| Error::io(path, e))?;
+    drop(file);
+    std::fs::rename(tmp, path).map_err(|e| Error::io(path, e))
+}
+
+/// Remove the temporary files (`.*.rockslide-tmp`, and the `.tmpXXXXXX` files of earlier
+/// versions) an interrupted run left directly in `dir`; returns how many were removed.
+/// A folder that does not exist has none.
+pub fn remove_stale_temporaries(dir: &Path) -> Result<usize, Error> {
+    let entries = match std::fs::read_dir(dir) {
+        Ok(entries) => entries,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(0),
+        Err(e) => return Err(Error::io(dir, e)),
+    };
+    let mut removed = 0;
+    for entry in entries {
+        let entry = entry.map_err(|e| Error::io(dir, e))?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
+        if is_file && is_stale_temporary(&name) {
+            std::fs::remove_file(entry.path()).map_err(|e| Error::io(&entry.path(), e))?;
+            removed += 1;
+        }
+    }
+    Ok(removed)
+}
+
+/// `.x.rockslide-tmp`, or `.tmp` + 6 alphanumerics (the `tempfile` names of earlier versions).
+fn is_stale_temporary(name: &str) -> bool {
+    let ours = name.starts_with('.') && name.ends_with(TEMP_SUFFIX);
+    let legacy = name
+        .strip_prefix(".tmp")
+        .is_some_and(|r| r.len() == 6 && r.chars().all(|c| c.is_ascii_alphanumeric()));
+    ours || legacy
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn inside_refuses_climbing_and_absolute_paths() {
+        let root = Path::new("out");
+        assert!(inside(root, "case/report.html").is_ok());
+        for bad in ["", ".", "..", "../x", "a/../../x", "/etc/x", "./a"] {
+            assert!(inside(root, bad).is_err(), "{bad:?} accepted");
+        }
+    }
+
+    #[test]
+    fn stale_temporaries_are_recognised() {
+        assert!(is_stale_temporary(".report.html.rockslide-tmp"));
+        assert!(is_stale_temporary(".tmpAb12Cd"));
+        assert!(!is_stale_temporary("report.html"));
+        assert!(!is_stale_temporary(".tmp"));
+        assert!(!is_stale_temporary(".tmpfolder-long"));
+    }
 }

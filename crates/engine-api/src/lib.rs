@@ -84,6 +84,12 @@ pub struct SolverStats {
     /// Iterations of the static preload before t = 0 (fe).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub static_iterations: Option<u64>,
+    /// Failed steps cut into smaller ones and retried (fe).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub step_cuts: Option<u64>,
+    /// Steps accepted with the residual at the round-off floor rather than the tolerance (fe).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub roundoff_accepted: Option<u64>,
 }
 
 impl SolverStats {
@@ -103,6 +109,8 @@ impl SolverStats {
             ("Newton iterations", self.newton_iterations),
             ("max iterations in a step", self.max_step_iterations),
             ("static preload iterations", self.static_iterations),
+            ("step cuts", self.step_cuts),
+            ("steps accepted at round-off", self.roundoff_accepted),
         ];
         std::iter::once(("steps", self.steps))
             .chain(optional.into_iter().filter_map(|(k, v)| v.map(|v| (k, v))))

@@ -102,11 +102,13 @@ pub(crate) fn findings(run: &Findings) -> Vec<String> {
         ));
     }
     findings.push(format!(
-        "Newton: {} iterations in {} steps (at most {} in one step); static preload {} iterations",
+        "Newton: {} iterations in {} steps (at most {} in one step); static preload {} iterations; {} step cuts; {} steps accepted at round-off",
         counters.iterations,
         counters.steps,
         counters.max_step_iterations,
-        counters.static_iterations
+        counters.static_iterations,
+        counters.step_cuts,
+        counters.roundoff_accepted
     ));
     if rocking && opts.sensitivity && status.completed() {
         let base = Summary::of(trace);

@@ -13,6 +13,7 @@ pub const OPTION_KEYS: &[&str] = &[
     "alpha",
     "newton",
     "max_iterations",
+    "max_step_cuts",
     "kinematics",
     "p_delta",
     "rotational_inertia",
@@ -61,6 +62,9 @@ pub struct Newton {
     pub displacement_tol: f64,
     /// Equilibrium iterations allowed per step before the run is declared not converged.
     pub max_iterations: usize,
+    /// A failing step is cut in halves and retried down to Δt/2^max_step_cuts (0: never
+    /// cut; the run ends at the first step Newton cannot finish).
+    pub max_step_cuts: u32,
 }
 
 impl Newton {
@@ -71,6 +75,7 @@ impl Newton {
         force_tol: 5e-3,
         displacement_tol: 5e-2,
         max_iterations: 25,
+        max_step_cuts: 4,
     };
     /// Verification preset: converged to round-off for these scenes.
     pub const TIGHT: Newton = Newton {
@@ -78,6 +83,7 @@ impl Newton {
         force_tol: 1e-9,
         displacement_tol: 1e-9,
         max_iterations: 50,
+        max_step_cuts: 4,
     };
 }
 
@@ -194,6 +200,15 @@ impl FeOptions {
                 ));
             }
             o.newton.max_iterations = m as usize;
+            let cuts =
+                case.engine_number(ID, "max_step_cuts", f64::from(o.newton.max_step_cuts))?;
+            if !((0.0..=10.0).contains(&cuts) && cuts.fract() == 0.0) {
+                return Err(case.field_error(
+                    &field("max_step_cuts"),
+                    format!("is {cuts}, but must be a whole number from 0 to 10 (Δt/2^10 at most)"),
+                ));
+            }
+            o.newton.max_step_cuts = cuts as u32;
             Ok(())
         })());
         take((|| {

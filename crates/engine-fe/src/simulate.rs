@@ -38,6 +38,8 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
             newton_iterations: Some(counters.iterations),
             max_step_iterations: Some(counters.max_step_iterations),
             static_iterations: Some(counters.static_iterations),
+            step_cuts: Some(counters.step_cuts),
+            roundoff_accepted: Some(counters.roundoff_accepted),
         },
         findings,
         trace,
@@ -145,11 +147,12 @@ fn settings(
         (
             "Newton".into(),
             format!(
-                "preset \"{}\": force {:.1e} (relative), displacement {:.1e} (relative), at most {} iterations per step; consistent tangent",
+                "preset \"{}\": force {:.1e} (relative), displacement {:.1e} (relative), at most {} iterations per step, failing steps cut down to Δt/{}; consistent tangent",
                 opts.newton.preset,
                 opts.newton.force_tol,
                 opts.newton.displacement_tol,
-                opts.newton.max_iterations
+                opts.newton.max_iterations,
+                1u32 << opts.newton.max_step_cuts
             ),
         ),
         (

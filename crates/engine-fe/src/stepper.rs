@@ -84,6 +84,11 @@ pub struct Counters {
     pub max_step_iterations: u64,
     /// Iterations of the static preload.
     pub static_iterations: u64,
+    /// Step attempts that failed and were retried as two halves (step cutting).
+    pub step_cuts: u64,
+    /// Steps accepted at the round-off floor (residual within tolerance and no longer
+    /// falling, correction still above the displacement criterion).
+    pub roundoff_accepted: u64,
 }
 
 /// Every vector the loop needs, allocated once.
@@ -187,186 +192,285 @@ pub fn integrate(
     let m = model.mass_diag();
     let c = model.body.damping;
     let weight = model.weight();
-    let (alpha, beta, gamma) = opts.integrator.parameters();
-    let s = 1.0 + alpha;
-    let (c0, c1) = (1.0 / (beta * dt * dt), gamma / (beta * dt));
-    let sys = System {
-        c0,
-        s,
-        damp_xx: s * c * c1,
-    };
-    let newton = opts.newton;
 
     // State at n.
-    let mut q_n = q_static;
-    let mut v_n = Vector3::zeros();
     let g0 = drive.ground(0.0);
-    let mut f_n = Vector3::new(drive.force(0.0), -weight, 0.0);
-    model.assemble(&q_n, &mut w.un, g0.0, &mut w.asm);
-    let mut pb_n = w.asm.pb;
+    let mut n = StepState {
+        t: 0.0,
+        q: q_static,
+        v: Vector3::zeros(),
+        a: Vector3::zeros(),
+        f: Vector3::new(drive.force(0.0), -weight, 0.0),
+        pb: Vector3::zeros(),
+        damp: c * (0.0 - g0.1),
+        g: g0,
+    };
+    model.assemble(&n.q, &mut w.un, g0.0, &mut w.asm);
+    n.pb = w.asm.pb;
     w.un_n.copy_from_slice(&w.un);
     w.pn_n.copy_from_slice(&w.asm.pn);
-    let mut damp_n = c * (v_n.x - g0.1);
-    let mut g_n = g0.0;
-    let mut a_n = (f_n - pb_n - Vector3::new(damp_n, 0.0, 0.0))
+    n.a = (n.f - n.pb - Vector3::new(n.damp, 0.0, 0.0))
         .component_div(&m.map(|x| if x > 0.0 { x } else { f64::INFINITY }));
     if !model.body.rotation {
-        a_n.z = 0.0;
+        n.a.z = 0.0;
     }
     model.restore();
     observe(
         model,
         &Snapshot {
             t: 0.0,
-            q: q_n,
-            v: v_n,
-            a: a_n,
+            q: n.q,
+            v: n.v,
+            a: n.a,
             un: &w.un_n,
             ground: g0,
             q_static,
         },
     );
 
-    let mut dq = Vector3::zeros();
+    let max_depth = opts.newton.max_step_cuts;
+    let units = 1u32 << max_depth;
     for step in 1..=steps {
-        let t = step as f64 * dt;
-        let g = drive.ground(t);
-        let f = Vector3::new(drive.force(t), -weight, 0.0);
-        // Predictor: constant acceleration over the step.
-        let mut q = q_n + v_n * dt + a_n * (0.5 * dt * dt);
-        w.un.copy_from_slice(&w.un_n);
-        // Predictor: nodes on the ground move with it (element 1 is the stiff one); a
-        // node left behind would put element 1 far into slip and let Newton cycle.
-        for sup in &model.supports {
-            if let Some(k) = sup.node {
-                w.un[k].x += g.0 - g_n;
-            }
-        }
-        let mut converged = false;
-        let (mut a, mut v) = (a_n, v_n);
-        let mut last = (0.0, 0.0, 0.0);
-        let mut it = 0;
-        // Backtracking line search (Dennis & Schnabel 1983, §6.3): the friction law is
-        // piecewise linear, and a full Newton step can jump between stick and slip of
-        // several elements and cycle; halve the step while the residual does not fall.
-        let (mut q_prev, mut dq_prev) = (q, Vector3::zeros());
-        let (mut r_prev, mut lambda) = (f64::INFINITY, 1.0_f64);
-        while it < newton.max_iterations {
-            it += 1;
-            a = (q - q_n - v_n * dt) * c0 - a_n * (0.5 / beta - 1.0); // Newmark
-            v = v_n + (a_n * (1.0 - gamma) + a * gamma) * dt;
-            if !model.body.rotation {
-                a.z = 0.0;
-                v.z = 0.0;
-            }
-            model.assemble(&q, &mut w.un, g.0, &mut w.asm);
-            let damp = c * (v.x - g.1);
-            // HHT residual (α = 0: Newmark), paper Eq 2 generalised.
-            let rb = (f - w.asm.pb - Vector3::new(damp, 0.0, 0.0)) * s
-                - (f_n - pb_n - Vector3::new(damp_n, 0.0, 0.0)) * alpha
-                - m.component_mul(&a);
-            let mut r2 = rb.norm_squared();
-            for k in 0..model.nodes {
-                w.rn[k] = -w.asm.pn[k] * s + w.pn_n[k] * alpha;
-                r2 += w.rn[k].norm_squared();
-            }
-            let fref = f.norm() + w.asm.pb.norm() + m.component_mul(&a).norm();
-            if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
-                lambda *= 0.5;
-                q = q_prev + dq_prev * lambda;
-                for k in 0..model.nodes {
-                    w.un[k] = w.un_prev[k] + w.dun_prev[k] * lambda;
+        let t_start = (step - 1) as f64 * dt;
+        // Step cutting: a step whose Newton iteration fails is retried as two halves,
+        // down to Δt/2^max_step_cuts, then the step size grows back when aligned.
+        let (mut pos, mut level) = (0u32, 0u32);
+        while pos < units {
+            let size = units >> level;
+            let end = pos + size;
+            let t = if end == units {
+                step as f64 * dt
+            } else {
+                t_start + dt * f64::from(end) / f64::from(units)
+            };
+            let h = dt / f64::from(1u32 << level);
+            match newton_step(model, drive, opts, &mut w, &n, t, h, &mut counters) {
+                Ok(next) => {
+                    model.commit();
+                    n = next;
+                    w.un_n.copy_from_slice(&w.un);
+                    w.pn_n.copy_from_slice(&w.asm.pn);
+                    pos = end;
+                    if level > 0 && pos % (2 * size) == 0 {
+                        level -= 1;
+                    }
                 }
-                continue;
-            }
-            if !(r2.is_finite() && q.iter().all(|x| x.is_finite())) {
-                model.restore();
-                return (
-                    RunStatus::Diverged {
-                        time: t,
-                        reason: "displacement or residual is not finite".into(),
-                    },
-                    counters,
-                );
-            }
-            if !solve(model, &sys, &mut w.asm, &rb, &w.rn, &mut dq, &mut w.dun) {
-                model.restore();
-                return (
-                    RunStatus::NotConverged {
-                        time: t,
-                        reason: format!("singular tangent at iteration {it}"),
-                    },
-                    counters,
-                );
-            }
-            let (mut d2, mut inc2, mut u2) = (
-                dq.norm_squared(),
-                (q + dq - q_n).norm_squared(),
-                q.norm_squared(),
-            );
-            for k in 0..model.nodes {
-                d2 += w.dun[k].norm_squared();
-                inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
-                u2 += w.un[k].norm_squared();
-            }
-            let (rn, dn, incn) = (r2.sqrt(), d2.sqrt(), inc2.sqrt());
-            last = (rn / fref.max(f64::MIN_POSITIVE), dn, incn);
-            // Converged at the current iterate: its residual is small and the correction
-            // Newton would still make is small against the step's increment.
-            // A correction below 1e-12 of the displacement, or a residual below 1e-11 of
-            // the force scale, is round-off of the absolute positions: nothing to correct.
-            let force_ok = rn <= newton.force_tol * fref;
-            let disp_ok = dn <= (newton.displacement_tol * incn).max(1e-12 * u2.sqrt());
-            if (force_ok && disp_ok) || rn <= 1e-11 * fref {
-                converged = true;
-                break;
-            }
-            (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
-            q += dq;
-            for k in 0..model.nodes {
-                w.un_prev[k] = w.un[k];
-                w.dun_prev[k] = w.dun[k];
-                w.un[k] += w.dun[k];
+                Err(failure) => {
+                    model.restore();
+                    if failure.diverged || level == max_depth {
+                        let cut = if level > 0 {
+                            format!(" (after cutting the step to Δt/{})", 1u32 << level)
+                        } else {
+                            String::new()
+                        };
+                        let reason = format!("{}{cut}", failure.reason);
+                        let status = if failure.diverged {
+                            RunStatus::Diverged { time: t, reason }
+                        } else {
+                            RunStatus::NotConverged { time: t, reason }
+                        };
+                        return (status, counters);
+                    }
+                    level += 1;
+                    counters.step_cuts += 1;
+                }
             }
         }
-        counters.iterations += it as u64;
-        counters.max_step_iterations = counters.max_step_iterations.max(it as u64);
-        if !converged {
-            model.restore();
-            return (
-                RunStatus::NotConverged {
-                    time: t,
-                    reason: format!(
-                        "{} iterations: relative residual {:.3e} (limit {:.1e}), last correction {:.3e} m against a step increment of {:.3e} m (limit {:.1e})",
-                        it, last.0, newton.force_tol, last.1, last.2, newton.displacement_tol
-                    ),
-                },
-                counters,
-            );
-        }
-        model.commit();
         counters.steps += 1;
-        q_n = q;
-        v_n = v;
-        a_n = a;
-        f_n = f;
-        pb_n = w.asm.pb;
-        damp_n = c * (v.x - g.1);
-        g_n = g.0;
-        w.un_n.copy_from_slice(&w.un);
-        w.pn_n.copy_from_slice(&w.asm.pn);
         observe(
             model,
             &Snapshot {
-                t,
-                q: q_n,
-                v: v_n,
-                a: a_n,
+                t: n.t,
+                q: n.q,
+                v: n.v,
+                a: n.a,
                 un: &w.un_n,
-                ground: g,
+                ground: n.g,
                 q_static,
             },
         );
     }
     (RunStatus::Completed, counters)
+}
+
+/// The body's state at the end of a (sub)step, what the next step starts from.
+#[derive(Debug, Clone, Copy)]
+struct StepState {
+    t: f64,
+    q: Vector3<f64>,
+    v: Vector3<f64>,
+    a: Vector3<f64>,
+    /// External force.
+    f: Vector3<f64>,
+    /// Base reaction on the body.
+    pb: Vector3<f64>,
+    /// Damping force.
+    damp: f64,
+    /// Ground (displacement, velocity, acceleration).
+    g: (f64, f64, f64),
+}
+
+/// Why a step failed.
+struct StepFailure {
+    reason: String,
+    /// Not finite: cutting the step is not tried.
+    diverged: bool,
+}
+
+/// One step of length `h` from `n` to time `t`: Newton–Raphson with a backtracking line
+/// search on the consistent tangent. On success the elements' trial states and `w.un`,
+/// `w.asm` hold the new state (not yet committed).
+#[allow(clippy::too_many_arguments)]
+fn newton_step(
+    model: &mut Model,
+    drive: &Drive,
+    opts: &FeOptions,
+    w: &mut Workspace,
+    n: &StepState,
+    t: f64,
+    h: f64,
+    counters: &mut Counters,
+) -> Result<StepState, StepFailure> {
+    let m = model.mass_diag();
+    let c = model.body.damping;
+    let (alpha, beta, gamma) = opts.integrator.parameters();
+    let s = 1.0 + alpha;
+    let (c0, c1) = (1.0 / (beta * h * h), gamma / (beta * h));
+    let sys = System {
+        c0,
+        s,
+        damp_xx: s * c * c1,
+    };
+    let newton = opts.newton;
+    let g = drive.ground(t);
+    let f = Vector3::new(drive.force(t), -model.weight(), 0.0);
+    let mut dq = Vector3::zeros();
+    // Predictor: constant acceleration over the step.
+    let mut q = n.q + n.v * h + n.a * (0.5 * h * h);
+    w.un.copy_from_slice(&w.un_n);
+    // Predictor: nodes on the ground move with it (element 1 is the stiff one); a
+    // node left behind would put element 1 far into slip and let Newton cycle.
+    for sup in &model.supports {
+        if let Some(k) = sup.node {
+            w.un[k].x += g.0 - n.g.0;
+        }
+    }
+    let (mut a, mut v);
+    let mut last = (0.0, 0.0, 0.0);
+    let mut it = 0;
+    // Backtracking line search (Dennis & Schnabel 1983, §6.3): the friction law is
+    // piecewise linear, and a full Newton step can jump between stick and slip of
+    // several elements and cycle; halve the step while the residual does not fall.
+    let (mut q_prev, mut dq_prev) = (q, Vector3::zeros());
+    let (mut r_prev, mut lambda) = (f64::INFINITY, 1.0_f64);
+    let done = |it: usize, counters: &mut Counters| {
+        counters.iterations += it as u64;
+        counters.max_step_iterations = counters.max_step_iterations.max(it as u64);
+    };
+    while it < newton.max_iterations {
+        it += 1;
+        a = (q - n.q - n.v * h) * c0 - n.a * (0.5 / beta - 1.0); // Newmark
+        v = n.v + (n.a * (1.0 - gamma) + a * gamma) * h;
+        if !model.body.rotation {
+            a.z = 0.0;
+            v.z = 0.0;
+        }
+        model.assemble(&q, &mut w.un, g.0, &mut w.asm);
+        let damp = c * (v.x - g.1);
+        // HHT residual (α = 0: Newmark), paper Eq 2 generalised.
+        let rb = (f - w.asm.pb - Vector3::new(damp, 0.0, 0.0)) * s
+            - (n.f - n.pb - Vector3::new(n.damp, 0.0, 0.0)) * alpha
+            - m.component_mul(&a);
+        let mut r2 = rb.norm_squared();
+        for k in 0..model.nodes {
+            w.rn[k] = -w.asm.pn[k] * s + w.pn_n[k] * alpha;
+            r2 += w.rn[k].norm_squared();
+        }
+        let fref = f.norm() + w.asm.pb.norm() + m.component_mul(&a).norm();
+        if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
+            lambda *= 0.5;
+            q = q_prev + dq_prev * lambda;
+            for k in 0..model.nodes {
+                w.un[k] = w.un_prev[k] + w.dun_prev[k] * lambda;
+            }
+            continue;
+        }
+        if !(r2.is_finite() && q.iter().all(|x| x.is_finite())) {
+            done(it, counters);
+            return Err(StepFailure {
+                reason: "displacement or residual is not finite".into(),
+                diverged: true,
+            });
+        }
+        if !solve(model, &sys, &mut w.asm, &rb, &w.rn, &mut dq, &mut w.dun) {
+            done(it, counters);
+            return Err(StepFailure {
+                reason: format!("singular tangent at iteration {it}"),
+                diverged: false,
+            });
+        }
+        let (mut d2, mut inc2, mut u2) = (
+            dq.norm_squared(),
+            (q + dq - n.q).norm_squared(),
+            q.norm_squared(),
+        );
+        for k in 0..model.nodes {
+            d2 += w.dun[k].norm_squared();
+            inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
+            u2 += w.un[k].norm_squared();
+        }
+        let (rn, dn, incn) = (r2.sqrt(), d2.sqrt(), inc2.sqrt());
+        last = (rn / fref.max(f64::MIN_POSITIVE), dn, incn);
+        // Converged at the current iterate: its residual is small and the correction
+        // Newton would still make is small against the step's increment.
+        // A correction below 1e-12 of the displacement, or a residual below 1e-11 of
+        // the force scale, is round-off of the absolute positions: nothing to correct.
+        let force_ok = rn <= newton.force_tol * fref;
+        let disp_ok = dn <= (newton.displacement_tol * incn).max(1e-12 * u2.sqrt());
+        if (force_ok && disp_ok) || rn <= 1e-11 * fref {
+            done(it, counters);
+            return Ok(StepState {
+                t,
+                q,
+                v,
+                a,
+                f,
+                pb: w.asm.pb,
+                damp,
+                g,
+            });
+        }
+        // Round-off floor: the residual is within the force tolerance, and a full Newton
+        // iteration (with its line search) no longer halves it — the iterate is at the
+        // round-off level of the load, and the remaining correction is noise.
+        if force_ok && r_prev.is_finite() && rn > 0.5 * r_prev {
+            counters.roundoff_accepted += 1;
+            done(it, counters);
+            return Ok(StepState {
+                t,
+                q,
+                v,
+                a,
+                f,
+                pb: w.asm.pb,
+                damp,
+                g,
+            });
+        }
+        (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
+        q += dq;
+        for k in 0..model.nodes {
+            w.un_prev[k] = w.un[k];
+            w.dun_prev[k] = w.dun[k];
+            w.un[k] += w.dun[k];
+        }
+    }
+    done(it, counters);
+    Err(StepFailure {
+        reason: format!(
+            "{} iterations: relative residual {:.3e} (limit {:.1e}), last correction {:.3e} m against a step increment of {:.3e} m (limit {:.1e})",
+            it, last.0, newton.force_tol, last.1, last.2, newton.displacement_tol
+        ),
+        diverged: false,
+    })
 }

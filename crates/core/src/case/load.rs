@@ -37,7 +37,8 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
     let model = v.model(&raw.model);
     let excitation = v.excitation(&raw.excitation, path);
     let run = v.run(raw.run.duration, raw.run.dt);
-    let engines = v.engines(&raw.engines);
+    let engines = v.engines(&raw.engines, raw.run.duration);
+    let name = v.name(raw.name.as_deref(), path);
     let tolerances = raw
         .tolerance
         .iter()
@@ -62,11 +63,6 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
     let (Some(model), Some(excitation)) = (model, excitation) else {
         unreachable!("a missing model or excitation always records an error")
     };
-    let name = raw.name.unwrap_or_else(|| {
-        path.file_stem()
-            .map(|s| s.to_string_lossy().into_owned())
-            .unwrap_or_else(|| "case".into())
-    });
     Ok(Case {
         title: raw.title.unwrap_or_else(|| name.clone()),
         name,
@@ -496,6 +492,20 @@ impl Validator<'_> {
         })
     }
 
+    /// The case's name, which names its output folder: an explicit `name` must be a
+    /// [`slug`](super::slug); without one, the file's stem turned into a slug.
+    fn name(&mut self, explicit: Option<&str>, path: &Path) -> String {
+        match explicit {
+            Some(n) => {
+                if let Err(why) = super::slug::check(n) {
+                    self.fail("name", why);
+                }
+                n.to_string()
+            }
+            None => super::slug::from_stem(path),
+        }
+    }
+
     fn run(&mut self, duration: f64, dt: f64) -> RunSettings {
         self.number("run.duration", Some(duration), Rule::positive("s"));
         self.number("run.dt", Some(dt), Rule::positive("s"));
@@ -505,10 +515,26 @@ impl Validator<'_> {
                 format!("is {dt} s, longer than run.duration ({duration} s)"),
             );
         }
+        self.steps("run.dt", duration, dt);
         RunSettings { duration, dt }
     }
 
-    fn engines(&mut self, raw: &BTreeMap<String, RawEngine>) -> BTreeMap<String, EngineRequest> {
+    /// Steps of `dt` covering `duration` within [`limits::max_steps`](super::limits).
+    fn steps(&mut self, field: &str, duration: f64, dt: f64) {
+        let valid = |x: f64| x > 0.0 && x.is_finite();
+        if valid(duration)
+            && valid(dt)
+            && let Err(why) = super::limits::check_steps(duration, dt)
+        {
+            self.fail(field, why);
+        }
+    }
+
+    fn engines(
+        &mut self,
+        raw: &BTreeMap<String, RawEngine>,
+        duration: f64,
+    ) -> BTreeMap<String, EngineRequest> {
         let mut out = BTreeMap::new();
         for (id, e) in raw {
             let field = format!("engines.{id}");
@@ -522,6 +548,7 @@ impl Validator<'_> {
             }
             if let Some(dt) = e.dt {
                 self.number(&format!("{field}.dt"), Some(dt), Rule::positive("s"));
+                self.steps(&format!("{field}.dt"), duration, dt);
             }
             let mut options = BTreeMap::new();
             for (k, v) in &e.options {

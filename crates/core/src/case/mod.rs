@@ -3,12 +3,14 @@
 //! (`record`), and loading with located errors
 //! (`load`). Engines never see TOML: they see [`Case`] and [`Scene`].
 
+pub mod limits;
 mod load;
 mod locate;
 mod raw;
 pub mod record;
 mod scene;
 mod signal;
+pub mod slug;
 
 pub use load::{discover, load_case, parse_case};
 pub use locate::Locator;

@@ -436,9 +436,180 @@ impl McapContents {
 /// Read and check an MCAP file: structure, CRCs, summary, every message's JSON; the
 /// state channels become traces. Any damage is one clear error naming the file.
 pub fn read_mcap(path: &Path) -> Result<McapContents, InputErrors> {
-    let bytes = std::fs::read(path)
+    let bytes = read_bounded(path, MAX_MCAP_BYTES)
         .map_err(|e| InputError::new(path, "", format!("cannot read the MCAP file: {e}")))?;
     read_mcap_bytes(path, &bytes)
+}
+
+/// Largest MCAP file `trace-info` reads (1 GiB; rockslide's own are a few MB).
+pub const MAX_MCAP_BYTES: u64 = 1 << 30;
+
+/// Largest uncompressed chunk accepted (256 MiB; rockslide writes chunks under 1 MB).
+pub const MAX_CHUNK_BYTES: u64 = 256 << 20;
+
+/// The file's bytes, refusing more than `limit` (read through a bounded reader, so that a
+/// device such as `/dev/zero` or a file growing while read cannot exhaust memory).
+pub(crate) fn read_bounded(path: &Path, limit: u64) -> std::io::Result<Vec<u8>> {
+    use std::io::Read;
+    let file = std::fs::File::open(path)?;
+    let mut bytes = Vec::new();
+    file.take(limit + 1).read_to_end(&mut bytes)?;
+    if bytes.len() as u64 > limit {
+        return Err(std::io::Error::other(format!(
+            "larger than the limit of {limit} bytes"
+        )));
+    }
+    Ok(bytes)
+}
+
+/// Walk the top-level records of an MCAP file before the `mcap` crate parses them: every
+/// record's length must fit in the file, and every chunk's declared uncompressed size must
+/// be within [`MAX_CHUNK_BYTES`] — so that a flipped byte gives an error instead of an
+/// allocation of exabytes.
+fn check_framing(bytes: &[u8]) -> Result<(), String> {
+    const MAGIC: &[u8] = b"\x89MCAP0\r\n";
+    const CHUNK: u8 = 0x06;
+    const FOOTER: u8 = 0x02;
+    if !bytes.starts_with(MAGIC) {
+        return Err("does not start with the MCAP magic bytes".into());
+    }
+    let mut at = MAGIC.len();
+    loop {
+        let Some(head) = bytes.get(at..at + 9) else {
+            return Err(format!("record header cut short at byte {at}"));
+        };
+        let op = head[0];
+        let len = u64_at(head, 1);
+        let body_start = at + 9;
+        let remaining = (bytes.len() - body_start) as u64;
+        if len > remaining {
+            return Err(format!(
+                "record 0x{op:02x} at byte {at} claims {len} bytes, only {remaining} follow"
+            ));
+        }
+        let body = &bytes[body_start..body_start + len as usize];
+        check_fields(op, body).map_err(|why| format!("record 0x{op:02x} at byte {at}: {why}"))?;
+        if op == CHUNK {
+            check_chunk(body).map_err(|why| format!("chunk at byte {at}: {why}"))?;
+        }
+        at = body_start + len as usize;
+        if op == FOOTER {
+            return if bytes[at..].starts_with(MAGIC) {
+                Ok(())
+            } else {
+                Err("no closing magic bytes after the footer".into())
+            };
+        }
+    }
+}
+
+/// The fields of a record's body, in the MCAP specification's layout: fixed-size
+/// integers (`1`, `2`, `4`, `8` bytes), strings and byte arrays with a u32 length (`s`),
+/// byte arrays with a u64 length (`b`), maps with a u32 byte length (`m`); `r` the rest.
+fn layout(op: u8) -> &'static [u8] {
+    match op {
+        0x01 => b"ss",        // header: profile, library
+        0x02 => b"884",       // footer
+        0x03 => b"2sss",      // schema: id, name, encoding, data (u32 length)
+        0x04 => b"22ssm",     // channel
+        0x05 => b"2488r",     // message
+        0x06 => b"8884sb",    // chunk
+        0x07 => b"2m",        // message index: channel, records (u32 byte length)
+        0x08 => b"8888m8s88", // chunk index
+        0x09 => b"88ssb4",    // attachment
+        0x0A => b"88888ss",   // attachment index
+        0x0B => b"82444488m", // statistics
+        0x0C => b"sm",        // metadata
+        0x0D => b"88s",       // metadata index
+        0x0E => b"188",       // summary offset
+        0x0F => b"4",         // data end
+        _ => b"r",            // unknown: skipped by readers
+    }
+}
+
+/// Every length prefix of the record's fields fits inside its body.
+fn check_fields(op: u8, body: &[u8]) -> Result<(), String> {
+    let mut at = 0usize;
+    let take = |at: &mut usize, n: u64, what: &str| -> Result<(), String> {
+        let left = (body.len() - *at) as u64;
+        if n > left {
+            return Err(format!(
+                "{what} of {n} bytes, only {left} left in the record"
+            ));
+        }
+        *at += n as usize;
+        Ok(())
+    };
+    for &f in layout(op) {
+        match f {
+            b'1' | b'2' | b'4' | b'8' => take(&mut at, u64::from(f - b'0'), "a field")?,
+            b's' | b'm' => {
+                let n = body
+                    .get(at..at + 4)
+                    .map(|b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])));
+                take(&mut at, 4, "a length")?;
+                take(&mut at, n.unwrap_or(0), "a string, array or map")?;
+            }
+            b'b' => {
+                let n = body.get(at..at + 8).map(|b| u64_at(b, 0));
+                take(&mut at, 8, "a length")?;
+                take(&mut at, n.unwrap_or(0), "a byte array")?;
+            }
+            _ => return Ok(()),
+        }
+    }
+    Ok(())
+}
+
+/// A chunk's declared size within [`MAX_CHUNK_BYTES`], and the records inside it (after
+/// decompression, itself bounded by the declared size) framed as the file's are: the
+/// `mcap` crate's chunk reader trusts the inner records' lengths.
+fn check_chunk(body: &[u8]) -> Result<(), String> {
+    // layout 8884sb, checked by `check_fields`
+    let declared = u64_at(body, 16);
+    if declared > MAX_CHUNK_BYTES {
+        return Err(format!(
+            "claims {declared} uncompressed bytes, above the limit of {MAX_CHUNK_BYTES}"
+        ));
+    }
+    let name_len = u32::from_le_bytes([body[28], body[29], body[30], body[31]]) as usize;
+    let compression = &body[32..32 + name_len];
+    let records = &body[32 + name_len + 8..];
+    let inner: std::borrow::Cow<'_, [u8]> = match compression {
+        b"" => records.into(),
+        b"zstd" => zstd::bulk::decompress(records, declared as usize)
+            .map_err(|e| format!("does not decompress: {e}"))?
+            .into(),
+        other => {
+            return Err(format!(
+                "compression \"{}\" is not read (rockslide writes zstd)",
+                String::from_utf8_lossy(other)
+            ));
+        }
+    };
+    let mut at = 0usize;
+    while at < inner.len() {
+        let Some(head) = inner.get(at..at + 9) else {
+            return Err(format!("inner record header cut short at byte {at}"));
+        };
+        let (op, len) = (head[0], u64_at(head, 1));
+        let remaining = (inner.len() - at - 9) as u64;
+        if len > remaining {
+            return Err(format!(
+                "inner record 0x{op:02x} claims {len} bytes, only {remaining} follow"
+            ));
+        }
+        let body = &inner[at + 9..at + 9 + len as usize];
+        check_fields(op, body).map_err(|why| format!("inner record 0x{op:02x}: {why}"))?;
+        at += 9 + len as usize;
+    }
+    Ok(())
+}
+
+fn u64_at(b: &[u8], i: usize) -> u64 {
+    let mut le = [0u8; 8];
+    le.copy_from_slice(&b[i..i + 8]);
+    u64::from_le_bytes(le)
 }
 
 /// [`read_mcap`] on bytes already in memory (`path` names them in messages).
@@ -450,6 +621,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             format!("not a readable MCAP file ({what}: {e}); it may be truncated or corrupt"),
         )
     };
+    check_framing(bytes).map_err(|why| damaged("framing", &why))?;
     let summary = mcap::read::Summary::read(bytes)
         .map_err(|e| damaged("summary", &e))?
         .ok_or_else(|| {

@@ -108,6 +108,50 @@ pub struct Grid {
     pub plan_signature: String,
 }
 
+/// Most points in one grid.
+pub const MAX_POINTS: u64 = 1_000_000;
+
+/// Resource bounds before any run: each record plus its tail, at the finest step any run
+/// of the grid uses (the base case's engines, the record's own for Newmark), within the
+/// step limit; the number of points within [`MAX_POINTS`].
+fn check_sizes(
+    raw: &RawGrid,
+    base: &Case,
+    records: &[GridRecord],
+    tail: f64,
+    loc: &Locator,
+    errors: &mut Vec<InputError>,
+) {
+    use rockslide_core::case::limits;
+    let engine_dt = base
+        .engines
+        .keys()
+        .map(|e| base.dt_for(e))
+        .fold(base.run.dt, f64::min);
+    if tail.is_finite() && tail >= 0.0 {
+        for r in records {
+            let duration = r.record.dt * r.record.samples.len() as f64 + tail;
+            let dt = engine_dt.min(r.record.dt);
+            if dt > 0.0
+                && let Err(why) = limits::check_steps(duration, dt)
+            {
+                errors.push(loc.error(
+                    "tail",
+                    format!("with record {}: the time step {why}", r.name),
+                ));
+            }
+        }
+    }
+    let len = |v: &Option<Vec<f64>>| v.as_ref().map_or(1.0, |v| v.len().max(1) as f64);
+    let points = records.len().max(1) as f64
+        * len(&raw.pga).max(len(&raw.scale))
+        * len(&raw.mu)
+        * len(&raw.polarity);
+    if let Err(why) = limits::check_count(points, MAX_POINTS, "points") {
+        errors.push(loc.error("records", format!("the grid {why}")));
+    }
+}
+
 /// Default quiet tail after the record, s.
 pub const DEFAULT_TAIL: f64 = 5.0;
 
@@ -264,6 +308,7 @@ pub fn load_grid(path: &Path) -> Result<Grid, InputErrors> {
             Err(e) => errors.extend(e.0),
         }
     }
+    check_sizes(&raw, &base, &records, tail, &loc, &mut errors);
     if !errors.is_empty() {
         return Err(InputErrors(errors));
     }
