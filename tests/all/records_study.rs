@@ -265,7 +265,10 @@ fn stiff_pepo_tends_to_the_rigid_block() {
         let pepo = run("predictor-corrector").residual_sliding.unwrap();
         let rigid = run("newmark-rigid").residual_sliding.unwrap();
         let exact = run("exact").residual_sliding.unwrap();
-        println!("PGA {}: pc {pepo}, exact PEPO {exact}, rigid {rigid}", r.pga);
+        println!(
+            "PGA {}: pc {pepo}, exact PEPO {exact}, rigid {rigid}",
+            r.pga
+        );
         assert!(rigid < -1e-3, "the block slides (toward −x): {rigid}");
         assert!(
             (pepo / rigid - 1.0).abs() < tol,

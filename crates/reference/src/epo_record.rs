@@ -415,9 +415,7 @@ impl EpoRecord {
             .segments
             .last()
             .map_or(0.0, |s| self.state_in(s, self.end).3.abs());
-        self.segments
-            .iter()
-            .fold(end, |m, s| m.max(s.up0.abs()))
+        self.segments.iter().fold(end, |m, s| m.max(s.up0.abs()))
     }
 
     /// Sum of |slip| over the slips, m.

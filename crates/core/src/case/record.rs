@@ -156,7 +156,8 @@ pub fn read_record(path: &Path, unit: Option<AccelUnit>) -> Result<Record, Input
 /// byte-order mark removed.
 fn read_text(path: &Path) -> Result<String, InputError> {
     use std::io::Read;
-    let cannot = |e: std::io::Error| InputError::new(path, "", format!("cannot read the record: {e}"));
+    let cannot =
+        |e: std::io::Error| InputError::new(path, "", format!("cannot read the record: {e}"));
     let meta = std::fs::metadata(path).map_err(cannot)?;
     if !meta.is_file() {
         return Err(InputError::new(

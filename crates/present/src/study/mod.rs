@@ -63,7 +63,8 @@ pub fn summary_csv(c: &Study) -> Result<Vec<u8>, Error> {
             opt(run.residual_sliding.map(|m| m * 100.0)),
             opt(run.peak_abs_sliding),
             opt(run.peak_relative_displacement),
-            run.slip_episodes.map_or_else(String::new, |n| n.to_string()),
+            run.slip_episodes
+                .map_or_else(String::new, |n| n.to_string()),
             opt(run.total_slid),
             opt(run.slip_start),
             opt(run.slip_end),

@@ -14,6 +14,6 @@ pub use collect::{FILE, Headline, RIGID, Stamp, Study, agreement, collect, headl
 pub use grid::{Amplitude, DEFAULT_TAIL, Grid, GridPoint, GridRecord, load_grid, short_name};
 pub use newmark::{NewmarkArgs, newmark_command};
 pub use runner::{
-    EXACT, PointResult, RunSummary, StudyOptions, StudyOutcome, read_result, result_path, run_study,
-    runs_dir, yield_acceleration,
+    EXACT, PointResult, RunSummary, StudyOptions, StudyOutcome, read_result, result_path,
+    run_study, runs_dir, yield_acceleration,
 };
