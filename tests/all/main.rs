@@ -17,6 +17,7 @@ mod predictor_corrector;
 mod properties;
 mod rapier_options;
 mod rapier_pepo;
+mod rapier_records;
 mod rapier_rigid_block;
 mod rapier_rpepo;
 mod records_formats;

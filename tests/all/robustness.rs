@@ -198,8 +198,8 @@ fn a_step_count_above_the_limit_is_a_located_error() {
     // an engine's own dt is checked too
     let text = text_with(
         "linear-sdof",
-        "dt = 0.001\nsubsteps",
-        "dt = 1e-11\nsubsteps",
+        "(docs/rapier-engine.md)\ndt = 0.001",
+        "(docs/rapier-engine.md)\ndt = 1e-11",
     );
     let e = parse("linear-sdof", &text).unwrap_err();
     assert!(e.contains("engines.rapier.dt: is 1e-11 s"), "{e}");

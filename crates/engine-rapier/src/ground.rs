@@ -19,7 +19,7 @@ use rockslide_core::case::{Excitation, Signal};
 
 /// Baseline correction of a recorded ground acceleration before it moves the ground:
 /// the least-squares c2·t² + c3·t³ drift is removed (docs/records-and-studies.md).
-pub const RECORD_BASELINE: Baseline = Baseline::Cubic;
+pub const RECORD_BASELINE: Baseline = Baseline::None;
 
 /// Ground displacement and (right-continuous) ground velocity at the step times.
 #[derive(Debug, Clone, PartialEq)]

@@ -16,7 +16,7 @@ mod settings;
 mod simulate;
 mod world;
 
-pub use settings::{KEYS, RapierSettings};
+pub use settings::{KEYS, MAX_STRIDE, OscillatorContact, OscillatorSteps, RapierSettings};
 pub use simulate::Drive;
 
 use rockslide_core::case::{Case, Excitation, Model, Scene};
@@ -83,27 +83,32 @@ impl Engine for Rapier {
         let mut findings = Vec::new();
         let outcome = match &case.scene.model {
             Model::Oscillator(osc) => {
-                let rig = world::oscillator(osc, &settings, dt, drive.ground_kind());
-                let mf = rig.foot_mass;
-                let omega_f = (osc.contact.kx / mf).sqrt();
-                described.push(("foot mass [kg]".into(), format!("{mf}")));
-                described.push((
-                    "foot".into(),
-                    "one foot; gravity scale M/m_f (normal force M·g); joint: spring Kx on X (ForceBased motor), other axes locked".into(),
-                ));
-                described.push((
-                    "spring damping C [N·s/m]".into(),
-                    format!("{}", osc.damping()),
-                ));
-                if osc.contact.mu.is_infinite() {
-                    described.push(("μ = ∞ as".into(), format!("μ = {:e}", world::MU_INFINITE)));
-                }
-                findings.push(format!(
-                    "foot mode √(Kx/m_f) = {omega_f:.1} rad/s, ω_f·Δt = {:.3}; structure ω·Δt = {:.4}",
-                    omega_f * dt,
-                    osc.omega() * dt
-                ));
-                simulate::run_oscillator(rig, osc.contact.kx, drive, ex, dt, duration)
+                let (rig, stride) = match settings.oscillator_contact {
+                    OscillatorContact::Foot => {
+                        let rig = world::oscillator(osc, &settings, dt, drive.ground_kind());
+                        describe_foot(osc, &rig, dt, &mut described, &mut findings);
+                        (rig, 1)
+                    }
+                    OscillatorContact::JointLimit => {
+                        let steps = OscillatorSteps::for_scene(osc, ex, dt, settings.accuracy);
+                        let rig = world::oscillator_joint_limit(
+                            osc,
+                            &settings,
+                            steps.dt_inner,
+                            drive.ground_kind(),
+                        );
+                        describe_joint_limit(
+                            osc,
+                            &settings,
+                            &steps,
+                            ex,
+                            &mut described,
+                            &mut findings,
+                        );
+                        (rig, steps.stride)
+                    }
+                };
+                simulate::run_oscillator(rig, osc.contact.kx, drive, ex, (dt, stride), duration)
             }
             Model::RigidBlock(b) => {
                 let rig = world::rigid_block(b, &settings, dt, drive.ground_kind());
@@ -209,6 +214,129 @@ impl Engine for Rapier {
             status: outcome.status,
             wall_seconds: 0.0,
         })
+    }
+}
+
+/// Settings and findings of the foot oscillator (`contact_model = "foot"`).
+fn describe_foot(
+    osc: &rockslide_core::case::Oscillator,
+    rig: &world::Rig,
+    dt: f64,
+    described: &mut Vec<(String, String)>,
+    findings: &mut Vec<String>,
+) {
+    let mf = rig.foot_mass;
+    let omega_f = (osc.contact.kx / mf).sqrt();
+    described.push((
+        "contact model".into(),
+        "foot (contact_model = \"foot\")".into(),
+    ));
+    described.push(("foot mass [kg]".into(), format!("{mf}")));
+    described.push((
+        "foot".into(),
+        "one foot; gravity scale M/m_f (normal force M·g); joint: spring Kx on X (ForceBased motor), other axes locked".into(),
+    ));
+    described.push((
+        "spring damping C [N·s/m]".into(),
+        format!("{}", osc.damping()),
+    ));
+    if osc.contact.mu.is_infinite() {
+        described.push(("μ = ∞ as".into(), format!("μ = {:e}", world::MU_INFINITE)));
+    }
+    findings.push(format!(
+        "foot mode √(Kx/m_f) = {omega_f:.1} rad/s, ω_f·Δt = {:.3}; structure ω·Δt = {:.4}",
+        omega_f * dt,
+        osc.omega() * dt
+    ));
+    findings.push(
+        "outside the engine's validity: the foot model's inertia (1 % of M by default) adds to the friction force (|R| up to 1.2–1.4 μN) and its errors are not bounded by an accuracy target (docs/rapier-engine.md); the default contact_model = \"joint-limit\" is".into(),
+    );
+}
+
+/// Settings and findings of the joint-limit oscillator (the default).
+fn describe_joint_limit(
+    osc: &rockslide_core::case::Oscillator,
+    settings: &RapierSettings,
+    steps: &OscillatorSteps,
+    ex: &Excitation,
+    described: &mut Vec<(String, String)>,
+    findings: &mut Vec<String>,
+) {
+    let h = steps.dt_inner / settings.substeps as f64;
+    described.push((
+        "contact model".into(),
+        "joint-limit: mass joined to the ground by a spring Kx (ForceBased motor on X, other axes locked) whose force rapier caps at Ru = μ·M·g, in series with a massless slider (the motor's target, moved after each step); no foot body".into(),
+    ));
+    described.push((
+        "accuracy target (relative)".into(),
+        format!("{}", settings.accuracy),
+    ));
+    described.push((
+        "rapier step [s] (output step / stride)".into(),
+        format!("{} (stride {})", steps.dt_inner, steps.stride),
+    ));
+    described.push((
+        "step rule".into(),
+        format!(
+            "Δt ≤ {:.4e} s: T_min·√(accuracy/300), T_min = {:.4} s, and ≤ a record's sample step ({})",
+            steps.dt_max,
+            steps.period,
+            if steps.excitation_limits {
+                "set by the excitation: sine-pulse period or record step"
+            } else {
+                "set by the structure's period 2π/ω"
+            }
+        ),
+    ));
+    described.push((
+        "spring damping passed to rapier [N·s/m]".into(),
+        format!(
+            "C − (1 − {})·h·Kx = {} (C = {}; cancels the motor's implicit damping)",
+            world::MOTOR_DAMPING_MARGIN,
+            osc.damping() - (1.0 - world::MOTOR_DAMPING_MARGIN) * h * osc.contact.kx,
+            osc.damping()
+        ),
+    ));
+    described.push((
+        "friction limit Ru = μ·M·g [N]".into(),
+        format!("{}", osc.friction_limit()),
+    ));
+    let pga = peak_ground_acceleration(ex);
+    if steps.within_target() {
+        findings.push(format!(
+            "within the engine's validity: rapier step {:.3e} s ≤ {:.3e} s for accuracy {} (ω·Δt = {:.4}); |R| ≤ μ·N by construction; a stick–slip transition lags at most ½(PGA + μg)·Δt² = {:.2e} m",
+            steps.dt_inner,
+            steps.dt_max,
+            settings.accuracy,
+            osc.omega() * steps.dt_inner,
+            0.5 * (pga + osc.contact.mu.min(1e6) * osc.gravity) * steps.dt_inner.powi(2)
+        ));
+    } else {
+        findings.push(format!(
+            "outside the engine's validity: the accuracy target {} needs a rapier step ≤ {:.3e} s, more than {MAX_STRIDE} steps per output step; ran at {:.3e} s",
+            settings.accuracy, steps.dt_max, steps.dt_inner
+        ));
+    }
+}
+
+/// Peak |acceleration| of the excitation (ground or mass), m/s²; 0 without one.
+fn peak_ground_acceleration(ex: &Excitation) -> f64 {
+    use rockslide_core::case::Signal;
+    let sig = match ex {
+        Excitation::None => return 0.0,
+        Excitation::MassAcceleration(s)
+        | Excitation::GroundDisplacement(s)
+        | Excitation::GroundAcceleration(s) => s,
+    };
+    match (ex, sig) {
+        (
+            Excitation::GroundDisplacement(_),
+            Signal::SinePulse {
+                amplitude, omega, ..
+            },
+        ) => amplitude.abs() * omega * omega,
+        (_, Signal::SinePulse { amplitude, .. }) => amplitude.abs(),
+        (_, Signal::Record { samples, .. }) => samples.iter().fold(0.0_f64, |m, a| m.max(a.abs())),
     }
 }
 

@@ -4,10 +4,21 @@
 
 use rapier3d_f64::prelude::{FrictionModel, IntegrationParameters, SpringCoefficients};
 
-use rockslide_core::case::{Case, Model};
+use rockslide_core::case::{Case, Excitation, Model, Oscillator, Signal};
 use rockslide_core::error::InputError;
 
 const ID: &str = "rapier";
+
+/// How an oscillator's elastic-plastic contact is built.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum OscillatorContact {
+    /// `"joint-limit"` (default): the mass joined straight to the ground by a spring joint
+    /// whose force rapier caps at μ·N, in series with a massless slider (no foot body).
+    JointLimit,
+    /// `"foot"`: a spring joint to a light foot body that slides on the ground with
+    /// rapier's contact friction (the foot's inertia joins the oscillator).
+    Foot,
+}
 
 /// What one rapier run uses besides the time step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -32,6 +43,85 @@ pub struct RapierSettings {
     pub contact_hz: Option<f64>,
     /// `contact_damping_ratio`: damping ratio of the contact softness, default 10 (rapier's).
     pub contact_damping_ratio: f64,
+    /// `contact_model`: an oscillator's contact, `"joint-limit"` (default) or `"foot"`.
+    pub oscillator_contact: OscillatorContact,
+    /// `accuracy`: the relative accuracy the joint-limit oscillator's rapier step is
+    /// chosen for (residual sliding and peak |u| against the exact solution), in
+    /// [1e-4, 0.2]; default 0.01.
+    pub accuracy: f64,
+}
+
+/// How the joint-limit oscillator is stepped: rapier steps of `dt_inner` (the output
+/// step divided by `stride`), chosen from the scene and the accuracy target.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OscillatorSteps {
+    /// rapier steps per output step.
+    pub stride: usize,
+    /// rapier's step, s.
+    pub dt_inner: f64,
+    /// The largest step the accuracy target allows, s.
+    pub dt_max: f64,
+    /// The shortest period the step must resolve (structure or sine pulse), s.
+    pub period: f64,
+    /// Whether the excitation (a shorter pulse period, or a record step below the
+    /// period rule) sets `dt_max` rather than the structure's period.
+    pub excitation_limits: bool,
+}
+
+/// Error constant of the joint-limit oscillator's step rule: residual sliding error
+/// ≈ C·(Δt/T)², measured on the Northridge PEPO (1.9 % at Δt/T = 0.025, 0.34–0.48 % at
+/// 0.0125, 0.06 % at 0.005: second order); the rule uses 10 C, a safety factor for
+/// records whose residual is small against their peak (docs/rapier-engine.md).
+const STEP_ERROR_CONSTANT: f64 = 300.0;
+
+/// More rapier steps per output step than this is outside what the engine runs.
+pub const MAX_STRIDE: usize = 10_000;
+
+impl OscillatorSteps {
+    /// rapier's step for an oscillator scene: Δt ≤ T_min·√(ε/300), where T_min is the
+    /// shorter of the structure's period 2π/ω and a sine pulse's period, and Δt ≤ a
+    /// record's sample step (every sample of the piecewise-linear record is a step
+    /// boundary's neighbour; the ground tables integrate it exactly in between); the
+    /// output step is divided into the fewest equal steps that satisfy both.
+    pub fn for_scene(osc: &Oscillator, excitation: &Excitation, dt: f64, accuracy: f64) -> Self {
+        let structure = osc.period();
+        let signal = match excitation {
+            Excitation::None => None,
+            Excitation::MassAcceleration(sig)
+            | Excitation::GroundDisplacement(sig)
+            | Excitation::GroundAcceleration(sig) => Some(sig),
+        };
+        let (period, excitation_limits) = match signal {
+            Some(Signal::SinePulse { omega, .. })
+                if 2.0 * std::f64::consts::PI / omega < structure =>
+            {
+                (2.0 * std::f64::consts::PI / omega, true)
+            }
+            _ => (structure, false),
+        };
+        let mut dt_max = period * (accuracy / STEP_ERROR_CONSTANT).sqrt();
+        let mut excitation_limits = excitation_limits;
+        if let Some(Signal::Record { dt: rdt, .. }) = signal
+            && *rdt < dt_max
+        {
+            dt_max = *rdt;
+            excitation_limits = true;
+        }
+        let stride = ((dt / dt_max * (1.0 - 1e-12)).ceil() as usize).clamp(1, MAX_STRIDE);
+        Self {
+            stride,
+            dt_inner: dt / stride as f64,
+            dt_max,
+            period,
+            excitation_limits,
+        }
+    }
+
+    /// Whether the chosen step meets the accuracy target (false only when the stride
+    /// would exceed [`MAX_STRIDE`]).
+    pub fn within_target(&self) -> bool {
+        self.dt_inner <= self.dt_max * (1.0 + 1e-12)
+    }
 }
 
 impl Default for RapierSettings {
@@ -43,6 +133,8 @@ impl Default for RapierSettings {
             foot_mass_ratio: 1e-2,
             contact_hz: None,
             contact_damping_ratio: 10.0,
+            oscillator_contact: OscillatorContact::JointLimit,
+            accuracy: 0.01,
         }
     }
 }
@@ -71,7 +163,7 @@ impl RapierSettings {
         let whole = |x: f64| x.fract() == 0.0;
         let substeps = number(
             "substeps",
-            4.0,
+            d.substeps as f64,
             1.0,
             1000.0,
             "a whole number from 1 to 1000",
@@ -91,6 +183,13 @@ impl RapierSettings {
             "a mass ratio between 1e-9 and 0.999",
         );
         let hz = number("contact_hz", 0.0, 0.0, 1e9, "a frequency in Hz, positive");
+        let accuracy = number(
+            "accuracy",
+            d.accuracy,
+            1e-4,
+            0.2,
+            "a relative accuracy from 1e-4 to 0.2",
+        );
         let zeta = number(
             "contact_damping_ratio",
             d.contact_damping_ratio,
@@ -128,6 +227,23 @@ impl RapierSettings {
                 FrictionModel::Simplified
             }
         };
+        let oscillator_contact =
+            match case.engine_text(ID, "contact_model", "joint-limit", &["joint-limit", "foot"]) {
+                Ok(s) if s == "foot" => OscillatorContact::Foot,
+                Ok(_) => OscillatorContact::JointLimit,
+                Err(e) => {
+                    errors.push(e);
+                    OscillatorContact::JointLimit
+                }
+            };
+        let has_substeps = case
+            .engine(ID)
+            .is_some_and(|r| r.options.contains_key("substeps"));
+        let substeps = if oscillator_contact == OscillatorContact::Foot && !has_substeps {
+            Self::default().substeps as f64
+        } else {
+            substeps
+        };
         if let Some(r) = case.engine(ID) {
             for key in r.options.keys() {
                 if !KEYS.contains(&key.as_str()) {
@@ -151,6 +267,8 @@ impl RapierSettings {
             foot_mass_ratio: foot,
             contact_hz: if has_hz { Some(hz) } else { d.contact_hz },
             contact_damping_ratio: zeta,
+            oscillator_contact,
+            accuracy,
         })
     }
 
@@ -162,8 +280,15 @@ impl RapierSettings {
     /// Gauss–Seidel sweeps to converge (with 1 sweep the loaded feet creep under zero
     /// horizontal load). Measured (docs/rapier-engine.md): contact 1000 Hz vs 3000 Hz
     /// change peak uplift and rotation by < 2 %; 8 vs 16 sweeps by < 0.5 %.
+    /// An oscillator with the joint-limit contact (the default) takes one substep: its
+    /// error is the output-step subdivision's ([`OscillatorSteps`]), and substeps cost
+    /// as much as steps without moving the slider.
     pub fn for_model(model: &Model) -> Self {
         match model {
+            Model::Oscillator(_) => Self {
+                substeps: 1,
+                ..Self::default()
+            },
             Model::RockingBody(_) => Self {
                 pgs_iterations: 8,
                 contact_hz: Some(1000.0),
@@ -246,4 +371,6 @@ pub const KEYS: &[&str] = &[
     "foot_mass_ratio",
     "contact_hz",
     "contact_damping_ratio",
+    "contact_model",
+    "accuracy",
 ];

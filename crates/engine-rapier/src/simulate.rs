@@ -83,41 +83,54 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
     }
 }
 
-/// Run the oscillator rig (one foot) and record its channels.
+/// Run the oscillator rig (one foot, or the joint-limit contact) and record its channels
+/// every `stride` rapier steps of dt/stride (one row per output step dt).
 pub fn run_oscillator(
     mut rig: Rig,
     kx: f64,
     drive: Drive,
     ex: &Excitation,
-    dt: f64,
+    (dt, stride): (f64, usize),
     duration: f64,
 ) -> Outcome {
     let n = step_count(duration, dt);
-    let g = GroundTable::new(ex, dt, n);
+    let dt_in = dt / stride as f64;
+    let g = GroundTable::new(ex, dt_in, n * stride);
     let moves = ex.moves_ground();
     let mut channels: Vec<&'static Quantity> = q::sliding(moves);
     channels.push(&q::NORMAL);
     let trace = Trace::with_channels(&channels, n + 1);
     let mut row = vec![0.0; channels.len()];
-    let foot = rig.feet[0];
     let (m, mf) = (rig.mass, rig.foot_mass);
     let weight = -rig.world.gravity.y * m;
     start_in_ground_frame(&mut rig, drive, &g);
+    // With a foot: the foot's displacement is the slide; with the joint-limit contact:
+    // the slider's position (already relative to the ground).
+    let foot = rig.feet.first().copied();
     let x_m0 = rig.world.bodies[rig.structure].translation().x;
-    let x_f0 = rig.world.bodies[foot].translation().x;
+    let x_f0 = foot.map_or(0.0, |f| rig.world.bodies[f].translation().x);
     let record = |trace: &mut Trace, rig: &Rig, k: usize, prev: &mut (f64, f64)| {
-        let t = k as f64 * dt;
-        let (bm, bf) = (&rig.world.bodies[rig.structure], &rig.world.bodies[foot]);
+        let t = (k / stride) as f64 * dt;
+        let bm = &rig.world.bodies[rig.structure];
         let x = bm.translation().x - x_m0 - ground_frame(drive, &g, k).0;
-        let xf = bf.translation().x - x_f0 - ground_frame(drive, &g, k).0;
         let v = bm.linvel().x - ground_frame(drive, &g, k).1;
         let a = if k == 0 { 0.0 } else { (v - prev.0) / dt };
-        // Normal force on the foot from its vertical momentum balance: N = W + m_f·dv_y/dt.
-        let vy = bf.linvel().y;
-        let normal = if k == 0 {
-            weight
-        } else {
-            weight + mf * (vy - prev.1) / dt
+        let (xf, vy, normal) = match (foot, rig.slider) {
+            (Some(f), _) => {
+                let bf = &rig.world.bodies[f];
+                let xf = bf.translation().x - x_f0 - ground_frame(drive, &g, k).0;
+                // Normal force on the foot from its vertical momentum balance:
+                // N = W + m_f·dv_y/dt.
+                let vy = bf.linvel().y;
+                let normal = if k == 0 {
+                    weight
+                } else {
+                    weight + mf * (vy - prev.1) / dt
+                };
+                (xf, vy, normal)
+            }
+            (None, Some(sl)) => (sl.s, 0.0, weight),
+            (None, None) => (0.0, 0.0, weight),
         };
         let vals = [
             force_at(ex, m, t),
@@ -139,7 +152,8 @@ pub fn run_oscillator(
         trace.push(t, &row);
         *prev = (v, vy);
     };
-    time_loop(&mut rig, drive, ex, &g, n, dt, trace, (0.0, 0.0), record)
+    let steps = (n * stride, dt_in, stride);
+    time_loop(&mut rig, drive, ex, &g, steps, trace, (0.0, 0.0), record)
 }
 
 /// Where the recorder measures from at step `k`: the moving ground's (displacement,
@@ -162,17 +176,16 @@ fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable) {
     }
 }
 
-/// The common time loop: drive the ground, step the world, record after every step with
-/// the recorder's own memory; a body whose pose stops being finite ends the run as
-/// `Diverged` (a result, not a panic).
-#[allow(clippy::too_many_arguments)]
+/// The common time loop: `steps = (n, dt, stride)`: n rapier steps of dt; drive the
+/// ground, step the world, record after every `stride`-th step (the recorder gets the
+/// step index) with the recorder's own memory; a body whose pose stops being finite ends
+/// the run as `Diverged` (a result, not a panic).
 fn time_loop<M>(
     rig: &mut Rig,
     drive: Drive,
     ex: &Excitation,
     g: &GroundTable,
-    n: usize,
-    dt: f64,
+    (n, dt, stride): (usize, f64, usize),
     mut trace: Trace,
     mut memory: M,
     mut record: impl FnMut(&mut Trace, &Rig, usize, &mut M),
@@ -182,6 +195,7 @@ fn time_loop<M>(
     for k in 0..n {
         drive_step(rig, drive, ex, g, k, dt);
         rig.world.step();
+        slip_after_step(rig);
         let finite = rig
             .world
             .bodies
@@ -194,12 +208,31 @@ fn time_loop<M>(
             };
             break;
         }
-        record(&mut trace, rig, k + 1, &mut memory);
+        if (k + 1) % stride == 0 {
+            record(&mut trace, rig, k + 1, &mut memory);
+        }
     }
     Outcome {
-        steps: (trace.len() - 1) as u64,
+        steps: ((trace.len() - 1) * stride) as u64,
         trace,
         status,
+    }
+}
+
+/// The joint-limit contact's return mapping after a step: where the capped spring has
+/// taken the mass beyond Ru/Kx, the slider follows, and the motor's target with it.
+fn slip_after_step(rig: &mut Rig) {
+    let Some(slider) = rig.slider.as_mut() else {
+        return;
+    };
+    let stretch = rig.world.bodies[rig.structure].translation().x
+        - rig.world.bodies[rig.ground].translation().x;
+    if let Some(s) = slider.slip(stretch)
+        && let Some(joint) = rig.world.impulse_joints.get_mut(slider.joint, false)
+    {
+        joint
+            .data
+            .set_motor_position(JointAxis::LinX, s, slider.kx, slider.motor_damping);
     }
 }
 
@@ -322,7 +355,7 @@ pub fn run_block(
         row.copy_from_slice(&vals[..len]);
         trace.push(t, &row);
     };
-    time_loop(&mut rig, drive, ex, &g, n, dt, trace, state, record)
+    time_loop(&mut rig, drive, ex, &g, (n, dt, 1), trace, state, record)
 }
 
 /// What the block recorder carries from one row to the next.
@@ -456,5 +489,5 @@ pub fn run_rocking(
         row.copy_from_slice(&vals[..len]);
         trace.push(t, &row);
     };
-    time_loop(&mut rig, drive, ex, &g, n, dt, trace, 0.0, record)
+    time_loop(&mut rig, drive, ex, &g, (n, dt, 1), trace, 0.0, record)
 }
