@@ -159,6 +159,9 @@ pub fn quantity_def(key: &str) -> Option<&'static QuantityDef> {
 
 /// A value of response quantity `key` in its display unit, 4 significant digits.
 pub fn show(key: &str, si: f64) -> String {
+    if quantity_def(key).is_some_and(|d| d.is_count()) && si.fract() == 0.0 {
+        return format!("{si:.0}");
+    }
     let (_, f) = display_unit(key);
     sig(si * f)
 }
