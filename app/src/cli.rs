@@ -21,7 +21,7 @@ use rockslide_verify::suite::{CaseResult, plan, run_case};
 #[derive(Debug, Parser)]
 #[command(name = "rockslide", version, about, long_about = None)]
 pub struct Cli {
-    /// What to do (default: run every case under `cases/` and write `reports/`).
+    /// What to do (default: run every case in `cases/` and `cases/records/` and write `reports/`).
     #[command(subcommand)]
     pub command: Option<Command>,
     /// Print nothing but errors and failures.
@@ -34,7 +34,7 @@ pub struct Cli {
 pub enum Command {
     /// Run cases and write their traces and reports.
     Run {
-        /// Case files or folders (default: `cases/`).
+        /// Case files or folders (default: `cases/` and `cases/records/`).
         cases: Vec<PathBuf>,
         /// Output folder.
         #[arg(long, short, default_value = "reports")]
@@ -42,7 +42,7 @@ pub enum Command {
     },
     /// List the cases and which engines apply to each.
     List {
-        /// Case files or folders (default: `cases/`).
+        /// Case files or folders (default: `cases/` and `cases/records/`).
         cases: Vec<PathBuf>,
     },
     /// Write a case's reference solution (exact or closed form) as a CSV trace.
@@ -60,7 +60,7 @@ pub enum Command {
     /// any fails (one line per failure on stderr), 2 on bad input. Writes the reports and
     /// JUnit XML.
     Check {
-        /// Case files or folders (default: `cases/`).
+        /// Case files or folders (default: `cases/` and `cases/records/`).
         cases: Vec<PathBuf>,
         /// Output folder for reports and traces.
         #[arg(long, short, default_value = "reports")]
@@ -304,7 +304,7 @@ fn bounded_jobs(jobs: Option<usize>) -> Option<usize> {
 
 /// The default command: the complete document. Stability map of `cases/stability/`,
 /// work-precision sweeps of the oscillator cases (cheap: each has an exact reference and
-/// runs in seconds per engine), then every case in `cases/` — whose reports pick up the
+/// runs in seconds per engine), then every case in `cases/` and `cases/records/` — whose reports pick up the
 /// sweeps and the stability map.
 fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     let options = rockslide_verify::sweep::Options {
@@ -315,7 +315,8 @@ fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     if stability_cases.is_dir() {
         commands::stability::run(&[stability_cases.to_path_buf()], out, &options)?;
     }
-    let oscillators: Vec<PathBuf> = load_all(&case_paths(&[])?)?
+    // Sweeps of the top-level oscillators only: a record case's Δt ladder is minutes long.
+    let oscillators: Vec<PathBuf> = load_all(&case_paths_or(&[], "cases")?)?
         .into_iter()
         .filter(|c| matches!(c.scene.model, rockslide_core::case::Model::Oscillator(_)))
         .map(|c| c.path)
@@ -326,9 +327,24 @@ fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     run(&[], out, quiet, None)
 }
 
-/// Expand case arguments: files as given, folders to their `*.toml`, default `cases/`.
+/// The folders `run`, `check` and `list` read when given no case: the top-level cases and
+/// the record cases. `cases/stability/` is not among them: its scenes are meant to break
+/// engines and are classified by `rockslide stability`, not gated.
+const DEFAULT_CASE_FOLDERS: &[&str] = &["cases", "cases/records"];
+
+/// Expand case arguments: files as given, folders to their `*.toml`; with none, every
+/// folder of [`DEFAULT_CASE_FOLDERS`] that exists (`cases/` itself must).
 fn case_paths(args: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
-    case_paths_or(args, "cases")
+    if !args.is_empty() {
+        return case_paths_or(args, "cases");
+    }
+    let mut out = case_paths_or(&[], DEFAULT_CASE_FOLDERS[0])?;
+    for folder in &DEFAULT_CASE_FOLDERS[1..] {
+        if Path::new(folder).is_dir() {
+            out.extend(case_paths_or(&[], folder)?);
+        }
+    }
+    Ok(out)
 }
 
 /// Expand case arguments: files as given, folders to their `*.toml`, default `default`.
@@ -378,7 +394,7 @@ fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Resul
         eprintln!(
             "FAIL checks nothing: no case file (*.toml) in {}",
             if shown.is_empty() {
-                "cases".into()
+                DEFAULT_CASE_FOLDERS.join(", ")
             } else {
                 shown.join(", ")
             }

@@ -20,6 +20,7 @@ mod rapier_pepo;
 mod rapier_records;
 mod rapier_rigid_block;
 mod rapier_rpepo;
+mod records_block;
 mod records_formats;
 mod records_input;
 mod records_newmark;

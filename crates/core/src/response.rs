@@ -30,6 +30,11 @@ pub enum Reading {
     /// Largest absolute value between the first and second sign changes (rocking: the
     /// tilt reached after the first impact).
     PeakAbsAfterFirstCrossing,
+    /// Sum of the absolute increments (sliding: the total distance slid, both ways).
+    TotalVariation,
+    /// Number of slip episodes: maximal runs of steps whose slide rate exceeds the slip
+    /// threshold (a count, no unit).
+    SlipEpisodes,
 }
 
 /// A response quantity: key, label, the channel it reads and how.
@@ -57,10 +62,16 @@ impl QuantityDef {
                 | Reading::SecondCrossing
         )
     }
+    /// Whether the quantity is a count (no unit) rather than a value of its channel.
+    pub fn is_count(&self) -> bool {
+        matches!(self.reading, Reading::SlipEpisodes)
+    }
     /// SI unit of the quantity.
     pub fn unit(&self) -> &'static str {
         if self.is_time() {
             "s"
+        } else if self.is_count() {
+            ""
         } else {
             self.channel.unit
         }
@@ -69,6 +80,8 @@ impl QuantityDef {
     pub fn display(&self) -> (&'static str, f64) {
         if self.is_time() {
             ("s", 1.0)
+        } else if self.is_count() {
+            ("", 1.0)
         } else {
             self.channel.display
         }
@@ -96,6 +109,19 @@ defs![
     ("peak_sliding", "Peak sliding", q::SLIDE, Max),
     ("min_sliding", "Minimum sliding", q::SLIDE, Min),
     ("residual_sliding", "Residual sliding", q::SLIDE, Last),
+    (
+        "peak_abs_sliding",
+        "Peak absolute sliding",
+        q::SLIDE,
+        PeakAbs
+    ),
+    (
+        "total_slid",
+        "Total slid (both ways)",
+        q::SLIDE,
+        TotalVariation
+    ),
+    ("slip_episodes", "Slip episodes", q::SLIDE, SlipEpisodes),
     ("slip_start", "Slip start", q::SLIDE, SlipStart),
     ("slip_end", "Slip end", q::SLIDE, SlipEnd),
     ("peak_resistance", "Peak resistance", q::RESISTANCE, PeakAbs),
@@ -133,6 +159,9 @@ pub fn quantity_def(key: &str) -> Option<&'static QuantityDef> {
 
 /// A value of response quantity `key` in its display unit, 4 significant digits.
 pub fn show(key: &str, si: f64) -> String {
+    if quantity_def(key).is_some_and(|d| d.is_count()) && si.fract() == 0.0 {
+        return format!("{si:.0}");
+    }
     let (_, f) = display_unit(key);
     sig(si * f)
 }

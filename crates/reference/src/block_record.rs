@@ -133,21 +133,22 @@ fn check_inputs(dt: f64, acc: &[f64], ky: f64, tail: f64) -> Result<(), String> 
     Ok(())
 }
 
-/// The solver's running state.
-struct Walker {
+/// The solver's running state (also stepped over part of an interval by
+/// [`crate::block_case`] to evaluate between samples).
+pub(crate) struct Walker {
     ky: f64,
     sliding: Sliding,
     /// Velocity and displacement.
-    v: f64,
-    u: f64,
+    pub(crate) v: f64,
+    pub(crate) u: f64,
     /// Direction of the current slide, 0 when stuck.
-    sigma: f64,
-    slides: Vec<Slide>,
+    pub(crate) sigma: f64,
+    pub(crate) slides: Vec<Slide>,
     peak_abs: f64,
 }
 
 impl Walker {
-    fn new(ky: f64, sliding: Sliding) -> Self {
+    pub(crate) fn new(ky: f64, sliding: Sliding) -> Self {
         Walker {
             ky,
             sliding,
@@ -160,7 +161,7 @@ impl Walker {
     }
 
     /// Advance over one interval `[t0, t0 + h]` with the drive linear from `a0` to `a1`.
-    fn interval(&mut self, t0: f64, h: f64, a0: f64, a1: f64) -> Result<(), String> {
+    pub(crate) fn interval(&mut self, t0: f64, h: f64, a0: f64, a1: f64) -> Result<(), String> {
         let slope = (a1 - a0) / h;
         let mut s = 0.0; // time used within the interval
         for _ in 0..EVENTS_PER_INTERVAL {

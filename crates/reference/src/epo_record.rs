@@ -500,6 +500,16 @@ impl ExactSolution for EpoRecord {
             q.push(("slip_start", first.start));
             q.push(("slip_end", last.end));
         }
+        // the slip is monotone within a slip, so its extremes are at slip ends
+        let (mut up, mut peak_abs, mut total) = (0.0_f64, 0.0_f64, 0.0);
+        for s in &self.slips {
+            up += s.distance;
+            peak_abs = peak_abs.max(up.abs());
+            total += s.distance.abs();
+        }
+        q.push(("peak_abs_sliding", peak_abs));
+        q.push(("total_slid", total));
+        q.push(("slip_episodes", self.slips.len() as f64));
         q
     }
 }

@@ -4,6 +4,7 @@
 
 #![warn(missing_docs)]
 
+mod block_case;
 pub mod block_record;
 mod duhamel;
 mod epo_exact;
@@ -13,6 +14,7 @@ mod newmark_block;
 pub mod newmark_record;
 mod root;
 
+pub use block_case::BlockOnRecord;
 pub use duhamel::Duhamel;
 pub use epo_exact::{EpoExact, Phase, Segment};
 pub use epo_record::{EpoRecord, Slip};
@@ -56,6 +58,9 @@ pub fn for_case(case: &Case) -> Result<Box<dyn ExactSolution>, String> {
         Model::RockingBody(_) => Err(
             "no exact solution exists for the rocking elastic-plastic oscillator: engines are compared with each other and with their own converged solutions".into(),
         ),
+        Model::RigidBlock(block) if is_record(&scene.excitation) => Ok(Box::new(
+            BlockOnRecord::for_excitation(block, &scene.excitation, case.run.duration)?,
+        )),
         Model::RigidBlock(block) => {
             let forcing = SineForcing::of(&scene.excitation, block.mass)?;
             // Rocking starts from a tilt, or when the driving acceleration exceeds g·b/h

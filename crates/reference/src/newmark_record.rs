@@ -38,6 +38,9 @@ pub fn rigid_block(
     NewmarkRun::solve(dt, acc, ky, sliding, tail)
 }
 
+/// First onset and last stop of a run, s; `None` when it never slides.
+pub type Span = Option<(f64, f64)>;
+
 /// A record's SLAMMER-style rigid-block summary: both polarities, m and cm.
 #[derive(Debug, Clone, PartialEq)]
 pub struct NewmarkSummary {
@@ -52,11 +55,11 @@ pub struct NewmarkSummary {
     /// Total distance slid (normal, inverse), m.
     pub total_slid: (f64, f64),
     /// First onset and last stop (normal, inverse), s; `None` when it never slides.
-    pub span: (Option<(f64, f64)>, Option<(f64, f64)>),
+    pub span: (Span, Span),
 }
 
 /// First onset and last stop of a run, s.
-fn slide_span(run: &NewmarkRun) -> Option<(f64, f64)> {
+fn slide_span(run: &NewmarkRun) -> Span {
     Some((run.slides.first()?.start, run.slides.last()?.end))
 }
 

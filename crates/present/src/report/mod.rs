@@ -29,6 +29,7 @@ pub(crate) mod markdown;
 mod mcap_log;
 mod plots;
 mod provenance;
+mod record_plot;
 mod sections;
 mod summary_csv;
 mod table;

@@ -27,6 +27,8 @@ pub fn responses(trace: &Trace) -> Responses {
             Reading::Last => col.last().copied(),
             Reading::SlipStart => slip_window(&trace.time, col).map(|w| w.0),
             Reading::SlipEnd => slip_window(&trace.time, col).map(|w| w.1),
+            Reading::TotalVariation => Some(total_variation(col)),
+            Reading::SlipEpisodes => Some(slip_episodes(&trace.time, col) as f64),
             Reading::FirstZero => col.iter().position(|&c| c <= 0.0).map(|i| trace.time[i]),
             Reading::FirstCrossing => sign_changes(&trace.time, col).first().copied(),
             Reading::SecondCrossing => sign_changes(&trace.time, col).get(1).copied(),
@@ -65,6 +67,36 @@ pub fn slip_window(time: &[f64], slide: &[f64]) -> Option<(f64, f64)> {
     let first = (1..slide.len()).find(|&i| rate(i) > threshold)?;
     let last = (1..slide.len()).rev().find(|&i| rate(i) > threshold)?;
     Some((time[first - 1], time[last]))
+}
+
+/// Whether each step `i` (from sample i − 1 to i, `i ≥ 1`) slips: its slide rate exceeds
+/// 1e-3 of the run's largest, the threshold [`slip_window`] uses.
+/// Empty when the slide never changes.
+fn slipping_steps(time: &[f64], slide: &[f64]) -> Vec<bool> {
+    let rate = |i: usize| ((slide[i] - slide[i - 1]) / (time[i] - time[i - 1])).abs();
+    let peak = (1..slide.len()).map(rate).fold(0.0_f64, f64::max);
+    if peak.is_nan() || peak <= 0.0 {
+        return Vec::new();
+    }
+    let threshold = 1e-3 * peak;
+    (1..slide.len()).map(|i| rate(i) > threshold).collect()
+}
+
+/// Number of slip episodes read off a slide history: maximal runs of slipping steps
+/// (rate above 1e-3 of the largest, as [`slip_window`]). Read the same way off every
+/// engine's trace; a stick shorter than one output step joins its neighbours.
+pub fn slip_episodes(time: &[f64], slide: &[f64]) -> usize {
+    let slipping = slipping_steps(time, slide);
+    slipping
+        .iter()
+        .enumerate()
+        .filter(|&(i, &s)| s && (i == 0 || !slipping[i - 1]))
+        .count()
+}
+
+/// Sum of |increments| of a channel: on the slide, the total distance slid both ways.
+pub fn total_variation(col: &[f64]) -> f64 {
+    col.windows(2).map(|w| (w[1] - w[0]).abs()).sum()
 }
 
 /// Times at which a channel changes sign, linearly interpolated. Samples smaller than
@@ -131,6 +163,19 @@ mod tests {
         assert_eq!(slip_window(&t, &[0.0; 5]), None);
         let w = slip_window(&t, &[0.0, 0.0, 1.0, 2.0, 2.0]).unwrap();
         assert_eq!(w, (0.1, 0.3));
+    }
+
+    #[test]
+    fn slip_episodes_count_runs_of_slipping_steps() {
+        let t = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6];
+        assert_eq!(slip_episodes(&t, &[0.0; 7]), 0);
+        // slide up, stick, slide back: two episodes, 1 + 0.5 m slid, 0.5 m net
+        let s = [0.0, 0.5, 1.0, 1.0, 1.0, 0.5, 0.5];
+        assert_eq!(slip_episodes(&t, &s), 2);
+        assert!((total_variation(&s) - 1.5).abs() < 1e-15);
+        // a step below 1e-3 of the peak rate is stuck (creep), not an episode
+        let creep = [0.0, 1.0, 1.0, 1.0 + 1e-4, 1.0 + 1e-4, 2.0, 2.0];
+        assert_eq!(slip_episodes(&t, &creep), 2);
     }
 
     #[test]
