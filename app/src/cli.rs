@@ -40,7 +40,8 @@ pub enum Command {
         #[arg(long, short, default_value = "reports")]
         out: PathBuf,
         /// Another program's results as a participant, `LABEL=PATH` (repeatable; one case):
-        /// a rockslide trace CSV (any unit the catalogue knows) or MCAP file.
+        /// a rockslide trace CSV (any unit the catalogue knows) or MCAP file
+        /// (`trace.mcap#/fe/single/state` when it has several state topics).
         #[arg(long = "external", value_name = "LABEL=PATH")]
         external: Vec<String>,
     },
@@ -73,7 +74,8 @@ pub enum Command {
         #[arg(long)]
         junit: Option<PathBuf>,
         /// Another program's results as a participant, `LABEL=PATH` (repeatable; one case):
-        /// a rockslide trace CSV (any unit the catalogue knows) or MCAP file.
+        /// a rockslide trace CSV (any unit the catalogue knows) or MCAP file
+        /// (`trace.mcap#/fe/single/state` when it has several state topics).
         #[arg(long = "external", value_name = "LABEL=PATH")]
         external: Vec<String>,
     },
@@ -472,10 +474,15 @@ fn run(
 }
 
 /// `--external LABEL=PATH` participants join the one case given.
-fn add_externals(cases: &mut [rockslide_core::case::Case], external: &[String]) -> Result<(), Error> {
+fn add_externals(
+    cases: &mut [rockslide_core::case::Case],
+    external: &[String],
+) -> Result<(), Error> {
     match cases {
         _ if external.is_empty() => Ok(()),
-        [case] => Ok(rockslide_verify::external::add_from_command_line(case, external)?),
+        [case] => Ok(rockslide_verify::external::add_from_command_line(
+            case, external,
+        )?),
         _ => Err(Error::Input(
             rockslide_core::error::InputError::new(
                 Path::new("--external"),

@@ -50,12 +50,18 @@ pub fn add_from_command_line(case: &mut Case, specs: &[String]) -> Result<(), In
             errors.push(InputError::new(
                 &PathBuf::from(spec),
                 "--external",
-                "must be LABEL=PATH (e.g. --external sap2000=results/sap2000.csv)",
+                "must be LABEL=PATH (e.g. --external sap2000=results/sap2000.csv, or \
+                 run.mcap#/fe/single/state for one topic of an MCAP file)",
             ));
             continue;
         };
+        // `trace.mcap#/fe/single/state`: one state topic of an MCAP file
+        let (path, topic) = match path.split_once(".mcap#") {
+            Some((stem, topic)) => (format!("{stem}.mcap"), Some(topic)),
+            None => (path.to_string(), None),
+        };
         let engine_ids = crate::registry::ENGINE_IDS;
-        match read_external_participant(case, label, &PathBuf::from(path), engine_ids) {
+        match read_external_participant(case, label, &PathBuf::from(path), topic, engine_ids) {
             Ok(e) => case.add_external(e),
             Err(e) => errors.extend(e.0),
         }
@@ -91,9 +97,11 @@ fn intern(label: &str) -> &'static str {
     leaked
 }
 
-/// Largest interval between two output times (0 for a single row), s.
+/// Largest interval between two output times (0 for a single row), s, to 12 significant
+/// digits (so that a 1 ms grid written as decimals gives 0.001 s, not 0.0010000000000000009).
 fn output_step(time: &[f64]) -> f64 {
-    time.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max)
+    let step = time.windows(2).map(|w| w[1] - w[0]).fold(0.0, f64::max);
+    format!("{step:.11e}").parse().unwrap_or(step)
 }
 
 /// The run of one external participant.
@@ -126,7 +134,10 @@ fn external_run(case: &Case, e: &External) -> Run {
             ),
             ("channels".into(), channels.join(", ")),
             ("comparison".into(), INTERPOLATION.into()),
-            ("solver statistics".into(), "not known (steps: output intervals)".into()),
+            (
+                "solver statistics".into(),
+                "not known (steps: output intervals)".into(),
+            ),
         ],
         stats: SolverStats::steps(trace.len().saturating_sub(1) as u64),
         findings,
@@ -253,6 +264,17 @@ pub fn check_invariants(case: &Case, run: &Run) -> Vec<InvariantCheck> {
     checks
 }
 
+/// What a response table shows for a run without a value of quantity `key`: "not
+/// provided" when the run is external and its file lacks the channel, else "—".
+pub fn missing_text(run: &Run, key: &str) -> &'static str {
+    let lacks = quantity_def(key).is_some_and(|d| !run.trace.has(d.channel.key));
+    if is_external(run) && lacks {
+        "not provided"
+    } else {
+        "—"
+    }
+}
+
 /// One line per external participant for the report, under the response table: who made
 /// it, how it is compared and which limit applies to it.
 pub fn report_notes(case: &Case, runs: &[Run]) -> Vec<String> {
@@ -265,12 +287,15 @@ pub fn report_notes(case: &Case, runs: &[Run]) -> Vec<String> {
                 "the case's tolerances that name it".to_string()
             } else {
                 format!(
-                    "no tolerance names it: SAP2000 \"Acceptable\" limit, {ACCEPTABLE_PERCENT} % on displacements, rotations and forces, one output step ({} s) on event times, against the reference (else fe)",
+                    "no tolerance names it, so the SAP2000 \"Acceptable\" limit applies against \
+                     the reference (else fe): {ACCEPTABLE_PERCENT} % on displacements, rotations \
+                     and forces, one output step ({} s) on event times",
                     r.dt
                 )
             };
             format!(
-                "{}: external results from {program} (element: {element}); {INTERPOLATION}; quantities its file lacks are \"not provided\"; gated by {limit}",
+                "{}: external results of {program} (element: {element}). Comparison: \
+                 {INTERPOLATION}; a quantity its file lacks is \"not provided\". Limits: {limit}.",
                 r.label()
             )
         })

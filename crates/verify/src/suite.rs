@@ -234,13 +234,8 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
         .collect();
     let reference_responses = reference.as_ref().ok().map(|r| &r.responses);
     let checks = evaluate_tolerances(&case.tolerances, &runs, &run_responses, reference_responses);
-    let checks = crate::external::adjust_checks(
-        &case,
-        &runs,
-        &run_responses,
-        reference_responses,
-        checks,
-    );
+    let checks =
+        crate::external::adjust_checks(&case, &runs, &run_responses, reference_responses, checks);
     let invariants = runs
         .iter()
         .flat_map(|r| crate::external::check_invariants(&case, r))

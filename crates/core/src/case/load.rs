@@ -723,7 +723,9 @@ fn check_label(label: &str, engine_ids: &[&str]) -> Result<(), String> {
 }
 
 /// The external file's layout from its `[[external]]` keys, or the reason for a bad key.
-fn external_format(e: &RawExternal) -> Result<crate::trace::ExternalFormat, (&'static str, String)> {
+fn external_format(
+    e: &RawExternal,
+) -> Result<crate::trace::ExternalFormat, (&'static str, String)> {
     let delimiter = match e.delimiter.as_deref() {
         None | Some(",") => None,
         Some(";") => Some(';'),
@@ -732,14 +734,21 @@ fn external_format(e: &RawExternal) -> Result<crate::trace::ExternalFormat, (&'s
         Some(other) => {
             return Err((
                 "delimiter",
-                format!("is \"{other}\", but must be \",\" (default), \";\", \"tab\" or \"blanks\""),
+                format!(
+                    "is \"{other}\", but must be \",\" (default), \";\", \"tab\" or \"blanks\""
+                ),
             ));
         }
     };
     let skip_lines = match e.skip_lines {
         None => 0,
         Some(n) if (0..=10_000).contains(&n) => n as usize,
-        Some(n) => return Err(("skip_lines", format!("is {n}, but must be between 0 and 10000"))),
+        Some(n) => {
+            return Err((
+                "skip_lines",
+                format!("is {n}, but must be between 0 and 10000"),
+            ));
+        }
     };
     for (from, to) in &e.columns {
         if let Err(why) = crate::trace::parse_header(to) {
@@ -747,7 +756,11 @@ fn external_format(e: &RawExternal) -> Result<crate::trace::ExternalFormat, (&'s
         }
     }
     Ok(crate::trace::ExternalFormat {
-        columns: e.columns.iter().map(|(a, b)| (a.clone(), b.clone())).collect(),
+        columns: e
+            .columns
+            .iter()
+            .map(|(a, b)| (a.clone(), b.clone()))
+            .collect(),
         delimiter,
         skip_lines,
         topic: e.topic.clone(),
@@ -767,7 +780,10 @@ impl Validator<'_> {
                 continue;
             }
             if raw[..i].iter().any(|o| o.label == e.label) {
-                self.fail(&format!("{field}.label"), format!("\"{}\" is used twice", e.label));
+                self.fail(
+                    &format!("{field}.label"),
+                    format!("\"{}\" is used twice", e.label),
+                );
                 continue;
             }
             let format = match external_format(e) {
@@ -804,12 +820,13 @@ impl Validator<'_> {
 }
 
 /// Read a results file named on the command line (`--external LABEL=PATH`: rockslide's
-/// own CSV headers, or a rockslide MCAP file with one engine topic) and validate its label
-/// against the engines and the case's other participants.
+/// own CSV headers, or a state topic of a rockslide MCAP file — `topic`, needed when it
+/// has several) and validate its label against the engines and the case's participants.
 pub fn read_external_participant(
     case: &Case,
     label: &str,
     file: &Path,
+    topic: Option<&str>,
     engine_ids: &[&str],
 ) -> Result<External, InputErrors> {
     let field = format!("--external {label}");
@@ -822,7 +839,11 @@ pub fn read_external_participant(
         ))
         .into());
     }
-    let read = crate::trace::read_external(file, &Default::default())?;
+    let format = crate::trace::ExternalFormat {
+        topic: topic.map(str::to_string),
+        ..Default::default()
+    };
+    let read = crate::trace::read_external(file, &format)?;
     Ok(External {
         label: label.to_string(),
         program: "not stated (command line)".into(),

@@ -187,7 +187,10 @@ pub struct ExternalTrace {
 
 /// Read an external results file: an MCAP file (by extension `.mcap`) or a CSV.
 pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTrace, InputErrors> {
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("mcap")) {
+    if path
+        .extension()
+        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
+    {
         return read_external_mcap(path, format.topic.as_deref());
     }
     let bytes = read_bounded(path, MAX_EXTERNAL_BYTES)
@@ -246,7 +249,13 @@ fn read_external_mcap(path: &Path, topic: Option<&str>) -> Result<ExternalTrace,
 /// with blanks in it is then quoted).
 fn split_fields(line: &str, delimiter: char) -> Vec<(String, usize)> {
     let blanks = delimiter == ' ';
-    let separates = |c: char| if blanks { c == ' ' || c == '\t' } else { c == delimiter };
+    let separates = |c: char| {
+        if blanks {
+            c == ' ' || c == '\t'
+        } else {
+            c == delimiter
+        }
+    };
     let chars: Vec<char> = line.chars().collect();
     let mut out = Vec::new();
     let mut i = 0;
@@ -432,10 +441,18 @@ fn column_meanings(
         };
         match parse_header(target) {
             Ok(m) => {
-                if meanings.iter().flatten().any(|o: &ColumnMeaning| o.key() == m.key()) {
+                if meanings
+                    .iter()
+                    .flatten()
+                    .any(|o: &ColumnMeaning| o.key() == m.key())
+                {
                     errors.push(
-                        InputError::new(path, "", format!("\"{text}\": a second {} column", m.key()))
-                            .at(line, *col),
+                        InputError::new(
+                            path,
+                            "",
+                            format!("\"{text}\": a second {} column", m.key()),
+                        )
+                        .at(line, *col),
                     );
                 }
                 if m.unit.mul != 1.0 || m.unit.div != 1.0 {
@@ -480,16 +497,25 @@ fn column_meanings(
 }
 
 /// One field as a finite number, or an error at its line and column.
-fn parse_value(path: &Path, line: usize, header: &str, field: &(String, usize)) -> Result<f64, InputError> {
+fn parse_value(
+    path: &Path,
+    line: usize,
+    header: &str,
+    field: &(String, usize),
+) -> Result<f64, InputError> {
     let (text, col) = field;
     let at = |reason: String| InputError::new(path, "", reason).at(line, *col);
     let s = text.trim();
     if s.is_empty() {
-        return Err(at(format!("column \"{header}\": empty value (a missing value is not zero)")));
+        return Err(at(format!(
+            "column \"{header}\": empty value (a missing value is not zero)"
+        )));
     }
     match s.parse::<f64>() {
         Ok(x) if x.is_finite() => Ok(x),
-        Ok(_) => Err(at(format!("column \"{header}\": \"{s}\" is not a finite number"))),
+        Ok(_) => Err(at(format!(
+            "column \"{header}\": \"{s}\" is not a finite number"
+        ))),
         Err(_) => Err(at(format!("column \"{header}\": \"{s}\" is not a number"))),
     }
 }
@@ -501,7 +527,11 @@ fn check_times(path: &Path, topic: &str, time: &[f64]) -> Result<(), InputErrors
             return Err(InputError::new(
                 path,
                 "topic",
-                format!("{topic}: message {}: time {} s does not increase", i + 1, time[i]),
+                format!(
+                    "{topic}: message {}: time {} s does not increase",
+                    i + 1,
+                    time[i]
+                ),
             )
             .into());
         }
@@ -549,7 +579,11 @@ mod tests {
         f.skip_lines = 1;
         let t = read_external_csv(Path::new("x.csv"), text, &f).unwrap();
         assert_eq!(t.trace.column("rel_disp").unwrap(), &[0.0015, 0.002]);
-        assert!(t.notes.iter().any(|n| n.contains("\"Note\"")), "{:?}", t.notes);
+        assert!(
+            t.notes.iter().any(|n| n.contains("\"Note\"")),
+            "{:?}",
+            t.notes
+        );
     }
 
     #[test]
@@ -585,7 +619,9 @@ mod tests {
             e("time [s],slide [m]\n0,0,3\n"),
             "r.csv:2:5: has 3 fields, but the header (line 1) has 2"
         );
-        assert!(e("time [s],slide [kN]\n0,0\n").starts_with("r.csv:1:10: column header \"slide\" cannot be in [kN]; accepted: [m], [mm]"));
+        assert!(e("time [s],slide [kN]\n0,0\n").starts_with(
+            "r.csv:1:10: column header \"slide\" cannot be in [kN]; accepted: [m], [mm]"
+        ));
         assert!(e("slide [m]\n0\n").starts_with("r.csv:1:1: has no time column"));
         assert!(e("").contains("has no header line"));
     }

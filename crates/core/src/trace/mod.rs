@@ -12,8 +12,8 @@ pub mod scene3d;
 
 pub use csv_file::{read_csv, write_csv};
 pub use external::{
-    ColumnKind, ColumnMeaning, ExternalFormat, ExternalTrace, MAX_EXTERNAL_BYTES, MAX_EXTERNAL_COLUMNS,
-    UNITS, Unit, parse_header, read_external, read_external_csv,
+    ColumnKind, ColumnMeaning, ExternalFormat, ExternalTrace, MAX_EXTERNAL_BYTES,
+    MAX_EXTERNAL_COLUMNS, UNITS, Unit, parse_header, read_external, read_external_csv,
 };
 pub use mcap_file::{
     LoggedRun, McapChannel, McapContents, SCENE_PERIOD_NS, STATE_SCHEMA, TraceLog, describe,
