@@ -589,8 +589,10 @@ mod tests {
     #[test]
     fn blank_separated_columns() {
         let text = "  \"time [s]\"   \"slide [mm]\"\n 0  1\n 1e-3\t  2.5 \n";
-        let mut f = ExternalFormat::default();
-        f.delimiter = Some(' ');
+        let f = ExternalFormat {
+            delimiter: Some(' '),
+            ..Default::default()
+        };
         let t = read_external_csv(Path::new("x.csv"), text, &f).unwrap();
         assert_eq!(t.trace.column("slide").unwrap(), &[0.001, 0.0025]);
     }
