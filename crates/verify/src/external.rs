@@ -29,6 +29,7 @@ use rockslide_engine_api::{Run, RunStatus, SolverStats};
 
 use crate::analysis::{Check, QUANTITY_KEYS, Responses, Verdict, discrepancy_percent};
 use crate::invariants::InvariantCheck;
+use crate::suite::CaseResult;
 
 /// The SAP2000 verification manual's "Acceptable" difference, % (displacements, forces).
 pub const ACCEPTABLE_PERCENT: f64 = 5.0;
@@ -277,7 +278,13 @@ pub fn missing_text(run: &Run, key: &str) -> &'static str {
 
 /// One line per external participant for the report, under the response table: who made
 /// it, how it is compared and which limit applies to it.
-pub fn report_notes(case: &Case, runs: &[Run]) -> Vec<String> {
+pub fn report_notes(r: &CaseResult) -> Vec<String> {
+    let (case, runs) = (&r.case, &r.runs);
+    let basis = default_basis(
+        runs,
+        &r.run_responses,
+        r.reference.as_ref().ok().map(|x| &x.responses),
+    );
     runs.iter()
         .filter(|r| is_external(r))
         .map(|r| {
@@ -285,6 +292,10 @@ pub fn report_notes(case: &Case, runs: &[Run]) -> Vec<String> {
             let (program, element) = e.map_or(("?", "?"), |e| (&e.program[..], &e.element[..]));
             let limit = if named(case, r) {
                 "the case's tolerances that name it".to_string()
+            } else if basis.is_none() {
+                "none: no tolerance names it and the case has neither a reference nor an fe \
+                 run to apply the default limit against"
+                    .to_string()
             } else {
                 format!(
                     "no tolerance names it, so the SAP2000 \"Acceptable\" limit applies against \

@@ -202,7 +202,8 @@ pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTra
         );
         InputError::new(path, "", "is not UTF-8 text").at(line, col)
     })?;
-    read_external_csv(path, &text, format)
+    // a byte-order mark, as spreadsheet programs write it, is not part of the first header
+    read_external_csv(path, text.strip_prefix('\u{feff}').unwrap_or(&text), format)
 }
 
 /// The state topic of a rockslide MCAP file as an external trace.
@@ -595,6 +596,15 @@ mod tests {
         };
         let t = read_external_csv(Path::new("x.csv"), text, &f).unwrap();
         assert_eq!(t.trace.column("slide").unwrap(), &[0.001, 0.0025]);
+    }
+
+    #[test]
+    fn a_byte_order_mark_is_not_part_of_the_first_header() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("bom.csv");
+        std::fs::write(&path, "\u{feff}time [s],slide [mm]\r\n0,1\r\n").unwrap();
+        let t = read_external(&path, &ExternalFormat::default()).unwrap();
+        assert_eq!(t.trace.column("slide").unwrap(), &[0.001]);
     }
 
     #[test]

@@ -70,7 +70,7 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
             }
         }
     }
-    notes.extend(rockslide_verify::external::report_notes(&r.case, &r.runs));
+    notes.extend(rockslide_verify::external::report_notes(r));
     header.extend(["Tolerance".to_string(), "Result".into()]);
     numeric.extend([false, false]);
     let mut rows = Vec::new();
