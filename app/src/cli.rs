@@ -39,6 +39,11 @@ pub enum Command {
         /// Output folder.
         #[arg(long, short, default_value = "reports")]
         out: PathBuf,
+        /// Another program's results as a participant, `LABEL=PATH` (repeatable; one case):
+        /// a rockslide trace CSV (any unit the catalogue knows) or MCAP file
+        /// (`trace.mcap#/fe/single/state` when it has several state topics).
+        #[arg(long = "external", value_name = "LABEL=PATH")]
+        external: Vec<String>,
     },
     /// List the cases and which engines apply to each.
     List {
@@ -68,6 +73,11 @@ pub enum Command {
         /// JUnit XML file for CI systems (default: `<out>/junit.xml`, i.e. `reports/junit.xml`).
         #[arg(long)]
         junit: Option<PathBuf>,
+        /// Another program's results as a participant, `LABEL=PATH` (repeatable; one case):
+        /// a rockslide trace CSV (any unit the catalogue knows) or MCAP file
+        /// (`trace.mcap#/fe/single/state` when it has several state topics).
+        #[arg(long = "external", value_name = "LABEL=PATH")]
+        external: Vec<String>,
     },
     // --- records and studies (commands/study.rs; docs/records-and-studies.md) ---
     /// Run a study grid: one model under many records / PGAs / μ / polarities, resumable.
@@ -195,10 +205,19 @@ fn annotate(f: &gate::Failure) {
 pub fn main(cli: Cli) -> ExitCode {
     let result = match cli.command {
         None => run_everything(Path::new("reports"), cli.quiet),
-        Some(Command::Run { cases, out }) => run(&cases, &out, cli.quiet, None),
-        Some(Command::Check { cases, out, junit }) => {
+        Some(Command::Run {
+            cases,
+            out,
+            external,
+        }) => run(&cases, &out, cli.quiet, None, &external),
+        Some(Command::Check {
+            cases,
+            out,
+            junit,
+            external,
+        }) => {
             let junit = junit.unwrap_or_else(|| out.join("junit.xml"));
-            run(&cases, &out, cli.quiet, Some(&junit))
+            run(&cases, &out, cli.quiet, Some(&junit), &external)
         }
         Some(Command::List { cases }) => list(&cases),
         Some(Command::Reference { case, dt, out }) => write_reference(&case, dt, &out),
@@ -324,7 +343,7 @@ fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     if !oscillators.is_empty() {
         commands::sweep::run(&oscillators, out, &options)?;
     }
-    run(&[], out, quiet, None)
+    run(&[], out, quiet, None, &[])
 }
 
 /// The folders `run`, `check` and `list` read when given no case: the top-level cases and
@@ -387,8 +406,15 @@ pub(crate) fn load_all(paths: &[PathBuf]) -> Result<Vec<rockslide_core::case::Ca
 
 /// Run the cases, write every report; with `junit` (the `check` command), also write the
 /// JUnit XML and return exit code 1 when the gate fails.
-fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Result<ExitCode, Error> {
-    let cases = load_all(&case_paths(args)?)?;
+fn run(
+    args: &[PathBuf],
+    out: &Path,
+    quiet: bool,
+    junit: Option<&Path>,
+    external: &[String],
+) -> Result<ExitCode, Error> {
+    let mut cases = load_all(&case_paths(args)?)?;
+    add_externals(&mut cases, external)?;
     if cases.is_empty() && junit.is_some() {
         let shown: Vec<String> = args.iter().map(|a| a.display().to_string()).collect();
         eprintln!(
@@ -461,6 +487,30 @@ fn run(args: &[PathBuf], out: &Path, quiet: bool, junit: Option<&Path>) -> Resul
     } else {
         ExitCode::from(1)
     })
+}
+
+/// `--external LABEL=PATH` participants join the one case given.
+fn add_externals(
+    cases: &mut [rockslide_core::case::Case],
+    external: &[String],
+) -> Result<(), Error> {
+    match cases {
+        _ if external.is_empty() => Ok(()),
+        [case] => Ok(rockslide_verify::external::add_from_command_line(
+            case, external,
+        )?),
+        _ => Err(Error::Input(
+            rockslide_core::error::InputError::new(
+                Path::new("--external"),
+                "",
+                format!(
+                    "applies to one case, but {} cases were given; name one case file",
+                    cases.len()
+                ),
+            )
+            .into(),
+        )),
+    }
 }
 
 fn list(args: &[PathBuf]) -> Result<ExitCode, Error> {

@@ -11,6 +11,7 @@
 //!   tolerances.
 //! - [`analysis`]: response quantities, discrepancies, tolerance checks, the energy audit,
 //!   Δt ladders and observed orders, stability classes — numbers, no I/O.
+//! - [`external`]: other programs' results as runs, gated like an engine's.
 //! - [`verdict`]: the one pass/fail rule; [`record`]: a case result as a typed record
 //!   (`result.json`).
 //! - [`sweep`]: work-precision sweeps and stability studies; [`study`]: record/PGA/μ grids.
@@ -20,6 +21,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod external;
 pub mod invariants;
 pub mod json;
 pub mod progress;

@@ -218,6 +218,7 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
         .into_iter()
         .collect::<Result<_, _>>()
         .map_err(InputErrors::from)?;
+    let runs = crate::external::with_external_runs(&case, runs);
     if let Ok(r) = &mut reference {
         r.at_compared_times(&runs);
     }
@@ -231,15 +232,13 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
                 .map(|(max, rms)| HistoryError { max, rms })
         })
         .collect();
-    let checks = evaluate_tolerances(
-        &case.tolerances,
-        &runs,
-        &run_responses,
-        reference.as_ref().ok().map(|r| &r.responses),
-    );
+    let reference_responses = reference.as_ref().ok().map(|r| &r.responses);
+    let checks = evaluate_tolerances(&case.tolerances, &runs, &run_responses, reference_responses);
+    let checks =
+        crate::external::adjust_checks(&case, &runs, &run_responses, reference_responses, checks);
     let invariants = runs
         .iter()
-        .flat_map(|r| crate::invariants::check_run(&case, r))
+        .flat_map(|r| crate::external::check_invariants(&case, r))
         .collect();
     Ok(CaseResult {
         invariants,

@@ -10,7 +10,7 @@ use sha2::{Digest, Sha256};
 use super::locate::Locator;
 use super::raw::{
     RawCase, RawContact, RawDouble, RawEngine, RawExcitation, RawExpectedOutcome,
-    RawExpectedViolation, RawModel, RawTolerance,
+    RawExpectedViolation, RawExternal, RawModel, RawTolerance,
 };
 use super::record::{AccelUnit, STANDARD_GRAVITY, read_record};
 use super::scene::*;
@@ -32,6 +32,7 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
     let mut v = Validator {
         loc: &locator,
         engine_ids,
+        external_labels: raw.external.iter().map(|e| e.label.clone()).collect(),
         errors: Vec::new(),
     };
     let model = v.model(&raw.model);
@@ -57,13 +58,14 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
         .enumerate()
         .map(|(i, o)| v.expected_violation(i, o))
         .collect();
+    let externals = v.externals(&raw.external, path);
     if !v.errors.is_empty() {
         return Err(InputErrors(v.errors));
     }
     let (Some(model), Some(excitation)) = (model, excitation) else {
         unreachable!("a missing model or excitation always records an error")
     };
-    Ok(Case {
+    let mut case = Case {
         title: raw.title.unwrap_or_else(|| name.clone()),
         name,
         source: raw.source.unwrap_or_default(),
@@ -78,7 +80,12 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
         expected_outcomes,
         expected_violations,
         locator,
-    })
+        externals: Vec::new(),
+    };
+    for e in externals {
+        case.add_external(e);
+    }
+    Ok(case)
 }
 
 /// All case files (`*.toml`) under `dir`, sorted, skipping `README`s and study grids.
@@ -125,6 +132,8 @@ fn field_from_message(message: &str) -> String {
 struct Validator<'a> {
     loc: &'a Locator,
     engine_ids: &'a [&'a str],
+    /// Labels of the case's `[[external]]` participants (an expected violation may name one).
+    external_labels: Vec<String>,
     errors: Vec<InputError>,
 }
 
@@ -615,7 +624,9 @@ impl Validator<'_> {
 
     fn expected_violation(&mut self, i: usize, o: &RawExpectedViolation) -> ExpectedViolation {
         let field = format!("expected_violation[{i}]");
-        self.engine_id(&format!("{field}.engine"), &o.engine);
+        if !self.external_labels.contains(&o.engine) {
+            self.engine_id(&format!("{field}.engine"), &o.engine);
+        }
         if !INVARIANT_KEYS.contains(&o.invariant.as_str()) {
             self.fail(
                 &format!("{field}.invariant"),
@@ -683,6 +694,164 @@ impl Validator<'_> {
             field,
         })
     }
+}
+
+// --- `[[external]]`: other programs' results (see `crate::trace::external`) ---
+
+/// Longest external label.
+const MAX_LABEL_LEN: usize = 40;
+
+/// `Ok` when `label` can name an external participant: a short slug (it names files and
+/// MCAP topics), not an engine id, not `reference`.
+fn check_label(label: &str, engine_ids: &[&str]) -> Result<(), String> {
+    let slug = |c: char| c.is_ascii_alphanumeric() || matches!(c, '.' | '_' | '-');
+    if label.is_empty() || label.chars().count() > MAX_LABEL_LEN {
+        return Err(format!("must have 1 to {MAX_LABEL_LEN} characters"));
+    }
+    if !label.chars().all(slug) || !label.starts_with(|c: char| c.is_ascii_alphanumeric()) {
+        return Err(format!(
+            "is {label:?}; a label names files and topics: letters, digits, `.`, `_`, `-`, \
+             starting with a letter or a digit"
+        ));
+    }
+    if engine_ids.contains(&label) || label == "reference" {
+        return Err(format!(
+            "is \"{label}\", which is an engine or the reference; choose another label"
+        ));
+    }
+    Ok(())
+}
+
+/// The external file's layout from its `[[external]]` keys, or the reason for a bad key.
+fn external_format(
+    e: &RawExternal,
+) -> Result<crate::trace::ExternalFormat, (&'static str, String)> {
+    let delimiter = match e.delimiter.as_deref() {
+        None | Some(",") => None,
+        Some(";") => Some(';'),
+        Some("tab") | Some("\t") => Some('\t'),
+        Some("blanks") => Some(' '),
+        Some(other) => {
+            return Err((
+                "delimiter",
+                format!(
+                    "is \"{other}\", but must be \",\" (default), \";\", \"tab\" or \"blanks\""
+                ),
+            ));
+        }
+    };
+    let skip_lines = match e.skip_lines {
+        None => 0,
+        Some(n) if (0..=10_000).contains(&n) => n as usize,
+        Some(n) => {
+            return Err((
+                "skip_lines",
+                format!("is {n}, but must be between 0 and 10000"),
+            ));
+        }
+    };
+    for (from, to) in &e.columns {
+        if let Err(why) = crate::trace::parse_header(to) {
+            return Err(("columns", format!("\"{from}\" = \"{to}\": {why}")));
+        }
+    }
+    Ok(crate::trace::ExternalFormat {
+        columns: e
+            .columns
+            .iter()
+            .map(|(a, b)| (a.clone(), b.clone()))
+            .collect(),
+        delimiter,
+        skip_lines,
+        topic: e.topic.clone(),
+    })
+}
+
+impl Validator<'_> {
+    /// Every `[[external]]`: label, layout and the file itself (relative to the case), read
+    /// now so that a bad results file is an input error before any work.
+    fn externals(&mut self, raw: &[RawExternal], case_path: &Path) -> Vec<External> {
+        let dir = case_path.parent().unwrap_or(Path::new(""));
+        let mut out: Vec<External> = Vec::new();
+        for (i, e) in raw.iter().enumerate() {
+            let field = format!("external[{i}]");
+            if let Err(why) = check_label(&e.label, self.engine_ids) {
+                self.fail(&format!("{field}.label"), why);
+                continue;
+            }
+            if raw[..i].iter().any(|o| o.label == e.label) {
+                self.fail(
+                    &format!("{field}.label"),
+                    format!("\"{}\" is used twice", e.label),
+                );
+                continue;
+            }
+            let format = match external_format(e) {
+                Ok(f) => f,
+                Err((key, why)) => {
+                    self.fail(&format!("{field}.{key}"), why);
+                    continue;
+                }
+            };
+            let file = dir.join(&e.file);
+            match crate::trace::read_external(&file, &format) {
+                Ok(read) => out.push(External {
+                    label: e.label.clone(),
+                    program: e.program.clone(),
+                    element: e.element.clone().unwrap_or_else(|| "not stated".into()),
+                    file,
+                    read,
+                    field,
+                }),
+                Err(errs) => {
+                    for mut err in errs.0 {
+                        err.field = if err.field.is_empty() {
+                            format!("{field}.file")
+                        } else {
+                            format!("{field}.{}", err.field)
+                        };
+                        self.errors.push(err);
+                    }
+                }
+            }
+        }
+        out
+    }
+}
+
+/// Read a results file named on the command line (`--external LABEL=PATH`: rockslide's
+/// own CSV headers, or a state topic of a rockslide MCAP file — `topic`, needed when it
+/// has several) and validate its label against the engines and the case's participants.
+pub fn read_external_participant(
+    case: &Case,
+    label: &str,
+    file: &Path,
+    topic: Option<&str>,
+    engine_ids: &[&str],
+) -> Result<External, InputErrors> {
+    let field = format!("--external {label}");
+    let flag_error = |why: String| InputError::new(file, field.clone(), why);
+    check_label(label, engine_ids).map_err(|why| flag_error(format!("label {why}")))?;
+    if case.externals.iter().any(|e| e.label == label) {
+        return Err(flag_error(format!(
+            "label \"{label}\" is already a participant of {}",
+            case.path.display()
+        ))
+        .into());
+    }
+    let format = crate::trace::ExternalFormat {
+        topic: topic.map(str::to_string),
+        ..Default::default()
+    };
+    let read = crate::trace::read_external(file, &format)?;
+    Ok(External {
+        label: label.to_string(),
+        program: "not stated (command line)".into(),
+        element: "not stated".into(),
+        file: file.to_path_buf(),
+        read,
+        field,
+    })
 }
 
 /// An accepted range for a number, with its unit, able to say itself in words.

@@ -12,11 +12,11 @@ mod scene;
 mod signal;
 pub mod slug;
 
-pub use load::{discover, load_case, parse_case};
+pub use load::{discover, load_case, parse_case, read_external_participant};
 pub use locate::Locator;
 pub use scene::{
-    Case, Contact, DoubleContact, EXPECTED_STATUSES, EngineRequest, Excitation, ExpectedOutcome,
-    ExpectedViolation, INVARIANT_KEYS, Model, OptionValue, Oscillator, RigidBlock, RockingBody,
-    RunSettings, Scene, Tolerance, ToleranceBasis,
+    Case, Contact, DoubleContact, EXPECTED_STATUSES, EXTERNAL_VARIANT, EngineRequest, Excitation,
+    ExpectedOutcome, ExpectedViolation, External, INVARIANT_KEYS, Model, OptionValue, Oscillator,
+    RigidBlock, RockingBody, RunSettings, Scene, Tolerance, ToleranceBasis,
 };
 pub use signal::{Jump, Signal};

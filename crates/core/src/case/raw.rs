@@ -24,6 +24,23 @@ pub struct RawCase {
     pub expected_outcome: Vec<RawExpectedOutcome>,
     #[serde(default)]
     pub expected_violation: Vec<RawExpectedViolation>,
+    #[serde(default)]
+    pub external: Vec<RawExternal>,
+}
+
+/// `[[external]]`: results produced by another program, read from a file next to the case.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawExternal {
+    pub label: String,
+    pub file: String,
+    pub program: String,
+    pub element: Option<String>,
+    pub topic: Option<String>,
+    pub delimiter: Option<String>,
+    pub skip_lines: Option<i64>,
+    #[serde(default)]
+    pub columns: BTreeMap<String, String>,
 }
 
 /// `[[expected_outcome]]`: a run that is meant not to complete (a stability scene that

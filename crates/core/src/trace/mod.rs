@@ -1,14 +1,20 @@
 //! Traces: the one output format every engine and reference writes. A trace is a table of
 //! time histories, one column per [`Quantity`] the scene has, in SI units; `csv` writes
 //! it for spreadsheet users; `mcap_file` logs every run of a case to one MCAP file for
-//! Foxglove, with a 3D view (`scene3d`) for scenes with geometry.
+//! Foxglove, with a 3D view (`scene3d`) for scenes with geometry; `external` reads other
+//! programs' results (rockslide CSV in any known unit, foreign CSV with a column map, MCAP).
 
 mod csv_file;
+mod external;
 mod mcap_file;
 mod quantity;
 pub mod scene3d;
 
 pub use csv_file::{read_csv, write_csv};
+pub use external::{
+    ColumnKind, ColumnMeaning, ExternalFormat, ExternalTrace, MAX_EXTERNAL_BYTES,
+    MAX_EXTERNAL_COLUMNS, UNITS, Unit, parse_header, read_external, read_external_csv,
+};
 pub use mcap_file::{
     LoggedRun, McapChannel, McapContents, SCENE_PERIOD_NS, STATE_SCHEMA, TraceLog, describe,
     mcap_bytes, mcap_info, read_mcap, read_mcap_bytes, state_schema, state_schema_name, write_mcap,

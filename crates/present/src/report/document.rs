@@ -70,6 +70,7 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
             }
         }
     }
+    notes.extend(rockslide_verify::external::report_notes(r));
     header.extend(["Tolerance".to_string(), "Result".into()]);
     numeric.extend([false, false]);
     let mut rows = Vec::new();
@@ -83,10 +84,11 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
         let mut k = 0;
         for col in &t.columns {
             match col {
-                Column::Run(_) => {
+                Column::Run(i) => {
                     let c = &row.cells[k];
                     k += 1;
-                    let value = c.value.map_or("—".into(), |v| show(row.key, v));
+                    let missing = rockslide_verify::external::missing_text(&r.runs[*i], row.key);
+                    let value = c.value.map_or(missing.into(), |v| show(row.key, v));
                     cells.push(match (t.reference.is_some(), c.mark) {
                         // Without a reference, checks are against other runs: mark the value.
                         (false, Some((v, g))) => Cell::toned(value + mark(v, g), tone_of(v, g)),
