@@ -95,18 +95,21 @@ fn a_trace_fed_back_as_an_external_equals_the_engine_to_the_last_digit() {
         );
         assert!(checks.iter().all(|c| c.basis == "reference" && c.gated));
         // peak_relative_displacement, peak/residual sliding, slip start/end, peak
-        // resistance: the reference and the file both have them, min_sliding is 0.
+        // resistance, peak |sliding| and total slid: the reference and the file both have
+        // them, min_sliding is 0.
         let mut keys: Vec<&str> = checks.iter().map(|c| c.quantity.as_str()).collect();
         keys.sort();
         assert_eq!(
             keys,
             [
+                "peak_abs_sliding",
                 "peak_relative_displacement",
                 "peak_resistance",
                 "peak_sliding",
                 "residual_sliding",
                 "slip_end",
-                "slip_start"
+                "slip_start",
+                "total_slid"
             ]
         );
     }
