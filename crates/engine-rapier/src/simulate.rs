@@ -337,6 +337,7 @@ pub fn run_block(
         vy: 0.0,
         corners: [0.0; 2],
         slide: 0.0,
+        contact_slip: 0.0,
     };
     let corners_of = |cm: Vector, phi: f64| -> [(f64, f64); 2] {
         let (s, c) = phi.sin_cos();
@@ -373,6 +374,12 @@ pub fn run_block(
         let mut n_contact = 0.0;
         let mut d_slide = 0.0;
         let mut uplift: f64 = 0.0;
+        // The contact's own slip: the lowest corner's horizontal motion while it touches
+        // (a block rocking about a corner does not slip there).
+        let low = usize::from(corners[1].1 < corners[0].1);
+        if k > 0 && corners[low].1 < contact_gap {
+            st.contact_slip += corners[low].0 - off - st.corners[low];
+        }
         for (i, &(cx, cy)) in corners.iter().enumerate() {
             uplift = uplift.max(cy);
             let x_rel = cx - off;
@@ -410,7 +417,7 @@ pub fn run_block(
         let base = ContactState {
             normal: gf.y,
             tangential: -gf.x,
-            slip: st.slide,
+            slip: st.contact_slip,
             gap: gf.dist.unwrap_or(lowest),
         };
         trace.contacts.push(t, &[base]);
@@ -424,6 +431,8 @@ struct BlockMemory {
     vy: f64,
     corners: [f64; 2],
     slide: f64,
+    /// The base contact's slip (lowest corner while touching), m.
+    contact_slip: f64,
 }
 
 /// Settling under gravity before t = 0: `steps` steps in which every velocity is halved
