@@ -21,7 +21,9 @@ pub use rockslide_core::{error, io, response, trace};
 pub use rockslide_present as present;
 pub use rockslide_present::{gate, report, stamp};
 pub use rockslide_reference as reference;
-pub use rockslide_verify::{analysis, json, record, registry, run, study, suite, sweep, verdict};
+pub use rockslide_verify::{
+    analysis, invariants, json, record, registry, run, study, suite, sweep, verdict,
+};
 
 /// Case files; [`case::load_case`] and [`case::parse_case`] validate against the engine
 /// registry.
