@@ -85,9 +85,10 @@ fn a_too_tight_tolerance_fails_the_gate_with_one_line_and_exit_1() {
 
     let xml = std::fs::read_to_string(&junit).expect("JUnit written where asked");
     let (declared, cases, failures, skipped) = junit_counts(&xml);
-    // Three tolerance checks plus the run's three invariants (friction bound, stick-slip,
-    // dissipation: μ finite, one contact), which hold for the predictor-corrector.
-    assert_eq!((declared, cases, failures, skipped), (6, 6, 1, 1), "{xml}");
+    // Three tolerance checks plus the run's five invariants (friction bound, stick-slip,
+    // dissipation: μ finite; compression and penetration on its recorded contact), which
+    // hold for the predictor-corrector.
+    assert_eq!((declared, cases, failures, skipped), (8, 8, 1, 1), "{xml}");
 }
 
 #[test]
@@ -103,7 +104,9 @@ fn a_gated_tolerance_that_checks_nothing_fails() {
     // --junit defaults to <out>/junit.xml.
     let xml = std::fs::read_to_string(dir.path().join("junit.xml")).unwrap();
     let (declared, cases, failures, _) = junit_counts(&xml);
-    assert_eq!((declared, cases, failures), (1, 1, 1), "{xml}");
+    // The failing check plus the predictor-corrector's compression and penetration
+    // invariants (μ = ∞: no friction invariants), which hold.
+    assert_eq!((declared, cases, failures), (3, 3, 1), "{xml}");
 }
 
 #[test]
@@ -140,7 +143,8 @@ fn passing_tolerances_exit_0_and_report_zero_failures() {
     assert!(!stderr(&o).contains("FAIL"));
     let xml = std::fs::read_to_string(dir.path().join("junit.xml")).unwrap();
     let (declared, cases, failures, _) = junit_counts(&xml);
-    assert_eq!((declared, cases, failures), (3, 3, 0), "{xml}");
+    // Plus the run's compression and penetration invariants (μ = ∞), which hold.
+    assert_eq!((declared, cases, failures), (5, 5, 0), "{xml}");
 }
 
 #[test]

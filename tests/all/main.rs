@@ -4,6 +4,7 @@
 mod bad_input;
 mod cli;
 mod common;
+mod contact_block;
 mod energy_rpepo;
 mod external;
 mod fe_pepo;

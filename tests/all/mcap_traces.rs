@@ -114,12 +114,13 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
     let path = dir.join("pepo-ground-disp.mcap");
     let m = read_mcap(&path).unwrap();
 
-    // One state channel per run plus the reference, and the log; nothing 3D.
+    // One state and one contact channel per run, a state channel for the reference, and
+    // the log; nothing 3D.
     let topics: Vec<&str> = m.channels.iter().map(|c| c.topic.as_str()).collect();
     let mut expected: Vec<String> = result
         .runs
         .iter()
-        .map(|r| format!("/{}/{}/state", r.engine, r.variant))
+        .flat_map(|r| ["state", "contacts"].map(|t| format!("/{}/{}/{t}", r.engine, r.variant)))
         .collect();
     expected.push("/reference/state".into());
     expected.push("/log".into());
@@ -157,6 +158,16 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
             panic!("{} has no schema", ch.topic)
         };
         let schema: Value = serde_json::from_slice(&s.data).unwrap();
+        if s.name.starts_with("rockslide.Contacts.") {
+            // One object per contact, each field with its SI unit.
+            let base = &schema["properties"]["base"]["properties"];
+            let units: Vec<&str> = ["normal", "tangential", "slip", "gap"]
+                .iter()
+                .map(|k| base[*k]["unit"].as_str().unwrap())
+                .collect();
+            assert_eq!(units, ["N", "N", "m", "m"], "{}", s.name);
+            continue;
+        }
         if !s.name.starts_with("rockslide.State.") {
             assert_eq!(s.name, "foxglove.Log");
             continue;
@@ -229,10 +240,10 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
     );
     assert_eq!(data, text.as_bytes());
     assert!(!m.metadata.contains_key("scene3d"));
-    // One state schema per run, the reference, and the log.
+    // One state and one contact schema per run, the reference, and the log.
     assert_eq!(
         assert_schemas_in_foxglove_subset(&path),
-        result.runs.len() + 2
+        2 * result.runs.len() + 2
     );
 }
 

@@ -340,3 +340,26 @@ fn rpepo_report_compares_up_to_first_liftoff_and_draws_figs_8_to_11() {
     assert!(md.contains("| Quantity | Unit | fe/single | fe/double | rapier/applied-force | Tolerance | Result |"), "{md}");
     assert!(md.contains("- predictor-corrector: n/a — "));
 }
+
+/// The document-control block: ID from the case name and the inputs' SHA-256 (computed
+/// here from the case file's bytes), revision, date, and the three signature fields.
+#[test]
+fn case_report_has_a_document_control_block() {
+    use sha2::{Digest, Sha256};
+    let out = tempfile::tempdir().unwrap();
+    rockslide(&["run", "cases/linear-sdof.toml"], out.path());
+    let md = read(&out.path().join("linear-sdof/report.md"));
+    let text = std::fs::read("cases/linear-sdof.toml").unwrap();
+    let hash = format!("{:x}", Sha256::digest(&text));
+    let id = format!("**Document ID:** RS-linear-sdof-{}", &hash[..12]);
+    assert!(md.contains(&id), "{}", &md[..md.len().min(1500)]);
+    for field in [
+        "Revision",
+        "Date",
+        "Prepared by",
+        "Checked by",
+        "Approved by",
+    ] {
+        assert!(md.contains(&format!("- **{field}:** ")), "{field}");
+    }
+}

@@ -9,7 +9,7 @@ use super::model::Model;
 use super::options::FeOptions;
 use super::stepper::{Counters, Drive, Snapshot, integrate};
 use rockslide_core::case::{Case, Model as SceneModel};
-use rockslide_core::trace::{Quantity, Trace, q};
+use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{RunStatus, step_count};
 
 /// Self-checks gathered while recording.
@@ -76,6 +76,13 @@ pub(crate) fn run_model(
     let chans = channels(rocking, moves_ground, double);
     let steps = step_count(case.run.duration, dt);
     let mut trace = Trace::with_channels(&chans, steps + 1);
+    // One contact per support: its ground element (element 1 in the double arrangement).
+    let ground_kz = model
+        .supports
+        .first()
+        .map_or(0.0, |s| model.links[s.ground_link].element.kz);
+    trace.contacts = ContactBlock::for_supports(model.supports.len(), 1.0 / ground_kz, steps + 1);
+    let mut states = vec![ContactState::default(); model.supports.len()];
     let drive = Drive::new(excitation, model.body.mass);
     let o_offset = match &case.scene.model {
         SceneModel::RockingBody(r) => Vector2::new(0.0, -r.cm_height),
@@ -90,9 +97,15 @@ pub(crate) fn run_model(
         let (mut slip_sum, mut slip_min, mut slip_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
         let (mut uplift, mut contacts) = (0.0_f64, 0.0);
         let mut node_sum = 0.0;
-        for sup in &m.supports {
+        for (sup, c) in m.supports.iter().zip(states.iter_mut()) {
             let e = &m.links[sup.ground_link].element;
             let st = e.state();
+            *c = ContactState {
+                normal: e.normal(),
+                tangential: e.tangential(),
+                slip: st.slip,
+                gap: st.delta.y,
+            };
             shear += e.tangential();
             normal += e.normal();
             // The sliding is element 1's own accumulated slip (return-mapping state). In
@@ -151,6 +164,7 @@ pub(crate) fn run_model(
             }
         }
         trace.push(s.t, &row[..i]);
+        trace.contacts.push(s.t, &states);
     });
     (trace, status, counters, check)
 }

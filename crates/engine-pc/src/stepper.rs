@@ -2,7 +2,7 @@
 
 use super::resistance::resistance;
 use rockslide_core::case::{Excitation, Jump, Oscillator};
-use rockslide_core::trace::{Trace, q};
+use rockslide_core::trace::{ContactBlock, ContactState, Trace, q};
 use rockslide_engine_api::{Run, RunStatus, SolverStats, step_count};
 
 /// How support motion enters the equation of motion (paper Eqs 10–12).
@@ -46,6 +46,10 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
     let mut channels = q::sliding(moves_ground);
     channels.push(&q::PC_CHANGE);
     let mut trace = Trace::with_channels(&channels, n + 1);
+    // The one contact: the normal force is the weight (no vertical motion), its static
+    // penalty compression N/Kz the gap; T is the resistance R, the slip xp.
+    let (normal, kz) = (osc.normal_force(), osc.contact.kz);
+    trace.contacts = ContactBlock::with_contacts(&["base"], &[1.0 / kz], n + 1);
     let mut row = vec![0.0; channels.len()];
 
     let mut forcing = Forcing::new(excitation, s.route, m, dt);
@@ -74,6 +78,13 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
         let n = row.len();
         row.copy_from_slice(&vals[..n]);
         trace.push(t, &row);
+        let base = ContactState {
+            normal,
+            tangential: r,
+            slip: xp,
+            gap: -normal / kz,
+        };
+        trace.contacts.push(t, &[base]);
     };
     record(&mut trace, 0.0, f0, r, x, xp, v, a, 0.0);
 

@@ -7,10 +7,12 @@
 //! - `settings`: the `[engines.rapier]` options and rapier's integration parameters;
 //! - `world`: building the world (ground, structure, feet, joints);
 //! - `ground`: ground displacement and velocity tables for both ground-motion routes;
-//! - `simulate`: the time loop and the recorded channels.
+//! - `simulate`: the time loop and the recorded channels;
+//! - `contact_forces`: the ground's force on a body from rapier's contact impulses.
 
 #![warn(missing_docs)]
 
+mod contact_forces;
 mod ground;
 mod settings;
 mod simulate;

@@ -4,10 +4,11 @@
 
 use rapier3d_f64::prelude::*;
 
+use super::contact_forces::ground_force;
 use super::ground::GroundTable;
-use super::world::{GroundKind, Rig, angle_z};
+use super::world::{FOOT_HALF, GroundKind, ROCK_FOOT_HALF, Rig, angle_z};
 use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Signal};
-use rockslide_core::trace::{Quantity, Trace, q};
+use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{RunStatus, step_count};
 
 /// How the excitation enters the rapier world.
@@ -99,7 +100,10 @@ pub fn run_oscillator(
     let moves = ex.moves_ground();
     let mut channels: Vec<&'static Quantity> = q::sliding(moves);
     channels.push(&q::NORMAL);
-    let trace = Trace::with_channels(&channels, n + 1);
+    let mut trace = Trace::with_channels(&channels, n + 1);
+    // The one contact: the foot on the ground (rigid rapier contact), or the joint-limit
+    // contact (no vertical motion: gap 0).
+    trace.contacts = ContactBlock::for_supports(1, 0.0, n + 1);
     let mut row = vec![0.0; channels.len()];
     let (m, mf) = (rig.mass, rig.foot_mass);
     let weight = -rig.world.gravity.y * m;
@@ -115,6 +119,15 @@ pub fn run_oscillator(
         let x = bm.translation().x - x_m0 - ground_frame(drive, &g, k).0;
         let v = bm.linvel().x - ground_frame(drive, &g, k).1;
         let a = if k == 0 { 0.0 } else { (v - prev.0) / dt };
+        let base = oscillator_contact(
+            rig,
+            foot,
+            dt_in,
+            x,
+            kx,
+            weight,
+            ground_frame(drive, &g, k).0 + x_f0,
+        );
         let (xf, vy, normal) = match (foot, rig.slider) {
             (Some(f), _) => {
                 let bf = &rig.world.bodies[f];
@@ -150,10 +163,46 @@ pub fn run_oscillator(
             row[6] = normal;
         }
         trace.push(t, &row);
+        trace.contacts.push(t, &[base]);
         *prev = (v, vy);
     };
     let steps = (n * stride, dt_in, stride);
     time_loop(&mut rig, drive, ex, &g, steps, trace, (0.0, 0.0), record)
+}
+
+/// The oscillator's one contact after a step of `dt`: with a foot, the ground's contact
+/// impulses on it ÷ dt (T = −Fx, signed as the resistance), its slip relative to the
+/// ground (`origin`: the ground's displacement plus the foot's start) and its contact
+/// distance; with the joint-limit contact, the capped spring's force Kx·(x − s) (the
+/// force rapier's motor applied, within its cap μN), the slider's position as the slip.
+fn oscillator_contact(
+    rig: &Rig,
+    foot: Option<RigidBodyHandle>,
+    dt: f64,
+    x: f64,
+    kx: f64,
+    weight: f64,
+    origin: f64,
+) -> ContactState {
+    match (foot, rig.slider) {
+        (Some(f), _) => {
+            let gf = ground_force(&rig.world, f, rig.ground, dt);
+            let p = rig.world.bodies[f].translation();
+            ContactState {
+                normal: gf.y,
+                tangential: -gf.x,
+                slip: p.x - origin,
+                gap: gf.dist.unwrap_or(p.y - FOOT_HALF.1),
+            }
+        }
+        (None, Some(sl)) => ContactState {
+            normal: weight,
+            tangential: kx * (x - sl.s),
+            slip: sl.s,
+            gap: 0.0,
+        },
+        (None, None) => ContactState::default(),
+    }
 }
 
 /// Where the recorder measures from at step `k`: the moving ground's (displacement,
@@ -265,7 +314,9 @@ pub fn run_block(
     if moves {
         channels.push(&q::GROUND_DISP);
     }
-    let trace = Trace::with_channels(&channels, n + 1);
+    let mut trace = Trace::with_channels(&channels, n + 1);
+    // One contact, the block's base on the ground (rigid rapier contact).
+    trace.contacts = ContactBlock::for_supports(1, 0.0, n + 1);
     let mut row = vec![0.0; channels.len()];
     let (m, bw, hh) = (block.mass, block.half_width, block.half_height);
     let grav = -rig.world.gravity.y;
@@ -286,6 +337,7 @@ pub fn run_block(
         vy: 0.0,
         corners: [0.0; 2],
         slide: 0.0,
+        contact_slip: 0.0,
     };
     let corners_of = |cm: Vector, phi: f64| -> [(f64, f64); 2] {
         let (s, c) = phi.sin_cos();
@@ -322,6 +374,12 @@ pub fn run_block(
         let mut n_contact = 0.0;
         let mut d_slide = 0.0;
         let mut uplift: f64 = 0.0;
+        // The contact's own slip: the lowest corner's horizontal motion while it touches
+        // (a block rocking about a corner does not slip there).
+        let low = usize::from(corners[1].1 < corners[0].1);
+        if k > 0 && corners[low].1 < contact_gap {
+            st.contact_slip += corners[low].0 - off - st.corners[low];
+        }
         for (i, &(cx, cy)) in corners.iter().enumerate() {
             uplift = uplift.max(cy);
             let x_rel = cx - off;
@@ -354,6 +412,15 @@ pub fn run_block(
         let len = row.len();
         row.copy_from_slice(&vals[..len]);
         trace.push(t, &row);
+        let gf = ground_force(&rig.world, rig.structure, rig.ground, dt);
+        let lowest = corners[0].1.min(corners[1].1);
+        let base = ContactState {
+            normal: gf.y,
+            tangential: -gf.x,
+            slip: st.contact_slip,
+            gap: gf.dist.unwrap_or(lowest),
+        };
+        trace.contacts.push(t, &[base]);
     };
     time_loop(&mut rig, drive, ex, &g, (n, dt, 1), trace, state, record)
 }
@@ -364,6 +431,8 @@ struct BlockMemory {
     vy: f64,
     corners: [f64; 2],
     slide: f64,
+    /// The base contact's slip (lowest corner while touching), m.
+    contact_slip: f64,
 }
 
 /// Settling under gravity before t = 0: `steps` steps in which every velocity is halved
@@ -420,7 +489,11 @@ pub fn run_rocking(
         channels.push(&q::GROUND_DISP);
     }
     settle(&mut rig, settle_steps);
-    let trace = Trace::with_channels(&channels, n + 1);
+    let mut trace = Trace::with_channels(&channels, n + 1);
+    // One contact per foot on the ground (rigid rapier contacts; the support's Kz is the
+    // spring joint above the foot).
+    trace.contacts = ContactBlock::for_supports(rig.feet.len(), 0.0, n + 1);
+    let mut states = vec![ContactState::default(); rig.feet.len()];
     let mut row = vec![0.0; channels.len()];
     let m = body.mass;
     let (kx, kz, hh) = (body.contact.kx, body.contact.kz, body.cm_height);
@@ -460,6 +533,13 @@ pub fn run_rocking(
             slide_min = slide_min.min(slip);
             slide_max = slide_max.max(slip);
             let gap = p.y - foot0[i].1;
+            let gf = ground_force(&rig.world, f, rig.ground, dt);
+            states[i] = ContactState {
+                normal: gf.y,
+                tangential: -gf.x,
+                slip,
+                gap: gf.dist.unwrap_or(p.y - ROCK_FOOT_HALF.1),
+            };
             uplift = uplift.max(gap);
             if gap < open_gap {
                 contacts += 1.0;
@@ -488,6 +568,7 @@ pub fn run_rocking(
         let len = row.len();
         row.copy_from_slice(&vals[..len]);
         trace.push(t, &row);
+        trace.contacts.push(t, &states);
     };
     time_loop(&mut rig, drive, ex, &g, (n, dt, 1), trace, 0.0, record)
 }

@@ -19,7 +19,7 @@ const GROUND_HALF: (f64, f64) = (1.0e4, 1.0);
 pub const MU_INFINITE: f64 = 1.0e6;
 
 /// Half-extents of a foot, m (it only needs a flat face on the ground).
-const FOOT_HALF: (f64, f64) = (0.1, 0.05);
+pub(crate) const FOOT_HALF: (f64, f64) = (0.1, 0.05);
 
 /// How the ground is modelled.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -280,7 +280,7 @@ pub fn angle_z(body: &RigidBody) -> f64 {
 }
 
 /// Half-extents of a rocking body's foot, m (narrower than half the support spacing).
-const ROCK_FOOT_HALF: (f64, f64) = (0.02, 0.02);
+pub(crate) const ROCK_FOOT_HALF: (f64, f64) = (0.02, 0.02);
 
 /// Rotational inertia of a rocking body: the scene's when it states one; when it gives
 /// 0 (the paper's model has none), 0.01 % of a uniform block 2b × 2h,

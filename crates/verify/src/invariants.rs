@@ -1,32 +1,45 @@
 //! Physical invariants, checked on every completed run of every engine with no reference:
 //! what any correct solution of a Coulomb contact must satisfy, whatever the excitation.
 //!
-//! Read off the run's trace (the contact's tangential force — `base_shear` where the scene
-//! has several supports, else `resistance` — its normal force, the accumulated slip and,
-//! where the engine records them, the energy channels):
+//! Read off the run's per-contact block (each contact's own normal force N, tangential
+//! force T, slip and gap, see `rockslide_core::trace::ContactBlock`) and its trace (the
+//! summed tangential force — `base_shear` where the scene has several supports, else
+//! `resistance` — the summed normal force, the slip and, where recorded, the energy
+//! channels):
 //!
-//! - `friction_bound`: |T| ≤ μ·N at every step; measured as max (|T| − μN) / (μ·M·g).
-//!   With several supports the sums are compared (|ΣT| ≤ Σ|Tᵢ| ≤ μΣNᵢ still holds).
-//! - `compression`: N ≥ 0 (compression-only contacts); measured as max(−N) / (M·g).
-//! - `stick_slip` (one-contact scenes): no slip while the contact is stuck: the slip accumulated over steps whose
-//!   both ends have |T| < (1 − 10⁻³)·μN, over the whole slip path (floored at 1 mm).
-//! - `dissipation` (one-contact scenes): friction does no positive work on the structure: the negative part of
-//!   Σ T·Δslip over the absolute friction work (floored at μ·M·g × 1 mm).
+//! - `friction_bound`: |T| ≤ μ·N at every contact and step; measured as
+//!   max (|Tᵢ| − μNᵢ) / (μ·M·g) over contacts, and the same on the trace's sums (which an
+//!   engine computes from the structure's side: rapier's springs and momentum), the worse.
+//! - `compression`: N ≥ 0 (compression-only contacts); max(−Nᵢ) / (M·g), contacts and sum.
+//! - `stick_slip`: no slip while a contact is stuck: the slip accumulated over steps whose
+//!   both ends have |Tᵢ| < (1 − 10⁻³)·μNᵢ, summed over contacts, over the whole slip path
+//!   (floored at 1 mm); only steps where the contact is closed (Nᵢ > 0) at both ends count.
+//! - `dissipation`: friction does no positive work: the negative part of Σ Tᵢ·Δslipᵢ (Tᵢ
+//!   at the step's end, the return mapping's dissipation) over the absolute friction work
+//!   (floored at μ·M·g × 1 mm), over contacts and steps closed at both ends.
+//! - `penetration`: no contact goes into the ground beyond its model's stated compliance:
+//!   max (−gapᵢ − cᵢ·Nᵢ) in metres, cᵢ the contact's normal compliance (1/Kz for a penalty
+//!   contact, 0 for rapier's rigid contacts).
 //! - `energy_balance`: max |energy_error| over the peak input work (where the engine records
 //!   energy channels).
+//!
+//! A trace without a contact block (a run recorded before it existed) falls back to the
+//! trace's sums; stick/slip and dissipation are then measured on one-contact scenes only.
 //!
 //! Each is gated with a tolerance per engine ([`limit`]), measured on the shipped cases
 //! (docs in `cases/README.md`); an engine's known violation on a case is declared there as
 //! `[[expected_violation]]` and is then reported with its size but does not fail the gate.
 
 use rockslide_core::case::{Case, Model};
-use rockslide_core::trace::Trace;
+use rockslide_core::trace::{ContactBlock, ContactState, Trace};
 use rockslide_engine_api::Run;
 
 /// Below this fraction of μN the contact counts as stuck for `stick_slip`.
 const STUCK_MARGIN: f64 = 1e-3;
 /// Floor of the slip path in `stick_slip` and `dissipation`, m.
 const SLIP_FLOOR: f64 = 1e-3;
+/// rapier's tolerance on penetration, m (measured: see `cases/README.md`).
+const RAPIER_PENETRATION: f64 = 1e-3;
 
 /// One invariant measured on one run.
 #[derive(Debug, Clone, PartialEq)]
@@ -74,6 +87,7 @@ pub const INVARIANTS: &[&str] = &[
     "stick_slip",
     "dissipation",
     "energy_balance",
+    "penetration",
 ];
 
 /// What each invariant means, in one line (for reports).
@@ -86,15 +100,21 @@ pub fn meaning(invariant: &str) -> &'static str {
         "stick_slip" => "slip while |T| < μN (stuck) / slip path: no creep while stuck",
         "dissipation" => "negative friction work / |friction work|: friction dissipates",
         "energy_balance" => "max |energy error| / peak input work: the energy balance closes",
+        "penetration" => {
+            "max (−gap − compliance·N) per contact, m: no penetration beyond the contact model"
+        }
         _ => "",
     }
 }
 
 /// The tolerance of an engine on an invariant, measured on every shipped case with margin:
 /// the predictor-corrector and fe hold the contact law to round-off; rapier's
-/// velocity-level solver with warm-starting and substeps to a few per cent.
+/// velocity-level solver with warm-starting and substeps to a few per cent, and its soft
+/// rigid contacts sink into the ground by up to half a millimetre (see `cases/README.md`).
 pub fn limit(engine: &str, invariant: &str) -> f64 {
     match (engine, invariant) {
+        ("rapier", "penetration") => RAPIER_PENETRATION,
+        (_, "penetration") => 1e-9,
         ("rapier", "friction_bound") => 0.05,
         ("rapier", "compression") => 0.05,
         ("rapier", "stick_slip") => 0.05,
@@ -105,7 +125,7 @@ pub fn limit(engine: &str, invariant: &str) -> f64 {
     }
 }
 
-/// The contact data a trace offers: tangential force, normal force, slip.
+/// The summed contact data a trace offers: tangential force, normal force, slip.
 struct ContactSeries<'a> {
     tangential: &'a [f64],
     normal: Normal<'a>,
@@ -153,35 +173,83 @@ fn contact_series<'a>(case: &Case, trace: &'a Trace) -> Option<ContactSeries<'a>
     })
 }
 
+/// A measure with where it was worst: (value, time of the worst value if it has one).
+type Measure = (f64, Option<f64>);
+
+/// The worse of two measures (NaN counts as worst).
+fn worse(a: Option<Measure>, b: Option<Measure>) -> Option<Measure> {
+    match (a, b) {
+        (Some(x), Some(y)) => Some(if y.0 > x.0 || y.0.is_nan() { y } else { x }),
+        (x, None) => x,
+        (None, y) => y,
+    }
+}
+
 /// Every invariant measurable on a completed run, with the engine's tolerance and the
 /// case's declarations. A run that did not complete is judged by its status instead.
 pub fn check_run(case: &Case, run: &Run) -> Vec<InvariantCheck> {
     if !run.status.completed() || run.trace.is_empty() {
         return Vec::new();
     }
-    let mut found: Vec<(&'static str, f64, Option<f64>)> = Vec::new();
     let (mu, weight) = friction_and_weight(case);
-    if let Some(c) = contact_series(case, &run.trace) {
-        let time = &run.trace.time;
-        if mu.is_finite() && mu > 0.0 {
-            let (w, at) = friction_bound(&c, mu, weight, time);
-            found.push(("friction_bound", w, Some(at)));
-            if single_contact(case) {
-                found.push(("stick_slip", stick_slip(&c, mu), None));
-                found.push(("dissipation", dissipation(&c, mu, weight), None));
-            }
+    let frictional = mu.is_finite() && mu > 0.0;
+    let block = &run.trace.contacts;
+    let per_contact = !block.is_empty();
+    let summed = contact_series(case, &run.trace);
+    let time = &run.trace.time;
+    let mut found: Vec<(&'static str, Measure)> = Vec::new();
+    let mut put = |key: &'static str, m: Option<Measure>| {
+        if let Some(m) = m {
+            found.push((key, m));
         }
-        if let Normal::Recorded(n) = c.normal {
+    };
+    if frictional {
+        let from_contacts = per_contact.then(|| block_friction_bound(block, mu, weight));
+        let from_sums = summed.as_ref().map(|c| {
+            let (w, at) = friction_bound(c, mu, weight, time);
+            (w, Some(at))
+        });
+        put("friction_bound", worse(from_contacts, from_sums));
+    }
+    let from_contacts = per_contact.then(|| {
+        let n = (0..block.len()).map(|i| {
+            (0..block.count()).fold(f64::NEG_INFINITY, |m, c| {
+                m.max(-block.at(i, c).normal / weight)
+            })
+        });
+        let (w, at) = worst(n, &block.time);
+        (w, Some(at))
+    });
+    let from_sums = match summed.as_ref().map(|c| &c.normal) {
+        Some(Normal::Recorded(n)) => {
             let (w, at) = worst(n.iter().map(|n| -n / weight), time);
-            found.push(("compression", w, Some(at)));
+            Some((w, Some(at)))
+        }
+        _ => None,
+    };
+    put("compression", worse(from_contacts, from_sums));
+    if frictional {
+        if per_contact {
+            put("stick_slip", Some((block_stick_slip(block, mu), None)));
+            put(
+                "dissipation",
+                Some((block_dissipation(block, mu, weight), None)),
+            );
+        } else if let (Some(c), true) = (&summed, single_contact(case)) {
+            put("stick_slip", Some((stick_slip(c, mu), None)));
+            put("dissipation", Some((dissipation(c, mu, weight), None)));
         }
     }
+    if per_contact {
+        let (w, at) = penetration(block);
+        put("penetration", Some((w, Some(at))));
+    }
     if let Some(b) = energy_balance(&run.trace) {
-        found.push(("energy_balance", b.0, Some(b.1)));
+        put("energy_balance", Some((b.0, Some(b.1))));
     }
     found
         .into_iter()
-        .map(|(invariant, worst, at)| InvariantCheck {
+        .map(|(invariant, (worst, at))| InvariantCheck {
             invariant,
             run: run.label(),
             worst,
@@ -247,6 +315,83 @@ fn dissipation(c: &ContactSeries, mu: f64, weight: f64) -> f64 {
         }
     }
     negative / total.max(mu * weight * SLIP_FLOOR)
+}
+
+/// `friction_bound` per contact: max (|Tᵢ| − μNᵢ) / (μ·M·g) and its time.
+fn block_friction_bound(b: &ContactBlock, mu: f64, weight: f64) -> Measure {
+    let excess = (0..b.len()).map(|i| {
+        (0..b.count()).fold(f64::NEG_INFINITY, |m, c| {
+            let s = b.at(i, c);
+            let e = (s.tangential.abs() - mu * s.normal) / (mu * weight);
+            if e.is_nan() { f64::INFINITY } else { m.max(e) }
+        })
+    });
+    let (w, at) = worst(excess, &b.time);
+    (w, Some(at))
+}
+
+/// Whether a contact state is stuck: |T| clearly below μN (an open contact is not).
+fn stuck_state(s: &ContactState, mu: f64) -> bool {
+    s.tangential.abs() < (1.0 - STUCK_MARGIN) * mu * s.normal
+}
+
+/// Whether a contact is closed (carries a normal force) at both ends of a step: only
+/// then is its slip friction slip (an open contact's tangential origin follows it).
+fn closed_over(s0: &ContactState, s1: &ContactState) -> bool {
+    s0.normal > 0.0 && s1.normal > 0.0
+}
+
+/// `stick_slip` per contact: creep while stuck over the slip path (steps closed at both
+/// ends), summed over contacts.
+fn block_stick_slip(b: &ContactBlock, mu: f64) -> f64 {
+    let (mut creep, mut path) = (0.0, 0.0);
+    for c in 0..b.count() {
+        for i in 1..b.len() {
+            let (s0, s1) = (b.at(i - 1, c), b.at(i, c));
+            if !closed_over(&s0, &s1) {
+                continue;
+            }
+            let ds = (s1.slip - s0.slip).abs();
+            path += ds;
+            if stuck_state(&s0, mu) && stuck_state(&s1, mu) {
+                creep += ds;
+            }
+        }
+    }
+    creep / path.max(SLIP_FLOOR)
+}
+
+/// `dissipation` per contact: negative friction work over the absolute friction work, the
+/// work of a step being T at its end times its slip (the return mapping's dissipation,
+/// ≥ 0 for any backward-Euler Coulomb law), over steps closed at both ends.
+fn block_dissipation(b: &ContactBlock, mu: f64, weight: f64) -> f64 {
+    let (mut negative, mut total) = (0.0, 0.0);
+    for c in 0..b.count() {
+        for i in 1..b.len() {
+            let (s0, s1) = (b.at(i - 1, c), b.at(i, c));
+            if !closed_over(&s0, &s1) {
+                continue;
+            }
+            let work = s1.tangential * (s1.slip - s0.slip);
+            total += work.abs();
+            if work < 0.0 {
+                negative -= work;
+            }
+        }
+    }
+    negative / total.max(mu * weight * SLIP_FLOOR)
+}
+
+/// `penetration`: max over contacts and rows of −gap − compliance·N, m, and its time.
+fn penetration(b: &ContactBlock) -> (f64, f64) {
+    let depth = (0..b.len()).map(|i| {
+        (0..b.count()).fold(f64::NEG_INFINITY, |m, c| {
+            let s = b.at(i, c);
+            let d = -s.gap - b.compliance[c] * s.normal.max(0.0);
+            if d.is_nan() { f64::INFINITY } else { m.max(d) }
+        })
+    });
+    worst(depth, &b.time)
 }
 
 fn energy_balance(trace: &Trace) -> Option<(f64, f64)> {

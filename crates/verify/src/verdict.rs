@@ -299,11 +299,12 @@ pub fn warnings(results: &[CaseResult]) -> Vec<String> {
         for c in r.checks.iter().filter(|c| !c.gated) {
             if let Some(p) = c.percent.filter(|p| p.abs() >= WARN_PERCENT) {
                 out.push(format!(
-                    "WARN {}: {}: {} vs {}: disagree by {p:+.1} % (not gated) [{}: {}]",
+                    "WARN {}: {}: {} vs {}: disagree by {} (not gated) [{}: {}]",
                     r.case.name,
                     c.quantity,
                     c.run,
                     c.basis,
+                    disagreement(c, p),
                     r.case.path.display(),
                     c.field
                 ));
@@ -323,6 +324,16 @@ pub fn warnings(results: &[CaseResult]) -> Vec<String> {
         }
     }
     out
+}
+
+/// The size of a disagreement in words: an event time's in seconds (its percentage
+/// depends on where t = 0 is), any other quantity's in per cent.
+fn disagreement(c: &Check, percent: f64) -> String {
+    let is_time = rockslide_core::response::quantity_def(&c.quantity).is_some_and(|q| q.is_time());
+    match (is_time, c.value, c.basis_value) {
+        (true, Some(v), Some(b)) => format!("{:+.4} s ({v:.4} vs {b:.4} s)", v - b),
+        _ => format!("{percent:+.1} %"),
+    }
 }
 
 #[cfg(test)]
@@ -512,5 +523,34 @@ dt = 0.1
             err.contains("expected_outcome[0].status: unknown status \"exploded\""),
             "{err}"
         );
+    }
+
+    /// An ungated disagreement on an event time is a warning in seconds; on a peak, in
+    /// per cent.
+    #[test]
+    fn event_time_warnings_are_in_seconds() {
+        let check = |quantity: &str, value: f64, basis: f64| Check {
+            quantity: quantity.into(),
+            run: "rapier/a".into(),
+            basis: "fe/single".into(),
+            value: Some(value),
+            basis_value: Some(basis),
+            percent: Some(100.0 * (value / basis - 1.0)),
+            limit: "≤ 1 %".into(),
+            gated: false,
+            verdict: Verdict::Fail,
+            field: "tolerance[0]".into(),
+        };
+        let mut r = result(case(""), vec![run("fe", RunStatus::Completed, STUCK)]);
+        r.checks = vec![
+            check("first_liftoff", 0.75, 0.85),
+            check("peak_sliding", 1.2, 1.0),
+        ];
+        let w = warnings(std::slice::from_ref(&r));
+        assert!(
+            w[0].contains("disagree by -0.1000 s (0.7500 vs 0.8500 s)"),
+            "{w:?}"
+        );
+        assert!(w[1].contains("disagree by +20.0 %"), "{w:?}");
     }
 }

@@ -339,6 +339,7 @@ pub const INVARIANT_KEYS: &[&str] = &[
     "stick_slip",
     "dissipation",
     "energy_balance",
+    "penetration",
 ];
 
 /// A validated case file.

@@ -8,6 +8,9 @@
 //! - for scenes with geometry: `/<label>/scene` and `/<label>/forces`
 //!   (`foxglove.SceneUpdate`) and `/<label>/transform` (`foxglove.FrameTransform`), see
 //!   [`super::scene3d`]; these are decimated to one message per [`SCENE_PERIOD_NS`];
+//! - `/<label>/contacts` (schema `rockslide.Contacts.<label>`) for runs with a contact
+//!   block: one message per trace row, each contact's N, T, slip and gap (see
+//!   [`super::contacts`]);
 //! - `/log` (`foxglove.Log`): how each run ended, at the time it stopped;
 //! - metadata records (`rockslide`, `run <label>`, `reference`, `scene3d`) and attachments
 //!   (the case file).
@@ -29,6 +32,7 @@ use mcap::records::{MessageHeader, Metadata};
 use mcap::{Attachment, Writer};
 use serde_json::{Value, json};
 
+use super::contacts::{self, ContactBlock};
 use super::scene3d::{self, Geometry, Pose};
 use super::{Trace, q};
 use crate::error::{Error, InputError, InputErrors};
@@ -164,6 +168,8 @@ fn state_message(buf: &mut String, number: &mut ryu::Buffer, trace: &Trace, i: u
 /// Channel ids of one run.
 struct RunChannels {
     state: u16,
+    /// The per-contact channel, when the run recorded contacts.
+    contacts: Option<u16>,
     /// (scene, forces, transform) when the run is drawn in 3D.
     view: Option<(u16, u16, u16)>,
 }
@@ -306,6 +312,7 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
             .w
             .add_channel(schema, &format!("/{}/state", run.label), "json", &meta)
             .map_err(mcap_error)?;
+        let contacts = contact_channel(&mut out, run)?;
         let view = match scene_schema {
             Some((scene, tf)) if scene3d::drawable(run.trace) => {
                 let none = BTreeMap::new();
@@ -322,7 +329,11 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
             }
             _ => None,
         };
-        channels.push(RunChannels { state, view });
+        channels.push(RunChannels {
+            state,
+            contacts,
+            view,
+        });
     }
     let log_channel = out
         .w
@@ -362,6 +373,12 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
         last_ns[r] = ns;
         state_message(&mut buf, &mut number, run.trace, i);
         out.put(ch.state, ns, buf.as_bytes())?;
+        if let Some(cc) = ch.contacts
+            && i < run.trace.contacts.len()
+        {
+            contacts::contacts_message(&mut buf, &mut number, &run.trace.contacts, i);
+            out.put(cc, ns, buf.as_bytes())?;
+        }
         let last_row = i + 1 == run.trace.len();
         if let (Some((_, forces, tf)), Some(g)) = (ch.view, &log.geometry)
             && (ns >= next_view[r] || last_row)
@@ -392,6 +409,40 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
     Ok(out.w.into_inner().into_inner())
 }
 
+/// The `/<label>/contacts` channel of a run with a contact block (its schema lists every
+/// contact with the units of its fields; the channel's metadata names them in order).
+fn contact_channel(out: &mut Out, run: &LoggedRun) -> Result<Option<u16>, Error> {
+    let block = &run.trace.contacts;
+    if block.is_empty() {
+        return Ok(None);
+    }
+    let name = contacts::contacts_schema_name(&run.label);
+    let schema = out
+        .w
+        .add_schema(
+            &name,
+            "jsonschema",
+            contacts::contacts_schema(block, &name)
+                .to_string()
+                .as_bytes(),
+        )
+        .map_err(mcap_error)?;
+    let mut meta = BTreeMap::new();
+    meta.insert("run".to_string(), run.label.clone());
+    meta.insert("contacts".to_string(), block.names.join(","));
+    let (fields, units): (Vec<&str>, Vec<&str>) = contacts::CONTACT_FIELDS
+        .iter()
+        .map(|(k, u, _)| (*k, *u))
+        .unzip();
+    meta.insert("fields".to_string(), fields.join(","));
+    meta.insert("units".to_string(), units.join(","));
+    let id = out
+        .w
+        .add_channel(schema, &format!("/{}/contacts", run.label), "json", &meta)
+        .map_err(mcap_error)?;
+    Ok(Some(id))
+}
+
 /// One channel of an MCAP file, as read back.
 #[derive(Debug, Clone, PartialEq)]
 pub struct McapChannel {
@@ -420,6 +471,8 @@ pub struct McapContents {
     pub channels: Vec<McapChannel>,
     /// The `rockslide.State.*` channels as traces, (topic, trace), in channel order.
     pub states: Vec<(String, Trace)>,
+    /// The `rockslide.Contacts.*` channels as contact blocks, (topic, block).
+    pub contacts: Vec<(String, ContactBlock)>,
     /// Metadata records by name.
     pub metadata: BTreeMap<String, BTreeMap<String, String>>,
     /// Attachments: (name, media type, bytes).
@@ -636,6 +689,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
     ids.sort_unstable();
     let mut index_of = BTreeMap::new();
     let mut builders: BTreeMap<u16, (usize, Vec<&'static super::Quantity>)> = BTreeMap::new();
+    let mut contact_channels: BTreeMap<u16, usize> = BTreeMap::new();
     for id in ids {
         let c = &summary.channels[&id];
         let (schema, schema_encoding) = c
@@ -660,6 +714,13 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             contents
                 .states
                 .push((c.topic.clone(), Trace::with_channels(&qs, 0)));
+        }
+        if schema.starts_with(contacts::CONTACTS_SCHEMA) {
+            let names = c.metadata.get("contacts").map_or("", String::as_str);
+            let names: Vec<&str> = names.split(',').filter(|n| !n.is_empty()).collect();
+            contact_channels.insert(id, contents.contacts.len());
+            let block = ContactBlock::with_contacts(&names, &vec![0.0; names.len()], 0);
+            contents.contacts.push((c.topic.clone(), block));
         }
         index_of.insert(id, contents.channels.len());
         contents.channels.push(McapChannel {
@@ -710,6 +771,8 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
                 values.push(field(qty.key)?);
             }
             contents.states[*si].1.push(t, &values);
+        } else if let Some(&bi) = contact_channels.get(&id) {
+            read_contact_message(&mut contents.contacts[bi].1, &m.data).map_err(|e| bad(&e))?;
         } else if contents.channels[ci].message_encoding == "json" {
             serde_json::from_slice::<serde::de::IgnoredAny>(&m.data).map_err(|e| bad(&e))?;
         }
@@ -738,6 +801,30 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             .push((a.name, a.media_type, a.data.into_owned()));
     }
     Ok(contents)
+}
+
+/// One contact message appended to its block: `time` and, per contact, its four fields.
+fn read_contact_message(block: &mut ContactBlock, data: &[u8]) -> Result<(), String> {
+    let obj: BTreeMap<String, Value> = serde_json::from_slice(data).map_err(|e| e.to_string())?;
+    let number = |v: Option<&Value>, what: &str| match v {
+        Some(Value::Null) => Ok(f64::NAN),
+        Some(v) => v.as_f64().ok_or_else(|| format!("{what} is not a number")),
+        None => Err(format!("missing field \"{what}\"")),
+    };
+    let t = number(obj.get("time"), "time")?;
+    let mut row = Vec::with_capacity(block.count());
+    for name in &block.names {
+        let c = obj.get(name);
+        let field = |k: &str| number(c.and_then(|c| c.get(k)), &format!("{name}.{k}"));
+        row.push(super::ContactState {
+            normal: field("normal")?,
+            tangential: field("tangential")?,
+            slip: field("slip")?,
+            gap: field("gap")?,
+        });
+    }
+    block.push(t, &row);
+    Ok(())
 }
 
 /// A human summary of an MCAP file (`rockslide trace-info`): channels, time range,

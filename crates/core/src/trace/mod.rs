@@ -1,15 +1,22 @@
 //! Traces: the one output format every engine and reference writes. A trace is a table of
 //! time histories, one column per [`Quantity`] the scene has, in SI units; `csv` writes
 //! it for spreadsheet users; `mcap_file` logs every run of a case to one MCAP file for
-//! Foxglove, with a 3D view (`scene3d`) for scenes with geometry; `external` reads other
-//! programs' results (rockslide CSV in any known unit, foreign CSV with a column map, MCAP).
+//! Foxglove, with a 3D view (`scene3d`) for scenes with geometry; `contacts` is the
+//! per-contact block (forces, slip, gap of each contact) engines record beside it;
+//! `external` reads other programs' results (rockslide CSV in any known unit, foreign CSV
+//! with a column map, MCAP).
 
+mod contacts;
 mod csv_file;
 mod external;
 mod mcap_file;
 mod quantity;
 pub mod scene3d;
 
+pub use contacts::{
+    CONTACT_FIELDS, CONTACTS_SCHEMA, ContactBlock, ContactState, contacts_schema,
+    contacts_schema_name, read_contacts_csv, write_contacts_csv,
+};
 pub use csv_file::{read_csv, write_csv};
 pub use external::{
     ColumnKind, ColumnMeaning, ExternalFormat, ExternalTrace, MAX_EXTERNAL_BYTES,
@@ -30,6 +37,8 @@ pub struct Trace {
     pub time: Vec<f64>,
     /// One column per channel.
     pub columns: Vec<Vec<f64>>,
+    /// Per-contact forces, slip and gap (engines' runs; empty for references).
+    pub contacts: ContactBlock,
 }
 
 impl Trace {
@@ -39,6 +48,7 @@ impl Trace {
             channels: channels.to_vec(),
             time: Vec::with_capacity(rows),
             columns: channels.iter().map(|_| Vec::with_capacity(rows)).collect(),
+            contacts: ContactBlock::default(),
         }
     }
 

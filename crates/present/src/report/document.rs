@@ -360,9 +360,65 @@ fn history_table(r: &CaseResult) -> Option<Table> {
 }
 
 /// The blocks of one case's report.
+/// SHA-256 of the inputs a case run reads: the case file's text and, for a recorded
+/// motion, its samples as used (after scaling, f64 little-endian) and sample interval.
+pub(crate) fn inputs_sha256(c: &rockslide_core::case::Case) -> String {
+    use sha2::{Digest, Sha256};
+    let mut h = Sha256::new();
+    h.update(c.text.as_bytes());
+    if let Some(rockslide_core::case::Signal::Record { dt, samples, .. }) =
+        c.scene.excitation.signal()
+    {
+        h.update(dt.to_le_bytes());
+        for x in samples.iter() {
+            h.update(x.to_le_bytes());
+        }
+    }
+    format!("{:x}", h.finalize())
+}
+
+/// The document-control block of a case report: document ID `RS-<case>-<12 hex of the
+/// inputs' SHA-256>` (the same inputs give the same ID), revision (the build stamp), date,
+/// the inputs' hashes, and the prepared / checked / approved fields left to sign.
+fn document_control(c: &rockslide_core::case::Case, prov: &Provenance) -> Block {
+    let inputs = inputs_sha256(c);
+    let blank = "________________  date ________".to_string();
+    Block::Facts(vec![
+        (
+            "Document ID".into(),
+            format!("RS-{}-{}", c.name, &inputs[..12]),
+        ),
+        (
+            "Revision".into(),
+            format!("{}, commit {}", prov.tool, prov.commit),
+        ),
+        ("Date".into(), prov.date.clone()),
+        (
+            "Inputs".into(),
+            format!(
+                "sha256 {inputs} (case file {} sha256 {}{})",
+                c.path.display(),
+                c.sha256,
+                if matches!(
+                    c.scene.excitation.signal(),
+                    Some(rockslide_core::case::Signal::Record { .. })
+                ) {
+                    ", with the record's samples as used"
+                } else {
+                    ""
+                }
+            ),
+        ),
+        ("Prepared by".into(), blank.clone()),
+        ("Checked by".into(), blank.clone()),
+        ("Approved by".into(), blank),
+    ])
+}
+
 pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments) -> Vec<Block> {
     let c = &r.case;
     let mut b = vec![Block::Heading(1, format!("{} — {}", c.name, c.title))];
+    b.push(document_control(c, prov));
     let mut facts = Vec::new();
     if !c.source.is_empty() {
         facts.push(("Source".to_string(), c.source.clone()));

@@ -35,6 +35,20 @@ figcaption { font-size: .88rem; color: #444; }
 pre { background: #f6f6f6; padding: .6rem; overflow-x: auto; font-size: .82rem; }
 section.case { border-top: 3px double #999; margin-top: 2.5rem; }
 ul.facts li { margin: .1rem 0; }
+@page { size: A4 landscape; margin: 12mm 10mm; }
+@media print {
+  /* Every column on the page: tables shrink and wrap instead of scrolling. */
+  body { margin: 0; max-width: none; padding: 0; font-size: 9pt; line-height: 1.3; }
+  table { display: table; overflow: visible; width: 100%; font-size: 7pt; table-layout: auto; }
+  th, td { padding: .1rem .25rem; overflow-wrap: anywhere; }
+  td:first-child, td.num { white-space: normal; }
+  tr, figure, .verdict, ul.facts { break-inside: avoid; page-break-inside: avoid; }
+  h1, h2, h3, h4 { break-after: avoid; page-break-after: avoid; }
+  figure svg { max-width: 100%; max-height: 170mm; }
+  pre { white-space: pre-wrap; overflow: visible; font-size: 7pt; }
+  details > summary { list-style: none; }
+  td.pass, td.fail, td.warn, .verdict { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
+}
 "#;
 
 /// A page-unique, URL-safe id for a case section.

@@ -44,12 +44,13 @@ use std::path::{Path, PathBuf};
 
 use rockslide_core::error::Error;
 use rockslide_core::io::write_atomically;
-use rockslide_core::trace::write_csv;
+use rockslide_core::trace::{write_contacts_csv, write_csv};
 use rockslide_verify::suite::CaseResult;
 
 pub use rockslide_core::response::show_value;
 
-/// Write a case's outputs under `out/<case>/`: CSV traces, the MCAP log, the typed record
+/// Write a case's outputs under `out/<case>/`: CSV traces (and each run's per-contact
+/// block as `<engine>-<variant>-contacts.csv`), the MCAP log, the typed record
 /// `result.json`, `report.md`, `report.html`, `summary.csv` and the plots as
 /// `plot-*.svg`; returns the folder.
 pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Error> {
@@ -59,6 +60,12 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
             &run.trace,
             &dir.join(format!("{}-{}.csv", run.engine, run.variant)),
         )?;
+        if !run.trace.contacts.is_empty() {
+            write_contacts_csv(
+                &run.trace.contacts,
+                &dir.join(format!("{}-{}-contacts.csv", run.engine, run.variant)),
+            )?;
+        }
     }
     if let Ok(r) = &result.reference {
         write_csv(

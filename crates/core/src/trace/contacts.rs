@@ -1,0 +1,378 @@
+//! The per-contact block of a run's trace: for each contact of the scene (the
+//! oscillator's base, each support of a rocking body, a rigid block's base), at every
+//! recorded row, its normal force N, tangential force T, accumulated slip and normal gap,
+//! in SI units. The physical invariants read it (friction bound, stick/slip, dissipation
+//! and penetration per contact); it is written as `<run>-contacts.csv` beside the run's
+//! CSV and as the MCAP channel `/<engine>/<variant>/contacts`.
+//!
+//! Sign conventions: N > 0 in compression (a compression-only contact never pulls);
+//! T is the contact's tangential force signed as the trace's `resistance`: positive when
+//! it resists positive relative displacement (minus the ground's force on the structure
+//! along +x), so that friction dissipates when T·Δslip ≥ 0; the slip is the contact's own
+//! accumulated tangential slip on the ground, m; the gap is the contact's normal
+//! separation from the ground, m, negative when it penetrates. A penalty contact states
+//! its normal compliance (m/N, the penetration it is allowed per newton of N; 0 for a
+//! rigid contact), so that penetration beyond the model is `−gap − compliance·N`.
+//!
+//! Rows are stored flat (row × contact × field) in one vector preallocated for the run,
+//! so that recording never allocates.
+
+use std::path::Path;
+
+use serde_json::{Value, json};
+
+use super::csv_file::shortest;
+use crate::error::{Error, InputError, InputErrors};
+use crate::io::write_atomically;
+
+/// The recorded fields of a contact: (key, SI unit, meaning).
+pub const CONTACT_FIELDS: [(&str, &str, &str); 4] = [
+    (
+        "normal",
+        "N",
+        "Normal force of the contact, positive in compression.",
+    ),
+    (
+        "tangential",
+        "N",
+        "Tangential (friction) force, positive resisting positive displacement (as resistance).",
+    ),
+    (
+        "slip",
+        "m",
+        "Accumulated tangential slip of the contact on the ground.",
+    ),
+    (
+        "gap",
+        "m",
+        "Normal separation from the ground, negative when penetrating.",
+    ),
+];
+
+/// Schema name prefix of the per-run contact channels.
+pub const CONTACTS_SCHEMA: &str = "rockslide.Contacts";
+
+/// One contact at one instant.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct ContactState {
+    /// Normal force, N (compression positive).
+    pub normal: f64,
+    /// Tangential force, N, signed as the resistance (resisting +x positive).
+    pub tangential: f64,
+    /// Accumulated slip, m.
+    pub slip: f64,
+    /// Normal gap, m (negative: penetration).
+    pub gap: f64,
+}
+
+impl ContactState {
+    fn fields(&self) -> [f64; 4] {
+        [self.normal, self.tangential, self.slip, self.gap]
+    }
+}
+
+/// The contacts of one run over time.
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct ContactBlock {
+    /// Contact names (`base`, `s1` … `sn` from −b to +b), in column order.
+    pub names: Vec<String>,
+    /// Normal compliance of each contact, m/N (0: rigid contact).
+    pub compliance: Vec<f64>,
+    /// Time of each row, s (the run's trace rows).
+    pub time: Vec<f64>,
+    /// Values, row-major: row × contact × [`CONTACT_FIELDS`].
+    pub values: Vec<f64>,
+}
+
+impl ContactBlock {
+    /// An empty block for `names` (with their normal compliances, m/N) with room for
+    /// `rows` rows, so recording never reallocates.
+    pub fn with_contacts(names: &[&str], compliance: &[f64], rows: usize) -> Self {
+        debug_assert_eq!(names.len(), compliance.len());
+        Self {
+            names: names.iter().map(|n| n.to_string()).collect(),
+            compliance: compliance.to_vec(),
+            time: Vec::with_capacity(rows),
+            values: Vec::with_capacity(rows * names.len() * CONTACT_FIELDS.len()),
+        }
+    }
+
+    /// The block of a scene's supports, named as every engine names them: `base` for
+    /// one contact, `s1` … `sn` from −b to +b for several; `compliance` is each support's
+    /// normal compliance, m/N.
+    pub fn for_supports(n: usize, compliance: f64, rows: usize) -> Self {
+        let names: Vec<String> = if n == 1 {
+            vec!["base".to_string()]
+        } else {
+            (1..=n).map(|i| format!("s{i}")).collect()
+        };
+        let refs: Vec<&str> = names.iter().map(String::as_str).collect();
+        Self::with_contacts(&refs, &vec![compliance; n], rows)
+    }
+
+    /// Append one row; `states` in contact order.
+    pub fn push(&mut self, t: f64, states: &[ContactState]) {
+        debug_assert_eq!(states.len(), self.names.len());
+        self.time.push(t);
+        for s in states {
+            self.values.extend_from_slice(&s.fields());
+        }
+    }
+
+    /// Number of contacts.
+    pub fn count(&self) -> usize {
+        self.names.len()
+    }
+
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        self.time.len()
+    }
+
+    /// Whether no row was recorded (or the run has no contact block).
+    pub fn is_empty(&self) -> bool {
+        self.time.is_empty() || self.names.is_empty()
+    }
+
+    /// Contact `c` at row `i`.
+    pub fn at(&self, i: usize, c: usize) -> ContactState {
+        let k = (i * self.count() + c) * CONTACT_FIELDS.len();
+        let v = &self.values[k..k + CONTACT_FIELDS.len()];
+        ContactState {
+            normal: v[0],
+            tangential: v[1],
+            slip: v[2],
+            gap: v[3],
+        }
+    }
+
+    /// The CSV column names: `<contact>.<field> [<unit>]` after `time [s]`.
+    pub fn header(&self) -> Vec<String> {
+        let mut h = vec!["time [s]".to_string()];
+        for n in &self.names {
+            for (key, unit, _) in CONTACT_FIELDS {
+                h.push(format!("{n}.{key} [{unit}]"));
+            }
+        }
+        h
+    }
+}
+
+/// Write `block` to `path` atomically (full round-trip precision, as the run's CSV).
+pub fn write_contacts_csv(block: &ContactBlock, path: &Path) -> Result<(), Error> {
+    let width = block.count() * CONTACT_FIELDS.len();
+    let mut buf = Vec::with_capacity(24 * (width + 1) * block.len());
+    {
+        let mut w = csv::Writer::from_writer(&mut buf);
+        let csv_error = |e: csv::Error| Error::Other(e.to_string());
+        w.write_record(block.header()).map_err(csv_error)?;
+        let mut number = ryu::Buffer::new();
+        for (i, t) in block.time.iter().enumerate() {
+            w.write_field(shortest(&mut number, *t))
+                .map_err(csv_error)?;
+            for v in &block.values[i * width..(i + 1) * width] {
+                w.write_field(shortest(&mut number, *v))
+                    .map_err(csv_error)?;
+            }
+            w.write_record(None::<&[u8]>).map_err(csv_error)?;
+        }
+        w.flush().map_err(|e| Error::io(path, e))?;
+    }
+    write_atomically(path, &buf)
+}
+
+/// Read a contact CSV written by [`write_contacts_csv`] (compliances are not in the CSV:
+/// read back as 0).
+pub fn read_contacts_csv(path: &Path) -> Result<ContactBlock, InputErrors> {
+    let bad = |line: usize, reason: String| InputError::new(path, "", reason).at(line, 1);
+    let mut r = csv::Reader::from_path(path)
+        .map_err(|e| InputError::new(path, "", format!("cannot read: {e}")))?;
+    let headers = r
+        .headers()
+        .map_err(|e| bad(1, format!("bad header: {e}")))?
+        .clone();
+    let columns = headers.len().saturating_sub(1);
+    if columns % CONTACT_FIELDS.len() != 0 {
+        return Err(bad(
+            1,
+            format!("{columns} columns after time: not 4 per contact"),
+        )
+        .into());
+    }
+    let mut names = Vec::new();
+    for (j, h) in headers.iter().skip(1).enumerate() {
+        let (name, rest) = h.rsplit_once('.').unwrap_or(("", h));
+        let (key, unit, _) = CONTACT_FIELDS[j % CONTACT_FIELDS.len()];
+        if name.is_empty() || rest != format!("{key} [{unit}]") {
+            return Err(bad(
+                1,
+                format!(
+                    "column {}: expected <contact>.{key} [{unit}], found \"{h}\"",
+                    j + 2
+                ),
+            )
+            .into());
+        }
+        if j % CONTACT_FIELDS.len() == 0 {
+            names.push(name.to_string());
+        }
+    }
+    let mut block = ContactBlock {
+        compliance: vec![0.0; names.len()],
+        names,
+        ..ContactBlock::default()
+    };
+    for (n, rec) in r.records().enumerate() {
+        let line = n + 2;
+        let rec = rec.map_err(|e| bad(line, e.to_string()))?;
+        for (j, s) in rec.iter().enumerate() {
+            let v = s
+                .trim()
+                .parse::<f64>()
+                .map_err(|_| bad(line, format!("\"{s}\" is not a number")))?;
+            if j == 0 {
+                block.time.push(v);
+            } else {
+                block.values.push(v);
+            }
+        }
+    }
+    Ok(block)
+}
+
+/// The schema name of a run's contact messages: `rockslide.Contacts.<label>`.
+pub fn contacts_schema_name(label: &str) -> String {
+    format!(
+        "{CONTACTS_SCHEMA}.{}",
+        label.replace('/', ".").replace('-', "_")
+    )
+}
+
+/// The JSON schema of a run's contact messages: `time` and one object per contact with
+/// the fields of [`CONTACT_FIELDS`], each with its SI unit.
+pub fn contacts_schema(block: &ContactBlock, name: &str) -> Value {
+    let mut fields = serde_json::Map::new();
+    for (key, unit, doc) in CONTACT_FIELDS {
+        fields.insert(
+            key.into(),
+            json!({
+                "type": "number",
+                "description": format!("{doc} [{unit}]. null when not finite (NaN/Inf)."),
+                "unit": unit
+            }),
+        );
+    }
+    let mut props = serde_json::Map::new();
+    props.insert(
+        "time".into(),
+        json!({ "type": "number", "description": "Simulation time [s]", "unit": "s" }),
+    );
+    for (n, c) in block.names.iter().zip(&block.compliance) {
+        props.insert(
+            n.clone(),
+            json!({
+                "type": "object",
+                "description": format!("Contact {n} (normal compliance {c:e} m/N)."),
+                "properties": fields.clone(),
+                "additionalProperties": false
+            }),
+        );
+    }
+    json!({
+        "title": name,
+        "description": "Every contact of one run at one simulation instant, SI units (each field's `unit`). Message log time = simulation time in ns.",
+        "type": "object",
+        "properties": props,
+        "additionalProperties": false
+    })
+}
+
+/// The contact message of row `i`, into `buf` (no allocation once `buf` has grown).
+pub(crate) fn contacts_message(
+    buf: &mut String,
+    number: &mut ryu::Buffer,
+    block: &ContactBlock,
+    i: usize,
+) {
+    let put = |buf: &mut String, number: &mut ryu::Buffer, x: f64| {
+        if x.is_finite() {
+            buf.push_str(number.format_finite(x));
+        } else {
+            buf.push_str("null");
+        }
+    };
+    buf.clear();
+    buf.push_str("{\"time\":");
+    put(buf, number, block.time[i]);
+    for (c, name) in block.names.iter().enumerate() {
+        buf.push_str(",\"");
+        buf.push_str(name); // names are [a-z0-9]: no escaping needed
+        buf.push_str("\":{");
+        let s = block.at(i, c).fields();
+        for (f, (key, _, _)) in CONTACT_FIELDS.iter().enumerate() {
+            if f > 0 {
+                buf.push(',');
+            }
+            buf.push('"');
+            buf.push_str(key);
+            buf.push_str("\":");
+            put(buf, number, s[f]);
+        }
+        buf.push('}');
+    }
+    buf.push('}');
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn block() -> ContactBlock {
+        let mut b = ContactBlock::with_contacts(&["s1", "s2"], &[1e-6, 0.0], 2);
+        let s = |n: f64| ContactState {
+            normal: n,
+            tangential: -0.5 * n,
+            slip: 1e-3,
+            gap: -1e-6 * n,
+        };
+        b.push(0.0, &[s(1.0), s(2.0)]);
+        b.push(0.1, &[s(3.0), s(f64::NAN)]);
+        b
+    }
+
+    #[test]
+    fn rows_are_read_back_per_contact() {
+        let b = block();
+        assert_eq!((b.count(), b.len()), (2, 2));
+        assert_eq!(b.at(1, 0).normal, 3.0);
+        assert_eq!(b.at(0, 1).tangential, -1.0);
+        assert!(b.at(1, 1).normal.is_nan());
+    }
+
+    #[test]
+    fn messages_are_json_with_null_for_non_finite_values() {
+        let b = block();
+        let (mut buf, mut num) = (String::new(), ryu::Buffer::new());
+        contacts_message(&mut buf, &mut num, &b, 1);
+        let v: Value = serde_json::from_str(&buf).unwrap();
+        assert_eq!(v["s1"]["normal"], json!(3.0));
+        assert_eq!(v["s2"]["normal"], Value::Null);
+        assert_eq!(v["time"], json!(0.1));
+    }
+
+    #[test]
+    fn the_csv_round_trips_bit_for_bit() {
+        let dir = std::env::temp_dir().join(format!("rs-contacts-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("c.csv");
+        let b = block();
+        write_contacts_csv(&b, &path).unwrap();
+        let back = read_contacts_csv(&path).unwrap();
+        assert_eq!(back.names, b.names);
+        assert_eq!(back.time, b.time);
+        for (x, y) in back.values.iter().zip(&b.values) {
+            assert!(x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()));
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
