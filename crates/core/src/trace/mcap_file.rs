@@ -22,7 +22,7 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::io::Cursor;
+use std::io::{Cursor, Seek, Write};
 use std::path::Path;
 
 use mcap::records::{MessageHeader, Metadata};
@@ -32,7 +32,7 @@ use serde_json::{Value, json};
 use super::scene3d::{self, Geometry, Pose};
 use super::{Trace, q};
 use crate::error::{Error, InputError, InputErrors};
-use crate::io::write_atomically;
+use crate::io::write_atomically_with;
 
 /// Schema name prefix of the per-run state channels.
 pub const STATE_SCHEMA: &str = "rockslide.State";
@@ -83,9 +83,10 @@ fn mcap_error(e: mcap::McapError) -> Error {
     Error::Other(format!("writing MCAP: {e}"))
 }
 
-/// Write `log` to `path` atomically.
+/// Write `log` to `path` atomically, streamed: only the open chunk and the indexes are
+/// held in memory, not the file.
 pub fn write_mcap(log: &TraceLog, path: &Path) -> Result<(), Error> {
-    write_atomically(path, &mcap_bytes(log)?)
+    write_atomically_with(path, |file| write_mcap_to(log, file).map(|_| ()))
 }
 
 /// Log time of a simulation time, ns (non-finite or negative times clamp to `floor`).
@@ -169,12 +170,12 @@ struct RunChannels {
 }
 
 /// A writer that numbers messages per channel.
-struct Out {
-    w: Writer<Cursor<Vec<u8>>>,
+struct Out<W: Write + Seek> {
+    w: Writer<W>,
     seq: BTreeMap<u16, u32>,
 }
 
-impl Out {
+impl<W: Write + Seek> Out<W> {
     fn put(&mut self, channel_id: u16, ns: u64, data: &[u8]) -> Result<(), Error> {
         let seq = self.seq.entry(channel_id).or_insert(0);
         *seq += 1;
@@ -211,10 +212,13 @@ fn writer_options() -> mcap::WriteOptions {
 
 /// The MCAP bytes of `log`.
 pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
+    Ok(write_mcap_to(log, Cursor::new(Vec::new()))?.into_inner())
+}
+
+/// Write the MCAP file of `log` into `sink`; returns the sink.
+fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
     let mut out = Out {
-        w: writer_options()
-            .create(Cursor::new(Vec::new()))
-            .map_err(mcap_error)?,
+        w: writer_options().create(sink).map_err(mcap_error)?,
         seq: BTreeMap::new(),
     };
     for (name, media_type, data) in &log.attachments {
@@ -257,7 +261,7 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
         out.w.write_metadata(&meta).map_err(mcap_error)?;
     }
 
-    let json_schema = |out: &mut Out, name: &str, v: &Value| {
+    let json_schema = |out: &mut Out<W>, name: &str, v: &Value| {
         out.w
             .add_schema(name, "jsonschema", v.to_string().as_bytes())
             .map_err(mcap_error)
@@ -389,7 +393,7 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
         row[r] += 1;
     }
     out.w.finish().map_err(mcap_error)?;
-    Ok(out.w.into_inner().into_inner())
+    Ok(out.w.into_inner())
 }
 
 /// One channel of an MCAP file, as read back.
