@@ -5,6 +5,7 @@ mod bad_input;
 mod cli;
 mod common;
 mod energy_rpepo;
+mod footprint;
 mod fe_pepo;
 mod fe_rpepo;
 mod gate_check;

@@ -28,7 +28,7 @@ pub fn write_csv_to(trace: &Trace, w: &mut impl Write) -> std::io::Result<()> {
         header.write_record(None::<&[u8]>)?;
         header.flush()?;
     }
-    let mut number = ryu::Buffer::new();
+    let mut number = zmij::Buffer::new();
     for i in 0..trace.len() {
         w.write_all(shortest(&mut number, trace.time[i]).as_bytes())?;
         for c in &trace.columns {
@@ -40,9 +40,9 @@ pub fn write_csv_to(trace: &Trace, w: &mut impl Write) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Shortest decimal that reads back to the same f64 (Ryū), without allocating; `NaN`,
+/// Shortest decimal that reads back to the same f64 (zmij, spelled as Ryū would), without allocating; `NaN`,
 /// `inf` and `-inf` spelled as Rust parses them back.
-pub(crate) fn shortest(buf: &mut ryu::Buffer, x: f64) -> &str {
+pub(crate) fn shortest(buf: &mut zmij::Buffer, x: f64) -> &str {
     if x.is_finite() {
         buf.format_finite(x)
     } else if x.is_nan() {

@@ -139,8 +139,9 @@ pub fn state_schema(trace: &Trace, name: &str) -> Value {
     })
 }
 
-/// Append `x` as JSON: shortest round-trip decimal (Ryū), `null` when not finite.
-fn push_number(buf: &mut String, number: &mut ryu::Buffer, x: f64) {
+/// Append `x` as JSON: shortest round-trip decimal (zmij: spelled as Ryū would, measured
+/// 1.4× faster in benches/writers.rs), `null` when not finite.
+fn push_number(buf: &mut String, number: &mut zmij::Buffer, x: f64) {
     if x.is_finite() {
         buf.push_str(number.format_finite(x));
     } else {
@@ -149,7 +150,7 @@ fn push_number(buf: &mut String, number: &mut ryu::Buffer, x: f64) {
 }
 
 /// The state message of row `i`, into `buf`.
-fn state_message(buf: &mut String, number: &mut ryu::Buffer, trace: &Trace, i: usize) {
+fn state_message(buf: &mut String, number: &mut zmij::Buffer, trace: &Trace, i: usize) {
     buf.clear();
     buf.push_str("{\"time\":");
     push_number(buf, number, trace.time[i]);
@@ -201,13 +202,19 @@ impl<W: Write + Seek> Out<W> {
 /// and reference channels, JSON messages of shortest round-trip decimals): level 1 writes
 /// 27.5 MB in 1.48 s of CPU for the whole `run`, the zstd default (3) 29.0 MB in 1.89 s,
 /// lz4 42.0 MB in 1.11 s, none 95.7 MB in 0.80 s. Full-precision decimals barely compress
-/// further at higher levels, so the fastest zstd level wins.
+/// further at higher levels, so the fastest zstd level wins. Measured again on 10⁶ rows by
+/// `cargo bench --bench writers` (docs/performance.md): level 1 writes a third of the
+/// uncompressed size, lz4 half again as much; level 3 took 1.7× as long for a 5 % larger file.
 const ZSTD_LEVEL: u32 = 1;
 
-/// How the file is written: zstd chunks at [`ZSTD_LEVEL`], the `mcap` crate's chunk size,
-/// indexes, summary and CRCs.
+/// How the file is written: zstd chunks at [`ZSTD_LEVEL`] on the calling thread (the
+/// `mcap` crate would start a zstd worker per physical core: measured 8 % less wall time
+/// alone but more CPU, and the traces of a case are already written in parallel), the
+/// crate's 1 MiB chunks (4 MiB measured no faster), indexes, summary and CRCs.
 fn writer_options() -> mcap::WriteOptions {
-    mcap::WriteOptions::new().compression_level(ZSTD_LEVEL)
+    mcap::WriteOptions::new()
+        .compression_level(ZSTD_LEVEL)
+        .compression_threads(0)
 }
 
 /// The MCAP bytes of `log`.
@@ -355,7 +362,7 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
     let mut last_ns = vec![0u64; log.runs.len()];
     let mut next_view = vec![0u64; log.runs.len()];
     let mut buf = String::with_capacity(512);
-    let mut number = ryu::Buffer::new();
+    let mut number = zmij::Buffer::new();
     loop {
         let next = (0..log.runs.len())
             .filter(|&r| row[r] < log.runs[r].trace.len())
