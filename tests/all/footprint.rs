@@ -2,9 +2,10 @@
 //! any work, with the case file, field, line, column and reason, and nothing written.
 //!
 //! Requirements checked:
-//! - a 10⁸-step predictor-corrector run is refused at once (exit 2) with the estimate
-//!   computed here from its plan: 10⁸ + 1 rows × 25 values (time and every quantity of
-//!   the catalogue) × 8 bytes × 3 copies = 60.0 GB, over the 8 GiB default limit;
+//! - a 10⁸-step predictor-corrector run is refused at once (exit 2): by the step limit
+//!   of case loading, and with that limit raised, by the estimate computed here from its
+//!   plan: 10⁸ + 1 rows × 25 values (time and every quantity of the catalogue) × 8 bytes
+//!   × 3 copies = 60.0 GB, over the 8 GiB default limit;
 //! - the limits are overridden by the environment (a 1-byte limit refuses a 1,000-step
 //!   run, a value that is not a number of bytes is an error naming the variable).
 
@@ -37,7 +38,8 @@ fn run(case: &Path, out: &Path, env: &[(&str, &str)]) -> std::process::Output {
     let mut c = Command::new(env!("CARGO_BIN_EXE_rockslide"));
     c.args(["run", "--quiet", "--out"]).arg(out).arg(case);
     c.env_remove("ROCKSLIDE_MAX_MEMORY_BYTES")
-        .env_remove("ROCKSLIDE_MAX_DISK_BYTES");
+        .env_remove("ROCKSLIDE_MAX_DISK_BYTES")
+        .env_remove("ROCKSLIDE_MAX_STEPS");
     for (k, v) in env {
         c.env(k, v);
     }
@@ -51,6 +53,11 @@ fn a_run_of_1e8_steps_is_refused_before_any_work() {
     let out = dir.path().join("out");
     let started = std::time::Instant::now();
     let o = run(&case, &out, &[]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("run.dt: "), "{stderr}");
+    assert!(stderr.contains("ROCKSLIDE_MAX_STEPS"), "{stderr}");
+    let o = run(&case, &out, &[("ROCKSLIDE_MAX_STEPS", "1000000000")]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
     // 10⁸ steps (1e5 s / 1e-3 s) + the initial row; time and the catalogue's quantities
@@ -90,15 +97,16 @@ fn the_limits_are_overridden_by_the_environment() {
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
     assert!(
-        stderr.contains("ROCKSLIDE_MAX_DISK_BYTES is \"lots\", but must be a whole number of bytes"),
+        stderr
+            .contains("ROCKSLIDE_MAX_DISK_BYTES is \"lots\", but must be a whole number of bytes"),
         "{stderr}"
     );
 
-    let o = run(&case, &out, &[("ROCKSLIDE_MAX_MEMORY_BYTES", "17179869184")]);
-    assert!(
-        o.status.success(),
-        "{}",
-        String::from_utf8_lossy(&o.stderr)
+    let o = run(
+        &case,
+        &out,
+        &[("ROCKSLIDE_MAX_MEMORY_BYTES", "17179869184")],
     );
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(out.join("long-pepo").join("long-pepo.mcap").is_file());
 }
