@@ -15,8 +15,8 @@ use std::process::Command;
 use rockslide::trace::q;
 
 /// The PEPO case, predictor-corrector only at Δt = 1 ms, for `duration` seconds, written
-/// to `dir`; returns its path and the 1-based line of `duration =`.
-fn pepo_case(dir: &Path, duration: &str) -> (std::path::PathBuf, usize) {
+/// to `dir`; returns its path and the 1-based line and column of the duration's value.
+fn pepo_case(dir: &Path, duration: &str) -> (std::path::PathBuf, (usize, usize)) {
     let text = std::fs::read_to_string(crate::common::repo("cases/pepo-mass-accel.toml")).unwrap();
     let head = &text[..text.find("[engines.").unwrap()];
     assert!(head.contains("duration = 1.0"));
@@ -24,14 +24,14 @@ fn pepo_case(dir: &Path, duration: &str) -> (std::path::PathBuf, usize) {
         "{}\n[engines.predictor-corrector]\ndt = 0.001\n",
         head.replace("duration = 1.0", &format!("duration = {duration}"))
     );
-    let line = text
+    let (line, column) = text
         .lines()
-        .position(|l| l.starts_with("duration ="))
-        .unwrap()
-        + 1;
+        .enumerate()
+        .find_map(|(i, l)| l.strip_prefix("duration = ").map(|_| (i + 1, 12)))
+        .unwrap();
     let path = dir.join("long-pepo.toml");
     std::fs::write(&path, text).unwrap();
-    (path, line)
+    (path, (line, column))
 }
 
 fn run(case: &Path, out: &Path, env: &[(&str, &str)]) -> std::process::Output {
@@ -49,7 +49,7 @@ fn run(case: &Path, out: &Path, env: &[(&str, &str)]) -> std::process::Output {
 #[test]
 fn a_run_of_1e8_steps_is_refused_before_any_work() {
     let dir = tempfile::tempdir().unwrap();
-    let (case, line) = pepo_case(dir.path(), "100000.0");
+    let (case, (line, column)) = pepo_case(dir.path(), "100000.0");
     let out = dir.path().join("out");
     let started = std::time::Instant::now();
     let o = run(&case, &out, &[]);
@@ -67,7 +67,7 @@ fn a_run_of_1e8_steps_is_refused_before_any_work() {
     let bytes = rows * values * 8 * 3;
     let shown = format!("{:.1} GB", bytes as f64 / 1e9);
     assert_eq!(shown, "60.0 GB");
-    let expected_start = format!("{}:{line}:1: run.duration: ", case.display());
+    let expected_start = format!("{}:{line}:{column}: run.duration: ", case.display());
     assert!(stderr.contains(&expected_start), "{stderr}");
     for part in [
         format!("{rows} rows"),
