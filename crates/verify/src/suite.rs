@@ -281,3 +281,30 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
         checks,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rockslide_core::trace::q;
+
+    fn trace(times: &[f64]) -> Trace {
+        let mut t = Trace::with_channels(&[&q::REL_DISP, &q::VEL], times.len());
+        for &x in times {
+            t.push(x, &[10.0 * x, -x]);
+        }
+        t
+    }
+
+    #[test]
+    fn rows_at_takes_the_rows_of_the_times_asked_and_nothing_else() {
+        let full = trace(&[0.0, 0.25, 0.5, 0.75, 1.0]);
+        let rows = rows_at(&full, &[0.25, 1.0]).expect("both times are rows");
+        assert_eq!(rows, trace(&[0.25, 1.0]));
+        assert_eq!(rows_at(&full, &[]), Some(trace(&[])));
+        // a time between rows, past the end, or out of order: sampled anew by the caller
+        assert_eq!(rows_at(&full, &[0.3]), None);
+        assert_eq!(rows_at(&full, &[2.0]), None);
+        assert_eq!(rows_at(&full, &[0.5, 0.25]), None);
+        assert_eq!(rows_at(&full, &[f64::NAN]), None);
+    }
+}

@@ -40,8 +40,8 @@ pub fn write_csv_to(trace: &Trace, w: &mut impl Write) -> std::io::Result<()> {
     Ok(())
 }
 
-/// Shortest decimal that reads back to the same f64 (zmij, spelled as Ryū would), without allocating; `NaN`,
-/// `inf` and `-inf` spelled as Rust parses them back.
+/// Shortest decimal that reads back to the same f64 (zmij, spelled as Ryū would), without
+/// allocating; `NaN`, `inf` and `-inf` spelled as Rust parses them back.
 pub(crate) fn shortest(buf: &mut zmij::Buffer, x: f64) -> &str {
     if x.is_finite() {
         buf.format_finite(x)
