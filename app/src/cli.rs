@@ -328,6 +328,8 @@ fn bounded_jobs(jobs: Option<usize>) -> Option<usize> {
 fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     let options = rockslide_verify::sweep::Options {
         quiet,
+        repeats: DEFAULT_RUN_REPEATS,
+        budget: Some(DEFAULT_RUN_SWEEP_BUDGET),
         ..Default::default()
     };
     let stability_cases = Path::new("cases/stability");
@@ -345,6 +347,16 @@ fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     }
     run(&[], out, quiet, None, &[])
 }
+
+/// Timed repeats of each sweep rung in the default command: one. The timing of a run is
+/// reported as measured once; `rockslide sweep` (3 repeats by default) gives medians.
+const DEFAULT_RUN_REPEATS: usize = 1;
+
+/// Wall-time budget of one engine variant's sweep in the default command, s. Only rapier
+/// on the rocking RPEPO scenes reaches it (its finer rungs cost seconds each); those rungs
+/// are skipped and the sweep page says so. `rockslide sweep` keeps the full budget
+/// ([`rockslide_verify::sweep::DEFAULT_BUDGET`]).
+const DEFAULT_RUN_SWEEP_BUDGET: f64 = 3.0;
 
 /// The folders `run`, `check` and `list` read when given no case: the top-level cases and
 /// the record cases. `cases/stability/` is not among them: its scenes are meant to break
@@ -404,6 +416,23 @@ pub(crate) fn load_all(paths: &[PathBuf]) -> Result<Vec<rockslide_core::case::Ca
     }
 }
 
+/// Run every case and write its outputs, cases in parallel across cores (each case's
+/// engines in parallel inside it); results in the cases' order, whatever finished first.
+fn run_and_write_all(
+    cases: Vec<rockslide_core::case::Case>,
+    out: &Path,
+) -> Vec<Result<(CaseResult, PathBuf), Error>> {
+    use rayon::prelude::*;
+    cases
+        .into_par_iter()
+        .map(|case| {
+            let result = run_case(case)?;
+            let dir = write_case_outputs(&result, out)?;
+            Ok((result, dir))
+        })
+        .collect()
+}
+
 /// Run the cases, write every report; with `junit` (the `check` command), also write the
 /// JUnit XML and return exit code 1 when the gate fails.
 fn run(
@@ -433,12 +462,13 @@ fn run(
     }
     let mut results: Vec<CaseResult> = Vec::new();
     remove_stale_temporaries(out)?;
-    for case in cases {
-        let name = case.name.clone();
-        remove_stale_temporaries(&inside(out, &name)?)?;
-        let result = run_case(case)?;
-        let dir = write_case_outputs(&result, out)?;
+    for case in &cases {
+        remove_stale_temporaries(&inside(out, &case.name)?)?;
+    }
+    for outcome in run_and_write_all(cases, out) {
+        let (result, dir) = outcome?;
         if !quiet {
+            let name = &result.case.name;
             let passed = gate::failures(std::slice::from_ref(&result)).is_empty();
             say!(
                 "{name}: {} runs, gate {} → {}",

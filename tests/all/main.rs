@@ -9,6 +9,7 @@ mod energy_rpepo;
 mod external;
 mod fe_pepo;
 mod fe_rpepo;
+mod footprint;
 mod gate_check;
 mod golden;
 mod guarded_run;

@@ -96,6 +96,52 @@ fn write_and_rename(tmp: &Path, path: &Path, bytes: &[u8]) -> Result<(), Error> 
     std::fs::rename(tmp, path).map_err(|e| Error::io(path, e))
 }
 
+/// Buffer of a streamed file ([`write_atomically_with`]): 1 MiB, so that a long trace
+/// reaches the disk in few large writes.
+pub const STREAM_BUFFER_BYTES: usize = 1 << 20;
+
+/// Stream a file to `path` atomically: `write` fills a buffered temporary sibling, which
+/// is renamed into place only when `write` succeeds (otherwise it is removed). Nothing of
+/// the file is held in memory but the buffer, whatever its size.
+pub fn write_atomically_with(
+    path: &Path,
+    write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> Result<(), Error>,
+) -> Result<(), Error> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
+    let tmp = temporary_for(path);
+    let result = stream_and_rename(&tmp, path, write);
+    if result.is_err() {
+        // best effort: a failed write leaves nothing behind
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}
+
+fn stream_and_rename(
+    tmp: &Path,
+    path: &Path,
+    write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> Result<(), Error>,
+) -> Result<(), Error> {
+    // never follow a symbolic link planted where the temporary file goes
+    if tmp.symlink_metadata().is_ok() {
+        std::fs::remove_file(tmp).map_err(|e| Error::io(tmp, e))?;
+    }
+    let file = std::fs::OpenOptions::new()
+        .write(true)
+        .create_new(true)
+        .open(tmp)
+        .map_err(|e| Error::io(tmp, e))?;
+    let mut w = std::io::BufWriter::with_capacity(STREAM_BUFFER_BYTES, file);
+    write(&mut w)?;
+    w.flush().map_err(|e| Error::io(path, e))?;
+    drop(w);
+    std::fs::rename(tmp, path).map_err(|e| Error::io(path, e))
+}
+
 /// Remove the temporary files (`.*.rockslide-tmp`, and the `.tmpXXXXXX` files of earlier
 /// versions) an interrupted run left directly in `dir`; returns how many were removed.
 /// A folder that does not exist has none.

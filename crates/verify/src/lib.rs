@@ -6,6 +6,7 @@
 //! ```
 //!
 //! - [`registry`]: the engines and the case loader that knows them.
+//! - [`footprint`]: the memory and disk a plan needs, refused over a limit before any work.
 //! - [`run`]: the one guarded, timed engine run every command goes through.
 //! - [`suite`]: plan a case's runs, run them, solve the reference, read responses, apply
 //!   tolerances.
@@ -22,6 +23,7 @@
 
 pub mod analysis;
 pub mod external;
+pub mod footprint;
 pub mod invariants;
 pub mod json;
 pub mod progress;

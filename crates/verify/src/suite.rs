@@ -37,7 +37,8 @@ pub struct Plan {
 }
 
 /// Plan a case: every engine it names (all engines if it names none) with every variant
-/// it asks for (all that apply by default). Unknown variants are input errors.
+/// it asks for (all that apply by default). Unknown variants are input errors, and so is a
+/// plan whose traces would exceed the memory or disk limit ([`crate::footprint`]).
 pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputErrors> {
     let mut plan = Plan::default();
     let mut errors: Vec<InputError> = Vec::new();
@@ -78,6 +79,8 @@ pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputError
         }
     }
     if errors.is_empty() {
+        // refused before any work when its traces would not fit (crate::footprint)
+        crate::footprint::check(case, &plan)?;
         Ok(plan)
     } else {
         Err(InputErrors(errors))
@@ -117,6 +120,14 @@ impl ReferenceResult {
         self.output = rockslide_reference::sample(self.solution.as_ref(), &times);
     }
 
+    /// The reference at `times` (a run's output times): the rows of the output trace,
+    /// which was sampled at every run's times, when each time is there (the same values:
+    /// the solution is evaluated pointwise); sampled anew otherwise.
+    pub fn at_times(&self, times: &[f64]) -> Trace {
+        rows_at(&self.output, times)
+            .unwrap_or_else(|| rockslide_reference::sample(self.solution.as_ref(), times))
+    }
+
     /// The exact instants the solution knows (slip start and end, lift-off, impacts).
     fn event_times(&self) -> impl Iterator<Item = f64> + '_ {
         self.solution
@@ -125,6 +136,25 @@ impl ReferenceResult {
             .filter(|(k, _)| quantity_def(k).is_some_and(|d| d.is_time()))
             .map(|(_, t)| t)
     }
+}
+
+/// The rows of `trace` at `times` (ascending), or `None` when some time is not one of its
+/// rows, bit for bit.
+fn rows_at(trace: &Trace, times: &[f64]) -> Option<Trace> {
+    let mut out = Trace::with_channels(&trace.channels, times.len());
+    let mut row = vec![0.0; trace.channels.len()];
+    let mut at = 0;
+    for &t in times {
+        at += trace.time.get(at..)?.partition_point(|&x| x < t);
+        if trace.time.get(at).map(|x| x.to_bits()) != Some(t.to_bits()) {
+            return None;
+        }
+        for (v, column) in row.iter_mut().zip(&trace.columns) {
+            *v = column[at];
+        }
+        out.push(t, &row);
+    }
+    Some(out)
 }
 
 /// Whole-history difference of one run from the reference.
@@ -226,8 +256,7 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
     let history_errors = runs
         .iter()
         .map(|r| {
-            let reference = reference.as_ref().ok()?;
-            let sampled = rockslide_reference::sample(reference.solution.as_ref(), &r.trace.time);
+            let sampled = reference.as_ref().ok()?.at_times(&r.trace.time);
             history_difference(&r.trace, &sampled, "rel_disp")
                 .map(|(max, rms)| HistoryError { max, rms })
         })
@@ -250,4 +279,31 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
         reference,
         checks,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rockslide_core::trace::q;
+
+    fn trace(times: &[f64]) -> Trace {
+        let mut t = Trace::with_channels(&[&q::REL_DISP, &q::VEL], times.len());
+        for &x in times {
+            t.push(x, &[10.0 * x, -x]);
+        }
+        t
+    }
+
+    #[test]
+    fn rows_at_takes_the_rows_of_the_times_asked_and_nothing_else() {
+        let full = trace(&[0.0, 0.25, 0.5, 0.75, 1.0]);
+        let rows = rows_at(&full, &[0.25, 1.0]).expect("both times are rows");
+        assert_eq!(rows, trace(&[0.25, 1.0]));
+        assert_eq!(rows_at(&full, &[]), Some(trace(&[])));
+        // a time between rows, past the end, or out of order: sampled anew by the caller
+        assert_eq!(rows_at(&full, &[0.3]), None);
+        assert_eq!(rows_at(&full, &[2.0]), None);
+        assert_eq!(rows_at(&full, &[0.5, 0.25]), None);
+        assert_eq!(rows_at(&full, &[f64::NAN]), None);
+    }
 }

@@ -166,7 +166,7 @@ pub fn write_contacts_csv(block: &ContactBlock, path: &Path) -> Result<(), Error
         let mut w = csv::Writer::from_writer(&mut buf);
         let csv_error = |e: csv::Error| Error::Other(e.to_string());
         w.write_record(block.header()).map_err(csv_error)?;
-        let mut number = ryu::Buffer::new();
+        let mut number = zmij::Buffer::new();
         for (i, t) in block.time.iter().enumerate() {
             w.write_field(shortest(&mut number, *t))
                 .map_err(csv_error)?;
@@ -290,11 +290,11 @@ pub fn contacts_schema(block: &ContactBlock, name: &str) -> Value {
 /// The contact message of row `i`, into `buf` (no allocation once `buf` has grown).
 pub(crate) fn contacts_message(
     buf: &mut String,
-    number: &mut ryu::Buffer,
+    number: &mut zmij::Buffer,
     block: &ContactBlock,
     i: usize,
 ) {
-    let put = |buf: &mut String, number: &mut ryu::Buffer, x: f64| {
+    let put = |buf: &mut String, number: &mut zmij::Buffer, x: f64| {
         if x.is_finite() {
             buf.push_str(number.format_finite(x));
         } else {
@@ -352,7 +352,7 @@ mod tests {
     #[test]
     fn messages_are_json_with_null_for_non_finite_values() {
         let b = block();
-        let (mut buf, mut num) = (String::new(), ryu::Buffer::new());
+        let (mut buf, mut num) = (String::new(), zmij::Buffer::new());
         contacts_message(&mut buf, &mut num, &b, 1);
         let v: Value = serde_json::from_str(&buf).unwrap();
         assert_eq!(v["s1"]["normal"], json!(3.0));

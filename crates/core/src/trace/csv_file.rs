@@ -1,45 +1,48 @@
 //! CSV traces: a header `time [s],force [N],...` (key and SI unit of each column), one row
 //! per recorded step, full f64 precision so a trace read back is bit-identical.
 
+use std::io::Write;
 use std::path::Path;
 
 use super::{Trace, q};
 use crate::error::{Error, InputError, InputErrors};
-use crate::io::write_atomically;
+use crate::io::write_atomically_with;
 
-/// Write `trace` to `path` atomically.
+/// Write `trace` to `path` atomically, streamed through a large buffer: no per-row
+/// allocation and nothing of the file held in memory beyond the buffer.
 pub fn write_csv(trace: &Trace, path: &Path) -> Result<(), Error> {
-    let mut buf = Vec::with_capacity(64 * trace.len());
-    {
-        let mut w = csv::Writer::from_writer(&mut buf);
-        let mut header = vec!["time [s]".to_string()];
-        header.extend(
-            trace
-                .channels
-                .iter()
-                .map(|c| format!("{} [{}]", c.key, c.unit)),
-        );
-        w.write_record(&header)
-            .map_err(|e| Error::Other(e.to_string()))?;
-        let mut number = ryu::Buffer::new();
-        let csv_error = |e: csv::Error| Error::Other(e.to_string());
-        for i in 0..trace.len() {
-            w.write_field(shortest(&mut number, trace.time[i]))
-                .map_err(csv_error)?;
-            for c in &trace.columns {
-                w.write_field(shortest(&mut number, c[i]))
-                    .map_err(csv_error)?;
-            }
-            w.write_record(None::<&[u8]>).map_err(csv_error)?;
-        }
-        w.flush().map_err(|e| Error::io(path, e))?;
-    }
-    write_atomically(path, &buf)
+    write_atomically_with(path, |w| {
+        write_csv_to(trace, w).map_err(|e| Error::io(path, e))
+    })
 }
 
-/// Shortest decimal that reads back to the same f64 (Ryū), without allocating; `NaN`,
-/// `inf` and `-inf` spelled as Rust parses them back.
-pub(crate) fn shortest(buf: &mut ryu::Buffer, x: f64) -> &str {
+/// The CSV text of `trace` into `w`: the header through `csv::Writer` (quoted where a
+/// unit needs it), then rows of shortest round-trip decimals, which never need quoting.
+pub fn write_csv_to(trace: &Trace, w: &mut impl Write) -> std::io::Result<()> {
+    {
+        let mut header = csv::Writer::from_writer(&mut *w);
+        header.write_field("time [s]")?;
+        for c in &trace.channels {
+            header.write_field(format!("{} [{}]", c.key, c.unit))?;
+        }
+        header.write_record(None::<&[u8]>)?;
+        header.flush()?;
+    }
+    let mut number = zmij::Buffer::new();
+    for i in 0..trace.len() {
+        w.write_all(shortest(&mut number, trace.time[i]).as_bytes())?;
+        for c in &trace.columns {
+            w.write_all(b",")?;
+            w.write_all(shortest(&mut number, c[i]).as_bytes())?;
+        }
+        w.write_all(b"\n")?;
+    }
+    Ok(())
+}
+
+/// Shortest decimal that reads back to the same f64 (zmij, spelled as Ryū would), without
+/// allocating; `NaN`, `inf` and `-inf` spelled as Rust parses them back.
+pub(crate) fn shortest(buf: &mut zmij::Buffer, x: f64) -> &str {
     if x.is_finite() {
         buf.format_finite(x)
     } else if x.is_nan() {

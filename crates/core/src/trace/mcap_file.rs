@@ -25,7 +25,7 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::io::Cursor;
+use std::io::{Cursor, Seek, Write};
 use std::path::Path;
 
 use mcap::records::{MessageHeader, Metadata};
@@ -36,7 +36,7 @@ use super::contacts::{self, ContactBlock};
 use super::scene3d::{self, Geometry, Pose};
 use super::{Trace, q};
 use crate::error::{Error, InputError, InputErrors};
-use crate::io::write_atomically;
+use crate::io::write_atomically_with;
 
 /// Schema name prefix of the per-run state channels.
 pub const STATE_SCHEMA: &str = "rockslide.State";
@@ -87,9 +87,10 @@ fn mcap_error(e: mcap::McapError) -> Error {
     Error::Other(format!("writing MCAP: {e}"))
 }
 
-/// Write `log` to `path` atomically.
+/// Write `log` to `path` atomically, streamed: only the open chunk and the indexes are
+/// held in memory, not the file.
 pub fn write_mcap(log: &TraceLog, path: &Path) -> Result<(), Error> {
-    write_atomically(path, &mcap_bytes(log)?)
+    write_atomically_with(path, |file| write_mcap_to(log, file).map(|_| ()))
 }
 
 /// Log time of a simulation time, ns (non-finite or negative times clamp to `floor`).
@@ -142,8 +143,9 @@ pub fn state_schema(trace: &Trace, name: &str) -> Value {
     })
 }
 
-/// Append `x` as JSON: shortest round-trip decimal (Ryū), `null` when not finite.
-fn push_number(buf: &mut String, number: &mut ryu::Buffer, x: f64) {
+/// Append `x` as JSON: shortest round-trip decimal (zmij: spelled as Ryū would, measured
+/// 1.4× faster in benches/writers.rs), `null` when not finite.
+fn push_number(buf: &mut String, number: &mut zmij::Buffer, x: f64) {
     if x.is_finite() {
         buf.push_str(number.format_finite(x));
     } else {
@@ -152,7 +154,7 @@ fn push_number(buf: &mut String, number: &mut ryu::Buffer, x: f64) {
 }
 
 /// The state message of row `i`, into `buf`.
-fn state_message(buf: &mut String, number: &mut ryu::Buffer, trace: &Trace, i: usize) {
+fn state_message(buf: &mut String, number: &mut zmij::Buffer, trace: &Trace, i: usize) {
     buf.clear();
     buf.push_str("{\"time\":");
     push_number(buf, number, trace.time[i]);
@@ -175,12 +177,12 @@ struct RunChannels {
 }
 
 /// A writer that numbers messages per channel.
-struct Out {
-    w: Writer<Cursor<Vec<u8>>>,
+struct Out<W: Write + Seek> {
+    w: Writer<W>,
     seq: BTreeMap<u16, u32>,
 }
 
-impl Out {
+impl<W: Write + Seek> Out<W> {
     fn put(&mut self, channel_id: u16, ns: u64, data: &[u8]) -> Result<(), Error> {
         let seq = self.seq.entry(channel_id).or_insert(0);
         *seq += 1;
@@ -206,21 +208,30 @@ impl Out {
 /// and reference channels, JSON messages of shortest round-trip decimals): level 1 writes
 /// 27.5 MB in 1.48 s of CPU for the whole `run`, the zstd default (3) 29.0 MB in 1.89 s,
 /// lz4 42.0 MB in 1.11 s, none 95.7 MB in 0.80 s. Full-precision decimals barely compress
-/// further at higher levels, so the fastest zstd level wins.
+/// further at higher levels, so the fastest zstd level wins. Measured again on 10⁶ rows by
+/// `cargo bench --bench writers` (docs/performance.md): level 1 writes a third of the
+/// uncompressed size, lz4 half again as much; level 3 took 1.7× as long for a 5 % larger file.
 const ZSTD_LEVEL: u32 = 1;
 
-/// How the file is written: zstd chunks at [`ZSTD_LEVEL`], the `mcap` crate's chunk size,
-/// indexes, summary and CRCs.
+/// How the file is written: zstd chunks at [`ZSTD_LEVEL`] on the calling thread (the
+/// `mcap` crate would start a zstd worker per physical core: measured 8 % less wall time
+/// alone but more CPU, and the traces of a case are already written in parallel), the
+/// crate's 1 MiB chunks (4 MiB measured no faster), indexes, summary and CRCs.
 fn writer_options() -> mcap::WriteOptions {
-    mcap::WriteOptions::new().compression_level(ZSTD_LEVEL)
+    mcap::WriteOptions::new()
+        .compression_level(ZSTD_LEVEL)
+        .compression_threads(0)
 }
 
 /// The MCAP bytes of `log`.
 pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
+    Ok(write_mcap_to(log, Cursor::new(Vec::new()))?.into_inner())
+}
+
+/// Write the MCAP file of `log` into `sink`; returns the sink.
+fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
     let mut out = Out {
-        w: writer_options()
-            .create(Cursor::new(Vec::new()))
-            .map_err(mcap_error)?,
+        w: writer_options().create(sink).map_err(mcap_error)?,
         seq: BTreeMap::new(),
     };
     for (name, media_type, data) in &log.attachments {
@@ -263,7 +274,7 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
         out.w.write_metadata(&meta).map_err(mcap_error)?;
     }
 
-    let json_schema = |out: &mut Out, name: &str, v: &Value| {
+    let json_schema = |out: &mut Out<W>, name: &str, v: &Value| {
         out.w
             .add_schema(name, "jsonschema", v.to_string().as_bytes())
             .map_err(mcap_error)
@@ -362,7 +373,7 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
     let mut last_ns = vec![0u64; log.runs.len()];
     let mut next_view = vec![0u64; log.runs.len()];
     let mut buf = String::with_capacity(512);
-    let mut number = ryu::Buffer::new();
+    let mut number = zmij::Buffer::new();
     loop {
         let next = (0..log.runs.len())
             .filter(|&r| row[r] < log.runs[r].trace.len())
@@ -406,12 +417,12 @@ pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
         row[r] += 1;
     }
     out.w.finish().map_err(mcap_error)?;
-    Ok(out.w.into_inner().into_inner())
+    Ok(out.w.into_inner())
 }
 
 /// The `/<label>/contacts` channel of a run with a contact block (its schema lists every
 /// contact with the units of its fields; the channel's metadata names them in order).
-fn contact_channel(out: &mut Out, run: &LoggedRun) -> Result<Option<u16>, Error> {
+fn contact_channel<W: Write + Seek>(out: &mut Out<W>, run: &LoggedRun) -> Result<Option<u16>, Error> {
     let block = &run.trace.contacts;
     if block.is_empty() {
         return Ok(None);

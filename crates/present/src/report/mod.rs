@@ -55,29 +55,65 @@ pub use rockslide_core::response::show_value;
 /// `plot-*.svg`; returns the folder.
 pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Error> {
     let dir = out.join(&result.case.name);
-    for run in &result.runs {
-        write_csv(
-            &run.trace,
-            &dir.join(format!("{}-{}.csv", run.engine, run.variant)),
-        )?;
-        if !run.trace.contacts.is_empty() {
-            write_contacts_csv(
-                &run.trace.contacts,
-                &dir.join(format!("{}-{}-contacts.csv", run.engine, run.variant)),
-            )?;
-        }
-    }
+    // The traces (the largest files) are written beside the pages, on another core.
+    let (traces, pages) = rayon::join(
+        || write_case_traces(result, &dir),
+        || write_case_pages(result, &dir),
+    );
+    traces?;
+    pages?;
+    Ok(dir)
+}
+
+/// A CSV trace per engine run and of the reference, and the case's MCAP file, written in
+/// parallel.
+fn write_case_traces(result: &CaseResult, dir: &Path) -> Result<(), Error> {
+    use rayon::prelude::*;
+    let mut csv_files: Vec<(&rockslide_core::trace::Trace, PathBuf)> = result
+        .runs
+        .iter()
+        .map(|run| {
+            let file = dir.join(format!("{}-{}.csv", run.engine, run.variant));
+            (&run.trace, file)
+        })
+        .collect();
     if let Ok(r) = &result.reference {
-        write_csv(
-            &r.output,
-            &dir.join(format!("reference-{}.csv", r.solution.name())),
-        )?;
+        let file = dir.join(format!("reference-{}.csv", r.solution.name()));
+        csv_files.push((&r.output, file));
     }
-    write_case_mcap(result, &dir.join(format!("{}.mcap", result.case.name)))?;
+    let contact_files: Vec<(&rockslide_core::trace::ContactBlock, PathBuf)> = result
+        .runs
+        .iter()
+        .filter(|run| !run.trace.contacts.is_empty())
+        .map(|run| {
+            let file = dir.join(format!("{}-{}-contacts.csv", run.engine, run.variant));
+            (&run.trace.contacts, file)
+        })
+        .collect();
+    let (csvs, mcap) = rayon::join(
+        || {
+            csv_files
+                .par_iter()
+                .map(|(trace, file)| write_csv(trace, file))
+                .chain(
+                    contact_files
+                        .par_iter()
+                        .map(|(block, file)| write_contacts_csv(block, file)),
+                )
+                .collect::<Result<Vec<()>, Error>>()
+        },
+        || write_case_mcap(result, &dir.join(format!("{}.mcap", result.case.name))),
+    );
+    csvs?;
+    mcap
+}
+
+/// The typed record, figures, `report.md`, `report.html` and `summary.csv` of a case.
+fn write_case_pages(result: &CaseResult, dir: &Path) -> Result<(), Error> {
     // The typed record of the result, for commands and tools that read numbers.
-    rockslide_verify::record::CaseRecord::of(result).save(&dir)?;
+    rockslide_verify::record::CaseRecord::of(result).save(dir)?;
     // The sweep of this case, when `rockslide sweep` left one here: picked up, not rerun.
-    let att = attachments::Attachments::for_case(&dir);
+    let att = attachments::Attachments::for_case(dir);
     let blocks = document::case_document(result, Provenance::current(), &att);
     for b in &blocks {
         if let doc::Block::Figure { file, svg, .. } = b {
@@ -97,7 +133,7 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
         &dir.join("summary.csv"),
         &summary_csv(std::slice::from_ref(result))?,
     )?;
-    Ok(dir)
+    Ok(())
 }
 
 /// Write the suite's outputs under `out/`: `summary.md`, `summary.html` (every case in

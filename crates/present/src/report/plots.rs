@@ -20,8 +20,10 @@ use rockslide_verify::suite::CaseResult;
 pub(crate) const OFF_SCALE: f64 = 5.0;
 /// Figure size in pixels.
 const SIZE: (u32, u32) = (1000, 440);
-/// Traces longer than this are reduced to per-bucket min/max before drawing.
-const MAX_POINTS: usize = 4000;
+/// Traces longer than this are reduced to per-bucket min/max before drawing: one bucket
+/// (its min and max) per pixel column of the figure, so nothing visible is lost and the
+/// SVG (inlined again in the HTML pages) stays small.
+const MAX_POINTS: usize = 2 * SIZE.0 as usize;
 
 /// One rendered figure.
 #[derive(Debug, Clone)]

@@ -1,0 +1,180 @@
+//! The trace writers alone, per row, on a real trace: the predictor-corrector on the PEPO
+//! (cases/pepo-mass-accel.toml at Δt = 1 ms) run for 1,000 s, 10⁶ rows — the CSV file
+//! (`write_csv`) and the MCAP file (`write_mcap`), streamed to a temporary folder; and the
+//! MCAP chunk compression choices (zstd levels, lz4, none; chunk sizes) on the same
+//! messages, with the file size of each printed beside its time.
+//!
+//! Run: `cargo bench --bench writers`. Results are recorded in docs/performance.md.
+
+use std::collections::BTreeMap;
+use std::hint::black_box;
+use std::io::Cursor;
+use std::path::Path;
+use std::time::Duration;
+
+use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use rockslide::case::parse_case;
+use rockslide::engine;
+use rockslide::trace::{LoggedRun, Trace, TraceLog, mcap_bytes, write_csv, write_mcap};
+
+/// The shipped PEPO case at `duration`, predictor-corrector only, Δt = 1 ms.
+fn pepo_case(duration: f64) -> rockslide::case::Case {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/pepo-mass-accel.toml");
+    let text = std::fs::read_to_string(&path).expect("shipped case");
+    let head = &text[..text.find("[engines.").expect("engines table")];
+    let text = format!(
+        "{}\n[engines.predictor-corrector]\ndt = 0.001\n",
+        head.replace("duration = 1.0", &format!("duration = {duration:?}"))
+    );
+    parse_case(&path, &text).expect("valid case")
+}
+
+/// The 10⁶-row trace of the predictor-corrector.
+fn long_trace() -> Trace {
+    let pc = engine::all()
+        .into_iter()
+        .find(|e| e.id() == "predictor-corrector")
+        .expect("registered");
+    pc.run(&pepo_case(1000.0), "paper", 0.001)
+        .expect("runs")
+        .trace
+}
+
+/// A one-run trace log of `trace`.
+fn log_of(trace: &Trace) -> TraceLog<'_> {
+    TraceLog {
+        runs: vec![LoggedRun {
+            label: "predictor-corrector/paper".into(),
+            trace,
+            status: "completed".into(),
+            stop: None,
+            metadata: BTreeMap::new(),
+        }],
+        ..Default::default()
+    }
+}
+
+/// Every message of an MCAP file as (channel topic, log time, payload).
+fn payloads(bytes: &[u8]) -> Vec<(u64, Vec<u8>)> {
+    mcap::MessageStream::new(bytes)
+        .expect("readable")
+        .map(|m| {
+            let m = m.expect("message");
+            (m.log_time, m.data.into_owned())
+        })
+        .collect()
+}
+
+/// Rewrite `messages` on one channel with `options`; the file's bytes.
+fn rewrite(messages: &[(u64, Vec<u8>)], options: mcap::WriteOptions) -> Vec<u8> {
+    let mut w = options.create(Cursor::new(Vec::new())).expect("writer");
+    let schema = w
+        .add_schema("rockslide.State", "jsonschema", b"{}")
+        .expect("schema");
+    let channel = w
+        .add_channel(schema, "/state", "json", &BTreeMap::new())
+        .expect("channel");
+    for (seq, (ns, data)) in messages.iter().enumerate() {
+        let header = mcap::records::MessageHeader {
+            channel_id: channel,
+            sequence: seq as u32,
+            log_time: *ns,
+            publish_time: *ns,
+        };
+        w.write_to_known_channel(&header, data).expect("message");
+    }
+    w.finish().expect("finish");
+    w.into_inner().into_inner()
+}
+
+fn writers(c: &mut Criterion) {
+    let trace = long_trace();
+    let rows = trace.len() as u64;
+    let out = tempfile::tempdir().expect("temporary folder");
+    let mut group = c.benchmark_group("writers-pepo-pc-1e6-rows");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(500));
+    group.measurement_time(Duration::from_secs(10));
+    group.throughput(Throughput::Elements(rows));
+    let values: Vec<f64> = trace
+        .time
+        .iter()
+        .chain(trace.columns.iter().flatten())
+        .copied()
+        .filter(|x| x.is_finite())
+        .collect();
+    group.bench_function("format/ryu", |b| {
+        b.iter(|| {
+            let mut buf = ryu::Buffer::new();
+            values
+                .iter()
+                .map(|&x| buf.format_finite(x).len())
+                .sum::<usize>()
+        })
+    });
+    group.bench_function("format/zmij", |b| {
+        b.iter(|| {
+            let mut buf = zmij::Buffer::new();
+            values
+                .iter()
+                .map(|&x| buf.format_finite(x).len())
+                .sum::<usize>()
+        })
+    });
+    let same = values
+        .iter()
+        .all(|&x| ryu::Buffer::new().format_finite(x) == zmij::Buffer::new().format_finite(x));
+    eprintln!(
+        "ryu and zmij spell all {} values alike: {same}",
+        values.len()
+    );
+    let csv = out.path().join("trace.csv");
+    group.bench_function("csv", |b| {
+        b.iter(|| write_csv(black_box(&trace), &csv).expect("writes"))
+    });
+    let log = log_of(&trace);
+    let mcap = out.path().join("trace.mcap");
+    group.bench_function("mcap", |b| {
+        b.iter(|| write_mcap(black_box(&log), &mcap).expect("writes"))
+    });
+    let csv_size = std::fs::metadata(&csv).map_or(0, |m| m.len());
+    let mcap_size = std::fs::metadata(&mcap).map_or(0, |m| m.len());
+    eprintln!("sizes: csv {csv_size} B, mcap {mcap_size} B for {rows} rows");
+
+    let messages = payloads(&mcap_bytes(&log).expect("bytes"));
+    let raw: usize = messages.iter().map(|(_, d)| d.len()).sum();
+    eprintln!("mcap message payloads: {raw} B");
+    let single = || mcap::WriteOptions::new().compression_threads(0);
+    let choices: [(&str, mcap::WriteOptions); 7] = [
+        ("zstd1-1MiB", single().compression_level(1)),
+        (
+            "zstd1-4MiB",
+            single().compression_level(1).chunk_size(Some(4 << 20)),
+        ),
+        ("zstd3-1MiB", single().compression_level(3)),
+        (
+            "zstd1-1MiB-mt",
+            mcap::WriteOptions::new().compression_level(1),
+        ),
+        (
+            "lz4-1MiB",
+            single().compression(Some(mcap::Compression::Lz4)),
+        ),
+        ("none-1MiB", single().compression(None)),
+        (
+            "none-4MiB",
+            single().compression(None).chunk_size(Some(4 << 20)),
+        ),
+    ];
+    for (label, options) in choices {
+        let size = rewrite(&messages, options.clone()).len();
+        eprintln!("compression {label}: {size} B");
+        group.bench_function(format!("compression/{label}"), |b| {
+            b.iter(|| black_box(rewrite(&messages, options.clone())))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, writers);
+criterion_main!(benches);

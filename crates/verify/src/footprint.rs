@@ -1,0 +1,119 @@
+//! The memory and disk a case's runs will need, estimated before any work from the plan
+//! (rows = duration / Δt of each run), and refused with a clear error when over a limit.
+//!
+//! Every run records one row per step and keeps its trace in memory for the analysis; the
+//! reference is sampled at every run's output times, once for the files and once per run
+//! for its history error. A 10⁸-step run would need tens of gigabytes: it is refused here,
+//! naming the case file and the field, instead of exhausting the machine part-way through.
+//! The limits are overridden by the environment variables [`MEMORY_LIMIT_VAR`] and
+//! [`DISK_LIMIT_VAR`] (bytes).
+
+use rockslide_core::case::Case;
+use rockslide_core::error::InputError;
+use rockslide_core::trace::q;
+
+use crate::suite::Plan;
+
+/// Default limit of the estimated memory of one case's traces: 8 GiB (a third of the
+/// machines this runs on). The estimate is about three times the measured peak (a
+/// predictor-corrector run of 10⁶ steps peaks at 0.2 GB), so runs up to ≈ 10⁷ steps pass.
+pub const DEFAULT_MEMORY_LIMIT: u64 = 8 << 30;
+/// Default limit of the estimated disk use of one case's trace files: 16 GiB.
+pub const DEFAULT_DISK_LIMIT: u64 = 16 << 30;
+/// Environment variable overriding [`DEFAULT_MEMORY_LIMIT`], in bytes.
+pub const MEMORY_LIMIT_VAR: &str = "ROCKSLIDE_MAX_MEMORY_BYTES";
+/// Environment variable overriding [`DEFAULT_DISK_LIMIT`], in bytes.
+pub const DISK_LIMIT_VAR: &str = "ROCKSLIDE_MAX_DISK_BYTES";
+
+/// Copies of each run row held in memory: the run's trace, the reference sampled at its
+/// times for the history error, and its share of the reference output trace.
+const COPIES_IN_MEMORY: u64 = 3;
+/// Bytes per value on disk, at most: a shortest round-trip decimal and its separator in
+/// the CSV file (≤ 25) and in the MCAP file (≤ 35 with its JSON key, as compressed); twice
+/// for the run and its sampled reference.
+const DISK_BYTES_PER_VALUE: u64 = 2 * (25 + 35);
+
+/// Estimated needs of a planned case.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Footprint {
+    /// Rows over all runs (steps + 1 each).
+    pub rows: u64,
+    /// Memory of the traces and their reference samples, bytes (an upper estimate: every
+    /// run counted with every quantity of the catalogue).
+    pub memory: u64,
+    /// Disk of the CSV and MCAP traces, bytes (upper estimate, before compression).
+    pub disk: u64,
+}
+
+/// Rows a run of `duration` at `dt` records (one per step, plus the initial state).
+fn rows_of(duration: f64, dt: f64) -> u64 {
+    let steps = (duration / dt).ceil();
+    if steps.is_finite() && steps >= 0.0 {
+        (steps as u64).saturating_add(1)
+    } else {
+        u64::MAX
+    }
+}
+
+/// The estimate for `plan` on `case`.
+pub fn estimate(case: &Case, plan: &Plan) -> Footprint {
+    let values_per_row = 1 + q::ALL.len() as u64;
+    let rows = plan
+        .runs
+        .iter()
+        .map(|p| rows_of(case.run.duration, p.dt))
+        .fold(0u64, u64::saturating_add);
+    let values = rows.saturating_mul(values_per_row);
+    Footprint {
+        rows,
+        memory: values.saturating_mul(8).saturating_mul(COPIES_IN_MEMORY),
+        disk: values.saturating_mul(DISK_BYTES_PER_VALUE),
+    }
+}
+
+/// A limit: the environment variable's value in bytes, or `default`; a value that is not
+/// a whole number of bytes is an error naming the variable.
+fn limit(var: &str, default: u64) -> Result<u64, String> {
+    match std::env::var(var) {
+        Ok(v) => v.trim().parse::<u64>().map_err(|_| {
+            format!("{var} is \"{v}\", but must be a whole number of bytes (e.g. 17179869184)")
+        }),
+        Err(_) => Ok(default),
+    }
+}
+
+/// Gigabytes, for messages.
+fn gb(bytes: u64) -> String {
+    format!("{:.1} GB", bytes as f64 / 1e9)
+}
+
+/// Refuse a plan whose estimated memory or disk exceeds its limit: one error on the
+/// case's `run.duration` field saying how much, why, and how to override.
+pub fn check(case: &Case, plan: &Plan) -> Result<(), InputError> {
+    let need = estimate(case, plan);
+    let over = |what: &str, var: &str, default: u64, bytes: u64| -> Result<(), InputError> {
+        let max = limit(var, default).map_err(|e| case.field_error("run.duration", e))?;
+        if bytes <= max {
+            return Ok(());
+        }
+        Err(case.field_error(
+            "run.duration",
+            format!(
+                "the {} planned run(s) record {} rows in all (duration / dt each), whose traces \
+                 need about {} of {what}, over the limit of {}: shorten the run, enlarge dt, \
+                 or raise the limit with {var}=<bytes>",
+                plan.runs.len(),
+                need.rows,
+                gb(bytes),
+                gb(max)
+            ),
+        ))
+    };
+    over(
+        "memory",
+        MEMORY_LIMIT_VAR,
+        DEFAULT_MEMORY_LIMIT,
+        need.memory,
+    )?;
+    over("disk", DISK_LIMIT_VAR, DEFAULT_DISK_LIMIT, need.disk)
+}
