@@ -309,7 +309,7 @@ fn check_ladder(rungs: usize, ratio: f64) -> Result<(), Error> {
         )));
     }
     let refinement = ratio.powf(rungs.saturating_sub(1) as f64);
-    if ratio > 1.0 && !(refinement <= MAX_REFINEMENT) {
+    if ratio > 1.0 && (refinement.is_nan() || refinement > MAX_REFINEMENT) {
         return Err(Error::Other(format!(
             "--ratio {ratio:e} over {rungs} rungs refines Δt by {refinement:.3e}; the limit is \
              {MAX_REFINEMENT:.0e}"

@@ -177,7 +177,11 @@ fn a_run_clears_what_an_interrupted_run_left() {
     std::fs::create_dir_all(out.join("tiny")).unwrap();
     std::fs::write(out.join(".tmpQw3rty"), vec![0u8; 1000]).unwrap();
     std::fs::write(out.join("tiny/.tiny.mcap.rockslide-tmp"), vec![0u8; 1000]).unwrap();
-    std::fs::write(out.join("tiny/.renamed-case.csv.rockslide-tmp"), vec![0u8; 1000]).unwrap();
+    std::fs::write(
+        out.join("tiny/.renamed-case.csv.rockslide-tmp"),
+        vec![0u8; 1000],
+    )
+    .unwrap();
     for f in [".tmpQw3rty", "tiny/.renamed-case.csv.rockslide-tmp"] {
         age(&out.join(f), 3600);
     }
