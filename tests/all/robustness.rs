@@ -606,6 +606,10 @@ fn a_case_file_that_is_not_utf8_is_refused_with_a_position() {
             .unwrap_err()
             .to_string();
         assert!(e.contains("not a regular file"), "{e}");
+        let e = rockslide::study::load_grid(Path::new("/dev/zero"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("the grid file is not a regular file"), "{e}");
     }
 }
 

@@ -20,25 +20,26 @@ use crate::error::{InputError, InputErrors, line_col};
 /// Read and validate the case file at `path`; `engine_ids` are the engines a case may name
 /// (the registry's, passed in so that there is one list).
 pub fn load_case(path: &Path, engine_ids: &[&str]) -> Result<Case, InputErrors> {
-    let text = read_case_text(path)?;
+    let text = read_input_text(path, "case file")?;
     parse_case(path, &text, engine_ids)
 }
 
-/// Largest case file read, bytes: a case is a page of TOML; anything far larger is not one.
+/// Largest case or grid file read, bytes: a case is a page of TOML; anything far larger
+/// is not one.
 pub const MAX_CASE_BYTES: u64 = 4 << 20;
 
-/// A case file's text: a regular file (not a device such as `/dev/zero`) of at most
-/// [`MAX_CASE_BYTES`], UTF-8 (else the error names the line and column of the first bad
-/// byte).
-fn read_case_text(path: &Path) -> Result<String, InputError> {
+/// The text of a TOML input (`what`: "case file", "grid file"): a regular file (not a
+/// device such as `/dev/zero`) of at most [`MAX_CASE_BYTES`], UTF-8 (else the error names
+/// the line and column of the first bad byte).
+pub fn read_input_text(path: &Path, what: &str) -> Result<String, InputError> {
     use std::io::Read;
     let cannot =
-        |e: std::io::Error| InputError::new(path, "", format!("cannot read the case file: {e}"));
+        |e: std::io::Error| InputError::new(path, "", format!("cannot read the {what}: {e}"));
     if !std::fs::metadata(path).map_err(cannot)?.is_file() {
         return Err(InputError::new(
             path,
             "",
-            "the case file is not a regular file (a device, pipe or folder)",
+            format!("the {what} is not a regular file (a device, pipe or folder)"),
         ));
     }
     let mut bytes = Vec::new();
@@ -51,7 +52,7 @@ fn read_case_text(path: &Path) -> Result<String, InputError> {
         return Err(InputError::new(
             path,
             "",
-            format!("the case file is larger than {MAX_CASE_BYTES} bytes: not read"),
+            format!("the {what} is larger than {MAX_CASE_BYTES} bytes: not read"),
         ));
     }
     String::from_utf8(bytes).map_err(|e| {
@@ -59,7 +60,7 @@ fn read_case_text(path: &Path) -> Result<String, InputError> {
         let mut err = InputError::new(
             path,
             "",
-            "the case file is not UTF-8 text (an invalid byte here): save it as UTF-8",
+            format!("the {what} is not UTF-8 text (an invalid byte here): save it as UTF-8"),
         );
         err.line = Some(line);
         err.column = column;
