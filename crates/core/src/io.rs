@@ -103,8 +103,7 @@ fn write_and_rename(tmp: &Path, path: &Path, bytes: &[u8]) -> Result<(), Error> 
 /// milliseconds): it was left by an interrupted run.
 pub const STALE_AFTER: Duration = Duration::from_secs(60);
 
-/// Remove the temporary files (`.*.rockslide-tmp`, and the `.tmpXXXXXX` files of earlier
-/// versions) an interrupted run left directly in `dir` and unmodified for [`STALE_AFTER`];
+/// Remove the temporary files (`.*.rockslide-tmp`) an interrupted run left directly in `dir` and unmodified for [`STALE_AFTER`];
 /// returns how many were removed. A folder that does not exist has none.
 pub fn remove_stale_temporaries(dir: &Path) -> Result<usize, Error> {
     remove_stale_in(dir, 0)
@@ -149,13 +148,10 @@ fn untouched_for_long(entry: &std::fs::DirEntry) -> bool {
         .is_some_and(|age| age >= STALE_AFTER)
 }
 
-/// `.x.rockslide-tmp`, or `.tmp` + 6 alphanumerics (the `tempfile` names of earlier versions).
+/// `.x.rockslide-tmp`: our own temporary-name pattern only. (The `.tmpXXXXXX` names of
+/// `tempfile` are not ours alone: another tool's file of that name is left alone.)
 fn is_stale_temporary(name: &str) -> bool {
-    let ours = name.starts_with('.') && name.ends_with(TEMP_SUFFIX);
-    let legacy = name
-        .strip_prefix(".tmp")
-        .is_some_and(|r| r.len() == 6 && r.chars().all(|c| c.is_ascii_alphanumeric()));
-    ours || legacy
+    name.len() > 1 + TEMP_SUFFIX.len() && name.starts_with('.') && name.ends_with(TEMP_SUFFIX)
 }
 
 #[cfg(test)]
@@ -174,7 +170,8 @@ mod tests {
     #[test]
     fn stale_temporaries_are_recognised() {
         assert!(is_stale_temporary(".report.html.rockslide-tmp"));
-        assert!(is_stale_temporary(".tmpAb12Cd"));
+        assert!(!is_stale_temporary(".tmpAb12Cd"));
+        assert!(!is_stale_temporary(".rockslide-tmp"));
         assert!(!is_stale_temporary("report.html"));
         assert!(!is_stale_temporary(".tmp"));
         assert!(!is_stale_temporary(".tmpfolder-long"));
