@@ -322,6 +322,30 @@ fn a_huge_record_length_or_a_cut_file_is_an_error() {
     }
 }
 
+/// Found by `cargo fuzz run mcap_read` (out-of-memory, a 4 GiB allocation): one key's
+/// length inside the metadata record's map set to 0xFFFF000B. The `mcap` crate reserves a
+/// string's declared length before reading it; every map entry is now checked to fit.
+#[test]
+fn a_huge_string_length_inside_a_metadata_map_is_an_error() {
+    let bytes = std::fs::read(repo(
+        "fuzz/regressions/mcap_read/metadata-map-string-length.mcap",
+    ))
+    .unwrap();
+    let e = read_mcap_bytes(Path::new("x.mcap"), &bytes)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("a map string of 4294901771 bytes, only"), "{e}");
+    // the same edit made to the seed: every map string of the seed's metadata records
+    let mut seed = valid_mcap();
+    let key = b"\x0b\0\0\0requirement";
+    let at = seed
+        .windows(key.len())
+        .position(|w| w == key)
+        .expect("the seed has a requirement key");
+    seed[at..at + 4].copy_from_slice(&0xFFFF_000Bu32.to_le_bytes());
+    assert!(read_mcap_bytes(Path::new("x.mcap"), &seed).is_err());
+}
+
 #[test]
 fn every_single_byte_flip_gives_contents_or_an_error() {
     let whole = valid_mcap();
