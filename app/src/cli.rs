@@ -10,7 +10,7 @@ use crate::commands;
 
 use rockslide_core::case::{discover, limits};
 use rockslide_core::error::{Error, InputErrors};
-use rockslide_core::io::{inside, remove_stale_temporaries};
+use rockslide_core::io::{inside, remove_stale_temporaries_under};
 use rockslide_present::gate;
 use rockslide_present::report::{write_case_outputs, write_suite_outputs};
 use rockslide_verify::registry;
@@ -55,7 +55,7 @@ pub enum Command {
         /// The case file.
         case: PathBuf,
         /// Sampling interval, s.
-        #[arg(long, default_value_t = 0.001)]
+        #[arg(long, default_value_t = 0.001, allow_negative_numbers = true)]
         dt: f64,
         /// Output CSV file.
         #[arg(long, short)]
@@ -113,13 +113,13 @@ pub enum Command {
         /// The record (.AT2 or two-column CSV).
         record: PathBuf,
         /// Yield acceleration(s), g.
-        #[arg(long, required = true, num_args = 1..)]
+        #[arg(long, required = true, num_args = 1.., allow_negative_numbers = true)]
         ky: Vec<f64>,
         /// Unit of a CSV record: g, m/s2 or cm/s2.
         #[arg(long)]
         unit: Option<String>,
         /// Scale the record to this PGA first, g.
-        #[arg(long)]
+        #[arg(long, allow_negative_numbers = true)]
         pga: Option<f64>,
         /// Slide both ways (block on a level frictional base) instead of one way.
         #[arg(long)]
@@ -143,19 +143,19 @@ pub enum Command {
         #[arg(long, short, default_value = "reports")]
         out: PathBuf,
         /// Rungs of the Δt ladder (from T/10 down, at least 3).
-        #[arg(long, default_value_t = 8)]
+        #[arg(long, default_value_t = 8, allow_negative_numbers = true)]
         rungs: usize,
         /// Refinement ratio between rungs.
-        #[arg(long, default_value_t = 2.0)]
+        #[arg(long, default_value_t = 2.0, allow_negative_numbers = true)]
         ratio: f64,
         /// Timed repeats per rung (median, min and max are reported).
-        #[arg(long, default_value_t = 3)]
+        #[arg(long, default_value_t = 3, allow_negative_numbers = true)]
         repeats: usize,
         /// Worker threads (default: all cores).
-        #[arg(long, short)]
+        #[arg(long, short, allow_negative_numbers = true)]
         jobs: Option<usize>,
         /// Wall-time budget per engine variant, s (0: none); rungs beyond it are skipped.
-        #[arg(long, default_value_t = rockslide_verify::sweep::DEFAULT_BUDGET)]
+        #[arg(long, default_value_t = rockslide_verify::sweep::DEFAULT_BUDGET, allow_negative_numbers = true)]
         budget: f64,
     },
     /// Run the stiff and extreme scenes and classify every run (accurate, inaccurate,
@@ -168,9 +168,23 @@ pub enum Command {
         #[arg(long, short, default_value = "reports")]
         out: PathBuf,
         /// Worker threads (default: all cores).
-        #[arg(long, short)]
+        #[arg(long, short, allow_negative_numbers = true)]
         jobs: Option<usize>,
     },
+}
+
+impl Command {
+    /// The output folder a command writes many files into (stale temporaries of an
+    /// interrupted run there are removed first); `run` and `check` clear theirs themselves.
+    fn output_folder(&self) -> Option<&Path> {
+        match self {
+            Command::Sweep { out, .. }
+            | Command::Stability { out, .. }
+            | Command::Study { out, .. }
+            | Command::StudyMerge { out, .. } => Some(out),
+            _ => None,
+        }
+    }
 }
 
 /// Print one line on stdout; a reader that went away (`rockslide list | head -1`) is not an
@@ -203,42 +217,48 @@ fn annotate(f: &gate::Failure) {
 
 /// Run the command line; returns the process exit code.
 pub fn main(cli: Cli) -> ExitCode {
-    let result = match cli.command {
-        None => run_everything(Path::new("reports"), cli.quiet),
-        Some(Command::Run {
+    let stale = cli
+        .command
+        .as_ref()
+        .and_then(Command::output_folder)
+        .map_or(Ok(0), remove_stale_temporaries_under);
+    let result = match stale.map(|_| cli.command) {
+        Err(e) => Err(e),
+        Ok(None) => run_everything(Path::new("reports"), cli.quiet),
+        Ok(Some(Command::Run {
             cases,
             out,
             external,
-        }) => run(&cases, &out, cli.quiet, None, &external),
-        Some(Command::Check {
+        })) => run(&cases, &out, cli.quiet, None, &external),
+        Ok(Some(Command::Check {
             cases,
             out,
             junit,
             external,
-        }) => {
+        })) => {
             let junit = junit.unwrap_or_else(|| out.join("junit.xml"));
             run(&cases, &out, cli.quiet, Some(&junit), &external)
         }
-        Some(Command::List { cases }) => list(&cases),
-        Some(Command::Reference { case, dt, out }) => write_reference(&case, dt, &out),
-        Some(Command::Study {
+        Ok(Some(Command::List { cases })) => list(&cases),
+        Ok(Some(Command::Reference { case, dt, out })) => write_reference(&case, dt, &out),
+        Ok(Some(Command::Study {
             grid,
             out,
             shard,
             merge,
             from,
-        }) => commands::study::run(&grid, &out, shard.as_deref(), merge, &from, cli.quiet),
-        Some(Command::StudyMerge { grid, out, from }) => {
+        })) => commands::study::run(&grid, &out, shard.as_deref(), merge, &from, cli.quiet),
+        Ok(Some(Command::StudyMerge { grid, out, from })) => {
             commands::study::run(&grid, &out, None, true, &from, cli.quiet)
         }
-        Some(Command::Newmark {
+        Ok(Some(Command::Newmark {
             record,
             ky,
             unit,
             pga,
             two_way,
             csv,
-        }) => commands::study::newmark(rockslide_verify::study::NewmarkArgs {
+        })) => commands::study::newmark(rockslide_verify::study::NewmarkArgs {
             record,
             ky,
             unit,
@@ -246,11 +266,11 @@ pub fn main(cli: Cli) -> ExitCode {
             two_way,
             csv,
         }),
-        Some(Command::TraceInfo { file }) => rockslide_core::trace::mcap_info(&file).map(|s| {
+        Ok(Some(Command::TraceInfo { file })) => rockslide_core::trace::mcap_info(&file).map(|s| {
             let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), s.as_bytes());
             ExitCode::SUCCESS
         }),
-        Some(Command::Sweep {
+        Ok(Some(Command::Sweep {
             cases,
             out,
             rungs,
@@ -258,21 +278,23 @@ pub fn main(cli: Cli) -> ExitCode {
             repeats,
             jobs,
             budget,
-        }) => check_ladder(rungs, ratio).and_then(|()| {
-            commands::sweep::run(
-                &cases,
-                &out,
-                &rockslide_verify::sweep::Options {
-                    rungs,
-                    ratio,
-                    repeats,
-                    jobs: bounded_jobs(jobs),
-                    quiet: cli.quiet,
-                    budget: (budget > 0.0).then_some(budget),
-                },
-            )
-        }),
-        Some(Command::Stability { cases, out, jobs }) => commands::stability::run(
+        })) => check_ladder(rungs, ratio)
+            .and_then(|()| check_budget(budget))
+            .and_then(|()| {
+                commands::sweep::run(
+                    &cases,
+                    &out,
+                    &rockslide_verify::sweep::Options {
+                        rungs,
+                        ratio,
+                        repeats,
+                        jobs: bounded_jobs(jobs),
+                        quiet: cli.quiet,
+                        budget: (budget > 0.0).then_some(budget),
+                    },
+                )
+            }),
+        Ok(Some(Command::Stability { cases, out, jobs })) => commands::stability::run(
             &cases,
             &out,
             &rockslide_verify::sweep::Options {
@@ -306,13 +328,48 @@ fn check_ladder(rungs: usize, ratio: f64) -> Result<(), Error> {
         )));
     }
     let refinement = ratio.powf(rungs.saturating_sub(1) as f64);
-    if ratio > 1.0 && !(refinement <= MAX_REFINEMENT) {
+    if ratio > 1.0 && (refinement.is_nan() || refinement > MAX_REFINEMENT) {
         return Err(Error::Other(format!(
             "--ratio {ratio:e} over {rungs} rungs refines Δt by {refinement:.3e}; the limit is \
              {MAX_REFINEMENT:.0e}"
         )));
     }
     Ok(())
+}
+
+/// `--budget`: 0 means none, a positive number is seconds; anything else is an error.
+fn check_budget(budget: f64) -> Result<(), Error> {
+    if budget >= 0.0 && budget.is_finite() {
+        return Ok(());
+    }
+    Err(Error::Other(format!(
+        "--budget is {budget} s, but must be >= 0 (0: no budget)"
+    )))
+}
+
+/// Every case's engine options and variants checked against the engines (what `run`
+/// checks before any work), all problems reported together.
+fn plan_all(
+    cases: &[rockslide_core::case::Case],
+    engines: &[Box<dyn rockslide_engine_api::Engine>],
+) -> Result<(), Error> {
+    let errors: Vec<_> = cases
+        .iter()
+        .filter_map(|c| plan(c, engines).err())
+        .flat_map(|e| e.0)
+        .collect();
+    if errors.is_empty() {
+        Ok(())
+    } else {
+        Err(InputErrors(errors).into())
+    }
+}
+
+/// One case loaded and checked as `run` checks it (engine options, variants).
+fn load_planned(path: &Path) -> Result<rockslide_core::case::Case, Error> {
+    let case = load_case(path)?;
+    plan_all(std::slice::from_ref(&case), &registry::all())?;
+    Ok(case)
 }
 
 /// Worker threads: a request above [`limits::MAX_JOBS`] is lowered to it (0 stays, and
@@ -457,13 +514,11 @@ fn run(
         return Ok(ExitCode::from(1));
     }
     let engines = registry::all();
-    for c in &cases {
-        plan(c, &engines)?;
-    }
+    plan_all(&cases, &engines)?;
     let mut results: Vec<CaseResult> = Vec::new();
-    remove_stale_temporaries(out)?;
+    remove_stale_temporaries_under(out)?;
     for case in &cases {
-        remove_stale_temporaries(&inside(out, &case.name)?)?;
+        inside(out, &case.name)?;
     }
     for outcome in run_and_write_all(cases, out) {
         let (result, dir) = outcome?;
@@ -546,6 +601,7 @@ fn add_externals(
 fn list(args: &[PathBuf]) -> Result<ExitCode, Error> {
     let cases = load_all(&case_paths(args)?)?;
     let engines = registry::all();
+    plan_all(&cases, &engines)?;
     for c in &cases {
         say!("{} — {}", c.name, c.title);
         say!(
@@ -582,10 +638,12 @@ fn list(args: &[PathBuf]) -> Result<ExitCode, Error> {
 }
 
 fn write_reference(path: &Path, dt: f64, out: &Path) -> Result<ExitCode, Error> {
-    let case = load_case(path)?;
     if !(dt > 0.0 && dt.is_finite()) {
-        return Err(Error::Other(format!("--dt must be positive, got {dt}")));
+        return Err(Error::Other(format!(
+            "--dt is {dt} s, but must be > 0 (and finite)"
+        )));
     }
+    let case = load_planned(path)?;
     limits::check_steps(case.run.duration, dt)
         .map_err(|why| Error::Other(format!("--dt {why}")))?;
     let solution = rockslide_reference::for_case(&case)

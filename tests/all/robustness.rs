@@ -152,17 +152,29 @@ fn stale_temporaries_are_reused_or_removed() {
     write_atomically(&target, b"whole").unwrap();
     assert_eq!(std::fs::read(&target).unwrap(), b"whole");
     assert!(!dir.path().join(".report.html.rockslide-tmp").exists());
-    // others (ours, and the `tempfile` names of earlier versions) removed on request
-    std::fs::write(dir.path().join(".summary.csv.rockslide-tmp"), b"x").unwrap();
-    std::fs::write(dir.path().join(".tmpAb12Cd"), b"x").unwrap();
-    std::fs::write(dir.path().join("keep.csv"), b"x").unwrap();
-    assert_eq!(remove_stale_temporaries(dir.path()).unwrap(), 2);
+    // our other temporaries removed on request; a `tempfile` name (another tool's) kept
+    // (left by an interrupted run: untouched for an hour)
+    for f in [".summary.csv.rockslide-tmp", ".tmpAb12Cd", "keep.csv"] {
+        std::fs::write(dir.path().join(f), b"x").unwrap();
+        age(&dir.path().join(f), 3600);
+    }
+    // a temporary being written right now by another process is left alone
+    std::fs::write(dir.path().join(".live.csv.rockslide-tmp"), b"x").unwrap();
+    assert_eq!(remove_stale_temporaries(dir.path()).unwrap(), 1);
     let mut left: Vec<String> = std::fs::read_dir(dir.path())
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
         .collect();
     left.sort();
-    assert_eq!(left, ["keep.csv", "report.html"]);
+    assert_eq!(
+        left,
+        [
+            ".live.csv.rockslide-tmp",
+            ".tmpAb12Cd",
+            "keep.csv",
+            "report.html"
+        ]
+    );
 }
 
 #[test]
@@ -173,11 +185,20 @@ fn a_run_clears_what_an_interrupted_run_left() {
     std::fs::create_dir_all(out.join("tiny")).unwrap();
     std::fs::write(out.join(".tmpQw3rty"), vec![0u8; 1000]).unwrap();
     std::fs::write(out.join("tiny/.tiny.mcap.rockslide-tmp"), vec![0u8; 1000]).unwrap();
+    std::fs::write(
+        out.join("tiny/.renamed-case.csv.rockslide-tmp"),
+        vec![0u8; 1000],
+    )
+    .unwrap();
+    for f in [".tmpQw3rty", "tiny/.renamed-case.csv.rockslide-tmp"] {
+        age(&out.join(f), 3600);
+    }
     let o = rockslide(&["run", case.to_str().unwrap(), "-o", out.to_str().unwrap()]);
     assert!(o.status.code() == Some(0) || o.status.code() == Some(1));
     assert!(out.join("tiny/tiny.mcap").exists());
-    assert!(!out.join(".tmpQw3rty").exists());
+    assert!(out.join(".tmpQw3rty").exists(), "not our name: kept");
     assert!(!out.join("tiny/.tiny.mcap.rockslide-tmp").exists());
+    assert!(!out.join("tiny/.renamed-case.csv.rockslide-tmp").exists());
 }
 
 // ── Resource bounds before work ──────────────────────────────────────────────────────
@@ -301,6 +322,30 @@ fn a_huge_record_length_or_a_cut_file_is_an_error() {
     }
 }
 
+/// Found by `cargo fuzz run mcap_read` (out-of-memory, a 4 GiB allocation): one key's
+/// length inside the metadata record's map set to 0xFFFF000B. The `mcap` crate reserves a
+/// string's declared length before reading it; every map entry is now checked to fit.
+#[test]
+fn a_huge_string_length_inside_a_metadata_map_is_an_error() {
+    let bytes = std::fs::read(repo(
+        "fuzz/regressions/mcap_read/metadata-map-string-length.mcap",
+    ))
+    .unwrap();
+    let e = read_mcap_bytes(Path::new("x.mcap"), &bytes)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("a map string of 4294901771 bytes, only"), "{e}");
+    // the same edit made to the seed: every map string of the seed's metadata records
+    let mut seed = valid_mcap();
+    let key = b"\x0b\0\0\0requirement";
+    let at = seed
+        .windows(key.len())
+        .position(|w| w == key)
+        .expect("the seed has a requirement key");
+    seed[at..at + 4].copy_from_slice(&0xFFFF_000Bu32.to_le_bytes());
+    assert!(read_mcap_bytes(Path::new("x.mcap"), &seed).is_err());
+}
+
 #[test]
 fn every_single_byte_flip_gives_contents_or_an_error() {
     let whole = valid_mcap();
@@ -359,6 +404,383 @@ fn fe_cuts_steps_newton_cannot_finish() {
     let (a, b) = (peak(&full), peak(&cut));
     // halving a few steps changes the Newmark solution by O(Δt²) locally
     assert!((a - b).abs() <= 1e-2 * a, "peak rotation {a} vs {b}");
+}
+
+// ── The list, bullet by bullet: input → what happens now ─────────────────────
+//
+// Pinned elsewhere (kept there, named here so the table is complete):
+//   AT2 NPTS 1e19 / 1e12, DT 1e-300, /dev/zero, non-UTF-8 record → records_formats.rs
+//   exact reference with mass 1e-300 or kx 1e300 → references_records.rs
+//   dt 1e-12, reference --dt 1e-12, tail 1e6, --rungs 64, --ratio 1e300, MCAP flips,
+//   escaping names, stale temporaries of `run`, Newton at round-off → above in this module
+
+/// A case file in `dir` from a shipped case with `from` replaced by `to`.
+fn case_file_with(dir: &Path, name: &str, from: &str, to: &str) -> PathBuf {
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text_with(name, from, to)).unwrap();
+    path
+}
+
+#[test]
+fn the_exact_reference_time_does_not_grow_with_the_pulse_frequency() {
+    // before: over 30 s at ω = 1e9 (a scan in proportion to the frequency)
+    let text = text_with(
+        "pepo-mass-accel",
+        "omega = 15.707963267948966",
+        "omega = 1e9",
+    );
+    let case = parse("pepo-mass-accel", &text).unwrap();
+    let started = std::time::Instant::now();
+    let why = rockslide::reference::for_case(&case)
+        .err()
+        .expect("refused");
+    assert!(started.elapsed().as_secs_f64() < 1.0);
+    // 1e9 rad/s over 1 s at 64 samples a half period: 1e9 · 64 / π ≈ 2.04e10 … the
+    // message states the estimate it refused
+    assert!(
+        why.contains("θ = 1.000e9 rad/s") && why.contains("too fast"),
+        "{why}"
+    );
+}
+
+#[test]
+fn stability_with_a_hundred_thousand_workers_runs_on_as_many_as_there_is_work() {
+    let dir = tempfile::tempdir().unwrap();
+    let started = std::time::Instant::now();
+    let o = rockslide(&[
+        "stability",
+        "cases/stability/mu-zero.toml",
+        "-j",
+        "100000",
+        "-q",
+        "-o",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    // before: minutes starting 100000 threads; now the pool has at most one per run
+    assert!(started.elapsed().as_secs_f64() < 60.0);
+    let json = std::fs::read_to_string(dir.path().join("stability/stability.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    let threads = v["threads"].as_u64().expect("threads recorded");
+    let runs = v["runs"].as_array().unwrap().len() as u64;
+    assert!(
+        threads <= runs && threads >= 1,
+        "{threads} threads for {runs} runs"
+    );
+}
+
+#[test]
+fn unknown_predictor_corrector_options_are_located_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_file_with(
+        dir.path(),
+        "pepo-mass-accel",
+        "dt = 0.01               # the paper's spreadsheet step\n",
+        "dt = 0.01\ntolerance = 1e-3\n",
+    );
+    // `run`, `list` and `reference` all refuse it, at the key
+    for args in [
+        vec!["list", case.to_str().unwrap()],
+        vec!["reference", case.to_str().unwrap(), "-o", "never.csv"],
+        vec!["run", case.to_str().unwrap(), "-o", "never"],
+    ] {
+        let o = rockslide(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains(
+                "pepo-mass-accel.toml:37:13: engines.predictor-corrector.tolerance: unknown option"
+            ),
+            "{args:?}: {err}"
+        );
+    }
+    assert!(!repo("never.csv").exists() && !repo("never").exists());
+}
+
+#[test]
+fn list_and_reference_refuse_variants_run_refuses() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = case_file_with(
+        dir.path(),
+        "pepo-mass-accel",
+        "variants = [\"single\", \"double\"]",
+        "variants = [\"single\", \"triple\"]",
+    );
+    for args in [
+        vec!["list", case.to_str().unwrap()],
+        vec!["reference", case.to_str().unwrap(), "-o", "never.csv"],
+    ] {
+        let o = rockslide(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("engines.fe.variants[1]: \"triple\" is not a variant of fe"),
+            "{args:?}: {err}"
+        );
+    }
+}
+
+#[test]
+fn no_excitation_with_signal_keys_is_a_located_error() {
+    let text = text_with(
+        "housner-free-rocking",
+        "kind = \"none\"\n",
+        "kind = \"none\"\namplitude = nan\n",
+    );
+    let e = parse("housner-free-rocking", &text).unwrap_err();
+    assert!(
+        e.contains("housner-free-rocking.toml:23:13: excitation.amplitude: does not apply to kind = \"none\""),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_variant_named_twice_is_a_located_error() {
+    let text = text_with(
+        "pepo-mass-accel",
+        "variants = [\"single\", \"double\"]",
+        "variants = [\"single\", \"double\", \"single\"]",
+    );
+    let e = parse("pepo-mass-accel", &text).unwrap_err();
+    assert!(
+        e.contains("engines.fe.variants[2]: \"single\" is already variants[0]"),
+        "{e}"
+    );
+}
+
+#[test]
+fn a_csv_record_with_a_time_step_of_1e_300_is_an_error_with_exit_2() {
+    let dir = tempfile::tempdir().unwrap();
+    let record = dir.path().join("r.csv");
+    std::fs::write(&record, "0, 0.1\n1e-300, 0.2\n2e-300, 0.1\n").unwrap();
+    let o = rockslide(&[
+        "newmark",
+        record.to_str().unwrap(),
+        "--ky",
+        "0.1",
+        "--unit",
+        "g",
+    ]);
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{err}");
+    assert!(
+        err.contains("r.csv:3: the time step is 1e-300 s, below the smallest sample interval"),
+        "{err}"
+    );
+}
+
+#[test]
+fn negative_option_values_get_their_range_not_unexpected_argument() {
+    let case = "cases/linear-sdof.toml";
+    for (args, says) in [
+        (
+            vec!["reference", case, "--dt", "-1", "-o", "never.csv"],
+            "--dt is -1 s, but must be > 0",
+        ),
+        (
+            vec!["sweep", case, "--ratio", "-2"],
+            "--ratio is -2, but must be a finite number above 1",
+        ),
+        (
+            vec!["sweep", case, "--budget", "-1"],
+            "--budget is -1 s, but must be >= 0",
+        ),
+        (
+            vec![
+                "newmark",
+                "cases/records/Northridge_1994_PAC-175.csv",
+                "--unit",
+                "g",
+                "--ky",
+                "-0.1",
+            ],
+            "--ky: is -0.1, but must be positive",
+        ),
+        (
+            vec![
+                "newmark",
+                "cases/records/Northridge_1994_PAC-175.csv",
+                "--unit",
+                "g",
+                "--ky",
+                "0.1",
+                "--pga",
+                "-1",
+            ],
+            "--pga: is -1, but must be positive",
+        ),
+    ] {
+        let o = rockslide(&args);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(says), "{args:?}: {err}");
+        assert!(!err.contains("unexpected argument"), "{args:?}: {err}");
+    }
+    assert!(!repo("never.csv").exists());
+}
+
+#[test]
+fn a_case_file_that_is_not_utf8_is_refused_with_a_position() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("latin1.toml");
+    let mut bytes = std::fs::read(repo("cases/pepo-mass-accel.toml")).unwrap();
+    bytes.splice(0..0, b"# caf\xe9\n".iter().copied());
+    std::fs::write(&path, bytes).unwrap();
+    let e = rockslide::case::load_case(&path).unwrap_err().to_string();
+    assert!(e.contains("latin1.toml:1:6:") && e.contains("UTF-8"), "{e}");
+    if Path::new("/dev/zero").exists() {
+        let e = rockslide::case::load_case(Path::new("/dev/zero"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("not a regular file"), "{e}");
+        let e = rockslide::study::load_grid(Path::new("/dev/zero"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("the grid file is not a regular file"), "{e}");
+    }
+}
+
+/// Set a file's modification time `secs` seconds into the past.
+fn age(path: &Path, secs: u64) {
+    let past = std::time::SystemTime::now() - std::time::Duration::from_secs(secs);
+    std::fs::File::options()
+        .write(true)
+        .open(path)
+        .unwrap()
+        .set_modified(past)
+        .unwrap();
+}
+
+#[test]
+fn stale_temporaries_of_every_command_are_removed_fresh_ones_of_live_writers_kept() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("out");
+    for sub in ["runs", "stability", "case"] {
+        std::fs::create_dir_all(out.join(sub)).unwrap();
+    }
+    let stale = [
+        out.join(".study.json.rockslide-tmp"),
+        out.join("runs/.p0001.json.rockslide-tmp"),
+        out.join("stability/.stability.json.rockslide-tmp"),
+    ];
+    let live = out.join("runs/.p0002.json.rockslide-tmp"); // another shard, writing now
+    let deep = out.join("case/deeper");
+    std::fs::create_dir_all(&deep).unwrap();
+    let too_deep = deep.join(".x.rockslide-tmp");
+    let not_ours = out.join("runs/.p0003.json.partial");
+    for f in stale.iter().chain([&live, &too_deep, &not_ours]) {
+        std::fs::write(f, b"half").unwrap();
+    }
+    for f in stale.iter().chain([&too_deep, &not_ours]) {
+        age(f, 3600);
+    }
+    #[cfg(unix)]
+    {
+        // a link out of the folder is not followed
+        let elsewhere = dir.path().join("elsewhere");
+        std::fs::create_dir_all(&elsewhere).unwrap();
+        std::fs::write(elsewhere.join(".a.rockslide-tmp"), b"x").unwrap();
+        age(&elsewhere.join(".a.rockslide-tmp"), 3600);
+        std::os::unix::fs::symlink(&elsewhere, out.join("link")).unwrap();
+    }
+    assert_eq!(
+        rockslide::io::remove_stale_temporaries_under(&out).unwrap(),
+        3
+    );
+    assert!(stale.iter().all(|f| !f.exists()));
+    assert!(live.exists() && too_deep.exists() && not_ours.exists());
+    #[cfg(unix)]
+    assert!(dir.path().join("elsewhere/.a.rockslide-tmp").exists());
+}
+
+#[test]
+fn a_stability_run_clears_its_folder_of_stale_temporaries() {
+    let dir = tempfile::tempdir().unwrap();
+    let stale = dir.path().join("stability/.stability.md.rockslide-tmp");
+    std::fs::create_dir_all(stale.parent().unwrap()).unwrap();
+    std::fs::write(&stale, vec![0u8; 1000]).unwrap();
+    age(&stale, 3600);
+    let o = rockslide(&[
+        "stability",
+        "cases/stability/mu-zero.toml",
+        "-q",
+        "-o",
+        dir.path().to_str().unwrap(),
+    ]);
+    assert_eq!(
+        o.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    assert!(!stale.exists());
+}
+
+// ── Deterministic, byte-identical traces ─────────────────────────────────────────────
+
+/// Every file under `dir` with extension `csv` or `mcap`, relative to `dir`, sorted.
+fn trace_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if matches!(p.extension().and_then(|x| x.to_str()), Some("csv" | "mcap")) {
+                out.push(p.strip_prefix(dir).unwrap().to_path_buf());
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+#[test]
+fn the_same_case_run_twice_gives_byte_identical_traces() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = repo("cases/rpepo-mass-accel.toml");
+    let (a, b) = (dir.path().join("a"), dir.path().join("b"));
+    for out in [&a, &b] {
+        let o = rockslide(&[
+            "run",
+            case.to_str().unwrap(),
+            "-q",
+            "-o",
+            out.to_str().unwrap(),
+        ]);
+        assert!(
+            matches!(o.status.code(), Some(0 | 1)),
+            "{}",
+            String::from_utf8_lossy(&o.stderr)
+        );
+    }
+    let files = trace_files(&a);
+    assert_eq!(files, trace_files(&b));
+    assert!(
+        files.iter().any(|f| f.extension().unwrap() == "mcap"),
+        "{files:?}"
+    );
+    assert!(
+        files
+            .iter()
+            .filter(|f| f.extension().unwrap() == "csv")
+            .count()
+            >= 2,
+        "{files:?}"
+    );
+    for f in &files {
+        let (x, y) = (
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+        );
+        assert!(x == y, "{} differs between two runs", f.display());
+    }
 }
 
 // ── proptest fuzz of the readers (CI keeps checking what fuzz/ explores) ─────────────

@@ -8,10 +8,13 @@
 //!   place, so a reader never sees a half-written report, trace or JUnit file. The
 //!   temporary sibling has a fixed name (`.<file>.rockslide-tmp`), so one left behind by an
 //!   interrupted run is reused and renamed away by the next run writing that file, and
-//!   [`remove_stale_temporaries`] clears the others from a folder.
+//!   [`remove_stale_temporaries`] clears the others from a folder. Only temporaries
+//!   untouched for [`STALE_AFTER`] are stale: another process writing into the same folder
+//!   (the shards of a study share one) keeps its temporary for milliseconds only.
 
 use std::io::Write;
 use std::path::{Component, Path, PathBuf};
+use std::time::{Duration, SystemTime};
 
 use crate::error::Error;
 
@@ -142,10 +145,24 @@ fn stream_and_rename(
     std::fs::rename(tmp, path).map_err(|e| Error::io(path, e))
 }
 
-/// Remove the temporary files (`.*.rockslide-tmp`, and the `.tmpXXXXXX` files of earlier
-/// versions) an interrupted run left directly in `dir`; returns how many were removed.
-/// A folder that does not exist has none.
+/// A temporary file not modified for this long belongs to no live writer (one write takes
+/// milliseconds): it was left by an interrupted run.
+pub const STALE_AFTER: Duration = Duration::from_secs(60);
+
+/// Remove the temporary files (`.*.rockslide-tmp`) an interrupted run left directly in `dir` and unmodified for [`STALE_AFTER`];
+/// returns how many were removed. A folder that does not exist has none.
 pub fn remove_stale_temporaries(dir: &Path) -> Result<usize, Error> {
+    remove_stale_in(dir, 0)
+}
+
+/// [`remove_stale_temporaries`] in the output folder `root` and in its subfolders one
+/// level down (each case's, `runs/`, `stability/`): every folder a command writes into.
+/// Symbolic links are not followed, so nothing outside `root` is touched.
+pub fn remove_stale_temporaries_under(root: &Path) -> Result<usize, Error> {
+    remove_stale_in(root, 1)
+}
+
+fn remove_stale_in(dir: &Path, depth: usize) -> Result<usize, Error> {
     let entries = match std::fs::read_dir(dir) {
         Ok(entries) => entries,
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(0),
@@ -155,8 +172,11 @@ pub fn remove_stale_temporaries(dir: &Path) -> Result<usize, Error> {
     for entry in entries {
         let entry = entry.map_err(|e| Error::io(dir, e))?;
         let name = entry.file_name().to_string_lossy().into_owned();
-        let is_file = entry.file_type().is_ok_and(|t| t.is_file());
-        if is_file && is_stale_temporary(&name) {
+        // the entry's own type: a symbolic link is neither a file nor a folder here
+        let kind = entry.file_type().map_err(|e| Error::io(&entry.path(), e))?;
+        if kind.is_dir() && depth > 0 {
+            removed += remove_stale_in(&entry.path(), depth - 1)?;
+        } else if kind.is_file() && is_stale_temporary(&name) && untouched_for_long(&entry) {
             std::fs::remove_file(entry.path()).map_err(|e| Error::io(&entry.path(), e))?;
             removed += 1;
         }
@@ -164,13 +184,20 @@ pub fn remove_stale_temporaries(dir: &Path) -> Result<usize, Error> {
     Ok(removed)
 }
 
-/// `.x.rockslide-tmp`, or `.tmp` + 6 alphanumerics (the `tempfile` names of earlier versions).
+/// Not modified for [`STALE_AFTER`] (a modification time in the future counts as recent).
+fn untouched_for_long(entry: &std::fs::DirEntry) -> bool {
+    entry
+        .metadata()
+        .and_then(|m| m.modified())
+        .ok()
+        .and_then(|t| SystemTime::now().duration_since(t).ok())
+        .is_some_and(|age| age >= STALE_AFTER)
+}
+
+/// `.x.rockslide-tmp`: our own temporary-name pattern only. (The `.tmpXXXXXX` names of
+/// `tempfile` are not ours alone: another tool's file of that name is left alone.)
 fn is_stale_temporary(name: &str) -> bool {
-    let ours = name.starts_with('.') && name.ends_with(TEMP_SUFFIX);
-    let legacy = name
-        .strip_prefix(".tmp")
-        .is_some_and(|r| r.len() == 6 && r.chars().all(|c| c.is_ascii_alphanumeric()));
-    ours || legacy
+    name.len() > 1 + TEMP_SUFFIX.len() && name.starts_with('.') && name.ends_with(TEMP_SUFFIX)
 }
 
 #[cfg(test)]
@@ -189,7 +216,8 @@ mod tests {
     #[test]
     fn stale_temporaries_are_recognised() {
         assert!(is_stale_temporary(".report.html.rockslide-tmp"));
-        assert!(is_stale_temporary(".tmpAb12Cd"));
+        assert!(!is_stale_temporary(".tmpAb12Cd"));
+        assert!(!is_stale_temporary(".rockslide-tmp"));
         assert!(!is_stale_temporary("report.html"));
         assert!(!is_stale_temporary(".tmp"));
         assert!(!is_stale_temporary(".tmpfolder-long"));

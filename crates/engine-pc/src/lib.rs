@@ -6,6 +6,7 @@
 
 #![warn(missing_docs)]
 
+mod options;
 mod resistance;
 mod stepper;
 
@@ -36,7 +37,7 @@ pub mod variant {
 
 impl Engine for PredictorCorrector {
     fn id(&self) -> &'static str {
-        "predictor-corrector"
+        options::ID
     }
 
     fn description(&self) -> &'static str {
@@ -64,7 +65,14 @@ impl Engine for PredictorCorrector {
         })
     }
 
+    fn check_options(&self, case: &Case) -> Vec<InputError> {
+        options::check(case)
+    }
+
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
+        if let Some(e) = options::check(case).into_iter().next() {
+            return Err(e);
+        }
         let Model::Oscillator(osc) = &case.scene.model else {
             return Err(
                 case.field_error("model.kind", "the predictor-corrector needs an oscillator")

@@ -53,7 +53,7 @@ pub fn check_steps(duration: f64, dt: f64) -> Result<(), String> {
 
 /// `Err(reason)` when `count` items (samples, runs, rungs) exceed `limit`.
 pub fn check_count(count: f64, limit: u64, what: &str) -> Result<(), String> {
-    if !(count <= limit as f64) {
+    if count.is_nan() || count > limit as f64 {
         return Err(format!("asks for {count:.3e} {what}; the limit is {limit}"));
     }
     Ok(())
@@ -63,7 +63,7 @@ pub fn check_count(count: f64, limit: u64, what: &str) -> Result<(), String> {
 /// cores), never more than the work, never more than [`MAX_JOBS`], at least 1.
 pub fn clamp_jobs(requested: Option<usize>, work: usize) -> usize {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    requested.unwrap_or(cores).min(work).min(MAX_JOBS).max(1)
+    requested.unwrap_or(cores).min(work).clamp(1, MAX_JOBS)
 }
 
 #[cfg(test)]

@@ -20,9 +20,52 @@ use crate::error::{InputError, InputErrors, line_col};
 /// Read and validate the case file at `path`; `engine_ids` are the engines a case may name
 /// (the registry's, passed in so that there is one list).
 pub fn load_case(path: &Path, engine_ids: &[&str]) -> Result<Case, InputErrors> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(path, "", format!("cannot read the case file: {e}")))?;
+    let text = read_input_text(path, "case file")?;
     parse_case(path, &text, engine_ids)
+}
+
+/// Largest case or grid file read, bytes: a case is a page of TOML; anything far larger
+/// is not one.
+pub const MAX_CASE_BYTES: u64 = 4 << 20;
+
+/// The text of a TOML input (`what`: "case file", "grid file"): a regular file (not a
+/// device such as `/dev/zero`) of at most [`MAX_CASE_BYTES`], UTF-8 (else the error names
+/// the line and column of the first bad byte).
+pub fn read_input_text(path: &Path, what: &str) -> Result<String, InputError> {
+    use std::io::Read;
+    let cannot =
+        |e: std::io::Error| InputError::new(path, "", format!("cannot read the {what}: {e}"));
+    if !std::fs::metadata(path).map_err(cannot)?.is_file() {
+        return Err(InputError::new(
+            path,
+            "",
+            format!("the {what} is not a regular file (a device, pipe or folder)"),
+        ));
+    }
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .map_err(cannot)?
+        .take(MAX_CASE_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .map_err(cannot)?;
+    if bytes.len() as u64 > MAX_CASE_BYTES {
+        return Err(InputError::new(
+            path,
+            "",
+            format!("the {what} is larger than {MAX_CASE_BYTES} bytes: not read"),
+        ));
+    }
+    String::from_utf8(bytes).map_err(|e| {
+        let (line, column) = super::record::first_invalid_utf8(&e);
+        let mut err = InputError::new(
+            path,
+            "",
+            format!("the {what} is not UTF-8 text (an invalid byte here): save it as UTF-8"),
+        );
+        err.line = Some(line);
+        err.column = column;
+        err
+    })
 }
 
 /// Validate a case from its text (`path` names it in messages and sets the default name).
@@ -315,6 +358,7 @@ impl Validator<'_> {
 
     fn excitation(&mut self, e: &RawExcitation, case_path: &Path) -> Option<Excitation> {
         if e.kind == "none" {
+            self.nothing_beside_none(e);
             return Some(Excitation::None);
         }
         let signal = self.signal(e, case_path)?;
@@ -345,6 +389,24 @@ impl Validator<'_> {
                     format!("is \"{other}\", but must be one of \"none\", \"mass-acceleration\", \"ground-displacement\", \"ground-acceleration\""),
                 );
                 None
+            }
+        }
+    }
+
+    /// `kind = "none"` takes no signal: any signal key beside it is an error, not ignored.
+    fn nothing_beside_none(&mut self, e: &RawExcitation) {
+        for (f, given) in [
+            ("excitation.shape", e.shape.is_some()),
+            ("excitation.amplitude", e.amplitude.is_some()),
+            ("excitation.omega", e.omega.is_some()),
+            ("excitation.cycles", e.cycles.is_some()),
+            ("excitation.record", e.record.is_some()),
+            ("excitation.record_unit", e.record_unit.is_some()),
+            ("excitation.scale_to_pga", e.scale_to_pga.is_some()),
+            ("excitation.polarity", e.polarity.is_some()),
+        ] {
+            if given {
+                self.fail(f, "does not apply to kind = \"none\" (no excitation)");
             }
         }
     }
@@ -559,6 +621,7 @@ impl Validator<'_> {
                 self.number(&format!("{field}.dt"), Some(dt), Rule::positive("s"));
                 self.steps(&format!("{field}.dt"), duration, dt);
             }
+            self.distinct_variants(&field, e.variants.as_deref().unwrap_or_default());
             let mut options = BTreeMap::new();
             for (k, v) in &e.options {
                 let value = match v {
@@ -586,6 +649,18 @@ impl Validator<'_> {
             );
         }
         out
+    }
+
+    /// A variant named twice would run twice into one trace channel: an error at the repeat.
+    fn distinct_variants(&mut self, field: &str, variants: &[String]) {
+        for (i, v) in variants.iter().enumerate() {
+            if let Some(first) = variants[..i].iter().position(|w| w == v) {
+                self.fail(
+                    &format!("{field}.variants[{i}]"),
+                    format!("\"{v}\" is already variants[{first}]; name each variant once"),
+                );
+            }
+        }
     }
 
     fn engine_id(&mut self, field: &str, engine: &str) {

@@ -12,7 +12,9 @@ mod scene;
 mod signal;
 pub mod slug;
 
-pub use load::{discover, load_case, parse_case, read_external_participant};
+pub use load::{
+    MAX_CASE_BYTES, discover, load_case, parse_case, read_external_participant, read_input_text,
+};
 pub use locate::Locator;
 pub use scene::{
     Case, Contact, DoubleContact, EXPECTED_STATUSES, EXTERNAL_VARIANT, EngineRequest, Excitation,

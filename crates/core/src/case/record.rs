@@ -180,18 +180,24 @@ fn read_text(path: &Path) -> Result<String, InputError> {
         ));
     }
     let text = String::from_utf8(bytes).map_err(|e| {
-        let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
-        let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
-        let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
-        let column = String::from_utf8_lossy(&good[start..]).chars().count() + 1;
+        let (line, column) = first_invalid_utf8(&e);
         at(
             path,
             line,
-            Some(column),
+            column,
             "the record is not UTF-8 text (an invalid byte here): save it as UTF-8 or ASCII",
         )
     })?;
     Ok(strip_bom(&text).to_string())
+}
+
+/// 1-based line and column (in characters) of the first byte that is not UTF-8.
+pub(crate) fn first_invalid_utf8(e: &std::string::FromUtf8Error) -> (usize, Option<usize>) {
+    let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+    let line = good.iter().filter(|&&b| b == b'\n').count() + 1;
+    let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |i| i + 1);
+    let column = String::from_utf8_lossy(&good[start..]).chars().count() + 1;
+    (line, Some(column))
 }
 
 /// The text without a leading UTF-8 byte-order mark.

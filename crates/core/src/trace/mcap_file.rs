@@ -569,13 +569,14 @@ fn check_framing(bytes: &[u8]) -> Result<(), String> {
 
 /// The fields of a record's body, in the MCAP specification's layout: fixed-size
 /// integers (`1`, `2`, `4`, `8` bytes), strings and byte arrays with a u32 length (`s`),
-/// byte arrays with a u64 length (`b`), maps with a u32 byte length (`m`); `r` the rest.
+/// byte arrays with a u64 length (`b`), maps with a u32 byte length (`m`; `M` a map of
+/// strings to strings, whose every entry is checked too); `r` the rest.
 fn layout(op: u8) -> &'static [u8] {
     match op {
         0x01 => b"ss",        // header: profile, library
         0x02 => b"884",       // footer
         0x03 => b"2sss",      // schema: id, name, encoding, data (u32 length)
-        0x04 => b"22ssm",     // channel
+        0x04 => b"22ssM",     // channel
         0x05 => b"2488r",     // message
         0x06 => b"8884sb",    // chunk
         0x07 => b"2m",        // message index: channel, records (u32 byte length)
@@ -583,7 +584,7 @@ fn layout(op: u8) -> &'static [u8] {
         0x09 => b"88ssb4",    // attachment
         0x0A => b"88888ss",   // attachment index
         0x0B => b"82444488m", // statistics
-        0x0C => b"sm",        // metadata
+        0x0C => b"sM",        // metadata
         0x0D => b"88s",       // metadata index
         0x0E => b"188",       // summary offset
         0x0F => b"4",         // data end
@@ -607,12 +608,16 @@ fn check_fields(op: u8, body: &[u8]) -> Result<(), String> {
     for &f in layout(op) {
         match f {
             b'1' | b'2' | b'4' | b'8' => take(&mut at, u64::from(f - b'0'), "a field")?,
-            b's' | b'm' => {
+            b's' | b'm' | b'M' => {
                 let n = body
                     .get(at..at + 4)
                     .map(|b| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]])));
                 take(&mut at, 4, "a length")?;
+                let start = at;
                 take(&mut at, n.unwrap_or(0), "a string, array or map")?;
+                if f == b'M' {
+                    check_string_map(&body[start..at])?;
+                }
             }
             b'b' => {
                 let n = body.get(at..at + 8).map(|b| u64_at(b, 0));
@@ -621,6 +626,28 @@ fn check_fields(op: u8, body: &[u8]) -> Result<(), String> {
             }
             _ => return Ok(()),
         }
+    }
+    Ok(())
+}
+
+/// Every key and value of a map of strings (u32 length each) lies inside the map: the
+/// `mcap` crate reserves a string's declared length before reading it.
+fn check_string_map(map: &[u8]) -> Result<(), String> {
+    let mut at = 0usize;
+    while at < map.len() {
+        let Some(len) = map.get(at..at + 4) else {
+            return Err(format!(
+                "a map entry's length cut short at byte {at} of the map"
+            ));
+        };
+        let n = u32::from_le_bytes([len[0], len[1], len[2], len[3]]) as u64;
+        let left = (map.len() - at - 4) as u64;
+        if n > left {
+            return Err(format!(
+                "a map string of {n} bytes, only {left} left in the map"
+            ));
+        }
+        at += 4 + n as usize;
     }
     Ok(())
 }

@@ -65,8 +65,9 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
                 ("engine", run.engine.to_string()),
                 ("variant", run.variant.clone()),
                 ("dt_s", format!("{:?}", run.dt)),
-                ("wall_seconds", format!("{:?}", run.wall_seconds)),
             ]);
+            // no wall time here: a trace is byte-identical across reruns (the timing is in
+            // the report and result.json only)
             for (k, v) in &run.settings {
                 m.insert(format!("setting.{k}"), v.clone());
             }

@@ -157,8 +157,7 @@ pub const DEFAULT_TAIL: f64 = 5.0;
 
 /// Read, validate and expand a grid file.
 pub fn load_grid(path: &Path) -> Result<Grid, InputErrors> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| InputError::new(path, "", format!("cannot read the grid file: {e}")))?;
+    let text = rockslide_core::case::read_input_text(path, "grid file")?;
     let raw: RawGrid = toml::from_str(&text).map_err(|e| {
         let mut err = InputError::new(path, "", e.message().trim());
         if let Some(span) = e.span() {

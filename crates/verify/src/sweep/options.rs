@@ -73,15 +73,20 @@ impl Options {
         Ok(())
     }
 
-    /// Run `f` on a pool of `jobs` threads (or rayon's global pool on all cores).
-    pub fn install<T: Send>(&self, f: impl FnOnce() -> T + Send) -> Result<T, Error> {
+    /// Run `f`, which has `work` independent items, on a pool of `jobs` threads — never
+    /// more than the work nor [`MAX_JOBS`](rockslide_core::case::limits::MAX_JOBS) — or on
+    /// rayon's global pool on all cores.
+    pub fn install<T: Send>(&self, work: usize, f: impl FnOnce() -> T + Send) -> Result<T, Error> {
         match self.jobs {
             None => Ok(f()),
-            Some(n) => rayon::ThreadPoolBuilder::new()
-                .num_threads(n)
-                .build()
-                .map(|p| p.install(f))
-                .map_err(|e| Error::Other(format!("cannot start {n} worker threads: {e}"))),
+            Some(n) => {
+                let n = rockslide_core::case::limits::clamp_jobs(Some(n), work);
+                rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build()
+                    .map(|p| p.install(f))
+                    .map_err(|e| Error::Other(format!("cannot start {n} worker threads: {e}")))
+            }
         }
     }
 }

@@ -272,7 +272,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
         })
         .collect();
     let bar = crate::progress::bar(tasks.len(), !opts.quiet, "runs", "stability");
-    let (timed, references, threads) = opts.install(|| {
+    let (timed, references, threads) = opts.install(tasks.len(), || {
         let (timed, references) = rayon::join(
             || {
                 tasks

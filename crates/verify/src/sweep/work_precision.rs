@@ -225,11 +225,12 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
     let period = characteristic_period(case);
     let dts = ladder(period.0 / 10.0, opts.ratio, opts.rungs);
     let bar = crate::progress::bar(series.len() * dts.len(), !opts.quiet, "runs", &case.name);
-    let (reference, ladder_runs, threads) = opts.install(|| -> Result<_, InputErrors> {
-        let reference = solve_reference(case);
-        let runs = run_ladder(case, &engines, &series, &dts, opts, &|| bar.inc(1))?;
-        Ok((reference, runs, rayon::current_num_threads()))
-    })??;
+    let (reference, ladder_runs, threads) =
+        opts.install(series.len(), || -> Result<_, InputErrors> {
+            let reference = solve_reference(case);
+            let runs = run_ladder(case, &engines, &series, &dts, opts, &|| bar.inc(1))?;
+            Ok((reference, runs, rayon::current_num_threads()))
+        })??;
     bar.finish_and_clear();
 
     let (basis, reference_energy) = match &reference {
