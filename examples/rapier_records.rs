@@ -65,20 +65,21 @@ fn block_text(text: &str, mu: f64, polarity: i32, extra: &str) -> String {
         })
         .collect::<Vec<_>>()
         .join("\n");
+    let dt = std::env::var("BLOCK_DT").unwrap_or_else(|_| "0.005".into());
     let duration = text
         .lines()
         .find(|l| l.trim_start().starts_with("duration"))
         .expect("duration");
     format!(
-        "[model]\nkind = \"rigid-block\"\nmass = 1000.0\ngravity = 9.81\nhalf_width = 1.0\nhalf_height = 0.25\nmu = {mu}\n[excitation]{excitation}\n[run]\n{duration}\ndt = 0.005\n[engines.rapier]\n{extra}\n"
+        "[model]\nkind = \"rigid-block\"\nmass = 1000.0\ngravity = 9.81\nhalf_width = 1.0\nhalf_height = 0.25\nmu = {mu}\n[excitation]{excitation}\n[run]\n{duration}\ndt = {dt}\n[engines.rapier]\n{extra}\n"
     )
 }
 
 /// Total distance slid: the summed |increments| of the `slide` channel, m.
 fn total_slid(trace: &rockslide::trace::Trace) -> f64 {
-    trace
-        .column("slide")
-        .map_or(f64::NAN, |s| s.windows(2).map(|w| (w[1] - w[0]).abs()).sum())
+    trace.column("slide").map_or(f64::NAN, |s| {
+        s.windows(2).map(|w| (w[1] - w[0]).abs()).sum()
+    })
 }
 
 /// (residual sliding, peak |u|, total slid) of the exact reference: the record PEPO's,
@@ -93,8 +94,14 @@ fn exact(case: &rockslide::case::Case) -> (f64, f64, f64) {
         ) => {
             let drive: Vec<f64> = samples.iter().map(|a| -a).collect();
             let tail = case.run.duration - *dt * (samples.len() - 1) as f64;
-            let r = BlockRecord::solve(*dt, &drive, b.mu * b.gravity, Sliding::TwoWay, tail.max(0.0))
-                .expect("block reference");
+            let r = BlockRecord::solve(
+                *dt,
+                &drive,
+                b.mu * b.gravity,
+                Sliding::TwoWay,
+                tail.max(0.0),
+            )
+            .expect("block reference");
             let total = r.slides.iter().map(|s| s.distance.abs()).sum();
             (*r.disp.last().unwrap_or(&0.0), r.peak_abs, total)
         }
@@ -112,7 +119,10 @@ fn exact(case: &rockslide::case::Case) -> (f64, f64, f64) {
 fn main() {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let split = args.iter().position(|a| a == "--").unwrap_or(args.len());
-    let extra = args.get(split + 1..).map(|s| s.join("\n")).unwrap_or_default();
+    let extra = args
+        .get(split + 1..)
+        .map(|s| s.join("\n"))
+        .unwrap_or_default();
     let models: Vec<String> = std::env::var("MODELS")
         .unwrap_or_else(|_| "pepo,block".into())
         .split(',')
