@@ -271,6 +271,7 @@ fn time_loop<M>(
 /// The joint-limit contact's return mapping after a step: where the capped spring has
 /// taken the mass beyond Ru/Kx, the slider follows, and the motor's target with it.
 fn slip_after_step(rig: &mut Rig) {
+    supports_after_step(rig);
     let Some(slider) = rig.slider.as_mut() else {
         return;
     };
@@ -282,6 +283,35 @@ fn slip_after_step(rig: &mut Rig) {
         joint
             .data
             .set_motor_position(JointAxis::LinX, s, slider.kx, slider.motor_damping);
+    }
+}
+
+/// The joint-limit supports after a step: each one's normal force, friction cap and
+/// slider (return mapping), written back into its joint's X motor.
+fn supports_after_step(rig: &mut Rig) {
+    if rig.supports.is_empty() {
+        return;
+    }
+    let body = &rig.world.bodies[rig.structure];
+    let (cm, phi) = (body.translation(), angle_z(body));
+    let gx = rig.world.bodies[rig.ground].translation().x;
+    for sup in rig.supports.iter_mut() {
+        let (ax, ay) = sup.anchor(cm, phi);
+        let (s, cap) = sup.update((ax - gx - sup.x, ay));
+        if let Some(joint) = rig.world.impulse_joints.get_mut(sup.joint, false) {
+            joint
+                .data
+                .set_motor_position(JointAxis::LinX, s, sup.kx, sup.damping.0)
+                .set_motor_max_force(JointAxis::LinX, cap);
+        }
+        if let Some(joint) = rig.world.impulse_joints.get_mut(sup.vertical, false) {
+            // Open (the anchor above the ground): no force at all. (A motor with zero
+            // stiffness and damping is a rigid velocity lock in rapier: cap it at 0.)
+            let open = sup.delta.1 > 0.0;
+            joint
+                .data
+                .set_motor_max_force(JointAxis::LinY, if open { 0.0 } else { f64::INFINITY });
+        }
     }
 }
 
@@ -571,4 +601,95 @@ pub fn run_rocking(
         trace.contacts.push(t, &states);
     };
     time_loop(&mut rig, drive, ex, &g, (n, dt, 1), trace, 0.0, record)
+}
+
+/// Run the rocking body with joint-limit supports (no feet) and record its channels every
+/// `stride` rapier steps of dt/stride. It starts in static equilibrium (nothing to settle);
+/// sliding is each support's slider (the FE engine's element slip), uplift the largest
+/// open gap δz, a support in contact while it carries compression.
+pub fn run_rocking_joint_limit(
+    mut rig: Rig,
+    body: &RockingBody,
+    drive: Drive,
+    ex: &Excitation,
+    (dt, stride): (f64, usize),
+    duration: f64,
+) -> Outcome {
+    let n = step_count(duration, dt);
+    let dt_in = dt / stride as f64;
+    let g = GroundTable::new(ex, dt_in, n * stride);
+    let moves = ex.moves_ground();
+    let mut channels: Vec<&'static Quantity> = vec![
+        &q::FORCE,
+        &q::RESISTANCE,
+        &q::BASE_SHEAR,
+        &q::REL_DISP,
+        &q::SLIDE,
+        &q::SLIDE_SPREAD,
+        &q::VEL,
+        &q::ACC,
+        &q::CM_X,
+        &q::CM_Z,
+        &q::ROTATION,
+        &q::UPLIFT,
+        &q::CONTACTS,
+        &q::NORMAL,
+    ];
+    if moves {
+        channels.push(&q::GROUND_DISP);
+    }
+    let trace = Trace::with_channels(&channels, n + 1);
+    let mut row = vec![0.0; channels.len()];
+    let m = body.mass;
+    let hh = body.cm_height;
+    let b0 = &rig.world.bodies[rig.structure];
+    let (cm0, phi0) = (b0.translation(), angle_z(b0));
+    let o0 = cm0.x + phi0.sin() * hh;
+    start_in_ground_frame(&mut rig, drive, &g);
+    let record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: &mut f64| {
+        let t = (k / stride) as f64 * dt;
+        let b = &rig.world.bodies[rig.structure];
+        let cm = b.translation();
+        let phi = angle_z(b);
+        let off = ground_frame(drive, &g, k).0;
+        let (mut shear, mut normal, mut contacts) = (0.0, 0.0, 0.0);
+        let (mut slide_sum, mut slide_min, mut slide_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
+        let mut uplift: f64 = 0.0;
+        for sup in &rig.supports {
+            shear += sup.shear();
+            normal += sup.normal;
+            slide_sum += sup.s;
+            slide_min = slide_min.min(sup.s);
+            slide_max = slide_max.max(sup.s);
+            uplift = uplift.max(sup.delta.1);
+            if sup.normal > 0.0 {
+                contacts += 1.0;
+            }
+        }
+        let v = b.linvel().x - ground_frame(drive, &g, k).1;
+        let a = if k == 0 { 0.0 } else { (v - *v_prev) / dt };
+        *v_prev = v;
+        let vals = [
+            force_at(ex, m, t),
+            shear,
+            shear,
+            cm.x + phi.sin() * hh - off - o0,
+            slide_sum / rig.supports.len() as f64,
+            slide_max - slide_min,
+            v,
+            a,
+            cm.x - off - cm0.x,
+            cm.y - cm0.y,
+            phi - phi0,
+            uplift.max(0.0),
+            contacts,
+            normal,
+            g.disp[k],
+        ];
+        let len = row.len();
+        row.copy_from_slice(&vals[..len]);
+        trace.push(t, &row);
+    };
+    let steps = (n * stride, dt_in, stride);
+    time_loop(&mut rig, drive, ex, &g, steps, trace, 0.0, record)
 }

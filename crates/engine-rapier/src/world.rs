@@ -50,6 +50,9 @@ pub struct Rig {
     /// The elastic-plastic joint of an oscillator built without a foot
     /// ([`oscillator_joint_limit`]); `None` for every other rig.
     pub slider: Option<Slider>,
+    /// The supports of a rocking body built without feet ([`rocking_body_joint_limit`]);
+    /// empty for every other rig.
+    pub supports: Vec<Support>,
 }
 
 /// An elastic-perfectly-plastic contact as one joint: a spring Kx (a ForceBased motor on
@@ -161,6 +164,7 @@ pub fn oscillator(osc: &Oscillator, s: &RapierSettings, dt: f64, kind: GroundKin
         mass: m,
         foot_mass: mf,
         slider: None,
+        supports: Vec::new(),
     }
 }
 
@@ -232,6 +236,7 @@ pub fn oscillator_joint_limit(
             limit,
             s: 0.0,
         }),
+        supports: Vec::new(),
     }
 }
 
@@ -270,6 +275,7 @@ pub fn rigid_block(b: &RigidBlock, s: &RapierSettings, dt: f64, kind: GroundKind
         mass: b.mass,
         foot_mass: 0.0,
         slider: None,
+        supports: Vec::new(),
     }
 }
 
@@ -369,5 +375,171 @@ pub fn rocking_body(r: &RockingBody, s: &RapierSettings, dt: f64, kind: GroundKi
         mass: m,
         foot_mass: mf,
         slider: None,
+        supports: Vec::new(),
+    }
+}
+
+/// The share of h·K left in a joint-limit support's motor damping (as for the oscillator,
+/// [`MOTOR_DAMPING_MARGIN`]): c = −(1 − share)·h·K for the RPEPO, which has no damping.
+pub const SUPPORT_DAMPING_SHARE: f64 = 1e-3;
+
+/// One support of a rocking body as two joints between the ground and the body (no
+/// foot): a compression-only spring Kz (ForceBased motor on Y) and an elastic-plastic
+/// spring Kx (motor on X) capped at μ·N_i, in series with a massless slider at `s`.
+///
+/// Both are decided from the state after each rapier step, for the next one: a support
+/// whose anchor is above the ground (δz > 0) is open, its Z motor's force capped at 0;
+/// the X motor's target is the slider and its force cap μ·N_i, N_i = Kz·max(0, −δz); the
+/// slider follows where the capped spring has gone (return mapping), and an open
+/// support's slider follows the anchor (no force), as the FE engine's CONTA178 does.
+/// (Tried and dropped: a compression-only spring from a Z motor with target −a and cap
+/// Kz·a plus a constant force Kz·a at the anchor, switching inside the solve: the body's
+/// rotation is unstable with it, the faster the larger a — docs/rapier-engine.md.)
+#[derive(Debug, Clone, Copy)]
+pub struct Support {
+    /// The horizontal spring's joint (ground → body); the vertical one is a second joint.
+    pub joint: ImpulseJointHandle,
+    /// The vertical spring's joint.
+    pub vertical: ImpulseJointHandle,
+    /// Anchor's x on the base, from O, m.
+    pub x: f64,
+    /// Height of the CM above the base, m (the anchor is at (x, −h) from the CM).
+    pub cm_height: f64,
+    /// Horizontal and vertical stiffness, N/m.
+    pub kx: f64,
+    /// Vertical stiffness, N/m.
+    pub kz: f64,
+    /// Friction coefficient (f64::INFINITY: never slips).
+    pub mu: f64,
+    /// Motor dampings passed to rapier (X, Z), N·s/m.
+    pub damping: (f64, f64),
+    /// Slider position relative to the ground anchor, m.
+    pub s: f64,
+    /// Normal force N_i of the last step, N.
+    pub normal: f64,
+    /// Anchor minus ground point (δx, δz) after the last step, m.
+    pub delta: (f64, f64),
+}
+
+impl Support {
+    /// The elastic-plastic update after a step with anchor offset `delta`: normal force,
+    /// friction cap and return mapping. Returns the slider and the cap for the next step.
+    pub fn update(&mut self, delta: (f64, f64)) -> (f64, f64) {
+        self.delta = delta;
+        self.normal = self.kz * (-delta.1).max(0.0);
+        let cap = if self.mu.is_finite() {
+            self.mu * self.normal
+        } else {
+            f64::INFINITY
+        };
+        let elastic = delta.0 - self.s;
+        if self.kx * elastic.abs() > cap {
+            self.s = delta.0 - elastic.signum() * cap / self.kx;
+        }
+        (self.s, cap)
+    }
+
+    /// The anchor's world position for a body at `cm` rotated by `phi`, m.
+    pub fn anchor(&self, cm: Vector, phi: f64) -> (f64, f64) {
+        let (sn, cs) = phi.sin_cos();
+        (
+            cm.x + cs * self.x + sn * self.cm_height,
+            cm.y + sn * self.x - cs * self.cm_height,
+        )
+    }
+
+    /// Horizontal spring force on the ground point (the base shear's share), N.
+    pub fn shear(&self) -> f64 {
+        self.kx * (self.delta.0 - self.s)
+    }
+}
+
+/// The rocking body (RPEPO) with its supports as joints straight to the ground, no feet
+/// ([`Support`]): the body (mass M, the stated rotational inertia, translations in the
+/// X–Z plane and rotation about Z only) starts in its static equilibrium, every support
+/// compressed by W/(n·Kz); there is nothing to settle.
+pub fn rocking_body_joint_limit(
+    r: &RockingBody,
+    s: &RapierSettings,
+    dt: f64,
+    kind: GroundKind,
+) -> Rig {
+    let mut world = new_world(s, dt, r.gravity);
+    let ground = add_ground(&mut world, kind, 0.0);
+    let n = r.supports;
+    let m = r.mass;
+    let preload = r.weight() / (n as f64 * r.contact.kz);
+    let inertia = rocking_inertia(r);
+    let body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, r.cm_height - preload, 0.0))
+        .additional_mass_properties(MassProperties::new(
+            Vector::ZERO,
+            m,
+            Vector::new(inertia, inertia, inertia),
+        ))
+        .enabled_translations(true, true, false)
+        .enabled_rotations(false, false, true)
+        .can_sleep(false);
+    let structure = world.insert_body(body);
+    let h = dt / s.substeps as f64;
+    let (kx, kz) = (r.contact.kx, r.contact.kz);
+    let share = 1.0 - SUPPORT_DAMPING_SHARE;
+    let damping = (-share * h * kx, -share * h * kz);
+    let normal = r.weight() / n as f64;
+    let mu = r.contact.mu;
+    let cap = if mu.is_finite() {
+        mu * normal
+    } else {
+        f64::INFINITY
+    };
+    let mut supports = Vec::with_capacity(n);
+    for x in r.support_positions() {
+        // Two joints per support, one motor each: rapier orthogonalizes (Gram–Schmidt, in
+        // the bodies' mass metric) the rows of one joint, which with the small rotational
+        // inertia would leak the large Z motor impulse into X and make the body unstable.
+        let spring = |axis: JointAxis, target: f64, k: f64, c: f64, max: f64| {
+            GenericJointBuilder::new(JointAxesMask::empty())
+                .local_anchor1(Vector::new(x, GROUND_HALF.1, 0.0))
+                .local_anchor2(Vector::new(x, -r.cm_height, 0.0))
+                .motor_model(axis, MotorModel::ForceBased)
+                .motor_position(axis, target, k, c)
+                .motor_max_force(axis, max)
+                .contacts_enabled(false)
+                .build()
+        };
+        let joint = world.insert_impulse_joint(
+            ground,
+            structure,
+            spring(JointAxis::LinX, 0.0, kx, damping.0, cap),
+        );
+        let vertical = world.insert_impulse_joint(
+            ground,
+            structure,
+            spring(JointAxis::LinY, 0.0, kz, damping.1, f64::INFINITY),
+        );
+        supports.push(Support {
+            joint,
+            vertical,
+            x,
+            cm_height: r.cm_height,
+            kx,
+            kz,
+            mu,
+            damping,
+            s: 0.0,
+            normal,
+            delta: (0.0, -preload),
+        });
+    }
+    Rig {
+        world,
+        ground,
+        structure,
+        feet: vec![],
+        inertial_masses: vec![(structure, m)],
+        mass: m,
+        foot_mass: 0.0,
+        slider: None,
+        supports,
     }
 }
