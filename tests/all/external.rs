@@ -81,7 +81,10 @@ fn a_trace_fed_back_as_an_external_equals_the_engine_to_the_last_digit() {
     for label in ["copy/external", "mcap-copy/external"] {
         let i = run_index(&r, label);
         assert!(is_external(&r.runs[i]));
-        assert_eq!(r.runs[i].trace, r.runs[fe].trace, "{label}: trace");
+        // the state channels round-trip; an external file carries no per-contact block
+        let mut fe_state = r.runs[fe].trace.clone();
+        fe_state.contacts = Default::default();
+        assert_eq!(r.runs[i].trace, fe_state, "{label}: trace");
         let (mine, theirs) = (&r.run_responses[i], &r.run_responses[fe]);
         assert_eq!(mine.len(), theirs.len(), "{label}: response count");
         for (k, v) in theirs {

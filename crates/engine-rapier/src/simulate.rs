@@ -638,7 +638,11 @@ pub fn run_rocking_joint_limit(
     if moves {
         channels.push(&q::GROUND_DISP);
     }
-    let trace = Trace::with_channels(&channels, n + 1);
+    let mut trace = Trace::with_channels(&channels, n + 1);
+    // One contact per support: the vertical spring (compression only, compliance 1/Kz)
+    // and the horizontal spring capped at μ·N with its slider.
+    trace.contacts = ContactBlock::for_supports(rig.supports.len(), 1.0 / body.contact.kz, n + 1);
+    let mut states = vec![ContactState::default(); rig.supports.len()];
     let mut row = vec![0.0; channels.len()];
     let m = body.mass;
     let hh = body.cm_height;
@@ -655,7 +659,13 @@ pub fn run_rocking_joint_limit(
         let (mut shear, mut normal, mut contacts) = (0.0, 0.0, 0.0);
         let (mut slide_sum, mut slide_min, mut slide_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
         let mut uplift: f64 = 0.0;
-        for sup in &rig.supports {
+        for (state, sup) in states.iter_mut().zip(&rig.supports) {
+            *state = ContactState {
+                normal: sup.normal,
+                tangential: sup.shear(),
+                slip: sup.s,
+                gap: sup.delta.1,
+            };
             shear += sup.shear();
             normal += sup.normal;
             slide_sum += sup.s;
@@ -689,6 +699,7 @@ pub fn run_rocking_joint_limit(
         let len = row.len();
         row.copy_from_slice(&vals[..len]);
         trace.push(t, &row);
+        trace.contacts.push(t, &states);
     };
     let steps = (n * stride, dt_in, stride);
     time_loop(&mut rig, drive, ex, &g, steps, trace, 0.0, record)

@@ -422,7 +422,10 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
 
 /// The `/<label>/contacts` channel of a run with a contact block (its schema lists every
 /// contact with the units of its fields; the channel's metadata names them in order).
-fn contact_channel<W: Write + Seek>(out: &mut Out<W>, run: &LoggedRun) -> Result<Option<u16>, Error> {
+fn contact_channel<W: Write + Seek>(
+    out: &mut Out<W>,
+    run: &LoggedRun,
+) -> Result<Option<u16>, Error> {
     let block = &run.trace.contacts;
     if block.is_empty() {
         return Ok(None);
