@@ -167,7 +167,7 @@ pub fn run_oscillator(
         *prev = (v, vy);
     };
     let steps = (n * stride, dt_in, stride);
-    time_loop(&mut rig, drive, ex, &g, steps, trace, (0.0, 0.0), record)
+    time_loop(&mut rig, (drive, ex, &g), steps, trace, (0.0, 0.0), record)
 }
 
 /// The oscillator's one contact after a step of `dt`: with a foot, the ground's contact
@@ -225,15 +225,13 @@ fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable) {
     }
 }
 
-/// The common time loop: `steps = (n, dt, stride)`: n rapier steps of dt; drive the
+/// The common time loop, driven by `(drive, excitation, ground table)`: `steps = (n, dt, stride)`: n rapier steps of dt; drive the
 /// ground, step the world, record after every `stride`-th step (the recorder gets the
 /// step index) with the recorder's own memory; a body whose pose stops being finite ends
 /// the run as `Diverged` (a result, not a panic).
 fn time_loop<M>(
     rig: &mut Rig,
-    drive: Drive,
-    ex: &Excitation,
-    g: &GroundTable,
+    (drive, ex, g): (Drive, &Excitation, &GroundTable),
     (n, dt, stride): (usize, f64, usize),
     mut trace: Trace,
     mut memory: M,
@@ -452,7 +450,7 @@ pub fn run_block(
         };
         trace.contacts.push(t, &[base]);
     };
-    time_loop(&mut rig, drive, ex, &g, (n, dt, 1), trace, state, record)
+    time_loop(&mut rig, (drive, ex, &g), (n, dt, 1), trace, state, record)
 }
 
 /// What the block recorder carries from one row to the next.
@@ -600,7 +598,7 @@ pub fn run_rocking(
         trace.push(t, &row);
         trace.contacts.push(t, &states);
     };
-    time_loop(&mut rig, drive, ex, &g, (n, dt, 1), trace, 0.0, record)
+    time_loop(&mut rig, (drive, ex, &g), (n, dt, 1), trace, 0.0, record)
 }
 
 /// Run the rocking body with joint-limit supports (no feet) and record its channels every
@@ -702,5 +700,5 @@ pub fn run_rocking_joint_limit(
         trace.contacts.push(t, &states);
     };
     let steps = (n * stride, dt_in, stride);
-    time_loop(&mut rig, drive, ex, &g, steps, trace, 0.0, record)
+    time_loop(&mut rig, (drive, ex, &g), steps, trace, 0.0, record)
 }
