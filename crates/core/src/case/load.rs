@@ -80,7 +80,7 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
     };
     let model = v.model(&raw.model);
     let excitation = v.excitation(&raw.excitation, path);
-    let run = v.run(raw.run.duration, raw.run.dt);
+    let run = v.run(raw.run.duration, raw.run.dt, raw.run.output_dt);
     let engines = v.engines(&raw.engines, raw.run.duration);
     let name = v.name(raw.name.as_deref(), path);
     let tolerances = raw
@@ -577,7 +577,7 @@ impl Validator<'_> {
         }
     }
 
-    fn run(&mut self, duration: f64, dt: f64) -> RunSettings {
+    fn run(&mut self, duration: f64, dt: f64, output_dt: Option<f64>) -> RunSettings {
         self.number("run.duration", Some(duration), Rule::positive("s"));
         self.number("run.dt", Some(dt), Rule::positive("s"));
         if dt > duration {
@@ -587,7 +587,20 @@ impl Validator<'_> {
             );
         }
         self.steps("run.dt", duration, dt);
-        RunSettings { duration, dt }
+        if let Some(out) = output_dt {
+            self.number("run.output_dt", Some(out), Rule::positive("s"));
+            if out < dt || out > duration {
+                self.fail(
+                    "run.output_dt",
+                    format!("is {out} s, but must lie between run.dt ({dt} s) and run.duration ({duration} s)"),
+                );
+            }
+        }
+        RunSettings {
+            duration,
+            dt,
+            output_dt,
+        }
     }
 
     /// Steps of `dt` covering `duration` within [`limits::max_steps`](super::limits).

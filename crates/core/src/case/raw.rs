@@ -122,6 +122,7 @@ pub struct RawExcitation {
 pub struct RawRun {
     pub duration: f64,
     pub dt: f64,
+    pub output_dt: Option<f64>,
 }
 
 /// An engine's section: `dt` and `variants` are common, every other key is an option the

@@ -227,6 +227,9 @@ pub struct RunSettings {
     pub duration: f64,
     /// Default time step, s (an engine section may override it).
     pub dt: f64,
+    /// Time step of the trace files written (CSV, MCAP), s; `None`: every step. The
+    /// analysis, plots and checks always use every step.
+    pub output_dt: Option<f64>,
 }
 
 /// An engine option value, as written in the case file.

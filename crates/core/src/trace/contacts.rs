@@ -85,6 +85,24 @@ pub struct ContactBlock {
 }
 
 impl ContactBlock {
+    /// The rows `rows` of this block (indices into its time), in that order; an empty
+    /// block stays empty.
+    pub fn select_rows(&self, rows: &[usize]) -> ContactBlock {
+        if self.is_empty() {
+            return self.clone();
+        }
+        let width = self.names.len() * CONTACT_FIELDS.len();
+        ContactBlock {
+            names: self.names.clone(),
+            compliance: self.compliance.clone(),
+            time: rows.iter().map(|&i| self.time[i]).collect(),
+            values: rows
+                .iter()
+                .flat_map(|&i| self.values[i * width..(i + 1) * width].iter().copied())
+                .collect(),
+        }
+    }
+
     /// An empty block for `names` (with their normal compliances, m/N) with room for
     /// `rows` rows, so recording never reallocates.
     pub fn with_contacts(names: &[&str], compliance: &[f64], rows: usize) -> Self {

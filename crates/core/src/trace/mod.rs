@@ -52,6 +52,49 @@ impl Trace {
         }
     }
 
+    /// The rows a trace file keeps at output step `output_dt`: the first row, then the
+    /// first row at or after each multiple of `output_dt` (within 1e-9 of a step, so
+    /// rounding in the engines' time sums does not skip a row), and the last row.
+    pub fn output_rows(&self, output_dt: f64) -> Vec<usize> {
+        let mut rows = Vec::with_capacity((self.time.len() as f64).min(1e7) as usize);
+        let mut next = f64::NEG_INFINITY;
+        let mut k = 0u64;
+        for (i, &t) in self.time.iter().enumerate() {
+            if t >= next - 1e-9 * output_dt {
+                rows.push(i);
+                while next - 1e-9 * output_dt <= t {
+                    k += 1;
+                    next = k as f64 * output_dt;
+                }
+            }
+        }
+        if let Some(last) = self.time.len().checked_sub(1)
+            && rows.last() != Some(&last)
+        {
+            rows.push(last);
+        }
+        rows
+    }
+
+    /// This trace at output step `output_dt` ([`Trace::output_rows`]), contacts included.
+    pub fn at_output_step(&self, output_dt: f64) -> Trace {
+        let rows = self.output_rows(output_dt);
+        Trace {
+            channels: self.channels.clone(),
+            time: rows.iter().map(|&i| self.time[i]).collect(),
+            columns: self
+                .columns
+                .iter()
+                .map(|c| rows.iter().map(|&i| c[i]).collect())
+                .collect(),
+            contacts: if self.contacts.len() == self.time.len() {
+                self.contacts.select_rows(&rows)
+            } else {
+                self.contacts.clone()
+            },
+        }
+    }
+
     /// Append one row; `values` in channel order.
     pub fn push(&mut self, t: f64, values: &[f64]) {
         debug_assert_eq!(values.len(), self.columns.len());
@@ -106,5 +149,38 @@ impl Trace {
     /// Last row's time, s (0 when empty).
     pub fn end_time(&self) -> f64 {
         self.time.last().copied().unwrap_or(0.0)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A trace whose times are running sums of 1 ms (as some engines accumulate them:
+    /// 0.009000000000000001 and the like), 1.0035 s long.
+    fn summed_times() -> Trace {
+        let mut trace = Trace::with_channels(&[&q::REL_DISP], 1004);
+        let mut t = 0.0;
+        for i in 0..1004 {
+            trace.push(t, &[i as f64]);
+            t += 1e-3;
+        }
+        trace
+    }
+
+    #[test]
+    fn output_rows_are_every_multiple_and_the_last_row() {
+        let trace = summed_times();
+        // 5 ms: rows 0, 5, …, 1000 (201 rows) and the last row, 1003
+        let rows = trace.output_rows(5e-3);
+        let expected: Vec<usize> = (0..=200).map(|k| 5 * k).chain([1003]).collect();
+        assert_eq!(rows, expected);
+        let out = trace.at_output_step(5e-3);
+        assert_eq!(
+            out.columns[0],
+            expected.iter().map(|&i| i as f64).collect::<Vec<_>>()
+        );
+        // an output step equal to the step keeps every row
+        assert_eq!(trace.output_rows(1e-3).len(), 1004);
     }
 }

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use rockslide_core::error::Error;
 use rockslide_core::trace::scene3d::Geometry;
-use rockslide_core::trace::{LoggedRun, SCENE_PERIOD_NS, TraceLog, write_mcap};
+use rockslide_core::trace::{LoggedRun, SCENE_PERIOD_NS, Trace, TraceLog, write_mcap};
 use rockslide_engine_api::RunStatus;
 use rockslide_verify::suite::CaseResult;
 
@@ -24,6 +24,18 @@ fn map<const N: usize>(pairs: [(&str, String); N]) -> BTreeMap<String, String> {
 
 /// The trace log of a case run.
 pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
+    let runs: Vec<&Trace> = result.runs.iter().map(|r| &r.trace).collect();
+    let reference = result.reference.as_ref().ok().map(|r| &r.output);
+    case_trace_log_of(result, &runs, reference)
+}
+
+/// [`case_trace_log`] with the traces to log given: `runs[i]` for `result.runs[i]`, and
+/// the reference's (e.g. both at the case's output step).
+pub fn case_trace_log_of<'a>(
+    result: &'a CaseResult,
+    runs_traces: &[&'a Trace],
+    reference_trace: Option<&'a Trace>,
+) -> TraceLog<'a> {
     let c = &result.case;
     let geometry = Geometry::of(&c.scene.model);
     let mut head = map([
@@ -40,6 +52,12 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
         ("excitation", c.scene.excitation.kind().to_string()),
         ("duration_s", format!("{:?}", c.run.duration)),
         ("dt_s", format!("{:?}", c.run.dt)),
+        (
+            "output_dt_s",
+            c.run
+                .output_dt
+                .map_or_else(|| "every step".to_string(), |o| format!("{o:?}")),
+        ),
         (
             "log_time",
             "simulation time in ns since t = 0 (publish time the same)".to_string(),
@@ -60,7 +78,8 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
     let mut runs: Vec<LoggedRun> = result
         .runs
         .iter()
-        .map(|run| {
+        .zip(runs_traces)
+        .map(|(run, &trace)| {
             let mut m = map([
                 ("engine", run.engine.to_string()),
                 ("variant", run.variant.clone()),
@@ -85,7 +104,7 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
             };
             LoggedRun {
                 label: run.label(),
-                trace: &run.trace,
+                trace,
                 status: run.status.label().to_string(),
                 stop,
                 metadata: m,
@@ -104,7 +123,7 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
             ));
             runs.push(LoggedRun {
                 label: "reference".to_string(),
-                trace: &r.output,
+                trace: reference_trace.unwrap_or(&r.output),
                 status: "completed".to_string(),
                 stop: None,
                 metadata: map([("solution", r.solution.name().to_string())]),
@@ -151,4 +170,14 @@ pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
 /// Write the case's MCAP trace to `path` atomically.
 pub fn write_case_mcap(result: &CaseResult, path: &Path) -> Result<(), Error> {
     write_mcap(&case_trace_log(result), path)
+}
+
+/// Write the case's MCAP trace of the given traces (see [`case_trace_log_of`]).
+pub fn write_case_mcap_of(
+    result: &CaseResult,
+    runs: &[&Trace],
+    reference: Option<&Trace>,
+    path: &Path,
+) -> Result<(), Error> {
+    write_mcap(&case_trace_log_of(result, runs, reference), path)
 }

@@ -40,11 +40,12 @@ pub use mcap_log::{case_trace_log, git_commit, write_case_mcap};
 pub use provenance::Provenance;
 pub use summary_csv::{SUMMARY_HEADER, summary_csv};
 
+use std::borrow::Cow;
 use std::path::{Path, PathBuf};
 
 use rockslide_core::error::Error;
 use rockslide_core::io::write_atomically;
-use rockslide_core::trace::{write_contacts_csv, write_csv};
+use rockslide_core::trace::{Trace, write_contacts_csv, write_csv};
 use rockslide_verify::suite::CaseResult;
 
 pub use rockslide_core::response::show_value;
@@ -65,31 +66,49 @@ pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Er
     Ok(dir)
 }
 
-/// A CSV trace per engine run and of the reference, and the case's MCAP file, written in
-/// parallel.
+/// The traces of a case's files: every row, or the rows at the case's output step
+/// (`[run] output_dt`); the analysis and figures always use every row.
+fn file_traces(result: &CaseResult) -> (Vec<Cow<'_, Trace>>, Option<Cow<'_, Trace>>) {
+    let step = result.case.run.output_dt;
+    let at_output = |t| match step {
+        Some(step) => Cow::Owned(Trace::at_output_step(t, step)),
+        None => Cow::Borrowed(t),
+    };
+    let runs = result.runs.iter().map(|r| at_output(&r.trace)).collect();
+    let reference = result.reference.as_ref().ok().map(|r| at_output(&r.output));
+    (runs, reference)
+}
+
+/// A CSV trace per engine run (and its contacts) and of the reference, and the case's
+/// MCAP file, written in parallel.
 fn write_case_traces(result: &CaseResult, dir: &Path) -> Result<(), Error> {
     use rayon::prelude::*;
-    let mut csv_files: Vec<(&rockslide_core::trace::Trace, PathBuf)> = result
+    let (runs, reference) = file_traces(result);
+    let run_traces: Vec<&Trace> = runs.iter().map(|t| t.as_ref()).collect();
+    let mut csv_files: Vec<(&Trace, PathBuf)> = result
         .runs
         .iter()
-        .map(|run| {
+        .zip(&run_traces)
+        .map(|(run, &trace)| {
             let file = dir.join(format!("{}-{}.csv", run.engine, run.variant));
-            (&run.trace, file)
+            (trace, file)
         })
         .collect();
-    if let Ok(r) = &result.reference {
+    if let (Ok(r), Some(trace)) = (&result.reference, &reference) {
         let file = dir.join(format!("reference-{}.csv", r.solution.name()));
-        csv_files.push((&r.output, file));
+        csv_files.push((trace.as_ref(), file));
     }
     let contact_files: Vec<(&rockslide_core::trace::ContactBlock, PathBuf)> = result
         .runs
         .iter()
-        .filter(|run| !run.trace.contacts.is_empty())
-        .map(|run| {
+        .zip(&run_traces)
+        .filter(|(_, trace)| !trace.contacts.is_empty())
+        .map(|(run, trace)| {
             let file = dir.join(format!("{}-{}-contacts.csv", run.engine, run.variant));
-            (&run.trace.contacts, file)
+            (&trace.contacts, file)
         })
         .collect();
+    let mcap_file = dir.join(format!("{}.mcap", result.case.name));
     let (csvs, mcap) = rayon::join(
         || {
             csv_files
@@ -102,7 +121,10 @@ fn write_case_traces(result: &CaseResult, dir: &Path) -> Result<(), Error> {
                 )
                 .collect::<Result<Vec<()>, Error>>()
         },
-        || write_case_mcap(result, &dir.join(format!("{}.mcap", result.case.name))),
+        || {
+            let reference = reference.as_ref().map(|t| t.as_ref());
+            mcap_log::write_case_mcap_of(result, &run_traces, reference, &mcap_file)
+        },
     );
     csvs?;
     mcap
