@@ -56,8 +56,9 @@ fn case_html_is_self_contained_and_embeds_the_plots() {
     let html = read(&case.join("report.html"));
     assert!(html.starts_with("<!DOCTYPE html>"));
     assert_self_contained(&html);
-    // A sliding oscillator under mass acceleration: force & resistance, relative
-    // displacement and sliding figures — no CM, rotation (the scene has none).
+    // A sliding oscillator under mass acceleration: the excitation (in g), force &
+    // resistance, relative displacement and sliding figures — no CM, rotation (the scene
+    // has none).
     let inline = html.matches("<svg").count();
     let files: Vec<_> = std::fs::read_dir(&case)
         .unwrap()
@@ -65,14 +66,16 @@ fn case_html_is_self_contained_and_embeds_the_plots() {
         .map(|e| e.file_name().to_string_lossy().into_owned())
         .filter(|n| n.starts_with("plot-") && n.ends_with(".svg"))
         .collect();
-    assert_eq!(inline, 3, "inline SVGs");
-    assert_eq!(files.len(), 3, "{files:?}");
+    assert_eq!(inline, 4, "inline SVGs");
+    assert_eq!(files.len(), 4, "{files:?}");
     for f in &files {
         let svg = read(&case.join(f));
         assert!(svg.contains("<polyline"), "{f} has drawn lines");
         assert!(svg.contains("time [s]"), "{f} has a time axis");
     }
-    // Axes in the paper's units.
+    // Axes in the paper's units; the excitation in g.
+    let ex = read(&case.join("plot-record.svg"));
+    assert!(ex.contains("a [g]"), "mass acceleration in g");
     let fr = read(&case.join("plot-force-resistance.svg"));
     assert!(fr.contains("[kN]"), "force in kN");
     let rd = read(&case.join("plot-relative-displacement.svg"));
@@ -94,7 +97,7 @@ fn suite_html_is_self_contained_and_holds_every_case() {
     assert_self_contained(&html);
     assert!(html.contains("<a href=\"#case-too-tight\">too-tight</a>"));
     assert!(html.contains("<section class=\"case\" id=\"case-too-tight\">"));
-    assert_eq!(html.matches("<svg").count(), 3);
+    assert_eq!(html.matches("<svg").count(), 4);
     let md = read(&dir.path().join("summary.md"));
     assert!(md.contains("[too-tight](too-tight/report.md)"));
     assert!(md.contains("**Gate: FAIL**"));

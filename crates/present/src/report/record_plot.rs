@@ -1,4 +1,5 @@
-//! The record a case is shaken by, plotted in g (1 g = 9.80665 m/s², the unit engineers
+//! The excitation of a case — a record, or an analytic pulse or sine — plotted (accelerations
+//! in g, a ground displacement in mm). A record is plotted in g (1 g = 9.80665 m/s², the unit engineers
 //! read ground motions in): the scaled samples, linear in between as every engine and the
 //! exact reference take them, over the case's run. Only for cases driven by a record.
 
@@ -17,15 +18,17 @@ const MAX_POINTS: usize = 4000;
 /// Line colour: the reference's black, the record being the given input.
 const INK: RGBColor = RGBColor(0, 0, 0);
 
-/// The record figure of a case, if a record drives it.
+/// The excitation figure of a case — the record, or the analytic ground motion or mass
+/// acceleration (pulse, sine) — if one drives it.
 pub(crate) fn record_figure(r: &CaseResult) -> Option<Figure> {
     let (what, symbol, signal) = match &r.case.scene.excitation {
         Excitation::GroundAcceleration(s) => ("Ground acceleration", "ag", s),
         Excitation::MassAcceleration(s) => ("Mass acceleration", "a", s),
-        _ => return None,
+        Excitation::GroundDisplacement(s) => return Some(displacement_figure(r, s)),
+        Excitation::None => return None,
     };
     let Signal::Record { dt, samples, label } = signal else {
-        return None;
+        return Some(analytic_figure(r, what, symbol, signal));
     };
     let points = in_g(*dt, samples);
     let title = format!("{what} {symbol}(t), record");
@@ -38,6 +41,48 @@ pub(crate) fn record_figure(r: &CaseResult) -> Option<Figure> {
         ),
         svg: draw(&title, &ylabel, &points, r.case.run.duration),
     })
+}
+
+/// Samples drawn of an analytic excitation over the run.
+const ANALYTIC_POINTS: usize = 2000;
+
+/// (time, scale · value) of an analytic signal at [`ANALYTIC_POINTS`] + 1 times over the run.
+fn sampled(signal: &Signal, duration: f64, scale: f64) -> Vec<(f64, f64)> {
+    (0..=ANALYTIC_POINTS)
+        .map(|i| {
+            let t = duration * i as f64 / ANALYTIC_POINTS as f64;
+            (t, scale * signal.value(t))
+        })
+        .collect()
+}
+
+/// An analytic acceleration (pulse, sine) in g.
+fn analytic_figure(r: &CaseResult, what: &str, symbol: &str, signal: &Signal) -> Figure {
+    let duration = r.case.run.duration;
+    let points = sampled(signal, duration, 1.0 / STANDARD_GRAVITY);
+    Figure {
+        id: "record".into(),
+        caption: format!(
+            "{what} {symbol}(t) in g (1 g = {STANDARD_GRAVITY} m/s²), as the case defines it"
+        ),
+        svg: draw(
+            &format!("{what} {symbol}(t)"),
+            &format!("{symbol} [g]"),
+            &points,
+            duration,
+        ),
+    }
+}
+
+/// A prescribed ground displacement in mm.
+fn displacement_figure(r: &CaseResult, signal: &Signal) -> Figure {
+    let duration = r.case.run.duration;
+    let points = sampled(signal, duration, 1000.0);
+    Figure {
+        id: "record".into(),
+        caption: "Ground displacement xg(t) in mm, as the case defines it".into(),
+        svg: draw("Ground displacement xg(t)", "xg [mm]", &points, duration),
+    }
 }
 
 /// (time s, value g) of every sample, reduced to per-bucket min and max beyond
