@@ -201,3 +201,34 @@ fn the_cli_rejects_a_bad_case_without_writing_anything() {
             .contains("no/such/case.toml: cannot read the case file")
     );
 }
+
+/// An unknown key no longer hides the file's other errors: two misspelt keys in two
+/// tables and a negative friction coefficient give three located lines, in file order of
+/// discovery (unknown keys first, then validation).
+#[test]
+fn unknown_keys_are_reported_with_every_other_error() {
+    let text = GOOD
+        .replacen("mu = 0.5", "mu = -0.5\nmew = 0.5", 1)
+        .replacen("[run]\n", "[run]\nduraton = 2.0\n", 1);
+    let e = errors(&text);
+    let mu_line = text.lines().position(|l| l == "mu = -0.5").unwrap() + 1;
+    let run_line = text.lines().position(|l| l.starts_with("duraton")).unwrap() + 1;
+    assert_eq!(e.len(), 3, "{e:#?}");
+    assert!(
+        e[0].starts_with(&format!(
+            "bad.toml:{}:1: model.contact.mew: unknown field `mew`",
+            mu_line + 1
+        )),
+        "{e:#?}"
+    );
+    assert!(
+        e[1].starts_with(&format!(
+            "bad.toml:{run_line}:1: run.duraton: unknown field `duraton`"
+        )),
+        "{e:#?}"
+    );
+    assert!(
+        e[2].starts_with(&format!("bad.toml:{mu_line}:6: model.contact.mu: is -0.5")),
+        "{e:#?}"
+    );
+}

@@ -70,13 +70,13 @@ pub fn read_input_text(path: &Path, what: &str) -> Result<String, InputError> {
 
 /// Validate a case from its text (`path` names it in messages and sets the default name).
 pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, InputErrors> {
-    let raw: RawCase = toml::from_str(text).map_err(|e| syntax_error(path, text, &e))?;
+    let (raw, unknown_keys) = deserialize_case(path, text)?;
     let locator = Locator::new(path, text);
     let mut v = Validator {
         loc: &locator,
         engine_ids,
         external_labels: raw.external.iter().map(|e| e.label.clone()).collect(),
-        errors: Vec::new(),
+        errors: unknown_keys,
     };
     let model = v.model(&raw.model);
     let excitation = v.excitation(&raw.excitation, path);
@@ -142,6 +142,48 @@ pub fn discover(dir: &Path) -> std::io::Result<Vec<PathBuf>> {
     }
     found.sort();
     Ok(found)
+}
+
+/// Most unknown keys reported from one file before the rest are left unread.
+const MAX_UNKNOWN_KEYS: usize = 64;
+
+/// Deserialize a case, reporting every unknown key rather than only the first: each one
+/// is recorded at its position, its line is blanked in a working copy (same byte offsets,
+/// so later positions still point into `text`), and reading resumes. The unknown keys are
+/// returned with the case, to be reported together with the validation errors; any other
+/// error of the file is an error at once (with the unknown keys found before it).
+fn deserialize_case(path: &Path, text: &str) -> Result<(RawCase, Vec<InputError>), InputErrors> {
+    let mut work = text.to_string();
+    let mut unknown: Vec<InputError> = Vec::new();
+    loop {
+        let e = match toml::from_str::<RawCase>(&work) {
+            Ok(raw) => return Ok((raw, unknown)),
+            Err(e) => e,
+        };
+        let span = e
+            .span()
+            .filter(|_| e.message().starts_with("unknown field"));
+        if let Some(span) = span
+            && unknown.len() < MAX_UNKNOWN_KEYS
+        {
+            unknown.extend(syntax_error(path, text, &e).0);
+            blank_to_end_of_line(&mut work, span.start);
+            if work.parse::<toml::Table>().is_ok() {
+                continue;
+            }
+            // the key's value spans several lines: stop at what was found
+            return Err(InputErrors(unknown));
+        }
+        unknown.extend(syntax_error(path, text, &e).0);
+        return Err(InputErrors(unknown));
+    }
+}
+
+/// Replace the text from byte `start` to the end of its line by spaces, byte for byte.
+fn blank_to_end_of_line(text: &mut String, start: usize) {
+    let end = text[start..].find('\n').map_or(text.len(), |i| start + i);
+    let blanks = " ".repeat(end - start);
+    text.replace_range(start..end, &blanks);
 }
 
 fn syntax_error(path: &Path, text: &str, e: &toml::de::Error) -> InputErrors {

@@ -151,6 +151,7 @@ fn reports_have_run_columns_na_column_figures_and_the_run_vs_run_failure() {
     assert_eq!(
         ids,
         [
+            "record",
             "relative-displacement",
             "cm-horizontal",
             "cm-vertical",
@@ -158,6 +159,6 @@ fn reports_have_run_columns_na_column_figures_and_the_run_vs_run_failure() {
         ]
     );
     let html = super::case_html(&r);
-    assert_eq!(html.matches("<svg").count(), 4);
+    assert_eq!(html.matches("<svg").count(), 5);
     assert!(!html.contains("://"));
 }
