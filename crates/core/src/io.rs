@@ -67,36 +67,10 @@ pub fn temporary_for(path: &Path) -> PathBuf {
     path.with_file_name(format!(".{name}{TEMP_SUFFIX}"))
 }
 
-/// Write `bytes` to `path` atomically, creating parent folders.
+/// Write `bytes` to `path` atomically, creating parent folders ([`write_atomically_with`]
+/// with one write).
 pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    let dir = path
-        .parent()
-        .filter(|p| !p.as_os_str().is_empty())
-        .unwrap_or(Path::new("."));
-    std::fs::create_dir_all(dir).map_err(|e| Error::io(dir, e))?;
-    let tmp = temporary_for(path);
-    let result = write_and_rename(&tmp, path, bytes);
-    if result.is_err() {
-        // best effort: a failed write leaves nothing behind
-        let _ = std::fs::remove_file(&tmp);
-    }
-    result
-}
-
-fn write_and_rename(tmp: &Path, path: &Path, bytes: &[u8]) -> Result<(), Error> {
-    // never follow a symbolic link planted where the temporary file goes
-    if tmp.symlink_metadata().is_ok() {
-        std::fs::remove_file(tmp).map_err(|e| Error::io(tmp, e))?;
-    }
-    let mut file = std::fs::OpenOptions::new()
-        .write(true)
-        .create_new(true)
-        .open(tmp)
-        .map_err(|e| Error::io(tmp, e))?;
-    file.write_all(bytes).map_err(|e| Error::io(path, e))?;
-    file.flush().map_err(|e| Error::io(path, e))?;
-    drop(file);
-    std::fs::rename(tmp, path).map_err(|e| Error::io(path, e))
+    write_atomically_with(path, |w| w.write_all(bytes).map_err(|e| Error::io(path, e)))
 }
 
 /// Buffer of a streamed file ([`write_atomically_with`]): 1 MiB, so that a long trace

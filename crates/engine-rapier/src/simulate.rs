@@ -497,25 +497,7 @@ pub fn run_rocking(
     let n = step_count(duration, dt);
     let g = GroundTable::new(ex, dt, n);
     let moves = ex.moves_ground();
-    let mut channels: Vec<&'static Quantity> = vec![
-        &q::FORCE,
-        &q::RESISTANCE,
-        &q::BASE_SHEAR,
-        &q::REL_DISP,
-        &q::SLIDE,
-        &q::SLIDE_SPREAD,
-        &q::VEL,
-        &q::ACC,
-        &q::CM_X,
-        &q::CM_Z,
-        &q::ROTATION,
-        &q::UPLIFT,
-        &q::CONTACTS,
-        &q::NORMAL,
-    ];
-    if moves {
-        channels.push(&q::GROUND_DISP);
-    }
+    let channels = rocking_channels(moves);
     settle(&mut rig, settle_steps);
     let mut trace = Trace::with_channels(&channels, n + 1);
     // One contact per foot on the ground (rigid rapier contacts; the support's Kz is the
@@ -601,22 +583,9 @@ pub fn run_rocking(
     time_loop(&mut rig, (drive, ex, &g), (n, dt, 1), trace, 0.0, record)
 }
 
-/// Run the rocking body with joint-limit supports (no feet) and record its channels every
-/// `stride` rapier steps of dt/stride. It starts in static equilibrium (nothing to settle);
-/// sliding is each support's slider (the FE engine's element slip), uplift the largest
-/// open gap δz, a support in contact while it carries compression.
-pub fn run_rocking_joint_limit(
-    mut rig: Rig,
-    body: &RockingBody,
-    drive: Drive,
-    ex: &Excitation,
-    (dt, stride): (f64, usize),
-    duration: f64,
-) -> Outcome {
-    let n = step_count(duration, dt);
-    let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in, n * stride);
-    let moves = ex.moves_ground();
+/// The channels of a rocking body's trace, in the order both rocking models record them
+/// (the ground displacement last, when the ground moves).
+fn rocking_channels(moves: bool) -> Vec<&'static Quantity> {
     let mut channels: Vec<&'static Quantity> = vec![
         &q::FORCE,
         &q::RESISTANCE,
@@ -636,6 +605,26 @@ pub fn run_rocking_joint_limit(
     if moves {
         channels.push(&q::GROUND_DISP);
     }
+    channels
+}
+
+/// Run the rocking body with joint-limit supports (no feet) and record its channels every
+/// `stride` rapier steps of dt/stride. It starts in static equilibrium (nothing to settle);
+/// sliding is each support's slider (the FE engine's element slip), uplift the largest
+/// open gap δz, a support in contact while it carries compression.
+pub fn run_rocking_joint_limit(
+    mut rig: Rig,
+    body: &RockingBody,
+    drive: Drive,
+    ex: &Excitation,
+    (dt, stride): (f64, usize),
+    duration: f64,
+) -> Outcome {
+    let n = step_count(duration, dt);
+    let dt_in = dt / stride as f64;
+    let g = GroundTable::new(ex, dt_in, n * stride);
+    let moves = ex.moves_ground();
+    let channels = rocking_channels(moves);
     let mut trace = Trace::with_channels(&channels, n + 1);
     // One contact per support: the vertical spring (compression only, compliance 1/Kz)
     // and the horizontal spring capped at μ·N with its slider.

@@ -56,7 +56,7 @@ impl Trace {
     /// first row at or after each multiple of `output_dt` (within 1e-9 of a step, so
     /// rounding in the engines' time sums does not skip a row), and the last row.
     pub fn output_rows(&self, output_dt: f64) -> Vec<usize> {
-        let mut rows = Vec::with_capacity((self.time.len() as f64).min(1e7) as usize);
+        let mut rows = Vec::new();
         let mut next = f64::NEG_INFINITY;
         let mut k = 0u64;
         for (i, &t) in self.time.iter().enumerate() {

@@ -105,3 +105,38 @@ pub(crate) fn class_colour(class: &str) -> RGBColor {
         _ => RGBColor(0x55, 0x55, 0x55),
     }
 }
+
+/// Indices of a series of `n` samples (`value(i)`) to draw with at most `max_points`
+/// points: every index when short, otherwise the minimum and the maximum of each of
+/// `max_points / 2` buckets, in time order, so every peak survives the reduction.
+pub(crate) fn extreme_indices(
+    n: usize,
+    max_points: usize,
+    value: impl Fn(usize) -> f64,
+) -> Vec<usize> {
+    if n <= max_points {
+        return (0..n).collect();
+    }
+    let buckets = max_points / 2;
+    let mut out = Vec::with_capacity(max_points);
+    for b in 0..buckets {
+        let (lo, hi) = (b * n / buckets, ((b + 1) * n / buckets).min(n));
+        if lo >= hi {
+            continue;
+        }
+        let (mut imin, mut imax) = (lo, lo);
+        for i in lo..hi {
+            if value(i) < value(imin) {
+                imin = i;
+            }
+            if value(i) > value(imax) {
+                imax = i;
+            }
+        }
+        out.push(imin.min(imax));
+        if imin != imax {
+            out.push(imin.max(imax));
+        }
+    }
+    out
+}

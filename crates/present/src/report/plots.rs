@@ -142,38 +142,10 @@ fn points(trace: &Trace, key: &str, factor: f64) -> Vec<(f64, f64)> {
     let Some(col) = trace.column(key) else {
         return Vec::new();
     };
-    let n = col.len();
-    if n <= MAX_POINTS {
-        return trace
-            .time
-            .iter()
-            .zip(col)
-            .map(|(&t, &v)| (t, v * factor))
-            .collect();
-    }
-    let buckets = MAX_POINTS / 2;
-    let mut out = Vec::with_capacity(MAX_POINTS + 2);
-    for b in 0..buckets {
-        let (lo, hi) = (b * n / buckets, ((b + 1) * n / buckets).min(n));
-        if lo >= hi {
-            continue;
-        }
-        let (mut imin, mut imax) = (lo, lo);
-        for i in lo..hi {
-            if col[i] < col[imin] {
-                imin = i;
-            }
-            if col[i] > col[imax] {
-                imax = i;
-            }
-        }
-        let (i1, i2) = (imin.min(imax), imin.max(imax));
-        out.push((trace.time[i1], col[i1] * factor));
-        if i2 != i1 {
-            out.push((trace.time[i2], col[i2] * factor));
-        }
-    }
-    out
+    super::figure::extreme_indices(col.len(), MAX_POINTS, |i| col[i])
+        .into_iter()
+        .map(|i| (trace.time[i], col[i] * factor))
+        .collect()
 }
 
 fn peak(trace: &Trace, channels: &[&Quantity]) -> f64 {

@@ -88,30 +88,10 @@ fn displacement_figure(r: &CaseResult, signal: &Signal) -> Figure {
 /// (time s, value g) of every sample, reduced to per-bucket min and max beyond
 /// [`MAX_POINTS`] so that every peak stays drawn.
 fn in_g(dt: f64, samples: &[f64]) -> Vec<(f64, f64)> {
-    let at = |i: usize| (i as f64 * dt, samples[i] / STANDARD_GRAVITY);
-    let n = samples.len();
-    if n <= MAX_POINTS {
-        return (0..n).map(at).collect();
-    }
-    let buckets = MAX_POINTS / 2;
-    let mut out = Vec::with_capacity(MAX_POINTS);
-    for b in 0..buckets {
-        let (lo, hi) = (b * n / buckets, ((b + 1) * n / buckets).min(n));
-        if lo >= hi {
-            continue;
-        }
-        let imin = (lo..hi)
-            .min_by(|&i, &j| samples[i].total_cmp(&samples[j]))
-            .unwrap_or(lo);
-        let imax = (lo..hi)
-            .max_by(|&i, &j| samples[i].total_cmp(&samples[j]))
-            .unwrap_or(lo);
-        out.push(at(imin.min(imax)));
-        if imin != imax {
-            out.push(at(imin.max(imax)));
-        }
-    }
-    out
+    super::figure::extreme_indices(samples.len(), MAX_POINTS, |i| samples[i])
+        .into_iter()
+        .map(|i| (i as f64 * dt, samples[i] / STANDARD_GRAVITY))
+        .collect()
 }
 
 /// Draw the record into an SVG string, symmetric about zero.
