@@ -293,3 +293,32 @@ fn the_worked_example_passes_its_gate_through_the_command_line() {
     assert!((mine["slip_start"] - exact["slip_start"]).abs() <= 0.005);
     assert_eq!(r.runs[i].dt, 0.005);
 }
+
+/// An external participant that no gated check compares fails the gate ("checks nothing")
+/// even when the engines' checks pass: here a file with only the normal force, which no
+/// response quantity of the reference or fe is read from.
+#[test]
+fn an_external_that_nothing_compares_fails_the_gate() {
+    let dir = tempfile::tempdir().unwrap();
+    let file = dir.path().join("normal-only.csv");
+    let rows: String = (0..=1000)
+        .map(|i| format!("{},{}\n", i as f64 * 1e-3, 1.0e6))
+        .collect();
+    std::fs::write(&file, format!("time [s],normal [N]\n{rows}")).unwrap();
+    let text = format!(
+        "{PEPO}\n[[external]]\nlabel = \"normal-only\"\nfile = {file:?}\nprogram = \"a spreadsheet\"\n"
+    );
+    let r = run_text(dir.path(), &text);
+    assert!(
+        !r.checks
+            .iter()
+            .any(|c| c.gated && c.run == "normal-only/external"),
+        "{:?}",
+        r.checks
+    );
+    let failures = rockslide::verdict::failures(std::slice::from_ref(&r));
+    assert_eq!(failures.len(), 1, "{failures:?}");
+    assert!(failures[0].checks_nothing);
+    assert_eq!(failures[0].engines, "normal-only/external");
+    assert!(!r.gate_passed());
+}

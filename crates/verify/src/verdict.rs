@@ -153,6 +153,7 @@ pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
                 true,
             ));
         }
+        out.extend(unchecked_externals(r));
         out.extend(outcome_failures(r));
         out.extend(
             r.invariants
@@ -162,6 +163,31 @@ pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
         );
     }
     out
+}
+
+/// External participants no gated check compares: a program's results brought in and
+/// then checked against nothing (no reference and no fe run, or no quantity in common)
+/// fail rather than pass silently.
+fn unchecked_externals(r: &CaseResult) -> Vec<Failure> {
+    r.runs
+        .iter()
+        .filter(|run| crate::external::is_external(run))
+        .filter(|run| {
+            let label = run.label();
+            !r.checks.iter().any(|c| c.gated && c.run == label)
+        })
+        .map(|run| {
+            case_failure(
+                r,
+                "gate",
+                &run.label(),
+                "checks nothing: no gated check compares this external participant (no reference or fe run to compare it with, or no quantity in common)".into(),
+                "at least one gated check".into(),
+                String::new(),
+                true,
+            )
+        })
+        .collect()
 }
 
 /// Whether the case's gate checks anything: a gated tolerance check or a declared outcome.
