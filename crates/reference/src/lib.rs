@@ -13,6 +13,7 @@ mod housner;
 mod newmark_block;
 pub mod newmark_record;
 mod root;
+pub mod vertical;
 
 pub use block_case::BlockOnRecord;
 pub use duhamel::Duhamel;
@@ -43,6 +44,9 @@ pub trait ExactSolution: Send + Sync {
 /// The reference for a case, or why there is none.
 pub fn for_case(case: &Case) -> Result<Box<dyn ExactSolution>, String> {
     let scene = &case.scene;
+    if scene.vertical().is_some() {
+        return vertical::for_case(case);
+    }
     match &scene.model {
         Model::Oscillator(osc) if is_record(&scene.excitation) => Ok(Box::new(
             EpoRecord::for_excitation(osc, &scene.excitation, case.run.duration)?,

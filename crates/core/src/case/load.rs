@@ -10,7 +10,7 @@ use sha2::{Digest, Sha256};
 use super::locate::Locator;
 use super::raw::{
     RawCase, RawContact, RawDouble, RawEngine, RawExcitation, RawExpectedOutcome,
-    RawExpectedViolation, RawExternal, RawModel, RawTolerance,
+    RawExpectedViolation, RawExternal, RawModel, RawTolerance, RawVertical,
 };
 use super::record::{AccelUnit, STANDARD_GRAVITY, read_record};
 use super::scene::*;
@@ -80,6 +80,11 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
     };
     let model = v.model(&raw.model);
     let excitation = v.excitation(&raw.excitation, path);
+    let vertical = raw
+        .excitation
+        .vertical
+        .as_ref()
+        .and_then(|r| v.vertical(r, &raw.excitation, model.as_ref(), path));
     let run = v.run(raw.run.duration, raw.run.dt, raw.run.output_dt);
     let engines = v.engines(&raw.engines, raw.run.duration);
     let name = v.name(raw.name.as_deref(), path);
@@ -116,7 +121,11 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
         path: path.to_path_buf(),
         sha256: format!("{:x}", Sha256::digest(text.as_bytes())),
         text: text.to_string(),
-        scene: Scene { model, excitation },
+        scene: Scene {
+            model,
+            excitation,
+            vertical,
+        },
         run,
         engines,
         tolerances,
@@ -403,7 +412,7 @@ impl Validator<'_> {
             self.nothing_beside_none(e);
             return Some(Excitation::None);
         }
-        let signal = self.signal(e, case_path)?;
+        let signal = self.signal(&SignalKeys::of_horizontal(e), "excitation", case_path)?;
         if e.record.is_some() && e.kind == "ground-displacement" {
             self.fail(
                 "excitation.kind",
@@ -453,24 +462,39 @@ impl Validator<'_> {
         }
     }
 
-    fn signal(&mut self, e: &RawExcitation, case_path: &Path) -> Option<Signal> {
-        if let Some(record) = &e.record {
-            return self.record_signal(e, record, case_path);
+    fn signal(&mut self, e: &SignalKeys, p: &str, case_path: &Path) -> Option<Signal> {
+        if let Some(record) = e.record {
+            return self.record_signal(e, p, record, case_path);
         }
         for (f, p) in [
-            ("excitation.record_unit", e.record_unit.is_some()),
-            ("excitation.scale_to_pga", e.scale_to_pga.is_some()),
-            ("excitation.polarity", e.polarity.is_some()),
+            (format!("{p}.record_unit").as_str(), e.record_unit.is_some()),
+            (
+                format!("{p}.scale_to_pga").as_str(),
+                e.scale_to_pga.is_some(),
+            ),
+            (format!("{p}.polarity").as_str(), e.polarity.is_some()),
         ] {
             if p {
                 self.fail(f, "applies only to a recorded excitation (`record`)");
             }
         }
-        match e.shape.as_deref() {
+        match e.shape {
             Some("sine-pulse") => {
-                let amplitude = self.number("excitation.amplitude", e.amplitude, Rule::finite());
-                let omega = self.number("excitation.omega", e.omega, Rule::positive("rad/s"));
-                let cycles = self.number("excitation.cycles", e.cycles, Rule::positive("cycles"));
+                let amplitude = self.number(
+                    format!("{p}.amplitude").as_str(),
+                    e.amplitude,
+                    Rule::finite(),
+                );
+                let omega = self.number(
+                    format!("{p}.omega").as_str(),
+                    e.omega,
+                    Rule::positive("rad/s"),
+                );
+                let cycles = self.number(
+                    format!("{p}.cycles").as_str(),
+                    e.cycles,
+                    Rule::positive("cycles"),
+                );
                 Some(Signal::SinePulse {
                     amplitude,
                     omega,
@@ -479,14 +503,14 @@ impl Validator<'_> {
             }
             Some(other) => {
                 self.fail(
-                    "excitation.shape",
+                    format!("{p}.shape").as_str(),
                     format!("is \"{other}\", but must be \"sine-pulse\" (or give `record`)"),
                 );
                 None
             }
             None => {
                 self.fail(
-                    "excitation.shape",
+                    format!("{p}.shape").as_str(),
                     "is required: \"sine-pulse\" (or give `record`)",
                 );
                 None
@@ -498,15 +522,16 @@ impl Validator<'_> {
     /// scale to the stated PGA and polarity. See [`super::record`] for the conventions.
     fn record_signal(
         &mut self,
-        e: &RawExcitation,
+        e: &SignalKeys,
+        p: &str,
         record: &str,
         case_path: &Path,
     ) -> Option<Signal> {
         for (f, p) in [
-            ("excitation.shape", e.shape.is_some()),
-            ("excitation.amplitude", e.amplitude.is_some()),
-            ("excitation.omega", e.omega.is_some()),
-            ("excitation.cycles", e.cycles.is_some()),
+            (format!("{p}.shape").as_str(), e.shape.is_some()),
+            (format!("{p}.amplitude").as_str(), e.amplitude.is_some()),
+            (format!("{p}.omega").as_str(), e.omega.is_some()),
+            (format!("{p}.cycles").as_str(), e.cycles.is_some()),
         ] {
             if p {
                 self.fail(
@@ -515,13 +540,13 @@ impl Validator<'_> {
                 );
             }
         }
-        let unit = match e.record_unit.as_deref() {
+        let unit = match e.record_unit {
             None => None,
             Some(u) => match AccelUnit::parse(u) {
                 Some(u) => Some(u),
                 None => {
                     self.fail(
-                        "excitation.record_unit",
+                        format!("{p}.record_unit").as_str(),
                         format!(
                             "is \"{u}\", but must be one of {}",
                             quoted(AccelUnit::NAMES)
@@ -536,7 +561,7 @@ impl Validator<'_> {
             Some(p) if p == 1.0 || p == -1.0 => p,
             Some(p) => {
                 self.fail(
-                    "excitation.polarity",
+                    format!("{p}.polarity").as_str(),
                     format!("is {p}, but must be 1 (as recorded) or -1 (inverted)"),
                 );
                 1.0
@@ -544,7 +569,11 @@ impl Validator<'_> {
         };
         let target = match e.scale_to_pga {
             None => None,
-            x => Some(self.number("excitation.scale_to_pga", x, Rule::positive("m/s²"))),
+            x => Some(self.number(
+                format!("{p}.scale_to_pga").as_str(),
+                x,
+                Rule::positive("m/s²"),
+            )),
         };
         let dir = case_path.parent().unwrap_or(Path::new(""));
         let path = dir.join(record);
@@ -554,7 +583,7 @@ impl Validator<'_> {
                 // The record's own errors, located in the record file, under the case field.
                 for mut err in errs.0 {
                     if err.field.is_empty() {
-                        err.field = "excitation.record".into();
+                        err.field = format!("{p}.record");
                     }
                     self.errors.push(err);
                 }
@@ -564,7 +593,7 @@ impl Validator<'_> {
         let pga = rec.pga();
         if pga == 0.0 {
             self.fail(
-                "excitation.record",
+                format!("{p}.record").as_str(),
                 format!("{}: every sample is zero", path.display()),
             );
             return None;
@@ -1083,5 +1112,107 @@ impl Rule {
             (lo, _) => format!("between {lo} and {}", self.hi),
         };
         format!("{body}{unit}")
+    }
+}
+
+// --- vertical ground motion: `[excitation.vertical]` ---
+
+/// The signal keys of an excitation table, horizontal or vertical, borrowed.
+struct SignalKeys<'a> {
+    shape: Option<&'a str>,
+    amplitude: Option<f64>,
+    omega: Option<f64>,
+    cycles: Option<f64>,
+    record: Option<&'a str>,
+    record_unit: Option<&'a str>,
+    scale_to_pga: Option<f64>,
+    polarity: Option<f64>,
+}
+
+impl<'a> SignalKeys<'a> {
+    fn of_horizontal(e: &'a RawExcitation) -> Self {
+        SignalKeys {
+            shape: e.shape.as_deref(),
+            amplitude: e.amplitude,
+            omega: e.omega,
+            cycles: e.cycles,
+            record: e.record.as_deref(),
+            record_unit: e.record_unit.as_deref(),
+            scale_to_pga: e.scale_to_pga,
+            polarity: e.polarity,
+        }
+    }
+
+    fn of_vertical(e: &'a RawVertical) -> Self {
+        SignalKeys {
+            shape: e.shape.as_deref(),
+            amplitude: e.amplitude,
+            omega: e.omega,
+            cycles: e.cycles,
+            record: e.record.as_deref(),
+            record_unit: e.record_unit.as_deref(),
+            scale_to_pga: e.scale_to_pga,
+            polarity: e.polarity,
+        }
+    }
+}
+
+impl Validator<'_> {
+    /// `[excitation.vertical]`: a vertical ground acceleration a_v(t) (positive upward),
+    /// a sine pulse or a record (its own file and scale), and how N follows it. A scene
+    /// without gravity has no normal force for it to change: an error.
+    fn vertical(
+        &mut self,
+        raw: &RawVertical,
+        horizontal: &RawExcitation,
+        model: Option<&Model>,
+        case_path: &Path,
+    ) -> Option<Vertical> {
+        const P: &str = "excitation.vertical";
+        let signal = self.signal(&SignalKeys::of_vertical(raw), P, case_path);
+        let (gravity, kind) = match model? {
+            Model::Oscillator(o) => (o.gravity, "oscillator"),
+            Model::RockingBody(r) => (r.gravity, "rocking-body"),
+            Model::RigidBlock(b) => (b.gravity, "rigid-block"),
+        };
+        if gravity.is_finite() && gravity <= 0.0 {
+            self.fail(
+                P,
+                "needs gravity: a vertical ground motion changes the normal force M·(g + a_v), and model.gravity is 0",
+            );
+        }
+        if horizontal.kind == "ground-displacement" {
+            self.fail(
+                P,
+                "goes with kind = \"none\", \"mass-acceleration\" or \"ground-acceleration\" (a ground-displacement pulse has no vertical counterpart here)",
+            );
+        }
+        let normal_force = match (raw.normal_force.as_deref(), kind) {
+            (None, "rigid-block") => NormalForce::QuasiStatic,
+            (None, _) | (Some("dynamic"), "oscillator" | "rocking-body") => NormalForce::Dynamic,
+            (Some("quasi-static"), "oscillator") => NormalForce::QuasiStatic,
+            (Some(other @ ("dynamic" | "quasi-static")), kind) => {
+                self.fail(
+                    &format!("{P}.normal_force"),
+                    format!(
+                        "\"{other}\" does not apply to a model of kind \"{kind}\" (a rigid block on rigid ground always has N = M·(g + a_v); a rocking body's supports follow their own Kz)"
+                    ),
+                );
+                return None;
+            }
+            (Some(other), _) => {
+                self.fail(
+                    &format!("{P}.normal_force"),
+                    format!(
+                        "is \"{other}\", but must be \"dynamic\" (the contact's Kz and the mass oscillate, default) or \"quasi-static\" (rigid vertical contact, N = M·(g + a_v))"
+                    ),
+                );
+                return None;
+            }
+        };
+        Some(Vertical {
+            signal: signal?,
+            normal_force,
+        })
     }
 }

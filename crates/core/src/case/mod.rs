@@ -18,7 +18,7 @@ pub use load::{
 pub use locate::Locator;
 pub use scene::{
     Case, Contact, DoubleContact, EXPECTED_STATUSES, EXTERNAL_VARIANT, EngineRequest, Excitation,
-    ExpectedOutcome, ExpectedViolation, External, INVARIANT_KEYS, Model, OptionValue, Oscillator,
-    RigidBlock, RockingBody, RunSettings, Scene, Tolerance, ToleranceBasis,
+    ExpectedOutcome, ExpectedViolation, External, INVARIANT_KEYS, Model, NormalForce, OptionValue,
+    Oscillator, RigidBlock, RockingBody, RunSettings, Scene, Tolerance, ToleranceBasis, Vertical,
 };
 pub use signal::{Jump, Signal};

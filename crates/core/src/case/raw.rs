@@ -115,6 +115,26 @@ pub struct RawExcitation {
     pub record_unit: Option<String>,
     pub scale_to_pga: Option<f64>,
     pub polarity: Option<f64>,
+    /// `[excitation.vertical]`: the vertical ground acceleration (see [`RawVertical`]).
+    pub vertical: Option<RawVertical>,
+}
+
+// --- vertical ground motion: `[excitation.vertical]` ---
+
+/// `[excitation.vertical]`: a vertical ground acceleration (positive upward) with the
+/// signal keys of the horizontal one, and how the normal force follows it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawVertical {
+    pub shape: Option<String>,
+    pub amplitude: Option<f64>,
+    pub omega: Option<f64>,
+    pub cycles: Option<f64>,
+    pub record: Option<String>,
+    pub record_unit: Option<String>,
+    pub scale_to_pga: Option<f64>,
+    pub polarity: Option<f64>,
+    pub normal_force: Option<String>,
 }
 
 #[derive(Debug, Deserialize)]

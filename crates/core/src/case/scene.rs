@@ -218,6 +218,52 @@ pub struct Scene {
     pub model: Model,
     /// What drives it.
     pub excitation: Excitation,
+    /// The vertical ground acceleration, when the case gives one (`[excitation.vertical]`).
+    pub vertical: Option<Vertical>,
+}
+
+impl Scene {
+    /// The vertical component, if any.
+    pub fn vertical(&self) -> Option<&Vertical> {
+        self.vertical.as_ref()
+    }
+}
+
+/// How the normal force follows a vertical ground motion.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum NormalForce {
+    /// The contact's vertical stiffness Kz and the mass form a linear oscillator driven by
+    /// a_v: M·δ'' + Kz·δ = M·(g + a_v), N = Kz·δ (compression only).
+    Dynamic,
+    /// A rigid vertical contact: N = M·(g + a_v(t)) at every instant (never below zero).
+    QuasiStatic,
+}
+
+impl NormalForce {
+    /// The name as written in case files (`normal_force = "…"`).
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalForce::Dynamic => "dynamic",
+            NormalForce::QuasiStatic => "quasi-static",
+        }
+    }
+}
+
+/// A vertical ground acceleration a_v(t), m/s², **positive upward**: in the frame of the
+/// ground the effective gravity is g + a_v(t), so quasi-statically N = M·(g + a_v).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Vertical {
+    /// a_v(t), m/s² (a sine pulse or a record, as the horizontal signal).
+    pub signal: Signal,
+    /// How the normal force follows it.
+    pub normal_force: NormalForce,
+}
+
+impl Vertical {
+    /// Effective gravity g + a_v(t), m/s².
+    pub fn effective_gravity(&self, gravity: f64, t: f64) -> f64 {
+        gravity + self.signal.value(t)
+    }
 }
 
 /// Run length and default step.

@@ -461,6 +461,7 @@ mod tests {
                 omega: 1.0,
                 cycles: 0.5,
             }),
+            vertical: None,
         }
     }
 

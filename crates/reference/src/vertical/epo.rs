@@ -1,0 +1,333 @@
+//! The undamped elastic–perfectly-plastic oscillator (the paper's PEPO) under horizontal
+//! and vertical ground motion: the friction limit breathes with the normal force N(t) —
+//! exact for both accelerations piecewise linear on the grid of [`super::LinearInputs`].
+//!
+//! Vertical: with the contact's stiffness Kz (`normal_force = "dynamic"`), the compression
+//! δ obeys M·δ'' + Kz·δ = M·(g + a_v) (a_v positive upward), from static equilibrium
+//! δ = M·g/Kz; on an interval g + a_v = g_e0 + γτ, so (Duhamel, closed form)
+//! δ = (g_e0 + γτ)/ωz² + C cos ωzτ + D sin ωzτ and N = Kz·δ. A rigid vertical contact
+//! (`"quasi-static"`) has N = M·(g_e0 + γτ). Either way N(τ) = n0 + n1τ + a cos ωzτ +
+//! b sin ωzτ, and the reference holds while N ≥ 0 (an opening contact is an error here).
+//!
+//! Horizontal, relative coordinates, drive d = d0 + d'τ per unit mass, e = u − up:
+//! - stuck: e'' + ω²e = d, so e = (d0 + d'τ)/ω² + C cos ωτ + D sin ωτ, R = K·e;
+//! - slipping in direction s: R = s·μ·N(τ), u'' = d − s·μ·N/M (u closed form: N integrated
+//!   twice), e = s·μ·N/K, up = u − e.
+//! An onset where K·|e| reaches μ·N(τ); a stop where the slip rate λ = s·u' − μ·N'/K
+//! (it is s·up') returns to zero. Both located by [`super::crossing::first_rise`] with a
+//! bound on the event function's curvature, then bisection to the last float.
+
+use super::LinearInputs;
+use super::crossing::first_rise;
+
+/// Events allowed per grid interval before the solver reports it is not progressing.
+const EVENTS_PER_INTERVAL: usize = 64;
+
+/// N(τ) = n0 + n1·τ + a·cos ωzτ + b·sin ωzτ on an interval, N.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct NormalLaw {
+    n0: f64,
+    n1: f64,
+    a: f64,
+    b: f64,
+    wz: f64,
+}
+
+impl NormalLaw {
+    /// N at τ.
+    pub fn at(&self, t: f64) -> f64 {
+        let (s, c) = (self.wz * t).sin_cos();
+        self.n0 + self.n1 * t + self.a * c + self.b * s
+    }
+    fn rate(&self, t: f64) -> f64 {
+        let (s, c) = (self.wz * t).sin_cos();
+        self.n1 + self.wz * (-self.a * s + self.b * c)
+    }
+    /// ∫₀^τ N.
+    fn once(&self, t: f64) -> f64 {
+        let mut x = self.n0 * t + self.n1 * t * t / 2.0;
+        if self.wz > 0.0 {
+            let (s, c) = (self.wz * t).sin_cos();
+            x += self.a * s / self.wz + self.b * (1.0 - c) / self.wz;
+        }
+        x
+    }
+    /// ∫₀^τ∫₀^x N.
+    fn twice(&self, t: f64) -> f64 {
+        let mut x = self.n0 * t * t / 2.0 + self.n1 * t * t * t / 6.0;
+        if self.wz > 0.0 {
+            let (s, c) = (self.wz * t).sin_cos();
+            let w2 = self.wz * self.wz;
+            x += self.a * (1.0 - c) / w2 + self.b * (t - s / self.wz) / self.wz;
+        }
+        x
+    }
+    fn amplitude(&self) -> f64 {
+        self.a.hypot(self.b)
+    }
+    /// The same law with its origin moved to τ = `s`.
+    fn shifted(&self, s: f64) -> NormalLaw {
+        let (sn, cs) = (self.wz * s).sin_cos();
+        NormalLaw {
+            n0: self.n0 + self.n1 * s,
+            n1: self.n1,
+            a: self.a * cs + self.b * sn,
+            b: -self.a * sn + self.b * cs,
+            wz: self.wz,
+        }
+    }
+}
+
+/// Contact phase.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum EpoPhase {
+    /// Elastic.
+    Stuck,
+    /// Slipping in direction s (±1).
+    Slipping(f64),
+}
+
+/// The oscillator's state.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EpoState {
+    /// Relative displacement u, m.
+    pub u: f64,
+    /// Relative velocity, m/s.
+    pub v: f64,
+    /// Accumulated slip up, m.
+    pub up: f64,
+    /// Vertical compression δ, m (dynamic normal force; unused when quasi-static).
+    pub dz: f64,
+    /// Its rate, m/s.
+    pub vz: f64,
+    /// Contact phase.
+    pub phase: EpoPhase,
+}
+
+/// One slip: start, end, direction, slip added.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VerticalSlip {
+    /// Onset, s.
+    pub start: f64,
+    /// Stop, s.
+    pub end: f64,
+    /// Direction.
+    pub direction: f64,
+    /// Slip added, m.
+    pub distance: f64,
+}
+
+/// The oscillator's constants.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct EpoConstants {
+    /// Mass, kg.
+    pub m: f64,
+    /// Horizontal stiffness, N/m.
+    pub k: f64,
+    /// Friction coefficient.
+    pub mu: f64,
+    /// Gravity, m/s².
+    pub g: f64,
+    /// Vertical stiffness Kz, N/m; `None`: quasi-static N = M·(g + a_v).
+    pub kz: Option<f64>,
+}
+
+impl EpoConstants {
+    fn omega(&self) -> f64 {
+        (self.k / self.m).sqrt()
+    }
+    fn omega_z(&self) -> f64 {
+        self.kz.map_or(0.0, |kz| (kz / self.m).sqrt())
+    }
+    /// At rest in static equilibrium.
+    pub fn rest(&self) -> EpoState {
+        let wz = self.omega_z();
+        EpoState {
+            u: 0.0,
+            v: 0.0,
+            up: 0.0,
+            dz: if wz > 0.0 { self.g / (wz * wz) } else { 0.0 },
+            vz: 0.0,
+            phase: EpoPhase::Stuck,
+        }
+    }
+    /// The normal-force law over an interval from `state`, with g_e = ge0 + γτ.
+    pub fn normal_law(&self, state: &EpoState, ge0: f64, gamma: f64) -> NormalLaw {
+        let wz = self.omega_z();
+        let (a, b) = match self.kz {
+            Some(kz) => {
+                let w2 = wz * wz;
+                (
+                    kz * (state.dz - ge0 / w2),
+                    kz * (state.vz - gamma / w2) / wz,
+                )
+            }
+            None => (0.0, 0.0),
+        };
+        NormalLaw {
+            n0: self.m * ge0,
+            n1: self.m * gamma,
+            a,
+            b,
+            wz,
+        }
+    }
+}
+
+/// Steps the oscillator over intervals with linear inputs.
+#[derive(Debug, Clone)]
+pub struct EpoWalker {
+    c: EpoConstants,
+    /// Current state.
+    pub state: EpoState,
+    /// Every slip.
+    pub slips: Vec<VerticalSlip>,
+}
+
+impl EpoWalker {
+    /// From `state`.
+    pub fn new(c: EpoConstants, state: EpoState) -> Self {
+        EpoWalker {
+            c,
+            state,
+            slips: Vec::new(),
+        }
+    }
+
+    /// Advance over `[t0, t0 + h]` with drive `d` and vertical acceleration `av` linear.
+    pub fn interval(
+        &mut self,
+        t0: f64,
+        h: f64,
+        d: (f64, f64),
+        av: (f64, f64),
+    ) -> Result<(), String> {
+        let (ds, gamma) = ((d.1 - d.0) / h, (av.1 - av.0) / h);
+        let law = self.c.normal_law(&self.state, self.c.g + av.0, gamma);
+        let mut s = 0.0;
+        let mut events = 0;
+        while s < h {
+            events += 1;
+            if events > EVENTS_PER_INTERVAL {
+                return Err(format!(
+                    "more than {EVENTS_PER_INTERVAL} events in the grid interval at t = {t0} s: the vertical oscillator reference is not progressing"
+                ));
+            }
+            let local = law.shifted(s);
+            let d0 = d.0 + ds * s;
+            s += match self.state.phase {
+                EpoPhase::Stuck => self.stuck(t0 + s, &local, d0, ds, h - s),
+                EpoPhase::Slipping(dir) => self.slip(t0 + s, dir, &local, d0, ds, h - s),
+            };
+        }
+        // the vertical oscillator over the whole interval (independent of the horizontal)
+        if let Some(kz) = self.c.kz {
+            self.state.dz = law.at(h) / kz;
+            self.state.vz = law.rate(h) / kz;
+        }
+        Ok(())
+    }
+
+    /// Elastic until an onset or the span's end; returns the time used.
+    fn stuck(&mut self, t: f64, law: &NormalLaw, d0: f64, ds: f64, span: f64) -> f64 {
+        let (k, mu, w) = (self.c.k, self.c.mu, self.c.omega());
+        let w2 = w * w;
+        let e0 = self.state.u - self.state.up;
+        let (cc, dd) = (e0 - d0 / w2, (self.state.v - ds / w2) / w);
+        let e = |t: f64| {
+            let (s, c) = (w * t).sin_cos();
+            (d0 + ds * t) / w2 + cc * c + dd * s
+        };
+        let e_rate = |t: f64| {
+            let (s, c) = (w * t).sin_cos();
+            ds / w2 + w * (-cc * s + dd * c)
+        };
+        let excess = |t: f64| k * e(t).abs() - mu * law.at(t);
+        let curvature = k * w2 * cc.hypot(dd) + mu * law.wz * law.wz * law.amplitude();
+        let onset = if mu.is_finite() {
+            first_rise(excess, span, curvature, w.max(law.wz))
+        } else {
+            None
+        };
+        let tau = onset.unwrap_or(span);
+        self.state.u = self.state.up + e(tau);
+        self.state.v = e_rate(tau);
+        if onset.is_some() {
+            let dir = e(tau).signum();
+            self.state.phase = EpoPhase::Slipping(dir);
+            self.slips.push(VerticalSlip {
+                start: t + tau,
+                end: t + tau,
+                direction: dir,
+                distance: 0.0,
+            });
+        }
+        tau
+    }
+
+    /// Slipping in direction `dir` until the slip rate returns to zero or the span ends.
+    fn slip(&mut self, t: f64, dir: f64, law: &NormalLaw, d0: f64, ds: f64, span: f64) -> f64 {
+        let (m, k, mu) = (self.c.m, self.c.k, self.c.mu);
+        let (u0, v0) = (self.state.u, self.state.v);
+        let f = dir * mu / m;
+        let u = |t: f64| u0 + v0 * t + d0 * t * t / 2.0 + ds * t * t * t / 6.0 - f * law.twice(t);
+        let v = |t: f64| v0 + d0 * t + ds * t * t / 2.0 - f * law.once(t);
+        let rate = |t: f64| dir * v(t) - mu * law.rate(t) / k;
+        let wz = law.wz;
+        let amp = law.amplitude();
+        let curvature =
+            ds.abs() + (mu / m) * (law.n1.abs() + wz * amp) + (mu / k) * wz.powi(3) * amp;
+        let stop = first_rise(|t| -rate(t), span, curvature, wz);
+        let tau = stop.unwrap_or(span);
+        self.state.u = u(tau);
+        self.state.v = v(tau);
+        let up = self.state.u - dir * mu * law.at(tau) / k;
+        let slip = self.slips.last_mut().expect("a slip has started");
+        slip.distance += up - self.state.up;
+        slip.end = t + tau;
+        self.state.up = up;
+        if stop.is_some() {
+            self.state.phase = EpoPhase::Stuck;
+        }
+        tau
+    }
+}
+
+/// The oscillator's history on a grid: the state at every grid point, its slips.
+#[derive(Debug, Clone)]
+pub struct EpoHistory {
+    /// State at each grid point.
+    pub states: Vec<EpoState>,
+    /// Every slip.
+    pub slips: Vec<VerticalSlip>,
+}
+
+/// Solve from static rest under `inputs`; an error if N falls below zero.
+pub fn solve_epo(inputs: &LinearInputs, c: EpoConstants) -> Result<EpoHistory, String> {
+    let valid = |x: f64| x.is_finite() && x > 0.0;
+    if !(valid(c.m) && valid(c.k) && valid(c.g) && c.mu >= 0.0 && c.kz.is_none_or(valid)) {
+        return Err("mass, stiffnesses and gravity must be positive and finite, μ ≥ 0".into());
+    }
+    let mut walker = EpoWalker::new(c, c.rest());
+    let mut states = Vec::with_capacity(inputs.drive.len());
+    states.push(walker.state);
+    let h = inputs.h;
+    for i in 1..inputs.drive.len() {
+        let t0 = (i - 1) as f64 * h;
+        let av = (inputs.vertical[i - 1], inputs.vertical[i]);
+        let law = c.normal_law(&walker.state, c.g + av.0, (av.1 - av.0) / h);
+        let curvature = law.wz * law.wz * law.amplitude();
+        if let Some(tau) = first_rise(|t| -law.at(t), h, curvature, law.wz) {
+            return Err(format!(
+                "the contact opens (N < 0) at t ≈ {:.6} s: the exact oscillator reference holds only while the contact is closed",
+                t0 + tau
+            ));
+        }
+        walker.interval(t0, h, (inputs.drive[i - 1], inputs.drive[i]), av)?;
+        states.push(walker.state);
+    }
+    Ok(EpoHistory {
+        states,
+        slips: walker.slips,
+    })
+}
