@@ -38,3 +38,5 @@ mod robustness;
 mod stability_classify;
 mod sweep_energy;
 mod sweep_order;
+mod vertical;
+mod vertical_integrator;

@@ -60,6 +60,11 @@ impl Engine for Fe {
     }
 
     fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+        if scene.vertical().is_some() {
+            return Err(NotApplicable(
+                "vertical excitation is not yet modelled in fe".into(),
+            ));
+        }
         let double = match &scene.model {
             SceneModel::Oscillator(o) => o.double.is_some(),
             SceneModel::RockingBody(r) => r.double.is_some(),

@@ -9,9 +9,11 @@
 mod options;
 mod resistance;
 mod stepper;
+mod vertical;
 
 pub use resistance::resistance;
-pub use stepper::{GroundRoute, PcSettings, simulate};
+pub use stepper::{GroundRoute, PcSettings, simulate, simulate_with_vertical};
+pub use vertical::NormalStepper;
 
 use rockslide_core::case::{Case, Excitation, Model, Scene};
 use rockslide_core::error::InputError;
@@ -88,6 +90,12 @@ impl Engine for PredictorCorrector {
             duration: case.run.duration,
             route,
         };
-        Ok(simulate(osc, &case.scene.excitation, &settings, variant))
+        Ok(simulate_with_vertical(
+            osc,
+            &case.scene.excitation,
+            case.scene.vertical(),
+            &settings,
+            variant,
+        ))
     }
 }

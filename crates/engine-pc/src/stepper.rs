@@ -1,7 +1,8 @@
 //! The time loop of the paper's method (steps 1–6) and its two routes for support motion.
 
 use super::resistance::resistance;
-use rockslide_core::case::{Excitation, Jump, Oscillator};
+use crate::vertical::NormalStepper;
+use rockslide_core::case::{Excitation, Jump, Oscillator, Vertical};
 use rockslide_core::trace::{ContactBlock, ContactState, Trace, q};
 use rockslide_engine_api::{Run, RunStatus, SolverStats, step_count};
 
@@ -34,6 +35,18 @@ pub struct PcSettings {
 
 /// Run the paper's method on an oscillator.
 pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, variant: &str) -> Run {
+    simulate_with_vertical(osc, excitation, None, s, variant)
+}
+
+/// Run the paper's method on an oscillator, with a vertical ground motion if given: the
+/// friction limit is then Ru(t) = μ·N(t) at every step, N from [`NormalStepper`].
+pub fn simulate_with_vertical(
+    osc: &Oscillator,
+    excitation: &Excitation,
+    vertical: Option<&Vertical>,
+    s: &PcSettings,
+    variant: &str,
+) -> Run {
     let (m, k, c, ru) = (
         osc.mass,
         osc.contact.kx,
@@ -45,10 +58,21 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
     let moves_ground = excitation.moves_ground();
     let mut channels = q::sliding(moves_ground);
     channels.push(&q::PC_CHANGE);
+    // N(t) is a channel only when it varies (horizontal-only traces stay as they were).
+    let mut normal_stepper = vertical.map(|v| NormalStepper::new(osc, v));
+    if normal_stepper.is_some() {
+        channels.push(&q::NORMAL);
+    }
     let mut trace = Trace::with_channels(&channels, n + 1);
     // The one contact: the normal force is the weight (no vertical motion), its static
     // penalty compression N/Kz the gap; T is the resistance R, the slip xp.
-    let (normal, kz) = (osc.normal_force(), osc.contact.kz);
+    let kz = osc.contact.kz;
+    let (mut normal, mut gap) = (osc.normal_force(), -osc.normal_force() / kz);
+    let mut ru = ru;
+    if let Some(ns) = &normal_stepper {
+        (normal, gap) = (ns.normal(), ns.gap());
+        ru = osc.contact.mu * normal;
+    }
     trace.contacts = ContactBlock::with_contacts(&["base"], &[1.0 / kz], n + 1);
     let mut row = vec![0.0; channels.len()];
 
@@ -61,6 +85,8 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
     let mut a = (f0 - r - c * v) / m;
     let mut record = |trace: &mut Trace,
                       t: f64,
+                      normal: f64,
+                      gap: f64,
                       f: f64,
                       r: f64,
                       x: f64,
@@ -68,12 +94,14 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
                       v: f64,
                       a: f64,
                       change: f64| {
-        let mut vals = [f, r, x, xp, v, a, 0.0, 0.0];
+        let mut vals = [f, r, x, xp, v, a, 0.0, 0.0, 0.0];
         if moves_ground {
             vals[6] = forcing_ground_disp(excitation, t);
             vals[7] = change;
+            vals[8] = normal;
         } else {
             vals[6] = change;
+            vals[7] = normal;
         }
         let n = row.len();
         row.copy_from_slice(&vals[..n]);
@@ -82,11 +110,11 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
             normal,
             tangential: r,
             slip: xp,
-            gap: -normal / kz,
+            gap,
         };
         trace.contacts.push(t, &[base]);
     };
-    record(&mut trace, 0.0, f0, r, x, xp, v, a, 0.0);
+    record(&mut trace, 0.0, normal, gap, f0, r, x, xp, v, a, 0.0);
 
     let mut max_change: f64 = 0.0;
     let mut status = RunStatus::Completed;
@@ -98,6 +126,12 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
         let mut x_predict = 0.0;
         let mut xp_t = xp;
         for pass in 0..2 {
+            // The friction limit of this pass: Ru = μ·N(t) from the vertical motion, the
+            // normal force stepped by the same scheme, pass for pass.
+            if let Some(ns) = normal_stepper.as_mut() {
+                ns.pass(t, dt, pass == 1);
+                ru = osc.contact.mu * ns.normal();
+            }
             // step 4: Eqs 3 and 4
             let v_t = v_prev + 0.5 * (a_t + a_prev) * dt;
             let x_t = x_prev + 0.5 * (v_t + v_prev) * dt;
@@ -139,7 +173,10 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
         } else {
             x
         };
-        record(&mut trace, t, f, r, x_rel, xp, v, a, change);
+        if let Some(ns) = &normal_stepper {
+            (normal, gap) = (ns.normal(), ns.gap());
+        }
+        record(&mut trace, t, normal, gap, f, r, x_rel, xp, v, a, change);
     }
 
     // Eq 9 is a ratio: report its largest value over the steps where |x| is at least 1 %
@@ -165,20 +202,24 @@ pub fn simulate(osc: &Oscillator, excitation: &Excitation, s: &PcSettings, varia
             "ground acceleration, velocity jumps as impulses"
         }
     };
+    let mut settings: Vec<(String, String)> = vec![
+        ("dt [s]".into(), format!("{dt}")),
+        ("dt/T".into(), format!("{:.4}", dt / osc.period())),
+        (
+            "passes".into(),
+            "1 predicting + 1 correcting (paper steps 1–6)".into(),
+        ),
+        ("damping C [N·s/m]".into(), format!("{c}")),
+        ("support route".into(), route.into()),
+    ];
+    if let Some(ns) = &normal_stepper {
+        settings.push(("normal force".into(), ns.describe()));
+    }
     Run {
         engine: "predictor-corrector",
         variant: variant.to_string(),
         dt,
-        settings: vec![
-            ("dt [s]".into(), format!("{dt}")),
-            ("dt/T".into(), format!("{:.4}", dt / osc.period())),
-            (
-                "passes".into(),
-                "1 predicting + 1 correcting (paper steps 1–6)".into(),
-            ),
-            ("damping C [N·s/m]".into(), format!("{c}")),
-            ("support route".into(), route.into()),
-        ],
+        settings,
         stats: SolverStats::steps(trace.len() as u64 - 1),
         findings: vec![format!(
             "largest Eq 9 change |x_correct − x_predict|/|x_correct| = {:.3e} (steps with |x| ≥ 1 % of peak)",

@@ -51,6 +51,11 @@ impl Engine for Rapier {
     }
 
     fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+        if scene.vertical().is_some() {
+            return Err(NotApplicable(
+                "vertical excitation is not yet modelled in rapier".into(),
+            ));
+        }
         match &scene.model {
             Model::Oscillator(o) => {
                 if o.double.is_some() {

@@ -242,7 +242,12 @@ impl EpoWalker {
             let (s, c) = (w * t).sin_cos();
             ds / w2 + w * (-cc * s + dd * c)
         };
-        let excess = |t: f64| k * e(t).abs() - mu * law.at(t);
+        // An onset must rise through the limit, not touch it: an undamped oscillator that
+        // has stopped slipping touches μN every half period (SPEC §2) and a rounding residue
+        // there is no slip. The margin, 1e-10 of the friction limit, moves a true onset by
+        // ~1e-10 of the time the force takes to rise by the limit.
+        let margin = 1e-10 * mu * (law.n0.abs() + law.amplitude());
+        let excess = |t: f64| k * e(t).abs() - mu * law.at(t) - margin;
         let curvature = k * w2 * cc.hypot(dd) + mu * law.wz * law.wz * law.amplitude();
         let onset = if mu.is_finite() {
             first_rise(excess, span, curvature, w.max(law.wz))
@@ -282,9 +287,11 @@ impl EpoWalker {
         self.state.u = u(tau);
         self.state.v = v(tau);
         let up = self.state.u - dir * mu * law.at(tau) / k;
-        let slip = self.slips.last_mut().expect("a slip has started");
-        slip.distance += up - self.state.up;
-        slip.end = t + tau;
+        // (a walk that starts inside a slip, between grid points, has no record of it)
+        if let Some(slip) = self.slips.last_mut() {
+            slip.distance += up - self.state.up;
+            slip.end = t + tau;
+        }
         self.state.up = up;
         if stop.is_some() {
             self.state.phase = EpoPhase::Stuck;

@@ -1,0 +1,333 @@
+//! Vertical ground motion (issue 15): the exact references against an independent
+//! adaptive integrator (≤ 1e-8 m), their horizontal-only limit against today's references
+//! (round-off), the predictor-corrector against them at its observed order, lift-off, the
+//! friction bound on the instantaneous N, and fe and rapier saying "not applicable".
+//!
+//! rockslide shall compute the sliding of a contact whose friction limit μ·N(t) follows a
+//! vertical ground motion, exactly where a closed form per interval exists.
+
+use crate::common::{case, case_with, order, repo};
+use crate::vertical_integrator::{Y, advance};
+use rockslide::case::{Case, NormalForce, load_case};
+use rockslide::reference::block_record::{BlockRecord, Sliding};
+use rockslide::reference::vertical::{
+    BlockPhase, EpoConstants, LinearInputs, VerticalBlock, VerticalEpo,
+};
+use rockslide::reference::{EpoRecord, ExactSolution};
+
+fn vertical_case(name: &str) -> Case {
+    case(&format!("vertical/{name}"))
+}
+
+/// Contact phase of the integrated oscillator.
+#[derive(Clone, Copy, Debug)]
+enum Osc {
+    Stick { up: f64 },
+    Slip { dir: f64 },
+}
+
+/// The oscillator integrated independently on the reference's grid: u at every grid point.
+fn integrate_epo(c: &EpoConstants, inputs: &LinearInputs) -> Vec<f64> {
+    let (m, k, mu, g) = (c.m, c.k, c.mu, c.g);
+    let normal = |y: &Y, av: f64| match c.kz {
+        Some(kz) => kz * y[2],
+        None => m * (g + av),
+    };
+    let h = inputs.h;
+    let mut y: Y = [0.0, 0.0, c.kz.map_or(0.0, |kz| m * g / kz), 0.0];
+    let mut phase = Osc::Stick { up: 0.0 };
+    let mut out = vec![0.0];
+    let scale = [1e-13, 1e-12, 1e-15, 1e-13];
+    for i in 1..inputs.drive.len() {
+        let (t0, t1) = ((i - 1) as f64 * h, i as f64 * h);
+        let (d0, d1) = (inputs.drive[i - 1], inputs.drive[i]);
+        let (a0, a1) = (inputs.vertical[i - 1], inputs.vertical[i]);
+        let gamma = (a1 - a0) / h;
+        let lin = move |t: f64| ((d0 + (d1 - d0) * (t - t0) / h), (a0 + gamma * (t - t0)));
+        let mut t = t0;
+        let mut events = 0;
+        while t < t1 {
+            events += 1;
+            assert!(events < 100, "integrator: too many events at {t}");
+            let rhs = |t: f64, y: &Y| {
+                let (d, av) = lin(t);
+                let n = normal(y, av);
+                let acc = match phase {
+                    Osc::Stick { up } => d - k * (y[0] - up) / m,
+                    Osc::Slip { dir } => d - dir * mu * n / m,
+                };
+                let az = match c.kz {
+                    Some(kz) => g + av - kz * y[2] / m,
+                    None => 0.0,
+                };
+                [y[1], acc, y[3], az]
+            };
+            let event = |t: f64, y: &Y| {
+                let (_, av) = lin(t);
+                let n = normal(y, av);
+                match phase {
+                    Osc::Stick { up } => k * (y[0] - up).abs() - mu * n - 1e-8 * mu * m * g,
+                    Osc::Slip { dir } => {
+                        let rate = match c.kz {
+                            Some(kz) => kz * y[3],
+                            None => m * gamma,
+                        };
+                        -(dir * y[1] - mu * rate / k) - 1e-14
+                    }
+                }
+            };
+            let (te, ye, hit) = advance(&rhs, &event, t, t1, y, &scale);
+            (t, y) = (te, ye);
+            if hit {
+                let (_, av) = lin(t);
+                phase = match phase {
+                    Osc::Stick { up } => Osc::Slip {
+                        dir: (y[0] - up).signum(),
+                    },
+                    Osc::Slip { dir } => Osc::Stick {
+                        up: y[0] - dir * mu * normal(&y, av) / k,
+                    },
+                };
+            }
+        }
+        out.push(y[0]);
+    }
+    out
+}
+
+fn epo_constants(c: &Case) -> EpoConstants {
+    let rockslide::case::Model::Oscillator(o) = &c.scene.model else {
+        panic!("an oscillator case")
+    };
+    let v = c.scene.vertical().expect("a vertical component");
+    EpoConstants {
+        m: o.mass,
+        k: o.contact.kx,
+        mu: o.contact.mu,
+        g: o.gravity,
+        kz: (v.normal_force == NormalForce::Dynamic).then_some(o.contact.kz),
+    }
+}
+
+/// Largest |u_reference − u_integrated| over the grid points, m.
+fn epo_against_integrator(c: &Case) -> (f64, VerticalEpo) {
+    let inputs = LinearInputs::of_scene(&c.scene, c.run.duration).unwrap();
+    let consts = epo_constants(c);
+    let reference = VerticalEpo::new(consts, inputs.clone()).unwrap();
+    let integrated = integrate_epo(&consts, &inputs);
+    let worst = reference
+        .history
+        .states
+        .iter()
+        .zip(&integrated)
+        .map(|(s, u)| (s.u - u).abs())
+        .fold(0.0, f64::max);
+    (worst, reference)
+}
+
+#[test]
+fn oscillator_reference_agrees_with_an_independent_integrator() {
+    for name in [
+        "pepo-mass-accel-vertical",
+        "pepo-mass-accel-vertical-rigid",
+        "pepo-northridge-vertical",
+    ] {
+        let (worst, reference) = epo_against_integrator(&vertical_case(name));
+        println!(
+            "{name}: max |Δu| = {worst:.3e} m, {} slips",
+            reference.history.slips.len()
+        );
+        assert!(worst <= 1e-8, "{name}: {worst:e} m");
+        assert!(!reference.history.slips.is_empty(), "{name} slides");
+    }
+}
+
+/// Phase of the integrated block.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Blk {
+    Stuck,
+    Sliding(f64),
+    Air,
+}
+
+/// The rigid block integrated independently: u at every grid point and the first lift-off.
+fn integrate_block(mu: f64, g: f64, inputs: &LinearInputs) -> (Vec<f64>, Option<f64>) {
+    let h = inputs.h;
+    let mut y: Y = [0.0; 4]; // u, v, z, w
+    let mut phase = Blk::Stuck;
+    let mut out = vec![0.0];
+    let mut first_lift = None;
+    let scale = [1e-13, 1e-12, 1e-13, 1e-12];
+    for i in 1..inputs.drive.len() {
+        let (t0, t1) = ((i - 1) as f64 * h, i as f64 * h);
+        let (d0, d1) = (inputs.drive[i - 1], inputs.drive[i]);
+        let (a0, a1) = (inputs.vertical[i - 1], inputs.vertical[i]);
+        let lin = move |t: f64| {
+            let f = (t - t0) / h;
+            (d0 + (d1 - d0) * f, g + a0 + (a1 - a0) * f)
+        };
+        let mut t = t0;
+        let mut events = 0;
+        while t < t1 {
+            events += 1;
+            assert!(events < 100, "integrator: too many events at {t}");
+            let rhs = |t: f64, y: &Y| {
+                let (d, ge) = lin(t);
+                match phase {
+                    Blk::Stuck => [0.0; 4],
+                    Blk::Sliding(s) => [y[1], d - s * mu * ge, 0.0, 0.0],
+                    Blk::Air => [y[1], d, y[3], -ge],
+                }
+            };
+            let event = |t: f64, y: &Y| {
+                let (d, ge) = lin(t);
+                match phase {
+                    Blk::Stuck => (-ge).max(d.abs() - mu * ge - 1e-12),
+                    Blk::Sliding(s) => (-ge).max(-s * y[1] - 1e-15),
+                    Blk::Air => -y[2] - 1e-15,
+                }
+            };
+            let (te, ye, hit) = advance(&rhs, &event, t, t1, y, &scale);
+            (t, y) = (te, ye);
+            if hit {
+                let (d, ge) = lin(t);
+                phase = match phase {
+                    _ if ge < 0.0 && phase != Blk::Air => {
+                        first_lift.get_or_insert(t);
+                        (y[2], y[3]) = (0.0, 0.0);
+                        Blk::Air
+                    }
+                    Blk::Stuck => Blk::Sliding(d.signum()),
+                    Blk::Sliding(_) => {
+                        y[1] = 0.0;
+                        Blk::Stuck
+                    }
+                    Blk::Air => {
+                        (y[2], y[3]) = (0.0, 0.0);
+                        if y[1] == 0.0 {
+                            Blk::Stuck
+                        } else {
+                            Blk::Sliding(y[1].signum())
+                        }
+                    }
+                };
+            }
+        }
+        out.push(y[0]);
+    }
+    (out, first_lift)
+}
+
+#[test]
+fn lift_off_block_reference_agrees_with_an_independent_integrator() {
+    let c = load_case(&repo("cases/vertical/reference-only/block-liftoff.toml")).unwrap();
+    let inputs = LinearInputs::of_scene(&c.scene, c.run.duration).unwrap();
+    let rockslide::case::Model::RigidBlock(b) = &c.scene.model else {
+        panic!()
+    };
+    let reference =
+        VerticalBlock::new(b.mass, b.mu, b.gravity, Sliding::TwoWay, inputs.clone()).unwrap();
+    let (integrated, lift) = integrate_block(b.mu, b.gravity, &inputs);
+    let worst = reference
+        .history
+        .states
+        .iter()
+        .zip(&integrated)
+        .map(|(s, u)| (s.u - u).abs())
+        .fold(0.0, f64::max);
+    let flights: Vec<_> = reference
+        .history
+        .motions
+        .iter()
+        .filter(|m| m.phase == BlockPhase::Airborne)
+        .collect();
+    println!(
+        "block lift-off: max |Δu| = {worst:.3e} m, residual {:.6} m, flights {:?}",
+        reference.history.states.last().unwrap().u,
+        flights
+    );
+    assert!(worst <= 1e-8, "{worst:e} m");
+    // g + a_v = g(1 − 1.5 sin θt) < 0 from sin θt = 2/3: t = asin(2/3)/θ (the linear
+    // sampling moves it by O(h²))
+    let expected = (2.0_f64 / 3.0).asin() / (2.0 * std::f64::consts::PI);
+    assert_eq!(flights.len(), 1);
+    assert!(
+        (flights[0].start - expected).abs() < 1e-6,
+        "{}",
+        flights[0].start
+    );
+    assert!((lift.unwrap() - flights[0].start).abs() < 1e-9);
+    let exact = reference.exact_quantities();
+    let first = exact.iter().find(|(k, _)| *k == "first_liftoff").unwrap().1;
+    assert_eq!(first, flights[0].start);
+}
+
+#[test]
+fn without_a_vertical_motion_the_references_are_todays_to_round_off() {
+    // the oscillator under Northridge, vertical zero: against EpoRecord
+    let c = case("records/pepo-northridge");
+    let rockslide::case::Model::Oscillator(o) = &c.scene.model else {
+        panic!()
+    };
+    let Some(rockslide::case::Signal::Record { dt, samples, .. }) = c.scene.excitation.signal()
+    else {
+        panic!()
+    };
+    let last = (samples.len() - 1) as f64 * dt;
+    let at = |t: f64| {
+        let i = ((t / dt).round() as usize).min(samples.len());
+        (-samples.get(i).copied().unwrap_or(0.0), 0.0)
+    };
+    let inputs = LinearInputs::sample(*dt, last, String::new(), at).unwrap();
+    let consts = EpoConstants {
+        m: o.mass,
+        k: o.contact.kx,
+        mu: o.contact.mu,
+        g: o.gravity,
+        kz: Some(o.contact.kz),
+    };
+    let vertical = VerticalEpo::new(consts, inputs).unwrap();
+    let today = EpoRecord::new(o, *dt, samples.to_vec(), last).unwrap();
+    let times: Vec<f64> = (0..samples.len()).map(|i| i as f64 * dt).collect();
+    let (a, b) = (
+        rockslide::reference::sample(&vertical, &times),
+        rockslide::reference::sample(&today, &times),
+    );
+    let worst = |key: &str| {
+        let (x, y) = (a.column(key).unwrap(), b.column(key).unwrap());
+        x.iter()
+            .zip(y)
+            .map(|(p, q)| (p - q).abs())
+            .fold(0.0, f64::max)
+    };
+    let (du, dslide) = (worst("rel_disp"), worst("slide"));
+    println!("oscillator, a_v = 0: max |Δu| = {du:.3e} m, max |Δslip| = {dslide:.3e} m");
+    assert!(du <= 1e-13 && dslide <= 1e-13, "{du:e} {dslide:e}");
+
+    // the rigid block under Northridge, vertical zero: against BlockRecord
+    let c = case("records/block-northridge");
+    let rockslide::case::Model::RigidBlock(b) = &c.scene.model else {
+        panic!()
+    };
+    let Some(rockslide::case::Signal::Record { dt, samples, .. }) = c.scene.excitation.signal()
+    else {
+        panic!()
+    };
+    let drive: Vec<f64> = samples.iter().map(|a| -a).collect();
+    let n = drive.len();
+    let inputs = LinearInputs::sample(*dt, (n - 1) as f64 * dt, String::new(), |t| {
+        (drive[((t / dt).round() as usize).min(n - 1)], 0.0)
+    })
+    .unwrap();
+    let vertical = VerticalBlock::new(b.mass, b.mu, b.gravity, Sliding::TwoWay, inputs).unwrap();
+    let today = BlockRecord::solve(*dt, &drive, b.mu * b.gravity, Sliding::TwoWay, 0.0).unwrap();
+    let worst = vertical
+        .history
+        .states
+        .iter()
+        .zip(&today.disp)
+        .map(|(s, u)| (s.u - u).abs())
+        .fold(0.0, f64::max);
+    println!("block, a_v = 0: max |Δu| = {worst:.3e} m");
+    assert!(worst <= 1e-13, "{worst:e}");
+}
