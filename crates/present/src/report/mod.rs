@@ -33,6 +33,7 @@ mod record_plot;
 mod sections;
 mod summary_csv;
 mod table;
+mod vertical_plot;
 
 pub use html::{case_html, suite_html};
 pub use markdown::{case_markdown, suite_markdown};

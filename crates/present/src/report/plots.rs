@@ -175,6 +175,7 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
         .filter_map(|(_, resp)| resp.get(super::crosscode::LIFTOFF_KEY).copied())
         .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.min(t))));
     let mut out: Vec<Figure> = super::record_plot::record_figure(r).into_iter().collect();
+    out.extend(super::vertical_plot::vertical_figure(r));
     for spec in SPECS {
         let members: Vec<usize> = (0..all.len())
             .filter(|&i| spec.channels.iter().any(|c| all[i].trace.has(c.key)))
