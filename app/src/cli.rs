@@ -21,7 +21,7 @@ use rockslide_verify::suite::{CaseResult, plan, run_case};
 #[derive(Debug, Parser)]
 #[command(name = "rockslide", version, about, long_about = None)]
 pub struct Cli {
-    /// What to do (default: run every case in `cases/` and `cases/records/` and write `reports/`).
+    /// What to do (default: run every case in `cases/`, `cases/records/` and `cases/vertical/` and write `reports/`).
     #[command(subcommand)]
     pub command: Option<Command>,
     /// Print nothing but errors and failures.
@@ -34,7 +34,7 @@ pub struct Cli {
 pub enum Command {
     /// Run cases and write their traces and reports.
     Run {
-        /// Case files or folders (default: `cases/` and `cases/records/`).
+        /// Case files or folders (default: `cases/`, `cases/records/` and `cases/vertical/`).
         cases: Vec<PathBuf>,
         /// Output folder.
         #[arg(long, short, default_value = "reports")]
@@ -47,7 +47,7 @@ pub enum Command {
     },
     /// List the cases and which engines apply to each.
     List {
-        /// Case files or folders (default: `cases/` and `cases/records/`).
+        /// Case files or folders (default: `cases/`, `cases/records/` and `cases/vertical/`).
         cases: Vec<PathBuf>,
     },
     /// Write a case's reference solution (exact or closed form) as a CSV trace.
@@ -65,7 +65,7 @@ pub enum Command {
     /// any fails (one line per failure on stderr), 2 on bad input. Writes the reports and
     /// JUnit XML.
     Check {
-        /// Case files or folders (default: `cases/` and `cases/records/`).
+        /// Case files or folders (default: `cases/`, `cases/records/` and `cases/vertical/`).
         cases: Vec<PathBuf>,
         /// Output folder for reports and traces.
         #[arg(long, short, default_value = "reports")]
@@ -380,7 +380,7 @@ fn bounded_jobs(jobs: Option<usize>) -> Option<usize> {
 
 /// The default command: the complete document. Stability map of `cases/stability/`,
 /// work-precision sweeps of the oscillator cases (cheap: each has an exact reference and
-/// runs in seconds per engine), then every case in `cases/` and `cases/records/` — whose reports pick up the
+/// runs in seconds per engine), then every case in `cases/`, `cases/records/` and `cases/vertical/` — whose reports pick up the
 /// sweeps and the stability map.
 fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     let options = rockslide_verify::sweep::Options {
@@ -418,7 +418,7 @@ const DEFAULT_RUN_SWEEP_BUDGET: f64 = 3.0;
 /// The folders `run`, `check` and `list` read when given no case: the top-level cases and
 /// the record cases. `cases/stability/` is not among them: its scenes are meant to break
 /// engines and are classified by `rockslide stability`, not gated.
-const DEFAULT_CASE_FOLDERS: &[&str] = &["cases", "cases/records"];
+const DEFAULT_CASE_FOLDERS: &[&str] = &["cases", "cases/records", "cases/vertical"];
 
 /// Expand case arguments: files as given, folders to their `*.toml`; with none, every
 /// folder of [`DEFAULT_CASE_FOLDERS`] that exists (`cases/` itself must).

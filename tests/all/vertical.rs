@@ -426,7 +426,6 @@ fn the_friction_bound_uses_the_instantaneous_normal_force() {
 
 #[test]
 fn fe_and_rapier_say_vertical_motion_is_not_applicable() {
-    use rockslide::engine::Engine;
     let c = vertical_case("pepo-mass-accel-vertical");
     for engine in rockslide::engine::all() {
         let v = engine.variants(&c.scene);

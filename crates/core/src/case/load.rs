@@ -467,12 +467,9 @@ impl Validator<'_> {
             return self.record_signal(e, p, record, case_path);
         }
         for (f, p) in [
-            (format!("{p}.record_unit").as_str(), e.record_unit.is_some()),
-            (
-                format!("{p}.scale_to_pga").as_str(),
-                e.scale_to_pga.is_some(),
-            ),
-            (format!("{p}.polarity").as_str(), e.polarity.is_some()),
+            (&format!("{p}.record_unit"), e.record_unit.is_some()),
+            (&format!("{p}.scale_to_pga"), e.scale_to_pga.is_some()),
+            (&format!("{p}.polarity"), e.polarity.is_some()),
         ] {
             if p {
                 self.fail(f, "applies only to a recorded excitation (`record`)");
@@ -480,21 +477,10 @@ impl Validator<'_> {
         }
         match e.shape {
             Some("sine-pulse") => {
-                let amplitude = self.number(
-                    format!("{p}.amplitude").as_str(),
-                    e.amplitude,
-                    Rule::finite(),
-                );
-                let omega = self.number(
-                    format!("{p}.omega").as_str(),
-                    e.omega,
-                    Rule::positive("rad/s"),
-                );
-                let cycles = self.number(
-                    format!("{p}.cycles").as_str(),
-                    e.cycles,
-                    Rule::positive("cycles"),
-                );
+                let amplitude = self.number(&format!("{p}.amplitude"), e.amplitude, Rule::finite());
+                let omega = self.number(&format!("{p}.omega"), e.omega, Rule::positive("rad/s"));
+                let cycles =
+                    self.number(&format!("{p}.cycles"), e.cycles, Rule::positive("cycles"));
                 Some(Signal::SinePulse {
                     amplitude,
                     omega,
@@ -503,14 +489,14 @@ impl Validator<'_> {
             }
             Some(other) => {
                 self.fail(
-                    format!("{p}.shape").as_str(),
+                    &format!("{p}.shape"),
                     format!("is \"{other}\", but must be \"sine-pulse\" (or give `record`)"),
                 );
                 None
             }
             None => {
                 self.fail(
-                    format!("{p}.shape").as_str(),
+                    &format!("{p}.shape"),
                     "is required: \"sine-pulse\" (or give `record`)",
                 );
                 None
@@ -528,10 +514,10 @@ impl Validator<'_> {
         case_path: &Path,
     ) -> Option<Signal> {
         for (f, p) in [
-            (format!("{p}.shape").as_str(), e.shape.is_some()),
-            (format!("{p}.amplitude").as_str(), e.amplitude.is_some()),
-            (format!("{p}.omega").as_str(), e.omega.is_some()),
-            (format!("{p}.cycles").as_str(), e.cycles.is_some()),
+            (&format!("{p}.shape"), e.shape.is_some()),
+            (&format!("{p}.amplitude"), e.amplitude.is_some()),
+            (&format!("{p}.omega"), e.omega.is_some()),
+            (&format!("{p}.cycles"), e.cycles.is_some()),
         ] {
             if p {
                 self.fail(
@@ -546,7 +532,7 @@ impl Validator<'_> {
                 Some(u) => Some(u),
                 None => {
                     self.fail(
-                        format!("{p}.record_unit").as_str(),
+                        &format!("{p}.record_unit"),
                         format!(
                             "is \"{u}\", but must be one of {}",
                             quoted(AccelUnit::NAMES)
@@ -558,22 +544,18 @@ impl Validator<'_> {
         };
         let polarity = match e.polarity {
             None => 1.0,
-            Some(p) if p == 1.0 || p == -1.0 => p,
-            Some(p) => {
+            Some(x) if x == 1.0 || x == -1.0 => x,
+            Some(x) => {
                 self.fail(
-                    format!("{p}.polarity").as_str(),
-                    format!("is {p}, but must be 1 (as recorded) or -1 (inverted)"),
+                    &format!("{p}.polarity"),
+                    format!("is {x}, but must be 1 (as recorded) or -1 (inverted)"),
                 );
                 1.0
             }
         };
         let target = match e.scale_to_pga {
             None => None,
-            x => Some(self.number(
-                format!("{p}.scale_to_pga").as_str(),
-                x,
-                Rule::positive("m/s²"),
-            )),
+            x => Some(self.number(&format!("{p}.scale_to_pga"), x, Rule::positive("m/s²"))),
         };
         let dir = case_path.parent().unwrap_or(Path::new(""));
         let path = dir.join(record);
@@ -593,7 +575,7 @@ impl Validator<'_> {
         let pga = rec.pga();
         if pga == 0.0 {
             self.fail(
-                format!("{p}.record").as_str(),
+                &format!("{p}.record"),
                 format!("{}: every sample is zero", path.display()),
             );
             return None;

@@ -24,7 +24,7 @@ pub fn first_rise(
     curvature: f64,
     frequency: f64,
 ) -> Option<f64> {
-    if !(span > 0.0) {
+    if span.is_nan() || span <= 0.0 {
         return None;
     }
     let pieces =

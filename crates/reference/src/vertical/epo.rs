@@ -13,6 +13,7 @@
 //! - stuck: e'' + ω²e = d, so e = (d0 + d'τ)/ω² + C cos ωτ + D sin ωτ, R = K·e;
 //! - slipping in direction s: R = s·μ·N(τ), u'' = d − s·μ·N/M (u closed form: N integrated
 //!   twice), e = s·μ·N/K, up = u − e.
+//!
 //! An onset where K·|e| reaches μ·N(τ); a stop where the slip rate λ = s·u' − μ·N'/K
 //! (it is s·up') returns to zero. Both located by [`super::crossing::first_rise`] with a
 //! bound on the event function's curvature, then bisection to the last float.
