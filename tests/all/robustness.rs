@@ -783,6 +783,91 @@ fn the_same_case_run_twice_gives_byte_identical_traces() {
     }
 }
 
+// ── Study grids (the reader `fuzz/fuzz_targets/study_grid.rs` explores) ──────────────
+
+/// A small base case driven by `rec.AT2` (the fuzz target's layout).
+const GRID_BASE: &str = "title = \"t\"\nsource = \"s\"\nrequirement = \"r\"\n\n\
+[model]\nkind = \"oscillator\"\nmass = 1.0e6\ngravity = 1.0\n\n\
+[model.contact]\nkx = 9.8696e8\nkz = 3.94784e9\nmu = 0.5\n\n\
+[excitation]\nkind = \"ground-acceleration\"\nrecord = \"rec.AT2\"\nscale_to_pga = 0.980665\npolarity = 1\n\n\
+[run]\nduration = 1.0\ndt = 0.005\n\n[engines.predictor-corrector]\nvariants = [\"ground-accel\"]\ndt = 0.001\n";
+
+/// The fuzz corpus's full seed: 2 records × 2 PGAs × 3 μ × 2 polarities.
+const GRID_SEED: &str = "title = \"fuzz grid\"\nbase = \"base.toml\"\n\
+records = [\"rec.AT2\", { path = \"rec.csv\", unit = \"g\" }]\n\
+pga = [0.490333, 0.980665]\nmu = [0.3, 0.5, inf]\npolarity = [1, -1]\ntail = 0.5\nnewmark = true\n";
+
+/// A folder holding `base.toml`, `rec.AT2` (10 samples) and `rec.csv` (4 samples), made
+/// once for every grid test.
+fn grid_folder() -> &'static Path {
+    static DIR: std::sync::OnceLock<tempfile::TempDir> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = tempfile::tempdir().unwrap();
+        let at2 = "R\nFUZZ\nACCELERATION TIME HISTORY IN UNITS OF G\nNPTS= 10, DT= 0.0050 SEC\n\
+                   0.0 0.01 0.02 0.01 0.0\n-0.01 -0.02 -0.01 0.0 0.0\n";
+        let csv = "# t,a\n0.0,0.0\n0.01,0.02\n0.02,-0.01\n0.03,0.0\n";
+        for (name, text) in [("base.toml", GRID_BASE), ("rec.AT2", at2), ("rec.csv", csv)] {
+            std::fs::write(dir.path().join(name), text).unwrap();
+        }
+        dir
+    })
+    .path()
+}
+
+/// `text` read as the grid file `name` beside [`grid_folder`]'s base case and records.
+fn load_grid_text(name: &str, text: &str) -> Result<rockslide::study::Grid, String> {
+    let path = grid_folder().join(name);
+    std::fs::write(&path, text).unwrap();
+    rockslide::study::load_grid(&path).map_err(|e| e.to_string())
+}
+
+#[test]
+fn the_seed_grid_expands_to_the_product_of_its_lists() {
+    let g = load_grid_text("seed.toml", GRID_SEED).unwrap();
+    assert_eq!(g.points.len(), 2 * 2 * 3 * 2);
+    assert_eq!(g.records[0].record.samples.len(), 10);
+    assert_eq!(g.records[1].record.samples.len(), 4);
+    // record-major, then μ, polarity, amplitude
+    let last = g.points.last().unwrap();
+    assert_eq!(
+        (last.record, last.mu, last.polarity),
+        (1, Some(f64::INFINITY), -1.0)
+    );
+}
+
+#[test]
+fn a_grid_record_that_is_a_device_is_an_error_not_an_endless_read() {
+    // before: the grid hashed the record with `fs::read` before the record reader's
+    // checks, reading /dev/zero until memory ran out
+    let e = load_grid_text(
+        "device.toml",
+        "base = \"base.toml\"\nrecords = [{ path = \"/dev/zero\", unit = \"g\" }]\n",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("/dev/zero: the record is not a regular file"),
+        "{e}"
+    );
+}
+
+#[test]
+fn every_grid_error_is_located_and_reported_together() {
+    let text = "base = \"base.toml\"\nrecords = [\"rec.AT2\", { path = \"missing.csv\", unit = \"furlong\" }]\n\
+                pga = []\nscale = [-1]\nmu = [-0.1]\npolarity = [2]\ntail = -1\n";
+    let e = load_grid_text("errors.toml", text).unwrap_err();
+    for want in [
+        "errors.toml:2:23: records[1]: unit \"furlong\"",
+        "errors.toml:3:7: pga: must list at least one value",
+        "errors.toml:4:10: scale[0]: is -1",
+        "errors.toml:4:9: scale: give `pga`",
+        "errors.toml:5:7: mu[0]: is -0.1",
+        "errors.toml:6:13: polarity[0]: is 2",
+        "errors.toml:7:8: tail: is -1",
+    ] {
+        assert!(e.contains(want), "{want:?} not in\n{e}");
+    }
+}
+
 // ── proptest fuzz of the readers (CI keeps checking what fuzz/ explores) ─────────────
 
 proptest! {
@@ -825,5 +910,18 @@ proptest! {
             bytes[i % n] = b;
         }
         let _ = read_mcap_bytes(Path::new("x.mcap"), &bytes);
+    }
+
+    #[test]
+    fn any_grid_text_gives_a_grid_or_errors(text in "\\PC{0,300}") {
+        let _ = load_grid_text("any.toml", &text);
+    }
+
+    #[test]
+    fn any_mutated_grid_gives_a_grid_or_errors(at in 0usize..400, with in "\\PC{0,12}") {
+        let mut at = at.min(GRID_SEED.len());
+        while !GRID_SEED.is_char_boundary(at) { at -= 1; }
+        let mutated = format!("{}{with}{}", &GRID_SEED[..at], &GRID_SEED[at..]);
+        let _ = load_grid_text("mutated.toml", &mutated);
     }
 }
