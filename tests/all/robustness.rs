@@ -464,7 +464,7 @@ fn stability_with_a_hundred_thousand_workers_runs_on_as_many_as_there_is_work() 
     );
     // before: minutes starting 100000 threads; now the pool has at most one per run
     assert!(started.elapsed().as_secs_f64() < 60.0);
-    let json = std::fs::read_to_string(dir.path().join("stability/stability.json")).unwrap();
+    let json = std::fs::read_to_string(dir.path().join("stability/stability-timing.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     let threads = v["threads"].as_u64().expect("threads recorded");
     let runs = v["runs"].as_array().unwrap().len() as u64;
@@ -781,6 +781,135 @@ fn the_same_case_run_twice_gives_byte_identical_traces() {
         );
         assert!(x == y, "{} differs between two runs", f.display());
     }
+}
+
+/// Every file under `dir`, relative to `dir`, sorted.
+fn all_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                out.push(p.strip_prefix(dir).unwrap().to_path_buf());
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// `rockslide args` with `RAYON_NUM_THREADS` set (the worker count of `run`, which has no
+/// `-j`), expecting exit 0 or 1.
+fn rockslide_on_threads(threads: usize, args: &[&str]) {
+    let o = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .args(args)
+        .env("RAYON_NUM_THREADS", threads.to_string())
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("rockslide runs");
+    assert!(
+        matches!(o.status.code(), Some(0 | 1)),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// A JSON document without its `wall_seconds` members (the timing part of `result.json`).
+fn without_wall_times(text: &[u8]) -> serde_json::Value {
+    fn strip(v: &mut serde_json::Value) {
+        match v {
+            serde_json::Value::Object(m) => {
+                m.remove("wall_seconds");
+                m.values_mut().for_each(strip);
+            }
+            serde_json::Value::Array(a) => a.iter_mut().for_each(strip),
+            _ => {}
+        }
+    }
+    let mut v: serde_json::Value = serde_json::from_slice(text).unwrap();
+    strip(&mut v);
+    v
+}
+
+/// A report's lines without its provenance date (`**Date:**`, `<b>date:</b>`, …).
+fn without_date(text: &[u8]) -> Vec<String> {
+    String::from_utf8_lossy(text)
+        .lines()
+        .filter(|l| !l.to_lowercase().contains("date:*") && !l.to_lowercase().contains("date:</b>"))
+        .map(String::from)
+        .collect()
+}
+
+/// Run and stability with one and with two workers: the same files, every trace (CSV,
+/// MCAP), figure, CSV table and `stability.json` byte for byte; `result.json` apart from
+/// its wall times, the reports apart from their date; only `stability-timing.json` differs
+/// (the worker count and wall times, by design).
+#[test]
+fn outputs_are_byte_identical_across_thread_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = repo("cases/rpepo-mass-accel.toml");
+    let out = |j: usize| dir.path().join(format!("j{j}"));
+    for j in [1, 2] {
+        let o = out(j);
+        rockslide_on_threads(
+            j,
+            &[
+                "run",
+                case.to_str().unwrap(),
+                "-q",
+                "-o",
+                o.to_str().unwrap(),
+            ],
+        );
+        let js = j.to_string();
+        rockslide_on_threads(
+            j,
+            &[
+                "stability",
+                "cases/stability/mu-zero.toml",
+                "-j",
+                &js,
+                "-q",
+                "-o",
+                o.to_str().unwrap(),
+            ],
+        );
+    }
+    let (a, b) = (out(1), out(2));
+    let files = all_files(&a);
+    assert_eq!(files, all_files(&b));
+    let mut byte_equal = 0;
+    for f in &files {
+        let (x, y) = (
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+        );
+        let name = f.file_name().unwrap().to_str().unwrap();
+        match (name, f.extension().and_then(|e| e.to_str())) {
+            ("stability-timing.json", _) => {
+                let threads = |t: &[u8]| without_wall_times(t)["threads"].as_u64();
+                assert_eq!((threads(&x), threads(&y)), (Some(1), Some(2)));
+            }
+            ("result.json", _) => assert_eq!(
+                without_wall_times(&x),
+                without_wall_times(&y),
+                "{}",
+                f.display()
+            ),
+            (_, Some("md" | "html")) => {
+                assert_eq!(without_date(&x), without_date(&y), "{}", f.display())
+            }
+            _ => {
+                assert!(x == y, "{} differs between 1 and 2 workers", f.display());
+                byte_equal += 1;
+            }
+        }
+    }
+    // 6 trace CSVs + the MCAP + 7 figures + 2 summary.csv (case, suite); stability: json, csv, svg
+    assert_eq!(byte_equal, 19, "{files:?}");
 }
 
 // ── Study grids (the reader `fuzz/fuzz_targets/study_grid.rs` explores) ──────────────
