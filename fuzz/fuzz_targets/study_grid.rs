@@ -49,7 +49,8 @@ dt = 0.001
 const RECORD_AT2: &str = "PEER-STYLE RECORD\nFUZZ\nACCELERATION TIME HISTORY IN UNITS OF G\n\
 NPTS= 10, DT= 0.0050 SEC\n 0.0 0.01 0.02 0.01 0.0\n -0.01 -0.02 -0.01 0.0 0.0\n";
 
-const RECORD_CSV: &str = "# Time (s),Acceleration (g's)\n0.0,0.0\n0.01,0.02\n0.02,-0.01\n0.03,0.0\n";
+const RECORD_CSV: &str =
+    "# Time (s),Acceleration (g's)\n0.0,0.0\n0.01,0.02\n0.02,-0.01\n0.03,0.0\n";
 
 /// The scratch folder holding the grid's neighbours, made once per process.
 fn folder() -> &'static PathBuf {
