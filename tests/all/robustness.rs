@@ -912,6 +912,24 @@ fn outputs_are_byte_identical_across_thread_counts() {
     assert_eq!(byte_equal, 19, "{files:?}");
 }
 
+/// Found by the `record` fuzz target (`fuzz/regressions/record/`): three lines whose last
+/// time is far off asked the resampler for 1.8e7 samples (0.9 GB, 6 s in `newmark`).
+#[test]
+fn a_csv_time_column_that_needs_too_many_samples_is_an_error() {
+    let text = "# T0.65\n0.49,-001107\n0.52,-0.00\n550341.,0.03\n";
+    let started = std::time::Instant::now();
+    let e = parse_csv(Path::new("r.csv"), text, AccelUnit::G)
+        .unwrap_err()
+        .to_string();
+    assert!(started.elapsed().as_secs_f64() < 0.5);
+    // (550341 − 0.49) / 0.03 + 1 = 1.834e7 samples, above the 1e7 of the step limit
+    assert!(
+        e.contains("r.csv:1: the time column is not uniform and its smallest interval")
+            && e.contains("would need 1.834e7 samples to resample; the limit is 10000000"),
+        "{e}"
+    );
+}
+
 // ── Study grids (the reader `fuzz/fuzz_targets/study_grid.rs` explores) ──────────────
 
 /// A small base case driven by `rec.AT2` (the fuzz target's layout).
