@@ -570,7 +570,7 @@ pub fn parse_csv(path: &Path, text: &str, unit: AccelUnit) -> Result<Record, Inp
         // 10⁷ samples and gigabytes (found by fuzzing: 46 bytes, 1.8e7 samples, 0.9 GB).
         let max = crate::case::limits::max_steps();
         let m_f = (span / dt_min).round() + 1.0;
-        if !(m_f <= max as f64) {
+        if m_f.is_nan() || m_f > max as f64 {
             return Err(at(
                 path,
                 1,
