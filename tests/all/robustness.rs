@@ -464,7 +464,7 @@ fn stability_with_a_hundred_thousand_workers_runs_on_as_many_as_there_is_work() 
     );
     // before: minutes starting 100000 threads; now the pool has at most one per run
     assert!(started.elapsed().as_secs_f64() < 60.0);
-    let json = std::fs::read_to_string(dir.path().join("stability/stability.json")).unwrap();
+    let json = std::fs::read_to_string(dir.path().join("stability/stability-timing.json")).unwrap();
     let v: serde_json::Value = serde_json::from_str(&json).unwrap();
     let threads = v["threads"].as_u64().expect("threads recorded");
     let runs = v["runs"].as_array().unwrap().len() as u64;
@@ -783,6 +783,238 @@ fn the_same_case_run_twice_gives_byte_identical_traces() {
     }
 }
 
+/// Every file under `dir`, relative to `dir`, sorted.
+fn all_files(dir: &Path) -> Vec<PathBuf> {
+    let mut out = Vec::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else {
+                out.push(p.strip_prefix(dir).unwrap().to_path_buf());
+            }
+        }
+    }
+    out.sort();
+    out
+}
+
+/// `rockslide args` with `RAYON_NUM_THREADS` set (the worker count of `run`, which has no
+/// `-j`), expecting exit 0 or 1.
+fn rockslide_on_threads(threads: usize, args: &[&str]) {
+    let o = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .args(args)
+        .env("RAYON_NUM_THREADS", threads.to_string())
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output()
+        .expect("rockslide runs");
+    assert!(
+        matches!(o.status.code(), Some(0 | 1)),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+}
+
+/// A JSON document without its `wall_seconds` members (the timing part of `result.json`).
+fn without_wall_times(text: &[u8]) -> serde_json::Value {
+    fn strip(v: &mut serde_json::Value) {
+        match v {
+            serde_json::Value::Object(m) => {
+                m.remove("wall_seconds");
+                m.values_mut().for_each(strip);
+            }
+            serde_json::Value::Array(a) => a.iter_mut().for_each(strip),
+            _ => {}
+        }
+    }
+    let mut v: serde_json::Value = serde_json::from_slice(text).unwrap();
+    strip(&mut v);
+    v
+}
+
+/// A report's lines without its provenance date (`**Date:**`, `<b>date:</b>`, …).
+fn without_date(text: &[u8]) -> Vec<String> {
+    String::from_utf8_lossy(text)
+        .lines()
+        .filter(|l| !l.to_lowercase().contains("date:*") && !l.to_lowercase().contains("date:</b>"))
+        .map(String::from)
+        .collect()
+}
+
+/// Run and stability with one and with two workers: the same files, every trace (CSV,
+/// MCAP), figure, CSV table and `stability.json` byte for byte; `result.json` apart from
+/// its wall times, the reports apart from their date; only `stability-timing.json` differs
+/// (the worker count and wall times, by design).
+#[test]
+fn outputs_are_byte_identical_across_thread_counts() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = repo("cases/rpepo-mass-accel.toml");
+    let out = |j: usize| dir.path().join(format!("j{j}"));
+    for j in [1, 2] {
+        let o = out(j);
+        rockslide_on_threads(
+            j,
+            &[
+                "run",
+                case.to_str().unwrap(),
+                "-q",
+                "-o",
+                o.to_str().unwrap(),
+            ],
+        );
+        let js = j.to_string();
+        rockslide_on_threads(
+            j,
+            &[
+                "stability",
+                "cases/stability/mu-zero.toml",
+                "-j",
+                &js,
+                "-q",
+                "-o",
+                o.to_str().unwrap(),
+            ],
+        );
+    }
+    let (a, b) = (out(1), out(2));
+    let files = all_files(&a);
+    assert_eq!(files, all_files(&b));
+    let mut byte_equal = 0;
+    for f in &files {
+        let (x, y) = (
+            std::fs::read(a.join(f)).unwrap(),
+            std::fs::read(b.join(f)).unwrap(),
+        );
+        let name = f.file_name().unwrap().to_str().unwrap();
+        match (name, f.extension().and_then(|e| e.to_str())) {
+            ("stability-timing.json", _) => {
+                let threads = |t: &[u8]| without_wall_times(t)["threads"].as_u64();
+                assert_eq!((threads(&x), threads(&y)), (Some(1), Some(2)));
+            }
+            ("result.json", _) => assert_eq!(
+                without_wall_times(&x),
+                without_wall_times(&y),
+                "{}",
+                f.display()
+            ),
+            (_, Some("md" | "html")) => {
+                assert_eq!(without_date(&x), without_date(&y), "{}", f.display())
+            }
+            _ => {
+                assert!(x == y, "{} differs between 1 and 2 workers", f.display());
+                byte_equal += 1;
+            }
+        }
+    }
+    // 6 trace CSVs + the MCAP + 7 figures + 2 summary.csv (case, suite); stability: json, csv, svg
+    assert_eq!(byte_equal, 19, "{files:?}");
+}
+
+/// Found by the `record` fuzz target (`fuzz/regressions/record/`): three lines whose last
+/// time is far off asked the resampler for 1.8e7 samples (0.9 GB, 6 s in `newmark`).
+#[test]
+fn a_csv_time_column_that_needs_too_many_samples_is_an_error() {
+    let text = "# T0.65\n0.49,-001107\n0.52,-0.00\n550341.,0.03\n";
+    let started = std::time::Instant::now();
+    let e = parse_csv(Path::new("r.csv"), text, AccelUnit::G)
+        .unwrap_err()
+        .to_string();
+    assert!(started.elapsed().as_secs_f64() < 0.5);
+    // (550341 − 0.49) / 0.03 + 1 = 1.834e7 samples, above the 1e7 of the step limit
+    assert!(
+        e.contains("r.csv:1: the time column is not uniform and its smallest interval")
+            && e.contains("would need 1.834e7 samples to resample; the limit is 10000000"),
+        "{e}"
+    );
+}
+
+// ── Study grids (the reader `fuzz/fuzz_targets/study_grid.rs` explores) ──────────────
+
+/// A small base case driven by `rec.AT2` (the fuzz target's layout).
+const GRID_BASE: &str = "title = \"t\"\nsource = \"s\"\nrequirement = \"r\"\n\n\
+[model]\nkind = \"oscillator\"\nmass = 1.0e6\ngravity = 1.0\n\n\
+[model.contact]\nkx = 9.8696e8\nkz = 3.94784e9\nmu = 0.5\n\n\
+[excitation]\nkind = \"ground-acceleration\"\nrecord = \"rec.AT2\"\nscale_to_pga = 0.980665\npolarity = 1\n\n\
+[run]\nduration = 1.0\ndt = 0.005\n\n[engines.predictor-corrector]\nvariants = [\"ground-accel\"]\ndt = 0.001\n";
+
+/// The fuzz corpus's full seed: 2 records × 2 PGAs × 3 μ × 2 polarities.
+const GRID_SEED: &str = "title = \"fuzz grid\"\nbase = \"base.toml\"\n\
+records = [\"rec.AT2\", { path = \"rec.csv\", unit = \"g\" }]\n\
+pga = [0.490333, 0.980665]\nmu = [0.3, 0.5, inf]\npolarity = [1, -1]\ntail = 0.5\nnewmark = true\n";
+
+/// A folder holding `base.toml`, `rec.AT2` (10 samples) and `rec.csv` (4 samples), made
+/// once for every grid test.
+fn grid_folder() -> &'static Path {
+    static DIR: std::sync::OnceLock<tempfile::TempDir> = std::sync::OnceLock::new();
+    DIR.get_or_init(|| {
+        let dir = tempfile::tempdir().unwrap();
+        let at2 = "R\nFUZZ\nACCELERATION TIME HISTORY IN UNITS OF G\nNPTS= 10, DT= 0.0050 SEC\n\
+                   0.0 0.01 0.02 0.01 0.0\n-0.01 -0.02 -0.01 0.0 0.0\n";
+        let csv = "# t,a\n0.0,0.0\n0.01,0.02\n0.02,-0.01\n0.03,0.0\n";
+        for (name, text) in [("base.toml", GRID_BASE), ("rec.AT2", at2), ("rec.csv", csv)] {
+            std::fs::write(dir.path().join(name), text).unwrap();
+        }
+        dir
+    })
+    .path()
+}
+
+/// `text` read as the grid file `name` beside [`grid_folder`]'s base case and records.
+fn load_grid_text(name: &str, text: &str) -> Result<rockslide::study::Grid, String> {
+    let path = grid_folder().join(name);
+    std::fs::write(&path, text).unwrap();
+    rockslide::study::load_grid(&path).map_err(|e| e.to_string())
+}
+
+#[test]
+fn the_seed_grid_expands_to_the_product_of_its_lists() {
+    let g = load_grid_text("seed.toml", GRID_SEED).unwrap();
+    assert_eq!(g.points.len(), 2 * 2 * 3 * 2);
+    assert_eq!(g.records[0].record.samples.len(), 10);
+    assert_eq!(g.records[1].record.samples.len(), 4);
+    // record-major, then μ, polarity, amplitude
+    let last = g.points.last().unwrap();
+    assert_eq!(
+        (last.record, last.mu, last.polarity),
+        (1, Some(f64::INFINITY), -1.0)
+    );
+}
+
+#[test]
+fn a_grid_record_that_is_a_device_is_an_error_not_an_endless_read() {
+    // before: the grid hashed the record with `fs::read` before the record reader's
+    // checks, reading /dev/zero until memory ran out
+    let e = load_grid_text(
+        "device.toml",
+        "base = \"base.toml\"\nrecords = [{ path = \"/dev/zero\", unit = \"g\" }]\n",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("/dev/zero: the record is not a regular file"),
+        "{e}"
+    );
+}
+
+#[test]
+fn every_grid_error_is_located_and_reported_together() {
+    let text = "base = \"base.toml\"\nrecords = [\"rec.AT2\", { path = \"missing.csv\", unit = \"furlong\" }]\n\
+                pga = []\nscale = [-1]\nmu = [-0.1]\npolarity = [2]\ntail = -1\n";
+    let e = load_grid_text("errors.toml", text).unwrap_err();
+    for want in [
+        "errors.toml:2:23: records[1]: unit \"furlong\"",
+        "errors.toml:3:7: pga: must list at least one value",
+        "errors.toml:4:10: scale[0]: is -1",
+        "errors.toml:4:9: scale: give `pga`",
+        "errors.toml:5:7: mu[0]: is -0.1",
+        "errors.toml:6:13: polarity[0]: is 2",
+        "errors.toml:7:8: tail: is -1",
+    ] {
+        assert!(e.contains(want), "{want:?} not in\n{e}");
+    }
+}
+
 // ── proptest fuzz of the readers (CI keeps checking what fuzz/ explores) ─────────────
 
 proptest! {
@@ -825,5 +1057,18 @@ proptest! {
             bytes[i % n] = b;
         }
         let _ = read_mcap_bytes(Path::new("x.mcap"), &bytes);
+    }
+
+    #[test]
+    fn any_grid_text_gives_a_grid_or_errors(text in "\\PC{0,300}") {
+        let _ = load_grid_text("any.toml", &text);
+    }
+
+    #[test]
+    fn any_mutated_grid_gives_a_grid_or_errors(at in 0usize..400, with in "\\PC{0,12}") {
+        let mut at = at.min(GRID_SEED.len());
+        while !GRID_SEED.is_char_boundary(at) { at -= 1; }
+        let mutated = format!("{}{with}{}", &GRID_SEED[..at], &GRID_SEED[at..]);
+        let _ = load_grid_text("mutated.toml", &mutated);
     }
 }

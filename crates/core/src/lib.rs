@@ -6,6 +6,7 @@
 //!   motions, with every input error located (`file:line:col: field: reason`).
 //! - [`response`]: the response quantities a case's tolerances can name, with display units.
 //! - [`trace`]: the output format — channels with units — and its CSV and MCAP files.
+//! - [`study_grid`]: study grid files → validated, expanded grids of points.
 //! - [`error`]: input errors and run-time errors; [`io`]: atomic writes.
 //!
 //! ## Glossary (paper symbols)
@@ -30,4 +31,5 @@ pub mod case;
 pub mod error;
 pub mod io;
 pub mod response;
+pub mod study_grid;
 pub mod trace;

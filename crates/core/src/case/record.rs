@@ -14,7 +14,7 @@
 //!   sample it is zero.
 //! - A CSV whose time column is not uniform (to 1e-3 of a step) is resampled by linear
 //!   interpolation to a uniform step equal to its smallest interval, and the record's
-//!   `note` says so.
+//!   `note` says so; at most the step limit's samples (`limits::max_steps`).
 //! - Read as engineers receive them: a UTF-8 byte-order mark is skipped, CRLF line ends,
 //!   tab, comma or semicolon separators, trailing separators and blank fields, Fortran `D`
 //!   exponents (`0.1234D-02`) are accepted. A file that is not UTF-8 is refused at the line
@@ -566,17 +566,22 @@ pub fn parse_csv(path: &Path, text: &str, unit: AccelUnit) -> Result<Record, Inp
             .windows(2)
             .map(|w| w[1] - w[0])
             .fold(f64::INFINITY, f64::min);
-        let m = (span / dt_min).round() as usize + 1;
-        if m > 20_000_000 {
+        // Bounded like a run's steps: a few lines with one far time must not ask for
+        // 10⁷ samples and gigabytes (found by fuzzing: 46 bytes, 1.8e7 samples, 0.9 GB).
+        let max = crate::case::limits::max_steps();
+        let m_f = (span / dt_min).round() + 1.0;
+        if m_f.is_nan() || m_f > max as f64 {
             return Err(at(
                 path,
                 1,
                 None,
                 format!(
-                    "the time column is not uniform and its smallest interval ({dt_min} s) would need {m} samples to resample: fix the time column"
+                    "the time column is not uniform and its smallest interval ({dt_min} s) would need {m_f:.3e} samples to resample; the limit is {max} (set {} to raise it): fix the time column",
+                    crate::case::limits::MAX_STEPS_VARIABLE
                 ),
             ));
         }
+        let m = m_f as usize;
         let dt = span / (m - 1) as f64;
         let mut out = Vec::with_capacity(m);
         let mut j = 0;

@@ -156,10 +156,11 @@ pub(crate) fn document(r: &StabilityResult) -> Vec<Block> {
     let mut b = vec![
         Block::Heading(1, "Stability on stiff and extreme scenes".into()),
         Block::Para(format!(
-            "Classes: accurate (✓) max error of the relative displacement ≤ {} % of its peak (SAP2000 \"Acceptable\"); inaccurate (~) completed, stable, larger error; diverged (✗) NaN/Inf in the trace, divergence reported by the engine, an engine panic, or energy growth (stored + dissipated energy above 1 + {} times the most energy ever supplied); not converged (NC) an iterative solver gave up. Cells show the max error or the time of the failure. {} worker threads.",
+            "Classes: accurate (✓) max error of the relative displacement ≤ {} % of its peak (SAP2000 \"Acceptable\"); inaccurate (~) completed, stable, larger error; diverged (✗) NaN/Inf in the trace, divergence reported by the engine, an engine panic, or energy growth (stored + dissipated energy above 1 + {} times the most energy ever supplied); not converged (NC) an iterative solver gave up. Cells show the max error or the time of the failure. The worker count and the wall time of every run are in `{}` (this page and `{}` are the same whatever the number of workers).",
             100.0 * r.criteria.accuracy,
             r.criteria.growth_factor,
-            r.threads
+            rockslide_verify::sweep::stability::TIMING_FILE,
+            rockslide_verify::sweep::stability::FILE,
         )),
         Block::Facts(vec![(
             "Made by".into(),

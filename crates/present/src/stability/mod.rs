@@ -77,7 +77,6 @@ mod tests {
             class,
             error,
             energy: Err("no audit".into()),
-            seconds: 1e-3,
         }
     }
 
@@ -108,7 +107,7 @@ mod tests {
             }],
             not_applicable: Vec::new(),
             criteria: Criteria::default(),
-            threads: 1,
+            timing: Default::default(),
         };
         let bytes = stability_csv(&st).unwrap();
         let mut r = csv::Reader::from_reader(bytes.as_slice());

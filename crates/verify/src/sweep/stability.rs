@@ -6,7 +6,10 @@
 //!
 //! The result, [`StabilityResult`], is written as `<out>/stability/stability.json`
 //! ([`StabilityResult::save`]) and read back by the suite report
-//! ([`StabilityResult::load`]); `rockslide-present` renders its map and limits.
+//! ([`StabilityResult::load`]); `rockslide-present` renders its map and limits. The same
+//! scenes give the same `stability.json` byte for byte, whatever the number of workers:
+//! the worker count and the wall time of each run ([`StabilityTiming`]) are saved apart,
+//! in `stability-timing.json`.
 
 use std::collections::BTreeSet;
 use std::path::Path;
@@ -32,6 +35,8 @@ use crate::suite::{ReferenceResult, solve_reference};
 pub const DIR: &str = "stability";
 /// File name of the typed result in [`DIR`].
 pub const FILE: &str = "stability.json";
+/// File name of the timing part in [`DIR`] (worker count, wall times).
+pub const TIMING_FILE: &str = "stability-timing.json";
 
 /// The Δt/T ladder every stability scene is run at: from T/100 to T (beyond T/2).
 pub const DT_OVER_T: &[f64] = &[0.01, 0.02, 0.05, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.8, 1.0];
@@ -57,9 +62,6 @@ pub struct StabilityRun {
     pub error: Option<f64>,
     /// Energy audit, or why there is none.
     pub energy: Result<EnergySummary, String>,
-    /// Wall time, s.
-    #[serde(with = "crate::json::real")]
-    pub seconds: f64,
 }
 
 impl StabilityRun {
@@ -133,8 +135,34 @@ pub struct StabilityResult {
     pub not_applicable: Vec<NotApplicable>,
     /// The classification criteria.
     pub criteria: Criteria,
+    /// Worker count and wall times: saved apart from the result (`stability-timing.json`),
+    /// so that `stability.json` depends on the scenes and the build only.
+    #[serde(skip)]
+    pub timing: StabilityTiming,
+}
+
+/// The wall-clock side of a stability study: how many workers ran it and how long each
+/// run took. Differs between reruns and thread counts, unlike the rest of the result.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+pub struct StabilityTiming {
     /// Worker threads used.
     pub threads: usize,
+    /// Wall time of each run, s, in the order of [`StabilityResult::runs`].
+    pub runs: Vec<RunTime>,
+}
+
+/// The wall time of one run of the ladder.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunTime {
+    /// Case name.
+    pub case: String,
+    /// `engine/variant`.
+    pub series: String,
+    /// Δt / T.
+    pub dt_over_t: f64,
+    /// Wall time, s ("NaN" when the run was not timed).
+    #[serde(with = "crate::json::real")]
+    pub seconds: f64,
 }
 
 impl StabilityResult {
@@ -143,16 +171,23 @@ impl StabilityResult {
         DT_OVER_T
     }
 
-    /// Write `stability.json` into `dir` (`<out>/stability/`).
+    /// Write `stability.json` and its timing part, `stability-timing.json`, into `dir`
+    /// (`<out>/stability/`).
     pub fn save(&self, dir: &Path) -> Result<(), Error> {
-        crate::json::write(&dir.join(FILE), self)
+        crate::json::write(&dir.join(FILE), self)?;
+        crate::json::write(&dir.join(TIMING_FILE), &self.timing)
     }
 
     /// Read `stability.json` from `dir`: `None` when there is none, else the result or
-    /// why it could not be read.
+    /// why it could not be read. The timing part is read too when it is there and
+    /// readable (it is not needed to render the result).
     pub fn load(dir: &Path) -> Option<Result<StabilityResult, String>> {
         let path = dir.join(FILE);
-        path.exists().then(|| crate::json::read(&path))
+        path.exists().then(|| {
+            let mut r: StabilityResult = crate::json::read(&path)?;
+            r.timing = crate::json::read(&dir.join(TIMING_FILE)).unwrap_or_default();
+            Ok(r)
+        })
     }
 
     /// Row labels of the map, in order.
@@ -296,6 +331,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
         .map_err(InputErrors::from)?;
 
     let mut runs = Vec::new();
+    let mut times = Vec::new();
     let mut k = 0;
     for (ci, series) in plans.iter().enumerate() {
         let case = &cases[ci];
@@ -323,6 +359,11 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                     class,
                     error,
                     energy,
+                });
+                times.push(RunTime {
+                    case: case.name.clone(),
+                    series: s.label(),
+                    dt_over_t: *x,
                     seconds: t.seconds.first().copied().unwrap_or(f64::NAN),
                 });
             }
@@ -375,7 +416,10 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
         limits,
         not_applicable,
         criteria,
-        threads,
+        timing: StabilityTiming {
+            threads,
+            runs: times,
+        },
     })
 }
 
