@@ -106,8 +106,11 @@ pub struct Assembly {
     points: Vec<PointKin>,
     /// The last condensed Newton matrix and its LU factors, reused while the matrix is
     /// bit for bit the same (a contact state that does not change, small rotations).
-    factors: Option<(Matrix3<f64>, LU<f64, U3, U3>)>,
+    factors: Option<Factors>,
 }
+
+/// A condensed Newton matrix and its LU factors (fixed size, on the stack).
+type Factors = (Matrix3<f64>, LU<f64, U3, U3>);
 
 impl Assembly {
     /// Room for a model's nodes and attachment points.
@@ -474,7 +477,7 @@ pub fn solve(
 /// The LU factors of `s_mat`: the cached ones when `s_mat` is bit for bit the matrix they
 /// factor, else new ones (cached). On the stack: no allocation.
 fn factors_of<'a>(
-    cache: &'a mut Option<(Matrix3<f64>, LU<f64, U3, U3>)>,
+    cache: &'a mut Option<Factors>,
     s_mat: &Matrix3<f64>,
 ) -> Option<&'a LU<f64, U3, U3>> {
     let same = |m: &Matrix3<f64>| {
