@@ -14,6 +14,8 @@ use rockslide::engine::fe::{FeOptions, simulate};
 use rockslide::engine::step_count;
 
 fn bench(c: &mut Criterion) {
+    // Case paths from the package root: the bench runs from any directory.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let mut group = c.benchmark_group("fe_step");
     for (name, path, variant) in [
         ("pepo-single", "cases/pepo-mass-accel.toml", "single"),
@@ -21,8 +23,9 @@ fn bench(c: &mut Criterion) {
         ("rpepo-single", "cases/rpepo-mass-accel.toml", "single"),
         ("rpepo-double", "cases/rpepo-mass-accel.toml", "double"),
     ] {
-        let text = std::fs::read_to_string(path).expect("case file");
-        let case = parse_case(Path::new(path), &text).expect("valid case");
+        let path = root.join(path);
+        let text = std::fs::read_to_string(&path).expect("case file");
+        let case = parse_case(&path, &text).expect("valid case");
         let (mut opts, errors) = FeOptions::parse(&case);
         assert!(errors.is_empty());
         opts.sensitivity = false;

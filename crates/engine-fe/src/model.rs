@@ -13,7 +13,7 @@
 //! Gravity is a constant load −M·g on Z; the run starts from the static equilibrium
 //! under it (`static_preload`).
 
-use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
+use nalgebra::{LU, Matrix2, Matrix2x3, Matrix3, Matrix3x2, U3, Vector2, Vector3};
 
 use super::element::{Contact178, Element};
 use super::options::Kinematics;
@@ -104,7 +104,13 @@ pub struct Assembly {
     knn_inv: Vec<Matrix2<f64>>,
     /// Kinematics of every body attachment at the current q (computed once per assembly).
     points: Vec<PointKin>,
+    /// The last condensed Newton matrix and its LU factors, reused while the matrix is
+    /// bit for bit the same (a contact state that does not change, small rotations).
+    factors: Option<Factors>,
 }
+
+/// A condensed Newton matrix and its LU factors (fixed size, on the stack).
+type Factors = (Matrix3<f64>, LU<f64, U3, U3>);
 
 impl Assembly {
     /// Room for a model's nodes and attachment points.
@@ -119,6 +125,7 @@ impl Assembly {
             kbn: vec![Matrix3x2::zeros(); nodes],
             knb: vec![Matrix2x3::zeros(); nodes],
             knn_inv: vec![Matrix2::zeros(); nodes],
+            factors: None,
         }
     }
 }
@@ -455,8 +462,9 @@ pub fn solve(
         rhs.z = 0.0;
     }
     // LU with partial pivoting: the closed-form 3×3 inverse is a little cheaper but
-    // loses digits, and the tight preset then needs more iterations.
-    let Some(x) = s_mat.lu().solve(&rhs) else {
+    // loses digits, and the tight preset then needs more iterations. The factors are
+    // reused while the matrix is unchanged (the same bits, so the same solution).
+    let Some(x) = factors_of(&mut a.factors, &s_mat).and_then(|lu| lu.solve(&rhs)) else {
         return false;
     };
     *dq = x;
@@ -464,6 +472,23 @@ pub fn solve(
         dun[k] = a.knn_inv[k] * (rn[k] / sys.s - a.knb[k] * x);
     }
     true
+}
+
+/// The LU factors of `s_mat`: the cached ones when `s_mat` is bit for bit the matrix they
+/// factor, else new ones (cached). On the stack: no allocation.
+fn factors_of<'a>(
+    cache: &'a mut Option<Factors>,
+    s_mat: &Matrix3<f64>,
+) -> Option<&'a LU<f64, U3, U3>> {
+    let same = |m: &Matrix3<f64>| {
+        m.iter()
+            .zip(s_mat.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+    };
+    if !matches!(cache, Some((m, _)) if same(m)) {
+        *cache = Some((*s_mat, s_mat.lu()));
+    }
+    cache.as_ref().map(|(_, lu)| lu)
 }
 
 /// The tangent stiffness condensed onto the body's (X, Z, θ) at the current element

@@ -402,6 +402,23 @@ fn newton_step(
                 diverged: true,
             });
         }
+        // A residual at the round-off of the force scale is converged whatever the
+        // correction: accepted before solving (the linear sticking step's second
+        // iteration costs an assembly, no solve). The same test as below, so the same
+        // iterate is accepted.
+        if r2.sqrt() <= 1e-11 * fref {
+            done(it, counters);
+            return Ok(StepState {
+                t,
+                q,
+                v,
+                a,
+                f,
+                pb: w.asm.pb,
+                damp,
+                g,
+            });
+        }
         if !solve(model, &sys, &mut w.asm, &rb, &w.rn, &mut dq, &mut w.dun) {
             done(it, counters);
             return Err(StepFailure {
