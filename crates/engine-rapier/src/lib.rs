@@ -18,7 +18,10 @@ mod settings;
 mod simulate;
 mod world;
 
-pub use settings::{KEYS, MAX_STRIDE, OscillatorContact, OscillatorSteps, RapierSettings};
+pub use settings::{
+    ACCURACY_MAX, ACCURACY_MIN, KEYS, MAX_STRIDE, OscillatorContact, OscillatorSteps,
+    RapierSettings,
+};
 pub use simulate::Drive;
 pub use world::{SUPPORT_DAMPING_SHARE, Support};
 

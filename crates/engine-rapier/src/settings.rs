@@ -88,21 +88,8 @@ impl OscillatorSteps {
     /// boundary's neighbour; the ground tables integrate it exactly in between); the
     /// output step is divided into the fewest equal steps that satisfy both.
     pub fn for_scene(osc: &Oscillator, excitation: &Excitation, dt: f64, accuracy: f64) -> Self {
-        let structure = osc.period();
-        let signal = match excitation {
-            Excitation::None => None,
-            Excitation::MassAcceleration(sig)
-            | Excitation::GroundDisplacement(sig)
-            | Excitation::GroundAcceleration(sig) => Some(sig),
-        };
-        let (period, excitation_limits) = match signal {
-            Some(Signal::SinePulse { omega, .. })
-                if 2.0 * std::f64::consts::PI / omega < structure =>
-            {
-                (2.0 * std::f64::consts::PI / omega, true)
-            }
-            _ => (structure, false),
-        };
+        let (period, excitation_limits) = shortest_period(osc, excitation);
+        let signal = excitation.signal();
         let mut dt_max = period * (accuracy / STEP_ERROR_CONSTANT).sqrt();
         let mut excitation_limits = excitation_limits;
         if let Some(Signal::Record { dt: rdt, .. }) = signal
@@ -121,12 +108,40 @@ impl OscillatorSteps {
         }
     }
 
+    /// The accuracy target whose step rule gives rapier steps of `dt` on this scene,
+    /// ε = 300·(Δt/T_min)² (the rule inverted), within the accepted range
+    /// [[`ACCURACY_MIN`], [`ACCURACY_MAX`]]: what `rockslide sweep` runs each rung at, so
+    /// that its ladder is the rule's own steps (a rung coarser than the loosest target's
+    /// step, T_min/38.7, is still divided by the rule).
+    pub fn accuracy_for_step(osc: &Oscillator, excitation: &Excitation, dt: f64) -> f64 {
+        let (period, _) = shortest_period(osc, excitation);
+        (STEP_ERROR_CONSTANT * (dt / period).powi(2)).clamp(ACCURACY_MIN, ACCURACY_MAX)
+    }
+
     /// Whether the chosen step meets the accuracy target (false only when the stride
     /// would exceed [`MAX_STRIDE`]).
     pub fn within_target(&self) -> bool {
         self.dt_inner <= self.dt_max * (1.0 + 1e-12)
     }
 }
+
+/// The shortest period the oscillator's step must resolve, s: the structure's 2π/ω, or a
+/// sine pulse's period when shorter (then `true`: the excitation sets it).
+fn shortest_period(osc: &Oscillator, excitation: &Excitation) -> (f64, bool) {
+    let structure = osc.period();
+    match excitation.signal() {
+        Some(Signal::SinePulse { omega, .. }) if 2.0 * std::f64::consts::PI / omega < structure => {
+            (2.0 * std::f64::consts::PI / omega, true)
+        }
+        _ => (structure, false),
+    }
+}
+
+/// The tightest `accuracy` a case may ask for.
+pub const ACCURACY_MIN: f64 = 1e-4;
+
+/// The loosest `accuracy` a case may ask for.
+pub const ACCURACY_MAX: f64 = 0.2;
 
 impl Default for RapierSettings {
     fn default() -> Self {
@@ -190,8 +205,8 @@ impl RapierSettings {
         let accuracy = number(
             "accuracy",
             d.accuracy,
-            1e-4,
-            0.2,
+            ACCURACY_MIN,
+            ACCURACY_MAX,
             "a relative accuracy from 1e-4 to 0.2",
         );
         let zeta = number(
