@@ -192,9 +192,10 @@ cycles = 0.5"#,
 /// rockslide's rapier RPEPO (joint-limit supports, no feet) shall agree with the FE
 /// engine (single CONTA178, the case's own settings) before the first full lift-off,
 /// within issue 17's 5 %: measured on `cases/rpepo-mass-accel.toml` (rapier at its own
-/// step rule, 1 ms output): peak uplift +0.51 %, peak rotation −0.005 %, first full
-/// lift-off 0.842 vs 0.842 s, peak sliding up to the lift-off −2.64 %, peak CM
-/// horizontal up to the lift-off −3.84 % (the former 1 t feet: +46 % and +33 %).
+/// step rule ω_r·h ≤ 1.1 and one sweep, 1 ms output): peak uplift +1.10 %, peak
+/// rotation +0.02 %, first full lift-off 0.840 vs 0.842 s (−0.24 %), peak sliding up to
+/// the lift-off −2.40 %, peak CM horizontal up to the lift-off −2.91 % (the former 1 t
+/// feet: +46 % and +33 %).
 #[test]
 fn joint_limit_rpepo_matches_fe_before_liftoff() {
     use rockslide::case::load_case;
@@ -205,8 +206,8 @@ fn joint_limit_rpepo_matches_fe_before_liftoff() {
     let (f, r) = (responses(&fe.trace), responses(&ra.trace));
     let t_lift = f["first_liftoff"];
     println!("lift-off fe {t_lift} rapier {}", r["first_liftoff"]);
-    assert!((r["first_liftoff"] - t_lift).abs() < 0.5e-3);
-    for (key, tol) in [("peak_uplift", 0.007), ("peak_rotation", 1e-3)] {
+    assert!((r["first_liftoff"] - t_lift).abs() < 2.5e-3);
+    for (key, tol) in [("peak_uplift", 0.013), ("peak_rotation", 1e-3)] {
         let e = r[key] / f[key] - 1.0;
         println!("{key}: {e:+.5}");
         assert!(e.abs() < tol, "{key}: {e}");
@@ -220,7 +221,7 @@ fn joint_limit_rpepo_matches_fe_before_liftoff() {
             .filter(|(time, _)| **time < t_lift)
             .fold(0.0_f64, |m, (_, x)| m.max(x.abs()))
     };
-    for (key, tol) in [("slide", 0.03), ("cm_x", 0.045)] {
+    for (key, tol) in [("slide", 0.027), ("cm_x", 0.033)] {
         let e = peak_before(&ra.trace, key) / peak_before(&fe.trace, key) - 1.0;
         println!("{key} before lift-off: {e:+.5}");
         assert!(e.abs() < tol, "{key}: {e}");
