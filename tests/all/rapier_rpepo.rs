@@ -47,20 +47,19 @@ fn rests_in_static_equilibrium_without_creep() {
     let t = &run.trace;
     let w = 1.0e6 * 9.81;
     let n0 = t.column("normal").unwrap()[0];
-    // measured: normal force 9.7859 MN vs W = 9.81 MN (−0.245 %: the 400 velocity-halving
-    // settling steps are only 40 ms at this dt and leave the body ~6 µm high on the
-    // contacts' 25 µm compliance), base shear −1.2 N
+    // measured (joint-limit supports, started in static equilibrium: nothing to settle):
+    // normal force W = 9.81 MN exactly, base shear 0, slide 0 over 0.5 s (the feet
+    // model left the normal 0.245 % low after its settling steps and crept 2.3e-13 m).
     println!("normal {n0}, shear {}", t.column("base_shear").unwrap()[0]);
-    assert!((n0 / w - 1.0).abs() < 3e-3);
-    assert!(t.column("base_shear").unwrap()[0].abs() < 100.0);
-    // measured: |slide| ≤ 2.3e-13 m over 0.5 s with the default 8 sweeps
+    assert!((n0 / w - 1.0).abs() < 1e-12);
+    assert!(t.column("base_shear").unwrap()[0].abs() < 1e-6);
     let creep = t
         .column("slide")
         .unwrap()
         .iter()
         .fold(0.0_f64, |m, x| m.max(x.abs()));
     println!("creep {creep:e}");
-    assert!(creep < 1e-9, "the loaded feet creep: {creep} m");
+    assert!(creep < 1e-12, "the supports creep: {creep} m");
 }
 
 /// With the feet model (`contact_model = "foot"`) and rapier's default single
@@ -192,9 +191,10 @@ cycles = 0.5"#,
 /// rockslide's rapier RPEPO (joint-limit supports, no feet) shall agree with the FE
 /// engine (single CONTA178, the case's own settings) before the first full lift-off,
 /// within issue 17's 5 %: measured on `cases/rpepo-mass-accel.toml` (rapier at its own
-/// step rule, 1 ms output): peak uplift +0.51 %, peak rotation −0.005 %, first full
-/// lift-off 0.842 vs 0.842 s, peak sliding up to the lift-off −2.64 %, peak CM
-/// horizontal up to the lift-off −3.84 % (the former 1 t feet: +46 % and +33 %).
+/// step rule ω_r·h ≤ 1.1 and one sweep, 1 ms output): peak uplift +1.10 %, peak
+/// rotation +0.02 %, first full lift-off 0.840 vs 0.842 s (−0.24 %), peak sliding up to
+/// the lift-off −2.40 %, peak CM horizontal up to the lift-off −2.91 % (the former 1 t
+/// feet: +46 % and +33 %).
 #[test]
 fn joint_limit_rpepo_matches_fe_before_liftoff() {
     use rockslide::case::load_case;
@@ -205,8 +205,8 @@ fn joint_limit_rpepo_matches_fe_before_liftoff() {
     let (f, r) = (responses(&fe.trace), responses(&ra.trace));
     let t_lift = f["first_liftoff"];
     println!("lift-off fe {t_lift} rapier {}", r["first_liftoff"]);
-    assert!((r["first_liftoff"] - t_lift).abs() < 0.5e-3);
-    for (key, tol) in [("peak_uplift", 0.007), ("peak_rotation", 1e-3)] {
+    assert!((r["first_liftoff"] - t_lift).abs() < 2.5e-3);
+    for (key, tol) in [("peak_uplift", 0.013), ("peak_rotation", 1e-3)] {
         let e = r[key] / f[key] - 1.0;
         println!("{key}: {e:+.5}");
         assert!(e.abs() < tol, "{key}: {e}");
@@ -220,7 +220,7 @@ fn joint_limit_rpepo_matches_fe_before_liftoff() {
             .filter(|(time, _)| **time < t_lift)
             .fold(0.0_f64, |m, (_, x)| m.max(x.abs()))
     };
-    for (key, tol) in [("slide", 0.03), ("cm_x", 0.045)] {
+    for (key, tol) in [("slide", 0.027), ("cm_x", 0.033)] {
         let e = peak_before(&ra.trace, key) / peak_before(&fe.trace, key) - 1.0;
         println!("{key} before lift-off: {e:+.5}");
         assert!(e.abs() < tol, "{key}: {e}");

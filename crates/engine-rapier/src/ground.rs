@@ -9,16 +9,17 @@
 //!   velocity, jumps included — and at t = 0 the relative velocity −vg(0⁺).
 //!
 //! A recorded ground *acceleration* is integrated once, at the record's own samples, by
-//! `case::record::integrate` with the cubic baseline correction ([`RECORD_BASELINE`]),
-//! and the tables are evaluated exactly between samples (the corrected acceleration is
-//! still piecewise linear). Both routes read that one corrected ground, so they can be
-//! compared with each other; the correction is named in the run's settings.
+//! `case::record::integrate` as given, without baseline correction ([`RECORD_BASELINE`]:
+//! the exact references integrate the same record), and the tables are evaluated exactly
+//! between samples (the acceleration is piecewise linear). Both routes read that one
+//! ground, so they can be compared with each other; the run's settings name it.
 
 use rockslide_core::case::record::{Baseline, GroundMotion, integrate};
 use rockslide_core::case::{Excitation, Signal};
 
 /// Baseline correction of a recorded ground acceleration before it moves the ground:
-/// the least-squares c2·t² + c3·t³ drift is removed (docs/records-and-studies.md).
+/// none, the record as given (its displacement may drift; the exact references and the
+/// other engines see the same acceleration), docs/records-and-studies.md.
 pub const RECORD_BASELINE: Baseline = Baseline::None;
 
 /// Ground displacement and (right-continuous) ground velocity at the step times.

@@ -27,7 +27,7 @@ pub struct RapierSettings {
     /// default 4 (rapier's default).
     pub substeps: usize,
     /// `pgs_iterations`: Gauss–Seidel sweeps per substep (`num_internal_pgs_iterations`),
-    /// 1…1000, default 1 (8 for a rocking body, see [`RapierSettings::for_model`]).
+    /// 1…1000, default 1 (8 for a rocking body on feet, [`FOOT_ROCKING_SWEEPS`]).
     pub pgs_iterations: usize,
     /// `friction_model`: `"simplified"` (one Coulomb constraint per manifold plus a twist
     /// constraint; rapier's default and ours: measured to give exactly the scene's μ) or
@@ -74,6 +74,10 @@ pub struct OscillatorSteps {
 /// records whose residual is small against their peak (docs/rapier-engine.md).
 const STEP_ERROR_CONSTANT: f64 = 300.0;
 
+/// Gauss–Seidel sweeps per substep of a rocking body on feet (`contact_model = "foot"`):
+/// with fewer, the loaded feet creep under zero horizontal load.
+pub const FOOT_ROCKING_SWEEPS: usize = 8;
+
 /// More rapier steps per output step than this is outside what the engine runs.
 pub const MAX_STRIDE: usize = 10_000;
 
@@ -84,21 +88,8 @@ impl OscillatorSteps {
     /// boundary's neighbour; the ground tables integrate it exactly in between); the
     /// output step is divided into the fewest equal steps that satisfy both.
     pub fn for_scene(osc: &Oscillator, excitation: &Excitation, dt: f64, accuracy: f64) -> Self {
-        let structure = osc.period();
-        let signal = match excitation {
-            Excitation::None => None,
-            Excitation::MassAcceleration(sig)
-            | Excitation::GroundDisplacement(sig)
-            | Excitation::GroundAcceleration(sig) => Some(sig),
-        };
-        let (period, excitation_limits) = match signal {
-            Some(Signal::SinePulse { omega, .. })
-                if 2.0 * std::f64::consts::PI / omega < structure =>
-            {
-                (2.0 * std::f64::consts::PI / omega, true)
-            }
-            _ => (structure, false),
-        };
+        let (period, excitation_limits) = shortest_period(osc, excitation);
+        let signal = excitation.signal();
         let mut dt_max = period * (accuracy / STEP_ERROR_CONSTANT).sqrt();
         let mut excitation_limits = excitation_limits;
         if let Some(Signal::Record { dt: rdt, .. }) = signal
@@ -117,12 +108,40 @@ impl OscillatorSteps {
         }
     }
 
+    /// The accuracy target whose step rule gives rapier steps of `dt` on this scene,
+    /// ε = 300·(Δt/T_min)² (the rule inverted), within the accepted range
+    /// [[`ACCURACY_MIN`], [`ACCURACY_MAX`]]: what `rockslide sweep` runs each rung at, so
+    /// that its ladder is the rule's own steps (a rung coarser than the loosest target's
+    /// step, T_min/38.7, is still divided by the rule).
+    pub fn accuracy_for_step(osc: &Oscillator, excitation: &Excitation, dt: f64) -> f64 {
+        let (period, _) = shortest_period(osc, excitation);
+        (STEP_ERROR_CONSTANT * (dt / period).powi(2)).clamp(ACCURACY_MIN, ACCURACY_MAX)
+    }
+
     /// Whether the chosen step meets the accuracy target (false only when the stride
     /// would exceed [`MAX_STRIDE`]).
     pub fn within_target(&self) -> bool {
         self.dt_inner <= self.dt_max * (1.0 + 1e-12)
     }
 }
+
+/// The shortest period the oscillator's step must resolve, s: the structure's 2π/ω, or a
+/// sine pulse's period when shorter (then `true`: the excitation sets it).
+fn shortest_period(osc: &Oscillator, excitation: &Excitation) -> (f64, bool) {
+    let structure = osc.period();
+    match excitation.signal() {
+        Some(Signal::SinePulse { omega, .. }) if 2.0 * std::f64::consts::PI / omega < structure => {
+            (2.0 * std::f64::consts::PI / omega, true)
+        }
+        _ => (structure, false),
+    }
+}
+
+/// The tightest `accuracy` a case may ask for.
+pub const ACCURACY_MIN: f64 = 1e-4;
+
+/// The loosest `accuracy` a case may ask for.
+pub const ACCURACY_MAX: f64 = 0.2;
 
 impl Default for RapierSettings {
     fn default() -> Self {
@@ -186,8 +205,8 @@ impl RapierSettings {
         let accuracy = number(
             "accuracy",
             d.accuracy,
-            1e-4,
-            0.2,
+            ACCURACY_MIN,
+            ACCURACY_MAX,
             "a relative accuracy from 1e-4 to 0.2",
         );
         let zeta = number(
@@ -244,6 +263,19 @@ impl RapierSettings {
         } else {
             substeps
         };
+        // The rocking body's feet need 8 sweeps (their loaded contacts creep with 1); the
+        // joint-limit supports are as accurate with 1 (docs/rapier-engine.md).
+        let has_pgs = case
+            .engine(ID)
+            .is_some_and(|r| r.options.contains_key("pgs_iterations"));
+        let pgs = if oscillator_contact == OscillatorContact::Foot
+            && matches!(case.scene.model, Model::RockingBody(_))
+            && !has_pgs
+        {
+            FOOT_ROCKING_SWEEPS as f64
+        } else {
+            pgs
+        };
         if let Some(r) = case.engine(ID) {
             for key in r.options.keys() {
                 if !KEYS.contains(&key.as_str()) {
@@ -272,14 +304,16 @@ impl RapierSettings {
         })
     }
 
-    /// Defaults for a model. A rocking body's vertical load runs through ten spring joints
-    /// into light feet on the ground: there the ground must be far stiffer than a support
+    /// Defaults for a model. A rocking body on feet (`contact_model = "foot"`) carries
+    /// its vertical load through ten spring joints into light feet on the ground: there the ground must be far stiffer than a support
     /// (rapier's default 60 Hz contact under a 1 t foot carrying W/10 sinks about as much
     /// as the support spring Kz deflects, and its damping ratio of 10 in series with the
     /// spring eats the response), and the coupled joint–friction system needs several
     /// Gauss–Seidel sweeps to converge (with 1 sweep the loaded feet creep under zero
-    /// horizontal load). Measured (docs/rapier-engine.md): contact 1000 Hz vs 3000 Hz
-    /// change peak uplift and rotation by < 2 %; 8 vs 16 sweeps by < 0.5 %.
+    /// horizontal load; [`FOOT_ROCKING_SWEEPS`]). Measured (docs/rapier-engine.md):
+    /// contact 1000 Hz vs 3000 Hz change peak uplift and rotation by < 2 %; 8 vs 16
+    /// sweeps by < 0.5 %. The default joint-limit supports have no contacts and need one
+    /// sweep (1, 2 and 8 agree within 1e-5 on the RPEPO).
     /// An oscillator with the joint-limit contact (the default) takes one substep: its
     /// error is the output-step subdivision's ([`OscillatorSteps`]), and substeps cost
     /// as much as steps without moving the slider.
@@ -290,7 +324,6 @@ impl RapierSettings {
                 ..Self::default()
             },
             Model::RockingBody(_) => Self {
-                pgs_iterations: 8,
                 contact_hz: Some(1000.0),
                 ..Self::default()
             },

@@ -313,17 +313,19 @@ fn supports_after_step(rig: &mut Rig) {
     }
 }
 
-/// Run the rigid-block rig and record its channels (sliding and rocking).
+/// Run the rigid-block rig and record its channels (sliding and rocking) every
+/// `stride` rapier steps of dt/stride (one row per output step dt).
 pub fn run_block(
     mut rig: Rig,
     block: &RigidBlock,
     drive: Drive,
     ex: &Excitation,
-    dt: f64,
+    (dt, stride): (f64, usize),
     duration: f64,
 ) -> Outcome {
     let n = step_count(duration, dt);
-    let g = GroundTable::new(ex, dt, n);
+    let dt_in = dt / stride as f64;
+    let g = GroundTable::new(ex, dt_in, n * stride);
     let moves = ex.moves_ground();
     let mut channels: Vec<&'static Quantity> = vec![
         &q::FORCE,
@@ -376,7 +378,7 @@ pub fn run_block(
         state.corners = [c[0].0, c[1].0];
     }
     let record = |trace: &mut Trace, rig: &Rig, k: usize, st: &mut BlockMemory| {
-        let t = k as f64 * dt;
+        let t = (k / stride) as f64 * dt;
         let body = &rig.world.bodies[rig.structure];
         let cm = body.translation();
         let phi = angle_z(body);
@@ -390,7 +392,7 @@ pub fn run_block(
         let ag = if k == 0 {
             0.0
         } else {
-            (g.vel[k] - g.vel[k - 1]) / dt
+            (g.vel[k] - g.vel[k - stride]) / dt
         };
         let f_true = match ex {
             Excitation::MassAcceleration(s) if k > 0 => m * mean_over_step(s, t - dt, dt),
@@ -440,7 +442,7 @@ pub fn run_block(
         let len = row.len();
         row.copy_from_slice(&vals[..len]);
         trace.push(t, &row);
-        let gf = ground_force(&rig.world, rig.structure, rig.ground, dt);
+        let gf = ground_force(&rig.world, rig.structure, rig.ground, dt_in);
         let lowest = corners[0].1.min(corners[1].1);
         let base = ContactState {
             normal: gf.y,
@@ -450,7 +452,14 @@ pub fn run_block(
         };
         trace.contacts.push(t, &[base]);
     };
-    time_loop(&mut rig, (drive, ex, &g), (n, dt, 1), trace, state, record)
+    time_loop(
+        &mut rig,
+        (drive, ex, &g),
+        (n * stride, dt_in, stride),
+        trace,
+        state,
+        record,
+    )
 }
 
 /// What the block recorder carries from one row to the next.

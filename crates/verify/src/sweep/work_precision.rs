@@ -26,10 +26,11 @@ use crate::analysis::sweep::{
 use crate::registry;
 use crate::run::{Outcome, TimeStats, Timed, guarded};
 use crate::suite::{ReferenceResult, solve_reference};
-use rockslide_core::case::{Case, OptionValue};
+use rockslide_core::case::{Case, Model, OptionValue};
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::trace::q;
 use rockslide_engine_api::Run;
+use rockslide_engine_rapier::OscillatorSteps;
 
 /// File name of the typed result in the case's output folder.
 pub const FILE: &str = "sweep.json";
@@ -205,7 +206,41 @@ pub fn prepare(case: &Case) -> (Case, Vec<String>) {
             applied.push(format!("`[engines.{engine}] {key} = {value}`: {why}"));
         }
     }
+    if rapier_accuracy_per_rung(&case) {
+        applied.push(
+            "`[engines.rapier] accuracy` per rung: the target whose step rule gives the rung's Δt as rapier's step, 300·(Δt/T_min)² within 1e-4…0.2 (a coarser rung is divided by the rule), so the ladder is the rule's own steps".into(),
+        );
+    }
     (case, applied)
+}
+
+/// Whether the sweep drives the rapier engine's `accuracy` rung by rung: an oscillator
+/// (the scene its step rule is for) whose case does not set the target itself.
+fn rapier_accuracy_per_rung(case: &Case) -> bool {
+    matches!(case.scene.model, Model::Oscillator(_))
+        && !case
+            .engine("rapier")
+            .is_some_and(|r| r.options.contains_key("accuracy"))
+}
+
+/// The case one rung of one series runs: for rapier on an oscillator, with the accuracy
+/// target whose step rule gives rapier steps of `dt`
+/// ([`OscillatorSteps::accuracy_for_step`]); `None`: the case as it is.
+fn rung_case(case: &Case, engine_id: &str, dt: f64) -> Option<Case> {
+    let Model::Oscillator(osc) = &case.scene.model else {
+        return None;
+    };
+    if engine_id != "rapier" || !rapier_accuracy_per_rung(case) {
+        return None;
+    }
+    let accuracy = OscillatorSteps::accuracy_for_step(osc, &case.scene.excitation, dt);
+    let mut c = case.clone();
+    c.engines
+        .entry(engine_id.to_string())
+        .or_default()
+        .options
+        .insert("accuracy".into(), OptionValue::Number(accuracy));
+    Some(c)
 }
 
 /// Per series: the timed rungs, coarsest first, and where the budget stopped it.
@@ -326,6 +361,8 @@ fn run_ladder(
             .par_iter()
             .map(|&(si, repeats)| {
                 let s = &series[si];
+                let own = rung_case(case, s.engine_id, dt);
+                let case = own.as_ref().unwrap_or(case);
                 let r = guarded(engines[s.engine].as_ref(), case, &s.variant, dt, repeats);
                 tick();
                 r
