@@ -171,6 +171,26 @@ pub enum Command {
         #[arg(long, short, allow_negative_numbers = true)]
         jobs: Option<usize>,
     },
+    /// Write a case's scene as another program's input: `--to opensees` writes an
+    /// OpenSeesPy script (and its record samples) into `<out>/<case>/` that records
+    /// rockslide's own trace CSV (read back with `--external opensees=…`).
+    Export {
+        /// The case file.
+        case: PathBuf,
+        /// The program to write for.
+        #[arg(long, value_enum)]
+        to: Target,
+        /// Output folder.
+        #[arg(long, short, default_value = "exports")]
+        out: PathBuf,
+    },
+}
+
+/// Programs `rockslide export` writes for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum Target {
+    /// OpenSeesPy (Python) script.
+    Opensees,
 }
 
 impl Command {
@@ -294,6 +314,9 @@ pub fn main(cli: Cli) -> ExitCode {
                     },
                 )
             }),
+        Ok(Some(Command::Export { case, to, out })) => {
+            commands::export::run(&case, to, &out, cli.quiet)
+        }
         Ok(Some(Command::Stability { cases, out, jobs })) => commands::stability::run(
             &cases,
             &out,

@@ -16,13 +16,16 @@ pub mod cli;
 pub mod commands;
 
 pub use rockslide_core::{error, io, response, trace};
+/// Scene export (`rockslide export`): another program's input written from a case.
+pub use rockslide_export as export;
 /// The renderers of every human output (`present::sweep`, `present::stability`,
 /// `present::study` beside the reports).
 pub use rockslide_present as present;
 pub use rockslide_present::{gate, report, stamp};
 pub use rockslide_reference as reference;
 pub use rockslide_verify::{
-    analysis, external, invariants, json, record, registry, run, study, suite, sweep, verdict,
+    analysis, external, invariants, json, opensees, record, registry, run, study, suite, sweep,
+    verdict,
 };
 
 /// Case files; [`case::load_case`] and [`case::parse_case`] validate against the engine

@@ -15,6 +15,7 @@ mod golden;
 mod guarded_run;
 mod mcap_cli;
 mod mcap_traces;
+mod opensees;
 mod output_step;
 mod paper_values;
 mod predictor_corrector;

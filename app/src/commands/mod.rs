@@ -4,8 +4,10 @@
 //!
 //! - [`sweep`]: `rockslide sweep` (work-precision over a Δt ladder);
 //! - [`stability`]: `rockslide stability` (classes and limits on stiff scenes);
+//! - [`export`]: `rockslide export` (a case's scene as another program's input);
 //! - [`study`]: `rockslide study`, `study-merge` and `newmark` (records).
 
+pub mod export;
 pub mod stability;
 pub mod study;
 pub mod sweep;

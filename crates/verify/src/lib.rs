@@ -26,6 +26,7 @@ pub mod external;
 pub mod footprint;
 pub mod invariants;
 pub mod json;
+pub mod opensees;
 pub mod progress;
 pub mod record;
 pub mod registry;

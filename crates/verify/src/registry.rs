@@ -10,6 +10,10 @@ use rockslide_engine_api::Engine;
 /// Ids of every engine, as written in case files (`[engines.<id>]`), in report column order.
 pub const ENGINE_IDS: &[&str] = &["predictor-corrector", "fe", "rapier"];
 
+/// Sections a case may have under `[engines.<id>]`: the engines, and `opensees` (the
+/// live OpenSees participant, [`crate::opensees`]: exported, run and read back).
+pub const CASE_SECTION_IDS: &[&str] = &["predictor-corrector", "fe", "rapier", "opensees"];
+
 /// Every engine, in report column order (the order of [`ENGINE_IDS`]).
 pub fn all() -> Vec<Box<dyn Engine>> {
     vec![
@@ -21,12 +25,12 @@ pub fn all() -> Vec<Box<dyn Engine>> {
 
 /// Read and validate a case file against the registry's engines.
 pub fn load_case(path: &Path) -> Result<Case, InputErrors> {
-    rockslide_core::case::load_case(path, ENGINE_IDS)
+    rockslide_core::case::load_case(path, CASE_SECTION_IDS)
 }
 
 /// Validate a case from its text against the registry's engines.
 pub fn parse_case(path: &Path, text: &str) -> Result<Case, InputErrors> {
-    rockslide_core::case::parse_case(path, text, ENGINE_IDS)
+    rockslide_core::case::parse_case(path, text, CASE_SECTION_IDS)
 }
 
 #[cfg(test)]

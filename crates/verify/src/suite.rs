@@ -233,13 +233,20 @@ pub fn run_case(case: Case) -> Result<CaseResult, InputErrors> {
 
 /// [`run_case`] with the given engines instead of the registry's.
 pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResult, InputErrors> {
-    let plan = plan(&case, engines)?;
-    let (runs, reference) = rayon::join(
+    let mut case = case;
+    let mut plan = plan(&case, engines)?;
+    let opensees = crate::opensees::prepare(&case)?;
+    let ((runs, live), reference) = rayon::join(
         || {
-            plan.runs
-                .par_iter()
-                .map(|p| execute(&case, engines, p))
-                .collect::<Vec<_>>()
+            rayon::join(
+                || {
+                    plan.runs
+                        .par_iter()
+                        .map(|p| execute(&case, engines, p))
+                        .collect::<Vec<_>>()
+                },
+                || crate::opensees::live(&case, opensees.as_ref()),
+            )
         },
         || solve_reference(&case),
     );
@@ -248,6 +255,15 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
         .into_iter()
         .collect::<Result<_, _>>()
         .map_err(InputErrors::from)?;
+    let mut runs = runs;
+    match live {
+        crate::opensees::Live::NotAsked => {}
+        crate::opensees::Live::NotApplicable(why) => {
+            plan.not_applicable.push((crate::opensees::LABEL, why))
+        }
+        crate::opensees::Live::Participant(e) => case.add_external(*e),
+        crate::opensees::Live::Failed(run) => runs.push(*run),
+    }
     let runs = crate::external::with_external_runs(&case, runs);
     if let Ok(r) = &mut reference {
         r.at_compared_times(&runs);

@@ -1,0 +1,36 @@
+//! Scene export: a case's scene written as another program's input, so that the program's
+//! results can come back as an external participant. This crate shares the scene
+//! (`rockslide-core`), never physics: it writes what the other program must model, and
+//! the other program solves it.
+//!
+//! - [`opensees`]: an OpenSeesPy script (PEPO single and double, RPEPO single,
+//!   pulses and records) that writes a CSV in rockslide's own trace format.
+//!
+//! An export is a list of [`ExportFile`]s (names and bytes); the caller writes them
+//! atomically inside its output folder. A scene the exporter cannot represent is an
+//! [`InputError`] naming the case field and the reason.
+
+pub mod opensees;
+
+use rockslide_core::error::InputError;
+
+/// One file of an export: a bare file name (no folder) and its bytes.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExportFile {
+    /// File name, without any folder.
+    pub name: String,
+    /// Contents.
+    pub bytes: Vec<u8>,
+}
+
+/// The files of one export, the main one (the script) first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Export {
+    /// Files to write, the script first.
+    pub files: Vec<ExportFile>,
+    /// Name of the results file the script writes beside itself.
+    pub results: String,
+}
+
+/// Result of an export: the files, or why the scene cannot be exported.
+pub type ExportResult = Result<Export, InputError>;

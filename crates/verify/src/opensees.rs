@@ -1,0 +1,241 @@
+//! OpenSees as a live participant. A case that has an `[engines.opensees]` section asks
+//! for it: the scene is exported ([`rockslide_export::opensees`], record samples inline),
+//! the script is run by Python with OpenSeesPy (a subprocess reading the script on its
+//! standard input and writing rockslide's trace CSV on its standard output: nothing is
+//! written to disk), bounded in time (`timeout`, default 600 s), and its CSV is read back
+//! as the external participant `opensees` — gated like any external run (by the
+//! tolerances that name it, else at the SAP2000 "Acceptable" limit).
+//!
+//! Without Python or OpenSeesPy the case says "opensees: not applicable — OpenSeesPy not
+//! found (…how to install)". A script that fails or times out is a run that did not
+//! converge, its standard error (last lines) among the run's findings. `ROCKSLIDE_PYTHON`
+//! names another Python interpreter (default `python3`).
+
+use std::io::{Read, Write};
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
+
+use rockslide_core::case::{Case, EXTERNAL_VARIANT, External};
+use rockslide_core::error::InputErrors;
+use rockslide_core::trace::{ExternalFormat, Trace, read_external_csv};
+use rockslide_engine_api::{Run, RunStatus, SolverStats};
+use rockslide_export::opensees::{self as export, SECTION, Samples, Settings};
+
+/// The participant's label (its run is `opensees/external`).
+pub const LABEL: &str = SECTION;
+
+/// Why OpenSees does not take part when Python with OpenSeesPy is missing.
+pub const NOT_FOUND: &str = "OpenSeesPy not found (pip install openseespy; on Debian also \
+     apt-get install libblas3 liblapack3)";
+
+/// Lines of the script's standard error kept in a failed run's findings.
+const STDERR_LINES: usize = 20;
+
+/// What became of the live participant of a case.
+pub enum Live {
+    /// The case does not ask for it.
+    NotAsked,
+    /// Asked, but OpenSeesPy is not available: the reason.
+    NotApplicable(String),
+    /// Ran and was read back: add it to the case.
+    Participant(Box<External>),
+    /// Ran and failed (or timed out): a run that did not converge.
+    Failed(Box<Run>),
+}
+
+/// The Python interpreter to run.
+fn python() -> String {
+    std::env::var("ROCKSLIDE_PYTHON").unwrap_or_else(|_| "python3".into())
+}
+
+/// The OpenSeesPy version, when Python can import it (asked once per process).
+pub fn available() -> Option<&'static str> {
+    static VERSION: OnceLock<Option<String>> = OnceLock::new();
+    VERSION
+        .get_or_init(|| {
+            let probe = "import openseespy.opensees as o\nprint(o.version())\n";
+            let out = run_script(probe, Duration::from_secs(120)).ok()?;
+            out.ok.then(|| out.stdout.trim().to_string())
+        })
+        .as_deref()
+}
+
+/// Check the case's `[engines.opensees]` before any work (an input error if the scene or
+/// the settings cannot be exported); `None` when the case does not ask for OpenSees. A
+/// live run records every step (the engines' analysis does too; the trace files written
+/// are thinned to the run's output step like theirs).
+pub fn prepare(case: &Case) -> Result<Option<Settings>, InputErrors> {
+    if case.engine(SECTION).is_none() {
+        return Ok(None);
+    }
+    // every step, as the engines' analysis: peaks and event times are not sampled coarser
+    let settings = Settings {
+        output_every: 1,
+        ..Settings::from_case(case)?
+    };
+    export::export_with(case, &settings, Samples::Inline)?;
+    Ok(Some(settings))
+}
+
+/// Export, run and read back the live participant (see the module docs).
+pub fn live(case: &Case, settings: Option<&Settings>) -> Live {
+    let Some(settings) = settings else {
+        return Live::NotAsked;
+    };
+    let Some(version) = available() else {
+        return Live::NotApplicable(NOT_FOUND.into());
+    };
+    let started = Instant::now();
+    let script = match export::export_with(case, settings, Samples::Inline) {
+        Ok(e) => String::from_utf8_lossy(&e.files[0].bytes).into_owned(),
+        Err(e) => return Live::Failed(Box::new(failed(settings, e.to_string(), Vec::new()))),
+    };
+    let timeout = Duration::from_secs_f64(settings.timeout);
+    // `python3 - -`: the script from standard input, its one argument "-" (results to
+    // standard output)
+    let out = match run_script(&script, timeout) {
+        Ok(out) => out,
+        Err(why) => return Live::Failed(Box::new(failed(settings, why, Vec::new()))),
+    };
+    if !out.ok {
+        let why = if out.timed_out {
+            format!(
+                "OpenSeesPy did not finish within {} s (engines.opensees.timeout)",
+                settings.timeout
+            )
+        } else {
+            "the OpenSeesPy script failed".to_string()
+        };
+        return Live::Failed(Box::new(failed(settings, why, tail(&out.stderr))));
+    }
+    let source = Path::new("opensees (live run)");
+    match read_external_csv(source, &out.stdout, &ExternalFormat::default()) {
+        Ok(mut read) => {
+            read.notes.push(format!(
+                "OpenSees ran live in {:.1} s (exported script, dt = {} s, links = {})",
+                started.elapsed().as_secs_f64(),
+                settings.dt,
+                settings.links.name()
+            ));
+            Live::Participant(Box::new(External {
+                label: LABEL.into(),
+                program: format!("OpenSeesPy {version} (live)"),
+                element: element(case, settings),
+                file: source.to_path_buf(),
+                read,
+                field: format!("engines.{SECTION}"),
+            }))
+        }
+        Err(e) => Live::Failed(Box::new(failed(
+            settings,
+            format!("its results could not be read: {e}"),
+            Vec::new(),
+        ))),
+    }
+}
+
+/// The elements used, in a few words, for the report.
+fn element(case: &Case, settings: &Settings) -> String {
+    let arrangement = if settings.double { "double" } else { "single" };
+    if case.scene.model.has_rotation() {
+        format!(
+            "flatSliderBearing supports (Coulomb, Elastic axial: uplift in tension), {} links, {arrangement} arrangement",
+            settings.links.name()
+        )
+    } else {
+        format!("zeroLength with ElasticPP, {arrangement} arrangement")
+    }
+}
+
+/// The run of a live participant that failed.
+fn failed(settings: &Settings, reason: String, stderr: Vec<String>) -> Run {
+    let mut findings = vec![format!("OpenSees live run failed: {reason}")];
+    findings.extend(stderr.into_iter().map(|l| format!("stderr: {l}")));
+    Run {
+        engine: LABEL,
+        variant: EXTERNAL_VARIANT.to_string(),
+        dt: settings.dt,
+        settings: vec![("program".into(), "OpenSeesPy (live)".into())],
+        stats: SolverStats::default(),
+        findings,
+        trace: Trace::default(),
+        status: RunStatus::NotConverged {
+            time: f64::NAN,
+            reason,
+        },
+        wall_seconds: 0.0,
+    }
+}
+
+/// The last lines of a standard error, without OpenSees's exit banner.
+fn tail(stderr: &str) -> Vec<String> {
+    let lines: Vec<String> = stderr
+        .lines()
+        .map(str::trim_end)
+        .filter(|l| !l.is_empty() && !l.starts_with("Process 0 Terminating"))
+        .map(str::to_string)
+        .collect();
+    lines[lines.len().saturating_sub(STDERR_LINES)..].to_vec()
+}
+
+/// What a Python subprocess did.
+struct Output {
+    ok: bool,
+    timed_out: bool,
+    stdout: String,
+    stderr: String,
+}
+
+/// Run a Python script given on standard input with the argument `-` (the exported
+/// script then writes its CSV to standard output), killed after `timeout`.
+fn run_script(script: &str, timeout: Duration) -> Result<Output, String> {
+    let python = python();
+    let mut child = Command::new(&python)
+        .args(["-", "-"])
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot start {python}: {e}"))?;
+    let mut stdin = child.stdin.take().ok_or("no standard input")?;
+    let script = script.to_string();
+    let writer = std::thread::spawn(move || {
+        let _ = stdin.write_all(script.as_bytes());
+    });
+    let mut stdout = child.stdout.take().ok_or("no standard output")?;
+    let mut stderr = child.stderr.take().ok_or("no standard error")?;
+    let out_reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = stdout.read_to_string(&mut s);
+        s
+    });
+    let err_reader = std::thread::spawn(move || {
+        let mut s = String::new();
+        let _ = stderr.read_to_string(&mut s);
+        s
+    });
+    let started = Instant::now();
+    let (status, timed_out) = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break (Some(status), false),
+            Ok(None) if started.elapsed() >= timeout => {
+                let _ = child.kill();
+                let _ = child.wait();
+                break (None, true);
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
+            Err(e) => return Err(format!("waiting for {python}: {e}")),
+        }
+    };
+    let _ = writer.join();
+    let stdout = out_reader.join().unwrap_or_default();
+    let stderr = err_reader.join().unwrap_or_default();
+    Ok(Output {
+        ok: status.is_some_and(|s| s.success()),
+        timed_out,
+        stdout,
+        stderr,
+    })
+}
