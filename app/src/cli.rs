@@ -108,7 +108,7 @@ pub enum Command {
         #[arg(long)]
         from: Vec<PathBuf>,
     },
-    /// Newmark rigid-block sliding on a record, both polarities, in cm and m (SLAMMER style).
+    /// Newmark rigid-block sliding on a record, both polarities; sliding in mm, block minus ground (the reports' convention).
     Newmark {
         /// The record (.AT2 or two-column CSV).
         record: PathBuf,

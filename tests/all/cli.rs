@@ -38,7 +38,7 @@ fn run_writes_traces_with_units_and_a_report() {
         "{report}"
     );
     assert!(
-        report.contains("| Peak relative displacement | mm | 9.263 | 9.206 | -0.62 %"),
+        report.contains("| Peak relative displacement (abs) | mm | 9.263 | 9.206 | -0.62 %"),
         "{report}"
     );
 }
@@ -66,4 +66,43 @@ fn help_and_version_follow_conventions() {
         format!("rockslide {}", env!("CARGO_PKG_VERSION"))
     );
     assert_eq!(rockslide(&["frobnicate"]).status.code(), Some(2));
+}
+
+/// rockslide shall print `newmark` sliding in the case reports' convention (block minus
+/// ground, mm): two-way on the record, PGA and ky of `block-northridge` (ky = μ·g of the
+/// case, in g), the "normal" row is the reference's residual sliding in that case's report
+/// (+5.380 mm), sign included; the inverted record gives the opposite sign.
+#[test]
+fn newmark_sliding_has_the_reports_sign_and_unit() {
+    let case = rockslide::case::load_case(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/records/block-northridge.toml"
+    )))
+    .unwrap();
+    let solution = rockslide::reference::for_case(&case).unwrap();
+    let end = case.run.duration;
+    let trace = rockslide::reference::sample(solution.as_ref(), &[0.0, end]);
+    let residual_mm = 1e3 * trace.column("slide").unwrap()[1];
+    let report = rockslide::response::show("residual_sliding", residual_mm / 1e3);
+    assert_eq!(
+        report, "5.380",
+        "the case report's reference residual sliding"
+    );
+    let ky_g = 0.185 * 9.81 / rockslide::case::record::STANDARD_GRAVITY;
+    let o = rockslide(&[
+        "newmark",
+        "cases/records/Northridge_1994_PAC-175.csv",
+        "--unit",
+        "g",
+        "--pga",
+        "0.3",
+        "--two-way",
+        "--ky",
+        &ky_g.to_string(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.contains("| sliding [mm] |"), "{text}");
+    assert!(text.contains("| normal | 5.380 | 3 |"), "{text}");
+    assert!(text.contains("| inverse | -5.380 | 3 |"), "{text}");
 }
