@@ -106,3 +106,39 @@ fn newmark_sliding_has_the_reports_sign_and_unit() {
     assert!(text.contains("| normal | 5.380 | 3 |"), "{text}");
     assert!(text.contains("| inverse | -5.380 | 3 |"), "{text}");
 }
+
+/// rockslide shall take every PGA in g: a case's `scale_to_pga_g` as `newmark --pga`. The
+/// old key `scale_to_pga` (m/s²) is refused (exit 2, nothing run) with the new key's name
+/// and the value converted; the same case with the new key loads.
+#[test]
+fn pga_is_in_g_and_the_old_key_names_the_new_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let shipped = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/records/pepo-northridge.toml"
+    ))
+    .unwrap();
+    let record = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/records/Northridge_1994_PAC-175.csv"
+    );
+    let new = shipped.replace("\"Northridge_1994_PAC-175.csv\"", &format!("{record:?}"));
+    assert!(
+        new.contains("\nscale_to_pga_g = 0.1 "),
+        "the shipped case uses g"
+    );
+    let old = new.replace("\nscale_to_pga_g = 0.1 ", "\nscale_to_pga = 0.980665 ");
+    let (new_path, old_path) = (dir.path().join("new.toml"), dir.path().join("old.toml"));
+    std::fs::write(&new_path, new).unwrap();
+    std::fs::write(&old_path, old).unwrap();
+    let o = rockslide(&["list", old_path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("old.toml:35:16: excitation.scale_to_pga: is no longer read: the target PGA is given in g as `scale_to_pga_g` (scale_to_pga = 0.980665 m/s² is scale_to_pga_g = 0.100000 g)"),
+        "{err}"
+    );
+    assert!(o.stdout.is_empty());
+    let o = rockslide(&["list", new_path.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}

@@ -399,6 +399,7 @@ impl Validator<'_> {
     }
 
     fn excitation(&mut self, e: &RawExcitation, case_path: &Path) -> Option<Excitation> {
+        self.old_pga_key(e);
         if e.kind == "none" {
             self.nothing_beside_none(e);
             return Some(Excitation::None);
@@ -435,6 +436,28 @@ impl Validator<'_> {
         }
     }
 
+    /// `scale_to_pga` (m/s²) was renamed `scale_to_pga_g` (g, as `rockslide newmark --pga`):
+    /// the old key is refused with the new one's name and value, never read in m/s².
+    fn old_pga_key(&mut self, e: &RawExcitation) {
+        let Some(old) = &e.scale_to_pga else {
+            return;
+        };
+        let hint = match old
+            .as_float()
+            .or_else(|| old.as_integer().map(|i| i as f64))
+        {
+            Some(x) => format!(
+                " (scale_to_pga = {x} m/s² is scale_to_pga_g = {:.6} g)",
+                x / STANDARD_GRAVITY
+            ),
+            None => String::new(),
+        };
+        self.fail(
+            "excitation.scale_to_pga",
+            format!("is no longer read: the target PGA is given in g as `scale_to_pga_g`{hint}"),
+        );
+    }
+
     /// `kind = "none"` takes no signal: any signal key beside it is an error, not ignored.
     fn nothing_beside_none(&mut self, e: &RawExcitation) {
         for (f, given) in [
@@ -444,7 +467,7 @@ impl Validator<'_> {
             ("excitation.cycles", e.cycles.is_some()),
             ("excitation.record", e.record.is_some()),
             ("excitation.record_unit", e.record_unit.is_some()),
-            ("excitation.scale_to_pga", e.scale_to_pga.is_some()),
+            ("excitation.scale_to_pga_g", e.scale_to_pga_g.is_some()),
             ("excitation.polarity", e.polarity.is_some()),
         ] {
             if given {
@@ -459,7 +482,7 @@ impl Validator<'_> {
         }
         for (f, p) in [
             ("excitation.record_unit", e.record_unit.is_some()),
-            ("excitation.scale_to_pga", e.scale_to_pga.is_some()),
+            ("excitation.scale_to_pga_g", e.scale_to_pga_g.is_some()),
             ("excitation.polarity", e.polarity.is_some()),
         ] {
             if p {
@@ -542,9 +565,11 @@ impl Validator<'_> {
                 1.0
             }
         };
-        let target = match e.scale_to_pga {
+        let target = match e.scale_to_pga_g {
             None => None,
-            x => Some(self.number("excitation.scale_to_pga", x, Rule::positive("m/s²"))),
+            x => Some(
+                self.number("excitation.scale_to_pga_g", x, Rule::positive("g")) * STANDARD_GRAVITY,
+            ),
         };
         let dir = case_path.parent().unwrap_or(Path::new(""));
         let path = dir.join(record);
@@ -573,7 +598,7 @@ impl Validator<'_> {
             Some(t) if t.is_finite() && t > 0.0 => {
                 let f = rec.scale_to_pga(t, polarity);
                 format!(
-                    ", scaled ×{f:.6} to PGA {t} m/s² ({:.4} g)",
+                    ", scaled ×{f:.6} to PGA {:.6} g ({t:.6} m/s²)",
                     t / STANDARD_GRAVITY
                 )
             }

@@ -113,7 +113,10 @@ pub struct RawExcitation {
     pub cycles: Option<f64>,
     pub record: Option<String>,
     pub record_unit: Option<String>,
-    pub scale_to_pga: Option<f64>,
+    /// The record's target PGA, g.
+    pub scale_to_pga_g: Option<f64>,
+    /// The old key (m/s²), read only to be refused with the new one's name.
+    pub scale_to_pga: Option<toml::Value>,
     pub polarity: Option<f64>,
 }
 

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
 use crate::registry::parse_case;
-use rockslide_core::case::record::{AccelUnit, Record, read_record};
+use rockslide_core::case::record::{AccelUnit, Record, STANDARD_GRAVITY, read_record};
 use rockslide_core::case::{Case, Locator};
 use rockslide_core::error::{InputError, InputErrors};
 
@@ -386,7 +386,9 @@ fn base_excitation(base: &Case) -> BaseExcitation {
         unit: get("record_unit")
             .and_then(|v| v.as_str())
             .map(String::from),
-        pga: get("scale_to_pga").and_then(value_f64),
+        pga: get("scale_to_pga_g")
+            .and_then(value_f64)
+            .map(|g| g * STANDARD_GRAVITY),
         polarity: get("polarity").and_then(value_f64).unwrap_or(1.0),
     }
 }
@@ -479,8 +481,8 @@ impl Grid {
         }
         set(
             &mut table,
-            &["excitation", "scale_to_pga"],
-            self.pga(p).into(),
+            &["excitation", "scale_to_pga_g"],
+            (self.pga(p) / STANDARD_GRAVITY).into(),
         );
         set(
             &mut table,
