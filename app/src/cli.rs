@@ -196,9 +196,10 @@ macro_rules! say {
     }};
 }
 
-/// A GitHub Actions annotation for a gate failure (`::error file=…::…`), when run there.
+/// A GitHub Actions annotation for a gate failure (`::error file=…,title=…::…`), only when
+/// run there (`GITHUB_ACTIONS=true`, as GitHub sets it).
 fn annotate(f: &gate::Failure) {
-    if std::env::var_os("GITHUB_ACTIONS").is_none() {
+    if std::env::var("GITHUB_ACTIONS").as_deref() != Ok("true") {
         return;
     }
     let file = f.field.split(": ").next().unwrap_or_default();
@@ -557,7 +558,7 @@ fn run(
         return Ok(ExitCode::SUCCESS);
     };
     gate::write_junit(&results, junit)?;
-    gate::write_step_summary(&results);
+    gate::write_step_summary(&results, out);
     if !quiet {
         say!(
             "gate: {} — {} failure(s); report {}, JUnit {}",

@@ -265,16 +265,33 @@ fn rpepo_report_compares_up_to_first_liftoff_and_draws_figs_8_to_11() {
     assert!(md.contains("Without an exact reference these are convergence errors against each engine's own finest solution"));
     let sweep = SweepResult::load(&case).unwrap().unwrap();
     assert!(!sweep.exact_basis);
-    let rich = &sweep.series("fe/single").unwrap().richardson[0];
-    assert_eq!(rich.quantity, "peak relative displacement");
-    let expected = match &rich.estimate {
-        Some(e) => format!(
-            "| fe/single | peak relative displacement | {:.3} | {:.6e} m | {:.3e} |",
-            e.order, e.extrapolated, e.gci
-        ),
-        None => "| fe/single | peak relative displacement | — | — (differences do not shrink monotonically: not in the asymptotic range) | — |".into(),
-    };
+    // One observed order per engine on the page (the fit over the asymptotic rungs), and
+    // the Richardson estimates made with that same order, never a second one.
+    let series = sweep.series("fe/single").unwrap();
+    let p = series.observed_order().expect("an observed order");
+    assert_eq!(
+        series.observed_order(),
+        rockslide::analysis::sweep::asymptotic_order(
+            &series
+                .rungs
+                .iter()
+                .map(|g| (g.dt, g.error.map_or(f64::NAN, |e| e.max)))
+                .collect::<Vec<_>>()
+        )
+    );
+    let order_row = format!("| fe/single | {p:.2} | {} |", series.rungs.len());
+    assert!(md.contains(&order_row), "{order_row}");
+    assert!(md.contains("observed order p (least-squares slope of ln(max error) against ln Δt over the 4 finest rungs)"));
+    let (quantity, estimate) = series.extrapolations(sweep.ratio)[0];
+    assert_eq!(quantity, "peak relative displacement");
+    let e = estimate.expect("two finest rungs and an order");
+    assert_eq!(e.order, p, "Richardson uses the one observed order");
+    let expected = format!(
+        "| fe/single | peak relative displacement | {:.6e} m | {:.3e} |",
+        e.extrapolated, e.gci
+    );
     assert!(md.contains(&expected), "{expected}");
+    assert!(!md.contains("| observed order |"), "no second order column");
     let sweep_md = read(&case.join("sweep.md"));
     assert!(
         sweep_md.contains(expected.trim_start_matches("| fe/single ")),

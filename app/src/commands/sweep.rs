@@ -27,11 +27,12 @@ pub fn run(cases: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Er
         if !opts.quiet {
             for se in &r.series {
                 println!(
-                    "{}: {}: observed order {} (self-convergence {}){}",
+                    "{}: {}: observed order p {} ({}){}",
                     r.case,
                     se.label,
-                    se.fitted_order.map_or("—".into(), |p| format!("{p:.3}")),
-                    se.self_order.map_or("—".into(), |p| format!("{p:.3}")),
+                    se.observed_order()
+                        .map_or("—".into(), |p| format!("{p:.2}")),
+                    rockslide_verify::analysis::sweep::ORDER_METHOD,
                     se.skipped.as_ref().map_or(String::new(), |k| format!(
                         "; cost budget: {} of {} rungs, Δt ≤ {:.3e} s skipped",
                         se.rungs.len(),

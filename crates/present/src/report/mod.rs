@@ -35,7 +35,7 @@ mod summary_csv;
 mod table;
 
 pub use html::{case_html, suite_html};
-pub use markdown::{case_markdown, suite_markdown};
+pub use markdown::{Links, case_markdown, suite_markdown, suite_markdown_with};
 pub use mcap_log::{case_trace_log, git_commit, write_case_mcap};
 pub use provenance::Provenance;
 pub use summary_csv::{SUMMARY_HEADER, summary_csv};
