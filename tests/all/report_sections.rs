@@ -380,3 +380,61 @@ fn case_report_has_a_document_control_block() {
         assert!(md.contains(&format!("- **{field}:** ")), "{field}");
     }
 }
+
+/// rockslide shall show peaks of signed quantities with their sign: the rigid block of
+/// `rigid-sliding-block` slides the negative way only (one slide, Newmark 1965), so its
+/// signed peak sliding is its minimum and its residual, −(its absolute peak) — in the
+/// response table, in summary.csv and in result.json, for the reference and each run.
+/// (Read as the largest value, the peak was 0 beside −281 mm.)
+#[test]
+fn signed_peaks_keep_their_sign_in_table_csv_and_json() {
+    let dir = tempfile::tempdir().unwrap();
+    rockslide(&["run", "cases/rigid-sliding-block.toml"], dir.path());
+    let case = dir.path().join("rigid-sliding-block");
+    let md = read(&case.join("report.md"));
+    let signed = row(&md, "Peak sliding (signed)");
+    let min = row(&md, "Minimum sliding");
+    let residual = row(&md, "Residual sliding");
+    let abs = row(&md, "Peak sliding (abs)");
+    // Reference, kinematic-ground, inertial-force: columns 2, 3 and 5.
+    for i in [2, 3, 5] {
+        assert!(signed[i].starts_with("-2"), "{signed:?}");
+        assert_eq!(signed[i], min[i]);
+        assert_eq!(signed[i], residual[i]);
+        assert_eq!(signed[i], format!("-{}", abs[i]));
+    }
+    let (h, rows) = csv(&case.join("summary.csv"));
+    let col = |name: &str| h.iter().position(|x| x == name).unwrap();
+    let value = |q: &str, run: &str| -> f64 {
+        rows.iter()
+            .find(|r| r[col("quantity")] == q && r[col("run")] == run)
+            .unwrap()[col("value")]
+        .parse()
+        .unwrap()
+    };
+    for run in ["rapier/kinematic-ground", "rapier/inertial-force"] {
+        let peak = value("peak_sliding", run);
+        assert!(peak < -0.28, "{run}: {peak}");
+        assert_eq!(peak, value("min_sliding", run));
+        assert_eq!(peak, -value("peak_abs_sliding", run));
+    }
+    let json = read(&case.join("result.json"));
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    // Every `{"key": "peak_sliding", "value": …}` of the record (reference and runs).
+    fn peaks(v: &serde_json::Value, out: &mut Vec<f64>) {
+        match v {
+            serde_json::Value::Object(m) => {
+                if m.get("key").and_then(|k| k.as_str()) == Some("peak_sliding") {
+                    out.extend(m.get("value").and_then(|x| x.as_f64()));
+                }
+                m.values().for_each(|x| peaks(x, out));
+            }
+            serde_json::Value::Array(a) => a.iter().for_each(|x| peaks(x, out)),
+            _ => {}
+        }
+    }
+    let mut found = Vec::new();
+    peaks(&v, &mut found);
+    assert_eq!(found.len(), 3, "reference and two runs: {found:?}");
+    assert!(found.iter().all(|&p| p < -0.28), "{found:?}");
+}
