@@ -142,3 +142,38 @@ fn pga_is_in_g_and_the_old_key_names_the_new_one() {
     let o = rockslide(&["list", new_path.to_str().unwrap()]);
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
 }
+
+/// rockslide shall advertise in `list` only the variants `run` accepts: a case asking the
+/// predictor-corrector for the ground-displacement variant `eq12` under a mass
+/// acceleration is refused by both, with the same located line naming what is available
+/// (exit 2); the shipped case lists `paper`, which `run` accepts.
+#[test]
+fn list_and_run_accept_the_same_variants() {
+    let dir = tempfile::tempdir().unwrap();
+    let shipped = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/pepo-mass-accel.toml"
+    ))
+    .unwrap();
+    let line = "dt = 0.01               # the paper's spreadsheet step\n";
+    assert!(shipped.contains(line));
+    let case = dir.path().join("pc-eq12.toml");
+    std::fs::write(
+        &case,
+        shipped.replace(line, "dt = 0.01\nvariants = [\"eq12\"]\n"),
+    )
+    .unwrap();
+    let case = case.to_str().unwrap();
+    let out = dir.path().join("out");
+    let listed = rockslide(&["list", case]);
+    let ran = rockslide(&["run", case, "--out", out.to_str().unwrap()]);
+    let expected = "pc-eq12.toml:37:13: engines.predictor-corrector.variants[0]: \"eq12\" is not a variant of predictor-corrector for this scene; available: paper";
+    for o in [&listed, &ran] {
+        assert_eq!(o.status.code(), Some(2));
+        assert!(String::from_utf8_lossy(&o.stderr).contains(expected));
+    }
+    assert_eq!(listed.stderr, ran.stderr);
+    assert!(!out.exists(), "nothing written");
+    let o = rockslide(&["list", "cases/pepo-mass-accel.toml"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("predictor-corrector  paper (dt 0.01 s)"));
+}

@@ -571,6 +571,14 @@ impl Validator<'_> {
                 self.number("excitation.scale_to_pga_g", x, Rule::positive("g")) * STANDARD_GRAVITY,
             ),
         };
+        if let (Some(t), Some(g)) = (target, e.scale_to_pga_g) {
+            if g.is_finite() && !t.is_finite() {
+                self.fail(
+                    "excitation.scale_to_pga_g",
+                    format!("is {g} g, which is beyond the largest number in m/s²"),
+                );
+            }
+        }
         let dir = case_path.parent().unwrap_or(Path::new(""));
         let path = dir.join(record);
         let mut rec = match read_record(&path, unit) {
