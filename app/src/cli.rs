@@ -187,15 +187,6 @@ impl Command {
     }
 }
 
-/// Print one line on stdout; a reader that went away (`rockslide list | head -1`) is not an
-/// error: the rest of the output is dropped.
-macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
-    }};
-}
-
 /// A GitHub Actions annotation for a gate failure (`::error file=…,title=…::…`), only when
 /// run there (`GITHUB_ACTIONS=true`, as GitHub sets it).
 fn annotate(f: &gate::Failure) {

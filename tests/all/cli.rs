@@ -177,3 +177,27 @@ fn list_and_run_accept_the_same_variants() {
     let o = rockslide(&["list", "cases/pepo-mass-accel.toml"]);
     assert!(String::from_utf8_lossy(&o.stdout).contains("predictor-corrector  paper (dt 0.01 s)"));
 }
+
+/// rockslide shall not panic on a closed pipe in any printing command: `newmark | head -0`
+/// exits 0 with nothing on stderr (it printed through `print!`, which panics, exit 101).
+#[test]
+fn newmark_into_a_closed_pipe_is_not_a_panic() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "newmark",
+            "cases/records/Loma_Prieta_1989_HSP-000.AT2",
+            "--ky",
+            "0.1",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(err.is_empty(), "{err}");
+}

@@ -26,7 +26,7 @@ pub fn run(cases: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Er
         write_sweep(&r, &dir)?;
         if !opts.quiet {
             for se in &r.series {
-                println!(
+                say!(
                     "{}: {}: observed order p {} ({}){}",
                     r.case,
                     se.label,
@@ -41,7 +41,7 @@ pub fn run(cases: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Er
                     ))
                 );
             }
-            println!("{}: → {}", r.case, dir.join("sweep.md").display());
+            say!("{}: → {}", r.case, dir.join("sweep.md").display());
         }
     }
     Ok(ExitCode::SUCCESS)
