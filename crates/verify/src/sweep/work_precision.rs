@@ -71,6 +71,9 @@ pub struct Rung {
     pub change: Option<f64>,
 }
 
+/// A value read off a rung (its peak displacement, its residual sliding).
+type RungValue = fn(&Rung) -> Option<f64>;
+
 impl SeriesResult {
     /// The one observed order of the series, shown wherever an order is
     /// ([`crate::analysis::sweep::ORDER_METHOD`]: the fit over the asymptotic rungs).
@@ -83,7 +86,7 @@ impl SeriesResult {
     /// a value or the order is missing).
     pub fn extrapolations(&self, ratio: f64) -> Vec<(&'static str, Option<Richardson>)> {
         let done: Vec<&Rung> = self.rungs.iter().filter(|r| r.completed()).collect();
-        let quantities: [(&'static str, fn(&Rung) -> Option<f64>); 2] = [
+        let quantities: [(&'static str, RungValue); 2] = [
             ("peak relative displacement", |r| r.peak_displacement),
             ("residual sliding", |r| r.residual_sliding),
         ];
