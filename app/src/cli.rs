@@ -108,7 +108,7 @@ pub enum Command {
         #[arg(long)]
         from: Vec<PathBuf>,
     },
-    /// Newmark rigid-block sliding on a record, both polarities, in cm and m (SLAMMER style).
+    /// Newmark rigid-block sliding on a record, both polarities; sliding in mm, block minus ground (the reports' convention).
     Newmark {
         /// The record (.AT2 or two-column CSV).
         record: PathBuf,
@@ -207,18 +207,10 @@ impl Command {
     }
 }
 
-/// Print one line on stdout; a reader that went away (`rockslide list | head -1`) is not an
-/// error: the rest of the output is dropped.
-macro_rules! say {
-    ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
-    }};
-}
-
-/// A GitHub Actions annotation for a gate failure (`::error file=…::…`), when run there.
+/// A GitHub Actions annotation for a gate failure (`::error file=…,title=…::…`), only when
+/// run there (`GITHUB_ACTIONS=true`, as GitHub sets it).
 fn annotate(f: &gate::Failure) {
-    if std::env::var_os("GITHUB_ACTIONS").is_none() {
+    if std::env::var("GITHUB_ACTIONS").as_deref() != Ok("true") {
         return;
     }
     let file = f.field.split(": ").next().unwrap_or_default();
@@ -580,7 +572,7 @@ fn run(
         return Ok(ExitCode::SUCCESS);
     };
     gate::write_junit(&results, junit)?;
-    gate::write_step_summary(&results);
+    gate::write_step_summary(&results, out);
     if !quiet {
         say!(
             "gate: {} — {} failure(s); report {}, JUnit {}",

@@ -12,6 +12,16 @@
 
 #![warn(missing_docs)]
 
+/// Print one line on stdout; a reader that went away (`rockslide list | head -1`) is not an
+/// error: the rest of the output is dropped (every command prints through this, never
+/// `println!`, which panics on a closed pipe).
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
 pub mod cli;
 pub mod commands;
 

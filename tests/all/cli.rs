@@ -38,7 +38,7 @@ fn run_writes_traces_with_units_and_a_report() {
         "{report}"
     );
     assert!(
-        report.contains("| Peak relative displacement | mm | 9.263 | 9.206 | -0.62 %"),
+        report.contains("| Peak relative displacement (abs) | mm | 9.263 | 9.206 | -0.62 %"),
         "{report}"
     );
 }
@@ -66,4 +66,138 @@ fn help_and_version_follow_conventions() {
         format!("rockslide {}", env!("CARGO_PKG_VERSION"))
     );
     assert_eq!(rockslide(&["frobnicate"]).status.code(), Some(2));
+}
+
+/// rockslide shall print `newmark` sliding in the case reports' convention (block minus
+/// ground, mm): two-way on the record, PGA and ky of `block-northridge` (ky = μ·g of the
+/// case, in g), the "normal" row is the reference's residual sliding in that case's report
+/// (+5.380 mm), sign included; the inverted record gives the opposite sign.
+#[test]
+fn newmark_sliding_has_the_reports_sign_and_unit() {
+    let case = rockslide::case::load_case(std::path::Path::new(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/records/block-northridge.toml"
+    )))
+    .unwrap();
+    let solution = rockslide::reference::for_case(&case).unwrap();
+    let end = case.run.duration;
+    let trace = rockslide::reference::sample(solution.as_ref(), &[0.0, end]);
+    let residual_mm = 1e3 * trace.column("slide").unwrap()[1];
+    let report = rockslide::response::show("residual_sliding", residual_mm / 1e3);
+    assert_eq!(
+        report, "5.380",
+        "the case report's reference residual sliding"
+    );
+    let ky_g = 0.185 * 9.81 / rockslide::case::record::STANDARD_GRAVITY;
+    let o = rockslide(&[
+        "newmark",
+        "cases/records/Northridge_1994_PAC-175.csv",
+        "--unit",
+        "g",
+        "--pga",
+        "0.3",
+        "--two-way",
+        "--ky",
+        &ky_g.to_string(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let text = String::from_utf8(o.stdout).unwrap();
+    assert!(text.contains("| sliding [mm] |"), "{text}");
+    assert!(text.contains("| normal | 5.380 | 3 |"), "{text}");
+    assert!(text.contains("| inverse | -5.380 | 3 |"), "{text}");
+}
+
+/// rockslide shall take every PGA in g: a case's `scale_to_pga_g` as `newmark --pga`. The
+/// old key `scale_to_pga` (m/s²) is refused (exit 2, nothing run) with the new key's name
+/// and the value converted; the same case with the new key loads.
+#[test]
+fn pga_is_in_g_and_the_old_key_names_the_new_one() {
+    let dir = tempfile::tempdir().unwrap();
+    let shipped = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/records/pepo-northridge.toml"
+    ))
+    .unwrap();
+    let record = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/records/Northridge_1994_PAC-175.csv"
+    );
+    let new = shipped.replace("\"Northridge_1994_PAC-175.csv\"", &format!("{record:?}"));
+    assert!(
+        new.contains("\nscale_to_pga_g = 0.1 "),
+        "the shipped case uses g"
+    );
+    let old = new.replace("\nscale_to_pga_g = 0.1 ", "\nscale_to_pga = 0.980665 ");
+    let (new_path, old_path) = (dir.path().join("new.toml"), dir.path().join("old.toml"));
+    std::fs::write(&new_path, new).unwrap();
+    std::fs::write(&old_path, old).unwrap();
+    let o = rockslide(&["list", old_path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("old.toml:35:16: excitation.scale_to_pga: is no longer read: the target PGA is given in g as `scale_to_pga_g` (scale_to_pga = 0.980665 m/s² is scale_to_pga_g = 0.100000 g)"),
+        "{err}"
+    );
+    assert!(o.stdout.is_empty());
+    let o = rockslide(&["list", new_path.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+}
+
+/// rockslide shall advertise in `list` only the variants `run` accepts: a case asking the
+/// predictor-corrector for the ground-displacement variant `eq12` under a mass
+/// acceleration is refused by both, with the same located line naming what is available
+/// (exit 2); the shipped case lists `paper`, which `run` accepts.
+#[test]
+fn list_and_run_accept_the_same_variants() {
+    let dir = tempfile::tempdir().unwrap();
+    let shipped = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/cases/pepo-mass-accel.toml"
+    ))
+    .unwrap();
+    let line = "dt = 0.01               # the paper's spreadsheet step\n";
+    assert!(shipped.contains(line));
+    let case = dir.path().join("pc-eq12.toml");
+    std::fs::write(
+        &case,
+        shipped.replace(line, "dt = 0.01\nvariants = [\"eq12\"]\n"),
+    )
+    .unwrap();
+    let case = case.to_str().unwrap();
+    let out = dir.path().join("out");
+    let listed = rockslide(&["list", case]);
+    let ran = rockslide(&["run", case, "--out", out.to_str().unwrap()]);
+    let expected = "pc-eq12.toml:37:13: engines.predictor-corrector.variants[0]: \"eq12\" is not a variant of predictor-corrector for this scene; available: paper";
+    for o in [&listed, &ran] {
+        assert_eq!(o.status.code(), Some(2));
+        assert!(String::from_utf8_lossy(&o.stderr).contains(expected));
+    }
+    assert_eq!(listed.stderr, ran.stderr);
+    assert!(!out.exists(), "nothing written");
+    let o = rockslide(&["list", "cases/pepo-mass-accel.toml"]);
+    assert!(String::from_utf8_lossy(&o.stdout).contains("predictor-corrector  paper (dt 0.01 s)"));
+}
+
+/// rockslide shall not panic on a closed pipe in any printing command: `newmark | head -0`
+/// exits 0 with nothing on stderr (it printed through `print!`, which panics, exit 101).
+#[test]
+fn newmark_into_a_closed_pipe_is_not_a_panic() {
+    use std::process::Stdio;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "newmark",
+            "cases/records/Loma_Prieta_1989_HSP-000.AT2",
+            "--ky",
+            "0.1",
+        ])
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(err.is_empty(), "{err}");
 }

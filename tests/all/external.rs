@@ -279,7 +279,7 @@ fn the_worked_example_passes_its_gate_through_the_command_line() {
     assert!(junit.contains("mycode/external"));
     let md = std::fs::read_to_string(dir.path().join("pepo-external/report.md")).unwrap();
     assert!(
-        md.contains("| Peak resistance | kN | 500.0 | 500.0 | +0.00 % | not provided |"),
+        md.contains("| Peak resistance (abs) | kN | 500.0 | 500.0 | +0.00 % | not provided |"),
         "{md}"
     );
     assert!(md.contains("columns ignored: \"Step type\""));

@@ -169,6 +169,86 @@ fn the_suite_summary_is_appended_to_the_github_step_summary() {
     );
 }
 
+/// `check` in a GitHub-like environment: the step summary, summary path `summary` and
+/// reports in `<dir>/out`, run from `dir` (the repository root in CI) with `env` set.
+fn check_in_ci(dir: &Path, env: &[(&str, &str)]) -> (Output, String) {
+    let summary = dir.join("step-summary.md");
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/too-tight.toml");
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_rockslide"));
+    cmd.current_dir(dir)
+        .env_remove("GITHUB_ACTIONS")
+        .env_remove("ROCKSLIDE_REPORTS_URL")
+        .env("GITHUB_STEP_SUMMARY", &summary)
+        .envs(env.iter().copied())
+        .arg("check")
+        .arg(&case)
+        .args(["--out", "out"]);
+    let o = cmd.output().unwrap();
+    (o, std::fs::read_to_string(&summary).unwrap())
+}
+
+/// rockslide shall make the step summary's links work away from the output folder:
+/// absolute from `ROCKSLIDE_REPORTS_URL`, else the path from the repository root (as in
+/// an uploaded artifact), never a link relative to the output folder.
+#[test]
+fn step_summary_links_are_absolute_or_paths_from_the_repository_root() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, text) = check_in_ci(
+        dir.path(),
+        &[("ROCKSLIDE_REPORTS_URL", "https://ci.example/run/7/reports/")],
+    );
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        text.contains("[too-tight](https://ci.example/run/7/reports/too-tight/report.html)"),
+        "{text}"
+    );
+    assert!(!text.contains("](too-tight/"), "{text}");
+    let dir = tempfile::tempdir().unwrap();
+    let (o, text) = check_in_ci(dir.path(), &[]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(
+        text.contains("too-tight (`out/too-tight/report.html`)"),
+        "{text}"
+    );
+    assert!(!text.contains("](too-tight/"), "{text}");
+}
+
+/// rockslide shall annotate each gate failure for GitHub (`::error file=…,title=…::…` on
+/// stdout) when `GITHUB_ACTIONS=true`, and only then; a passing gate annotates nothing.
+#[test]
+fn failing_checks_emit_github_annotations_only_under_github_actions() {
+    let dir = tempfile::tempdir().unwrap();
+    let (o, _) = check_in_ci(dir.path(), &[("GITHUB_ACTIONS", "true")]);
+    assert_eq!(o.status.code(), Some(1));
+    let out = String::from_utf8_lossy(&o.stdout);
+    let notes: Vec<&str> = out.lines().filter(|l| l.starts_with("::error ")).collect();
+    assert_eq!(notes.len(), 1, "{out}");
+    let case = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/too-tight.toml");
+    let file = case.display().to_string().replace(':', "%3A");
+    assert!(
+        notes[0].starts_with(&format!(
+            "::error file={file},title=rockslide too-tight::FAIL too-tight: peak_relative_displacement: predictor-corrector/paper vs reference: Δ "
+        )),
+        "{}",
+        notes[0]
+    );
+    for env in [&[][..], &[("GITHUB_ACTIONS", "false")][..]] {
+        let dir = tempfile::tempdir().unwrap();
+        let (o, _) = check_in_ci(dir.path(), env);
+        assert_eq!(o.status.code(), Some(1));
+        assert!(!String::from_utf8_lossy(&o.stdout).contains("::error"));
+    }
+    let o = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .env("GITHUB_ACTIONS", "true")
+        .args(["check", "tests/data/within-tolerance.toml", "--out"])
+        .arg(dir.path().join("pass"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(!String::from_utf8_lossy(&o.stdout).contains("::error"));
+}
+
 #[test]
 fn a_case_whose_gate_checks_nothing_fails() {
     let dir = tempfile::tempdir().unwrap();
@@ -216,6 +296,27 @@ fn a_closed_pipe_is_not_a_panic() {
     let o = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+}
+
+/// `rockslide check | head -1`: the reader goes away after the first line; the gate still
+/// answers with its exit code (here 1: the case fails), never a panic (101).
+#[test]
+fn check_into_a_closed_pipe_is_not_a_panic() {
+    use std::process::Stdio;
+    let dir = tempfile::tempdir().unwrap();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(["check", "tests/data/too-tight.toml", "--out"])
+        .arg(dir.path())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(!err.contains("panicked"), "{err}");
 }
 

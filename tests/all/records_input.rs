@@ -195,16 +195,21 @@ fn case_text(record: &str, extra: &str) -> String {
 #[test]
 fn pga_scaling_is_exact_and_polarity_inverts() {
     let case_path = records_dir().join("virtual.toml");
-    for (pga, polarity) in [(0.980665, 1.0), (2.5, -1.0), (1e-3, 1.0)] {
+    for (pga_g, polarity) in [(0.1, 1.0), (0.25, -1.0), (1e-4, 1.0)] {
+        let pga = pga_g * STANDARD_GRAVITY;
         let text = case_text(
             "Imperial_Valley_1979_BCR-230.csv",
-            &format!("record_unit = \"g\"\nscale_to_pga = {pga}\npolarity = {polarity}"),
+            &format!("record_unit = \"g\"\nscale_to_pga_g = {pga_g}\npolarity = {polarity}"),
         );
         let case = parse_case(&case_path, &text).unwrap();
         let Excitation::GroundAcceleration(s) = &case.scene.excitation else {
             panic!("ground acceleration expected")
         };
-        assert_eq!(s.peak(), pga, "peak equals the stated PGA bit for bit");
+        assert_eq!(
+            s.peak(),
+            pga,
+            "peak equals the stated PGA (g × 9.80665) bit for bit"
+        );
         let Signal::Record { samples, .. } = s else {
             panic!()
         };

@@ -148,7 +148,7 @@ fn loma_prieta_agrees_with_the_slammer_scheme_both_polarities() {
 }
 
 #[test]
-fn newmark_command_prints_both_polarities_in_cm() {
+fn newmark_command_prints_both_polarities_in_mm_block_minus_ground() {
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_rockslide"))
         .args(["newmark", "--ky", "0.1", "--"])
         .arg(
@@ -159,16 +159,17 @@ fn newmark_command_prints_both_polarities_in_cm() {
         .unwrap();
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
-    // Values of loma_prieta_agrees_with_the_slammer_scheme_both_polarities (ky 0.1 g).
+    // Values of loma_prieta_agrees_with_the_slammer_scheme_both_polarities (ky 0.1 g):
+    // SLAMMER's u = 24.617 / 47.422 cm, printed as sliding = −u in mm (the reports' sign).
     assert!(
-        text.contains("| 0.1000 | normal | 24.617 | 0.24617 |"),
+        text.contains("| 0.1000 | normal | -246.2 | 9 | 246.2 |"),
         "{text}"
     );
     assert!(
-        text.contains("| 0.1000 | inverse | 47.422 | 0.47422 |"),
+        text.contains("| 0.1000 | inverse | -474.2 | 8 | 474.2 |"),
         "{text}"
     );
-    assert!(text.contains("| 0.1000 | mean | 36.019 |"), "{text}");
+    assert!(text.contains("| 0.1000 | mean abs | 360.2 |"), "{text}");
     // A CSV without its unit is refused with exit code 2 and says how to fix it.
     let out = std::process::Command::new(env!("CARGO_BIN_EXE_rockslide"))
         .args(["newmark", "--ky", "0.1", "--"])

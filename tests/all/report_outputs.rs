@@ -116,7 +116,7 @@ fn markdown_has_the_paper_table_with_na_columns_and_provenance() {
     // The failing row: gated, outside tolerance.
     let row = md
         .lines()
-        .find(|l| l.starts_with("| Peak relative displacement |"))
+        .find(|l| l.starts_with("| Peak relative displacement (abs) |"))
         .unwrap();
     assert!(
         row.contains("≤ 0.1 %") && row.ends_with("| **FAIL** |"),

@@ -265,16 +265,33 @@ fn rpepo_report_compares_up_to_first_liftoff_and_draws_figs_8_to_11() {
     assert!(md.contains("Without an exact reference these are convergence errors against each engine's own finest solution"));
     let sweep = SweepResult::load(&case).unwrap().unwrap();
     assert!(!sweep.exact_basis);
-    let rich = &sweep.series("fe/single").unwrap().richardson[0];
-    assert_eq!(rich.quantity, "peak relative displacement");
-    let expected = match &rich.estimate {
-        Some(e) => format!(
-            "| fe/single | peak relative displacement | {:.3} | {:.6e} m | {:.3e} |",
-            e.order, e.extrapolated, e.gci
-        ),
-        None => "| fe/single | peak relative displacement | — | — (differences do not shrink monotonically: not in the asymptotic range) | — |".into(),
-    };
+    // One observed order per engine on the page (the fit over the asymptotic rungs), and
+    // the Richardson estimates made with that same order, never a second one.
+    let series = sweep.series("fe/single").unwrap();
+    let p = series.observed_order().expect("an observed order");
+    assert_eq!(
+        series.observed_order(),
+        rockslide::analysis::sweep::asymptotic_order(
+            &series
+                .rungs
+                .iter()
+                .map(|g| (g.dt, g.error.map_or(f64::NAN, |e| e.max)))
+                .collect::<Vec<_>>()
+        )
+    );
+    let order_row = format!("| fe/single | {p:.2} | {} |", series.rungs.len());
+    assert!(md.contains(&order_row), "{order_row}");
+    assert!(md.contains("observed order p (least-squares slope of ln(max error) against ln Δt over the 4 finest rungs)"));
+    let (quantity, estimate) = series.extrapolations(sweep.ratio)[0];
+    assert_eq!(quantity, "peak relative displacement");
+    let e = estimate.expect("two finest rungs and an order");
+    assert_eq!(e.order, p, "Richardson uses the one observed order");
+    let expected = format!(
+        "| fe/single | peak relative displacement | {:.6e} m | {:.3e} |",
+        e.extrapolated, e.gci
+    );
     assert!(md.contains(&expected), "{expected}");
+    assert!(!md.contains("| observed order |"), "no second order column");
     let sweep_md = read(&case.join("sweep.md"));
     assert!(
         sweep_md.contains(expected.trim_start_matches("| fe/single ")),
@@ -362,4 +379,62 @@ fn case_report_has_a_document_control_block() {
     ] {
         assert!(md.contains(&format!("- **{field}:** ")), "{field}");
     }
+}
+
+/// rockslide shall show peaks of signed quantities with their sign: the rigid block of
+/// `rigid-sliding-block` slides the negative way only (one slide, Newmark 1965), so its
+/// signed peak sliding is its minimum and its residual, −(its absolute peak) — in the
+/// response table, in summary.csv and in result.json, for the reference and each run.
+/// (Read as the largest value, the peak was 0 beside −281 mm.)
+#[test]
+fn signed_peaks_keep_their_sign_in_table_csv_and_json() {
+    let dir = tempfile::tempdir().unwrap();
+    rockslide(&["run", "cases/rigid-sliding-block.toml"], dir.path());
+    let case = dir.path().join("rigid-sliding-block");
+    let md = read(&case.join("report.md"));
+    let signed = row(&md, "Peak sliding (signed)");
+    let min = row(&md, "Minimum sliding");
+    let residual = row(&md, "Residual sliding");
+    let abs = row(&md, "Peak sliding (abs)");
+    // Reference, kinematic-ground, inertial-force: columns 2, 3 and 5.
+    for i in [2, 3, 5] {
+        assert!(signed[i].starts_with("-2"), "{signed:?}");
+        assert_eq!(signed[i], min[i]);
+        assert_eq!(signed[i], residual[i]);
+        assert_eq!(signed[i], format!("-{}", abs[i]));
+    }
+    let (h, rows) = csv(&case.join("summary.csv"));
+    let col = |name: &str| h.iter().position(|x| x == name).unwrap();
+    let value = |q: &str, run: &str| -> f64 {
+        rows.iter()
+            .find(|r| r[col("quantity")] == q && r[col("run")] == run)
+            .unwrap()[col("value")]
+        .parse()
+        .unwrap()
+    };
+    for run in ["rapier/kinematic-ground", "rapier/inertial-force"] {
+        let peak = value("peak_sliding", run);
+        assert!(peak < -0.28, "{run}: {peak}");
+        assert_eq!(peak, value("min_sliding", run));
+        assert_eq!(peak, -value("peak_abs_sliding", run));
+    }
+    let json = read(&case.join("result.json"));
+    let v: serde_json::Value = serde_json::from_str(&json).unwrap();
+    // Every `{"key": "peak_sliding", "value": …}` of the record (reference and runs).
+    fn peaks(v: &serde_json::Value, out: &mut Vec<f64>) {
+        match v {
+            serde_json::Value::Object(m) => {
+                if m.get("key").and_then(|k| k.as_str()) == Some("peak_sliding") {
+                    out.extend(m.get("value").and_then(|x| x.as_f64()));
+                }
+                m.values().for_each(|x| peaks(x, out));
+            }
+            serde_json::Value::Array(a) => a.iter().for_each(|x| peaks(x, out)),
+            _ => {}
+        }
+    }
+    let mut found = Vec::new();
+    peaks(&v, &mut found);
+    assert_eq!(found.len(), 3, "reference and two runs: {found:?}");
+    assert!(found.iter().all(|&p| p < -0.28), "{found:?}");
 }

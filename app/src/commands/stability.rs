@@ -25,14 +25,14 @@ pub fn run(args: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Err
     write_stability(&r, &dir)?;
     if !opts.quiet {
         for l in &r.limits {
-            println!(
+            say!(
                 "{}: practical stability limit Δt/T = {}",
                 l.label,
                 l.limit()
                     .map_or("> 1.0 (no divergence found)".into(), |x| format!("{x:.4}"))
             );
         }
-        println!("→ {}", dir.join("stability.md").display());
+        say!("→ {}", dir.join("stability.md").display());
     }
     Ok(ExitCode::SUCCESS)
 }

@@ -41,9 +41,9 @@ fn write(study: &Study, out: &Path, quiet: bool) -> Result<(), Error> {
     write_summary(study, out)?;
     if !quiet {
         for h in headline_sentences(study) {
-            println!("  {h}");
+            say!("  {h}");
         }
-        println!("summary: {}", out.join("summary.md").display());
+        say!("summary: {}", out.join("summary.md").display());
     }
     Ok(())
 }
@@ -69,7 +69,7 @@ pub fn study_command(
     let secs = start.elapsed().as_secs_f64();
     if !quiet {
         let shard_text = shard.map_or_else(String::new, |(k, n)| format!(" (shard {k}/{n})"));
-        println!(
+        say!(
             "{}{shard_text}: {} of {} points assigned, {} run now ({} engine runs, {:.2} s, {:.1} runs/s), {} already done",
             grid.title,
             outcome.assigned,
@@ -88,7 +88,7 @@ pub fn study_command(
     match shard {
         Some(_) => {
             if !quiet {
-                println!(
+                say!(
                     "results in {}; when every shard is done: rockslide study-merge {} --out {} [--from <shard folders>]",
                     runs_dir(out).display(),
                     grid_path.display(),
@@ -111,7 +111,7 @@ pub fn merge_command(
     let grid = load_grid(grid_path)?;
     let study = collect(&grid, from, out)?;
     if !quiet {
-        println!(
+        say!(
             "{}: merged {} points from {} folder(s)",
             grid.title,
             study.results.len(),
@@ -147,7 +147,8 @@ pub fn run(
 
 /// The `newmark` command: print the table.
 pub fn newmark(args: NewmarkArgs) -> Result<ExitCode, Error> {
-    print!("{}", newmark_command(&args)?);
+    let text = newmark_command(&args)?;
+    let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), text.as_bytes());
     Ok(ExitCode::SUCCESS)
 }
 

@@ -26,12 +26,13 @@ pub fn run(cases: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Er
         write_sweep(&r, &dir)?;
         if !opts.quiet {
             for se in &r.series {
-                println!(
-                    "{}: {}: observed order {} (self-convergence {}){}",
+                say!(
+                    "{}: {}: observed order p {} ({}){}",
                     r.case,
                     se.label,
-                    se.fitted_order.map_or("—".into(), |p| format!("{p:.3}")),
-                    se.self_order.map_or("—".into(), |p| format!("{p:.3}")),
+                    se.observed_order()
+                        .map_or("—".into(), |p| format!("{p:.2}")),
+                    rockslide_verify::analysis::sweep::ORDER_METHOD,
                     se.skipped.as_ref().map_or(String::new(), |k| format!(
                         "; cost budget: {} of {} rungs, Δt ≤ {:.3e} s skipped",
                         se.rungs.len(),
@@ -40,7 +41,7 @@ pub fn run(cases: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Er
                     ))
                 );
             }
-            println!("{}: → {}", r.case, dir.join("sweep.md").display());
+            say!("{}: → {}", r.case, dir.join("sweep.md").display());
         }
     }
     Ok(ExitCode::SUCCESS)

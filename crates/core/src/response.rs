@@ -1,7 +1,8 @@
 //! The response quantities a case can name in its tolerances — peak relative displacement,
 //! peak, minimum and residual sliding, slip start and end, peak resistance, and for rocking
 //! bodies peak rotation, uplift and centre-of-mass motion: key, label, the trace channel each
-//! is read from and how. Part of the case vocabulary; reading them off a trace is the
+//! is read from and how. A label says what the number is: `Peak sliding (signed)` is the
+//! signed extreme (the value with the largest |x|, with its sign), `Peak … (abs)` a magnitude. Part of the case vocabulary; reading them off a trace is the
 //! `verify` crate's job.
 
 use crate::trace::{Quantity, q};
@@ -11,6 +12,9 @@ use crate::trace::{Quantity, q};
 pub enum Reading {
     /// Largest absolute value.
     PeakAbs,
+    /// The signed extreme: the value with the largest |x|, with its sign (a block that
+    /// slid 281 mm the negative way peaks at −281 mm, not at 0).
+    SignedPeak,
     /// Largest value.
     Max,
     /// Smallest value.
@@ -102,19 +106,19 @@ macro_rules! defs {
 defs![
     (
         "peak_relative_displacement",
-        "Peak relative displacement",
+        "Peak relative displacement (abs)",
         q::REL_DISP,
         PeakAbs
     ),
-    ("peak_sliding", "Peak sliding", q::SLIDE, Max),
+    (
+        "peak_sliding",
+        "Peak sliding (signed)",
+        q::SLIDE,
+        SignedPeak
+    ),
     ("min_sliding", "Minimum sliding", q::SLIDE, Min),
     ("residual_sliding", "Residual sliding", q::SLIDE, Last),
-    (
-        "peak_abs_sliding",
-        "Peak absolute sliding",
-        q::SLIDE,
-        PeakAbs
-    ),
+    ("peak_abs_sliding", "Peak sliding (abs)", q::SLIDE, PeakAbs),
     (
         "total_slid",
         "Total slid (both ways)",
@@ -124,9 +128,19 @@ defs![
     ("slip_episodes", "Slip episodes", q::SLIDE, SlipEpisodes),
     ("slip_start", "Slip start", q::SLIDE, SlipStart),
     ("slip_end", "Slip end", q::SLIDE, SlipEnd),
-    ("peak_resistance", "Peak resistance", q::RESISTANCE, PeakAbs),
-    ("peak_base_shear", "Peak base shear", q::BASE_SHEAR, PeakAbs),
-    ("peak_rotation", "Peak rotation", q::ROTATION, PeakAbs),
+    (
+        "peak_resistance",
+        "Peak resistance (abs)",
+        q::RESISTANCE,
+        PeakAbs
+    ),
+    (
+        "peak_base_shear",
+        "Peak base shear (abs)",
+        q::BASE_SHEAR,
+        PeakAbs
+    ),
+    ("peak_rotation", "Peak rotation (abs)", q::ROTATION, PeakAbs),
     ("peak_uplift", "Peak uplift", q::UPLIFT, Max),
     (
         "first_liftoff",
@@ -134,7 +148,7 @@ defs![
         q::CONTACTS,
         FirstZero
     ),
-    ("peak_cm_x", "Peak CM horizontal", q::CM_X, PeakAbs),
+    ("peak_cm_x", "Peak CM horizontal (abs)", q::CM_X, PeakAbs),
     ("max_cm_z", "Max CM vertical", q::CM_Z, Max),
     ("min_cm_z", "Min CM vertical", q::CM_Z, Min),
     ("first_impact", "First impact", q::ROTATION, FirstCrossing),
@@ -146,7 +160,7 @@ defs![
     ),
     (
         "peak_tilt_after_impact",
-        "Peak tilt after first impact",
+        "Peak tilt after first impact (abs)",
         q::ROTATION,
         PeakAbsAfterFirstCrossing
     ),

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
-use crate::case::record::{AccelUnit, MAX_RECORD_BYTES, Record, read_record};
+use crate::case::record::{AccelUnit, MAX_RECORD_BYTES, Record, STANDARD_GRAVITY, read_record};
 use crate::case::{Case, Locator, limits};
 use crate::error::{InputError, InputErrors, line_col};
 
@@ -402,7 +402,9 @@ fn base_excitation(base: &Case) -> BaseExcitation {
         unit: get("record_unit")
             .and_then(|v| v.as_str())
             .map(String::from),
-        pga: get("scale_to_pga").and_then(value_f64),
+        pga: get("scale_to_pga_g")
+            .and_then(value_f64)
+            .map(|g| g * STANDARD_GRAVITY),
         polarity: get("polarity").and_then(value_f64).unwrap_or(1.0),
     }
 }

@@ -408,6 +408,7 @@ impl Validator<'_> {
     }
 
     fn excitation(&mut self, e: &RawExcitation, case_path: &Path) -> Option<Excitation> {
+        self.old_pga_key(e.scale_to_pga.as_ref(), "excitation.scale_to_pga");
         if e.kind == "none" {
             self.nothing_beside_none(e);
             return Some(Excitation::None);
@@ -444,6 +445,28 @@ impl Validator<'_> {
         }
     }
 
+    /// `scale_to_pga` (m/s²) was renamed `scale_to_pga_g` (g, as `rockslide newmark --pga`):
+    /// the old key is refused with the new one's name and value, never read in m/s².
+    fn old_pga_key(&mut self, old: Option<&toml::Value>, field: &str) {
+        let Some(old) = old else {
+            return;
+        };
+        let hint = match old
+            .as_float()
+            .or_else(|| old.as_integer().map(|i| i as f64))
+        {
+            Some(x) => format!(
+                " (scale_to_pga = {x} m/s² is scale_to_pga_g = {:.6} g)",
+                x / STANDARD_GRAVITY
+            ),
+            None => String::new(),
+        };
+        self.fail(
+            field,
+            format!("is no longer read: the target PGA is given in g as `scale_to_pga_g`{hint}"),
+        );
+    }
+
     /// `kind = "none"` takes no signal: any signal key beside it is an error, not ignored.
     fn nothing_beside_none(&mut self, e: &RawExcitation) {
         for (f, given) in [
@@ -453,7 +476,7 @@ impl Validator<'_> {
             ("excitation.cycles", e.cycles.is_some()),
             ("excitation.record", e.record.is_some()),
             ("excitation.record_unit", e.record_unit.is_some()),
-            ("excitation.scale_to_pga", e.scale_to_pga.is_some()),
+            ("excitation.scale_to_pga_g", e.scale_to_pga_g.is_some()),
             ("excitation.polarity", e.polarity.is_some()),
         ] {
             if given {
@@ -468,7 +491,7 @@ impl Validator<'_> {
         }
         for (f, p) in [
             (&format!("{p}.record_unit"), e.record_unit.is_some()),
-            (&format!("{p}.scale_to_pga"), e.scale_to_pga.is_some()),
+            (&format!("{p}.scale_to_pga_g"), e.scale_to_pga_g.is_some()),
             (&format!("{p}.polarity"), e.polarity.is_some()),
         ] {
             if p {
@@ -553,10 +576,21 @@ impl Validator<'_> {
                 1.0
             }
         };
-        let target = match e.scale_to_pga {
+        let target = match e.scale_to_pga_g {
             None => None,
-            x => Some(self.number(&format!("{p}.scale_to_pga"), x, Rule::positive("m/s²"))),
+            x => Some(
+                self.number(&format!("{p}.scale_to_pga_g"), x, Rule::positive("g"))
+                    * STANDARD_GRAVITY,
+            ),
         };
+        if let (Some(t), Some(g)) = (target, e.scale_to_pga_g) {
+            if g.is_finite() && !t.is_finite() {
+                self.fail(
+                    &format!("{p}.scale_to_pga_g"),
+                    format!("is {g} g, which is beyond the largest number in m/s²"),
+                );
+            }
+        }
         let dir = case_path.parent().unwrap_or(Path::new(""));
         let path = dir.join(record);
         let mut rec = match read_record(&path, unit) {
@@ -584,7 +618,7 @@ impl Validator<'_> {
             Some(t) if t.is_finite() && t > 0.0 => {
                 let f = rec.scale_to_pga(t, polarity);
                 format!(
-                    ", scaled ×{f:.6} to PGA {t} m/s² ({:.4} g)",
+                    ", scaled ×{f:.6} to PGA {:.6} g ({t:.6} m/s²)",
                     t / STANDARD_GRAVITY
                 )
             }
@@ -1107,7 +1141,7 @@ struct SignalKeys<'a> {
     cycles: Option<f64>,
     record: Option<&'a str>,
     record_unit: Option<&'a str>,
-    scale_to_pga: Option<f64>,
+    scale_to_pga_g: Option<f64>,
     polarity: Option<f64>,
 }
 
@@ -1120,7 +1154,7 @@ impl<'a> SignalKeys<'a> {
             cycles: e.cycles,
             record: e.record.as_deref(),
             record_unit: e.record_unit.as_deref(),
-            scale_to_pga: e.scale_to_pga,
+            scale_to_pga_g: e.scale_to_pga_g,
             polarity: e.polarity,
         }
     }
@@ -1133,7 +1167,7 @@ impl<'a> SignalKeys<'a> {
             cycles: e.cycles,
             record: e.record.as_deref(),
             record_unit: e.record_unit.as_deref(),
-            scale_to_pga: e.scale_to_pga,
+            scale_to_pga_g: e.scale_to_pga_g,
             polarity: e.polarity,
         }
     }
@@ -1151,6 +1185,7 @@ impl Validator<'_> {
         case_path: &Path,
     ) -> Option<Vertical> {
         const P: &str = "excitation.vertical";
+        self.old_pga_key(raw.scale_to_pga.as_ref(), "excitation.vertical.scale_to_pga");
         let signal = self.signal(&SignalKeys::of_vertical(raw), P, case_path);
         let (gravity, kind) = match model? {
             Model::Oscillator(o) => (o.gravity, "oscillator"),

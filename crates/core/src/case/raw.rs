@@ -113,7 +113,10 @@ pub struct RawExcitation {
     pub cycles: Option<f64>,
     pub record: Option<String>,
     pub record_unit: Option<String>,
-    pub scale_to_pga: Option<f64>,
+    /// The record's target PGA, g.
+    pub scale_to_pga_g: Option<f64>,
+    /// The old key (m/s²), read only to be refused with the new one's name.
+    pub scale_to_pga: Option<toml::Value>,
     pub polarity: Option<f64>,
     /// `[excitation.vertical]`: the vertical ground acceleration (see [`RawVertical`]).
     pub vertical: Option<RawVertical>,
@@ -132,7 +135,10 @@ pub struct RawVertical {
     pub cycles: Option<f64>,
     pub record: Option<String>,
     pub record_unit: Option<String>,
-    pub scale_to_pga: Option<f64>,
+    /// The vertical record's target PGA, g.
+    pub scale_to_pga_g: Option<f64>,
+    /// The old key (m/s²), read only to be refused with the new one's name.
+    pub scale_to_pga: Option<toml::Value>,
     pub polarity: Option<f64>,
     pub normal_force: Option<String>,
 }

@@ -271,7 +271,10 @@ fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
         format!("Whole history: normalised RMS difference of {HISTORY_KEY}"),
     ));
     b.push(Block::Table(matrix(&x, &x.nrms, ratio)));
-    b.push(Block::Heading(3, "Peak relative displacement, Δ %".into()));
+    b.push(Block::Heading(
+        3,
+        "Peak relative displacement (abs), Δ %".into(),
+    ));
     b.push(Block::Table(matrix(&x, &x.peak, pct)));
     b.push(Block::Heading(3, "Every pair, every quantity".into()));
     b.push(Block::Para(

@@ -40,8 +40,11 @@ ul.facts li { margin: .1rem 0; }
   /* Every column on the page: tables shrink and wrap instead of scrolling. */
   body { margin: 0; max-width: none; padding: 0; font-size: 9pt; line-height: 1.3; }
   table { display: table; overflow: visible; width: 100%; font-size: 7pt; table-layout: auto; }
-  th, td { padding: .1rem .25rem; overflow-wrap: anywhere; }
-  td:first-child, td.num { white-space: normal; }
+  /* Words break only where one alone is wider than its column; a number never breaks
+     inside itself (it may wrap at a space, before its unit or mark). */
+  th, td { padding: .1rem .25rem; overflow-wrap: break-word; }
+  td:first-child { white-space: normal; }
+  td.num { white-space: normal; overflow-wrap: normal; word-break: keep-all; }
   tr, figure, .verdict, ul.facts { break-inside: avoid; page-break-inside: avoid; }
   h1, h2, h3, h4 { break-after: avoid; page-break-after: avoid; }
   figure svg { max-width: 100%; max-height: 170mm; }

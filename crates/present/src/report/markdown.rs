@@ -11,10 +11,52 @@ use super::format::md_cell;
 use super::provenance::Provenance;
 use rockslide_verify::suite::CaseResult;
 
-fn cell(c: &Cell) -> String {
+/// Where a rendered page's links to other outputs point.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Links {
+    /// Relative to the page, which sits in the output folder (`<case>/report.md`).
+    Relative,
+    /// Absolute: the output folder's URL, e.g. from `ROCKSLIDE_REPORTS_URL`
+    /// (`https://…/reports/<case>/report.html`).
+    Absolute(String),
+    /// No link (a page read where relative links cannot resolve, e.g. a GitHub step
+    /// summary): the file's path from the repository root, as found in an uploaded
+    /// artifact of the output folder (`reports/<case>/report.html`), in code font.
+    Paths(String),
+}
+
+impl Links {
+    /// `text` linked to `file` (a path inside the output folder).
+    fn to(&self, text: &str, file: &str) -> String {
+        match self {
+            Links::Relative => format!("[{text}]({file})"),
+            Links::Absolute(base) => format!("[{text}]({}/{file})", base.trim_end_matches('/')),
+            Links::Paths(root) if root.is_empty() => format!("{text} (`{file}`)"),
+            Links::Paths(root) => {
+                format!("{text} (`{}/{file}`)", root.trim_end_matches('/'))
+            }
+        }
+    }
+    /// A figure: an image where a link resolves, else its path.
+    fn figure(&self, file: &str) -> String {
+        match self {
+            Links::Paths(_) => self.to("figure", file),
+            _ => format!("!{}", self.to(file, file)),
+        }
+    }
+    /// The page of a case: Markdown beside the files, HTML on the web.
+    fn case_page(&self, case: &str) -> String {
+        match self {
+            Links::Relative => format!("{case}/report.md"),
+            _ => format!("{case}/report.html"),
+        }
+    }
+}
+
+fn cell(c: &Cell, links: &Links) -> String {
     let mut t = md_cell(&c.text);
     if let Some(case) = &c.case_link {
-        t = format!("[{t}]({case}/report.md)");
+        t = links.to(&t, &links.case_page(case));
     }
     match c.tone {
         Tone::Fail | Tone::Strong => format!("**{t}**"),
@@ -22,7 +64,7 @@ fn cell(c: &Cell) -> String {
     }
 }
 
-fn table(s: &mut String, t: &Table) {
+fn table(s: &mut String, t: &Table, links: &Links) {
     debug_assert!(
         t.rows.iter().all(|r| r.len() == t.header.len()) && t.numeric.len() == t.header.len(),
         "table rows must match the header: {:?}",
@@ -44,7 +86,7 @@ fn table(s: &mut String, t: &Table) {
         .collect();
     let _ = writeln!(s, "|{}|", rule.join("|"));
     for row in &t.rows {
-        let cells: Vec<String> = row.iter().map(cell).collect();
+        let cells: Vec<String> = row.iter().map(|c| cell(c, links)).collect();
         let _ = writeln!(s, "| {} |", cells.join(" | "));
     }
     s.push('\n');
@@ -52,6 +94,11 @@ fn table(s: &mut String, t: &Table) {
 
 /// Render blocks as Markdown; figure links are prefixed with `figure_dir` (e.g. `case/`).
 pub(crate) fn render(blocks: &[Block], figure_dir: &str) -> String {
+    render_with(blocks, figure_dir, &Links::Relative)
+}
+
+/// Render blocks as Markdown with links to other outputs made as `links` says.
+fn render_with(blocks: &[Block], figure_dir: &str, links: &Links) -> String {
     let mut s = String::new();
     for b in blocks {
         match b {
@@ -77,9 +124,10 @@ pub(crate) fn render(blocks: &[Block], figure_dir: &str) -> String {
                 }
                 s.push('\n');
             }
-            Block::Table(t) => table(&mut s, t),
+            Block::Table(t) => table(&mut s, t, links),
             Block::Figure { file, caption, .. } => {
-                let _ = writeln!(s, "![{file}]({figure_dir}{file})\n\n*{caption}*\n");
+                let image = links.figure(&format!("{figure_dir}{file}"));
+                let _ = writeln!(s, "{image}\n\n*{caption}*\n");
             }
             Block::Details { summary, text } => {
                 let _ = writeln!(
@@ -103,8 +151,15 @@ pub fn case_markdown(r: &CaseResult) -> String {
 
 /// The suite summary: the verdict per case, every gate failure, provenance.
 pub fn suite_markdown(results: &[CaseResult]) -> String {
-    render(
+    suite_markdown_with(results, &Links::Relative)
+}
+
+/// The suite summary with its links to the case pages and figures made as `links` says
+/// (the GitHub step summary, read away from the output folder).
+pub fn suite_markdown_with(results: &[CaseResult], links: &Links) -> String {
+    render_with(
         &suite_document(results, Provenance::current(), &Attachments::default()),
         "",
+        links,
     )
 }

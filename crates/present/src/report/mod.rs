@@ -36,7 +36,7 @@ mod table;
 mod vertical_plot;
 
 pub use html::{case_html, suite_html};
-pub use markdown::{case_markdown, suite_markdown};
+pub use markdown::{Links, case_markdown, suite_markdown, suite_markdown_with};
 pub use mcap_log::{case_trace_log, git_commit, write_case_mcap};
 pub use provenance::Provenance;
 pub use summary_csv::{SUMMARY_HEADER, summary_csv};

@@ -144,7 +144,7 @@ fn reports_have_run_columns_na_column_figures_and_the_run_vs_run_failure() {
     // Without a reference the check marks the value itself.
     let row = md
         .lines()
-        .find(|l| l.starts_with("| Peak CM horizontal |"))
+        .find(|l| l.starts_with("| Peak CM horizontal (abs) |"))
         .unwrap();
     assert!(row.contains("| 10.00 | **10.30 ✗** |"), "{row}");
     let ids: Vec<String> = figures(&r).into_iter().map(|f| f.id).collect();

@@ -6,9 +6,10 @@
 use super::figure::figure;
 use crate::report::doc::{Block, Cell, Table, Tone};
 use crate::report::format::{order, sci};
+use rockslide_verify::analysis::sweep::{ORDER_METHOD, Richardson};
 use rockslide_verify::suite::CaseResult;
 use rockslide_verify::sweep::SweepResult;
-use rockslide_verify::sweep::work_precision::{RichardsonRow, Rung, SeriesResult};
+use rockslide_verify::sweep::work_precision::{Rung, SeriesResult};
 
 /// A table from its header (`true`: numeric, right-aligned).
 fn table(columns: &[(&str, bool)]) -> Table {
@@ -19,30 +20,40 @@ fn table(columns: &[(&str, bool)]) -> Table {
     }
 }
 
-/// Cells of one Richardson estimate: quantity, observed order, extrapolated value, GCI.
-fn richardson_cells(r: &RichardsonRow) -> Vec<Cell> {
-    match &r.estimate {
+/// Cells of one Richardson estimate (made with the series' one observed order): quantity,
+/// extrapolated value, GCI.
+fn richardson_cells(quantity: &str, estimate: Option<Richardson>) -> Vec<Cell> {
+    match estimate {
         Some(e) => vec![
-            r.quantity.clone().into(),
-            format!("{:.3}", e.order).into(),
+            quantity.into(),
             format!("{:.6e} m", e.extrapolated).into(),
             format!("{:.3e}", e.gci).into(),
         ],
         None => vec![
-            r.quantity.clone().into(),
-            "—".into(),
-            "— (differences do not shrink monotonically: not in the asymptotic range)".into(),
+            quantity.into(),
+            "— (no observed order: fewer than two completed rungs with a finite error)".into(),
             "—".into(),
         ],
     }
 }
 
-const RICHARDSON_COLUMNS: [(&str, bool); 4] = [
+const RICHARDSON_COLUMNS: [(&str, bool); 3] = [
     ("quantity", false),
-    ("observed order", true),
     ("extrapolated", true),
     ("GCI (fine)", true),
 ];
+
+/// The sentence that says how the Richardson estimates are made.
+fn richardson_sentence(ratio: f64) -> String {
+    format!(
+        "Richardson extrapolation of the two finest completed rungs (ratio r = {ratio}) with the engine's observed order p above: f ≈ f₁ + (f₁ − f₂)/(r^p − 1), Grid Convergence Index GCI = 1.25·|f₁ − f₂|/|f₁|/(r^p − 1) (Roache 1994) — the converged value each engine is heading for."
+    )
+}
+
+/// The header of the one observed order.
+fn order_header() -> String {
+    format!("observed order p ({ORDER_METHOD})")
+}
 
 /// Median run time of a rung in ms, 3 decimals.
 fn median_ms(g: &Rung) -> String {
@@ -69,8 +80,8 @@ fn rung_table(se: &SeriesResult) -> Table {
         ("status", false),
         ("max error", true),
         ("RMS error", true),
-        ("order", true),
-        ("change (order)", true),
+        ("local slope", true),
+        ("change (local slope)", true),
         ("resid. sliding err [mm]", true),
         ("event-time err [ms]", true),
         ("energy rel. err", true),
@@ -221,20 +232,14 @@ pub(crate) fn document(r: &SweepResult) -> Vec<Block> {
     for se in &r.series {
         b.push(Block::Heading(2, se.label.clone()));
         let mut facts = vec![
+            (order_header(), order(se.observed_order(), 2)),
             (
-                "Observed order (least-squares slope of ln max error against ln Δt)".to_string(),
-                order(se.fitted_order, 3),
-            ),
-            (
-                "Self-convergence order (slope of ln change against ln Δt)".into(),
-                order(se.self_order, 3),
-            ),
-            (
-                "Fitted on the finest four rungs only".into(),
+                "Diagnostics (slopes, not the order)".into(),
                 format!(
-                    "against the basis {}, self-convergence {}",
-                    order(se.fine_order, 3),
-                    order(se.fine_self_order, 3)
+                    "ln(max error) over the whole ladder, coarse rungs included: {}; ln(change to the next rung), self-convergence: {} (finest three changes: {})",
+                    order(se.fitted_order, 2),
+                    order(se.self_order, 2),
+                    order(se.fine_self_order, 2)
                 ),
             ),
         ];
@@ -257,13 +262,15 @@ pub(crate) fn document(r: &SweepResult) -> Vec<Block> {
         if let Some(why) = se.rungs.iter().find_map(|g| g.energy.as_ref().err()) {
             b.push(Block::Para(format!("Energy audit: {why}.")));
         }
-        if !se.richardson.is_empty() {
-            b.push(Block::Para(format!(
-                "Richardson extrapolation from the three finest completed rungs (ratio {}):",
-                r.ratio
-            )));
+        let extrapolations = se.extrapolations(r.ratio);
+        if !extrapolations.is_empty() {
+            b.push(Block::Para(richardson_sentence(r.ratio)));
             let mut t = table(&RICHARDSON_COLUMNS);
-            t.rows.extend(se.richardson.iter().map(richardson_cells));
+            t.rows.extend(
+                extrapolations
+                    .into_iter()
+                    .map(|(q, e)| richardson_cells(q, e)),
+            );
             b.push(Block::Table(t));
         }
     }
@@ -271,7 +278,7 @@ pub(crate) fn document(r: &SweepResult) -> Vec<Block> {
         b.push(Block::Figure {
             file: "sweep.svg".into(),
             caption: format!(
-                "Left: max error against Δt (observed order = slope), against the {}. Right: work-precision, max error against median run time.",
+                "Left: max error against Δt, against the {} (the legend gives each engine's observed order p: {ORDER_METHOD}). Right: work-precision, max error against median run time.",
                 if r.exact_basis {
                     "exact reference"
                 } else {
@@ -314,7 +321,7 @@ pub(crate) fn case_section(
         Some(Ok(s)) => s,
     };
     b.push(Block::Para(format!(
-        "Picked up from {case}/{file}: {how} Basis: {}. Errors: max and RMS of the relative-displacement difference over the whole history, normalised by the basis's peak; residual-sliding error in mm; event-time error (slip start/end, first lift-off) in ms. Run time: median of the repeats, wall clock. Observed order: least-squares slope of ln(max error) against ln Δt.",
+        "Picked up from {case}/{file}: {how} Basis: {}. Errors: max and RMS of the relative-displacement difference over the whole history, normalised by the basis's peak; residual-sliding error in mm; event-time error (slip start/end, first lift-off) in ms. Run time: median of the repeats, wall clock. Observed order p: {ORDER_METHOD} — one number per engine on this page, the one the Richardson estimates below use.",
         s.basis
     )));
     if !s.exact_basis {
@@ -324,7 +331,7 @@ pub(crate) fn case_section(
     }
     let mut summary = table(&[
         ("Engine/variant", false),
-        ("observed order", true),
+        (&order_header(), true),
         ("rungs", true),
         ("finest Δt [s]", true),
         ("max error there", true),
@@ -334,7 +341,7 @@ pub(crate) fn case_section(
         let last = se.rungs.iter().rev().find(|g| g.error.is_some());
         summary.rows.push(vec![
             se.label.clone().into(),
-            order(se.fitted_order, 2).into(),
+            order(se.observed_order(), 2).into(),
             se.rungs.len().to_string().into(),
             last.map_or("—".into(), |g| format!("{:.4e}", g.dt)).into(),
             sci(last.and_then(|g| g.error).map(|e| e.max)).into(),
@@ -345,7 +352,7 @@ pub(crate) fn case_section(
     if let Some(svg) = figure(s) {
         b.push(Block::Figure {
             file: "plot-work-precision.svg".into(),
-            caption: "Left: max error against Δt, log-log (the slope is the observed order). Right: work-precision, max error against median run time — lower left is better. Where series coincide, the earlier one is drawn wider so that it shows around the later ones.".into(),
+            caption: "Left: max error against Δt, log-log (the legend gives each engine's observed order p of the table above). Right: work-precision, max error against median run time — lower left is better. Where series coincide, the earlier one is drawn wider so that it shows around the later ones.".into(),
             svg,
         });
     }
@@ -383,17 +390,18 @@ pub(crate) fn case_section(
         }
     }
     b.push(Block::Table(t));
-    if s.series.iter().any(|se| !se.richardson.is_empty()) {
-        b.push(Block::Para(format!(
-            "Richardson extrapolation from the three finest completed rungs (from {file}): the converged value each engine is heading for, with the observed order and the Grid Convergence Index of the finest rung; “—” where the differences do not shrink monotonically (not yet in the asymptotic range)."
-        )));
+    if s.series
+        .iter()
+        .any(|se| !se.extrapolations(s.ratio).is_empty())
+    {
+        b.push(Block::Para(richardson_sentence(s.ratio)));
         let mut columns = vec![("Engine/variant", false)];
         columns.extend(RICHARDSON_COLUMNS);
         let mut rt = table(&columns);
         for se in &s.series {
-            for row in &se.richardson {
+            for (q, e) in se.extrapolations(s.ratio) {
                 let mut cells: Vec<Cell> = vec![se.label.clone().into()];
-                cells.extend(richardson_cells(row));
+                cells.extend(richardson_cells(q, e));
                 rt.rows.push(cells);
             }
         }

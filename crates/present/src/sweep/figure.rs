@@ -31,8 +31,8 @@ pub(crate) fn figure(sweep: &SweepResult) -> Option<String> {
         .enumerate()
         .map(|(i, s)| {
             let order = s
-                .fitted_order
-                .map_or("order —".into(), |p| format!("order {p:.2}"));
+                .observed_order()
+                .map_or("p —".into(), |p| format!("p = {p:.2}"));
             (format!("{} ({order})", s.label), palette(i), false)
         })
         .collect();

@@ -22,6 +22,7 @@ pub fn responses(trace: &Trace) -> Responses {
         }
         let value = match d.reading {
             Reading::PeakAbs => Some(col.iter().fold(0.0_f64, |m, x| m.max(x.abs()))),
+            Reading::SignedPeak => Some(signed_peak(col)),
             Reading::Max => Some(col.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
             Reading::Min => Some(col.iter().copied().fold(f64::INFINITY, f64::min)),
             Reading::Last => col.last().copied(),
@@ -50,6 +51,14 @@ pub fn responses(trace: &Trace) -> Responses {
         }
     }
     out
+}
+
+/// The value with the largest magnitude, with its sign (the first one on a tie; 0 for an
+/// all-zero or empty column).
+pub fn signed_peak(col: &[f64]) -> f64 {
+    col.iter()
+        .copied()
+        .fold(0.0_f64, |m, x| if x.abs() > m.abs() { x } else { m })
 }
 
 /// First and last instants of slipping, detected from the slip *rate* (never from

@@ -130,6 +130,41 @@ pub fn fitted_order(points: &[(f64, f64)]) -> Option<f64> {
     (sxx > 0.0).then(|| sxy / sxx)
 }
 
+/// Rungs the one observed order of a series is fitted over: the finest ones, the ladder's
+/// asymptotic range (the coarse rungs of a friction scene step over slip events).
+pub const ASYMPTOTIC_RUNGS: usize = 4;
+
+/// How the one observed order shown for a series is computed, in words: every page, table
+/// header, figure legend and console line that shows an order shows this one.
+pub const ORDER_METHOD: &str =
+    "least-squares slope of ln(max error) against ln Δt over the 4 finest rungs";
+
+/// The one observed order of a ladder: [`fitted_order`] over its [`ASYMPTOTIC_RUNGS`]
+/// finest points.
+pub fn asymptotic_order(points: &[(f64, f64)]) -> Option<f64> {
+    fitted_order(&points[points.len().saturating_sub(ASYMPTOTIC_RUNGS)..])
+}
+
+/// Richardson extrapolation of the two finest solutions with a given order p (the series'
+/// one observed order): f ≈ f₁ + (f₁ − f₂)/(r^p − 1), GCI = 1.25·|f₁ − f₂|/|f₁|/(r^p − 1)
+/// (Roache 1994). `None` without a positive finite order or a ratio above 1.
+pub fn richardson_at_order(fine: f64, mid: f64, r: f64, order: f64) -> Option<Richardson> {
+    if !(order.is_finite() && order > 0.0 && r > 1.0) {
+        return None;
+    }
+    let denom = r.powf(order) - 1.0;
+    let gci = if fine != 0.0 {
+        1.25 * (fine - mid).abs() / fine.abs() / denom
+    } else {
+        f64::NAN
+    };
+    Some(Richardson {
+        order,
+        extrapolated: fine + (fine - mid) / denom,
+        gci,
+    })
+}
+
 /// Richardson extrapolation from three solutions at a constant refinement ratio.
 #[derive(Debug, Clone, Copy, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Richardson {
@@ -186,6 +221,26 @@ mod tests {
             assert!((p.unwrap() - 2.0).abs() < 1e-12);
         }
         assert!((fitted_order(&pts).unwrap() - 2.0).abs() < 1e-12);
+    }
+
+    /// f(h) = 1 + h² with the order given (p = 2): the two finest solutions give f(0) = 1;
+    /// the asymptotic order ignores the coarse rungs (here a plateau before the range).
+    #[test]
+    fn richardson_at_a_given_order_and_the_asymptotic_fit() {
+        let f = |h: f64| 1.0 + h * h;
+        let r = richardson_at_order(f(0.1), f(0.2), 2.0, 2.0).unwrap();
+        assert!((r.extrapolated - 1.0).abs() < 1e-12);
+        assert!((r.gci - 1.25 * 0.03 / 1.01 / 3.0).abs() < 1e-15);
+        assert!(richardson_at_order(1.0, 1.1, 2.0, f64::NAN).is_none());
+        let pts: Vec<(f64, f64)> = [0.8, 0.4, 0.2, 0.1, 0.05, 0.025]
+            .iter()
+            .map(|&h| (h, if h > 0.3 { 0.05 } else { h * h }))
+            .collect();
+        assert!((asymptotic_order(&pts).unwrap() - 2.0).abs() < 1e-12);
+        assert!(
+            fitted_order(&pts).unwrap() < 1.9,
+            "the whole ladder is pulled down"
+        );
     }
 
     /// f(h) = 1 + h²: from h = 0.1, 0.2, 0.4 Richardson recovers p = 2 and f(0) = 1.

@@ -12,6 +12,7 @@ use sha2::{Digest, Sha256};
 
 use crate::registry::parse_case;
 use rockslide_core::case::Case;
+use rockslide_core::case::record::STANDARD_GRAVITY;
 use rockslide_core::error::{InputError, InputErrors};
 pub use rockslide_core::study_grid::{Amplitude, DEFAULT_TAIL, GridPoint, GridRecord, short_name};
 use rockslide_core::study_grid::{GridSpec, read_grid};
@@ -158,8 +159,8 @@ impl Grid {
         }
         set(
             &mut table,
-            &["excitation", "scale_to_pga"],
-            self.pga(p).into(),
+            &["excitation", "scale_to_pga_g"],
+            (self.pga(p) / STANDARD_GRAVITY).into(),
         );
         set(
             &mut table,

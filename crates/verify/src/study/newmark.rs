@@ -1,14 +1,20 @@
-//! `rockslide newmark <record> --ky <g>`: Newmark's rigid block on one record, reported as
-//! SLAMMER users expect — yield acceleration in g, displacement in cm (and m), the record
-//! run as recorded ("normal") and inverted ("inverse"), and their mean. One-way
-//! (downslope) sliding by default, as SLAMMER's rigid-block analysis; `--two-way` for a
-//! block on a level frictional base.
+//! `rockslide newmark <record> --ky <g>`: Newmark's rigid block on one record — yield
+//! acceleration and PGA in g, the record run as recorded ("normal") and inverted
+//! ("inverse"), and the mean of the two |sliding|. One-way (downslope) sliding by default,
+//! as SLAMMER's rigid-block analysis; `--two-way` for a block on a level frictional base.
+//!
+//! Sliding follows the case reports' convention, not SLAMMER's: block minus ground, in mm,
+//! positive when the block moves in +x relative to the ground. The exact block
+//! ([`NewmarkSummary`]) is driven by the ground acceleration and returns SLAMMER's u
+//! (positive where the ground accelerates past +ky), so sliding = −u; a one-way block
+//! therefore slides only in −x with the record as given.
 
 use std::path::PathBuf;
 
 use rockslide_core::case::record::{AccelUnit, STANDARD_GRAVITY, read_record};
 use rockslide_core::error::{Error, InputError, InputErrors};
 use rockslide_core::io::write_atomically;
+use rockslide_core::response::sig;
 use rockslide_reference::newmark_record::{NewmarkSummary, Sliding};
 
 /// Arguments of the command.
@@ -26,6 +32,43 @@ pub struct NewmarkArgs {
     pub two_way: bool,
     /// Also write the table as CSV here.
     pub csv: Option<PathBuf>,
+}
+
+/// The sliding (block minus ground, positive in +x, the case reports' convention) of the
+/// exact block's displacement u, which is SLAMMER's (positive where the ground accelerates
+/// past +ky): sliding = −u.
+pub fn sliding_of(u: f64) -> f64 {
+    -u
+}
+
+/// Columns of the printed table: sliding in mm (block minus ground) with 4 significant
+/// digits, as the case reports.
+const TABLE_HEADER: &str = "| record | ky [g] | polarity | sliding [mm] | slip episodes | total slid [mm] | first onset [s] | last stop [s] |\n\
+     |---|---:|---|---:|---:|---:|---:|---:|\n";
+
+/// The three rows (normal, inverse, mean |sliding|) of one yield acceleration.
+fn table_rows(s: &NewmarkSummary, label: &str) -> String {
+    let ky = s.ky / STANDARD_GRAVITY;
+    let span = |s: Option<(f64, f64)>| {
+        s.map_or("– | –".to_string(), |(a, b)| format!("{a:.4} | {b:.4}"))
+    };
+    let mut t = String::new();
+    for (pol, u, n, total, sp) in [
+        ("normal", s.normal, s.episodes.0, s.total_slid.0, s.span.0),
+        ("inverse", s.inverse, s.episodes.1, s.total_slid.1, s.span.1),
+    ] {
+        t.push_str(&format!(
+            "| {label} | {ky:.4} | {pol} | {} | {n} | {} | {} |\n",
+            sig(sliding_of(u) * 1e3),
+            sig(total * 1e3),
+            span(sp)
+        ));
+    }
+    t.push_str(&format!(
+        "| {label} | {ky:.4} | mean abs | {} | | | | |\n",
+        sig(s.mean() * 1e3)
+    ));
+    t
 }
 
 /// Run the command: print a Markdown table (and write CSV when asked).
@@ -72,11 +115,12 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
         .file_name()
         .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
     let mut md = format!(
-        "Newmark rigid block ({}), record {name}: {} samples × {} s, PGA {:.4} g{}\n\n",
+        "Newmark rigid block ({}), record {name}: {} samples × {} s, PGA {:.4} g{}\n\
+         Sliding: block minus ground, mm, positive in +x (the case reports' convention; SLAMMER's u = −sliding)\n\n",
         if a.two_way {
             "two-way sliding"
         } else {
-            "one-way sliding, SLAMMER convention"
+            "one-way sliding, as SLAMMER's rigid block"
         },
         rec.samples.len(),
         rec.dt,
@@ -93,8 +137,8 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
         "record",
         "ky_g",
         "polarity",
-        "displacement_cm",
-        "displacement_m",
+        "sliding_mm",
+        "sliding_m",
         "slip_episodes",
         "total_slid_m",
         "slip_start_s",
@@ -104,13 +148,10 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
     for (i, &ky) in a.ky.iter().enumerate() {
         let s = NewmarkSummary::of(rec.dt, &rec.samples, ky * STANDARD_GRAVITY, sliding, 0.0)
             .map_err(|why| Error::Other(format!("{name}: rigid block at ky {ky} g: {why}")))?;
-        let table = s.table(&name);
         if i == 0 {
-            md.push_str(&table);
-        } else {
-            // Same columns: drop the header rows.
-            md.extend(table.lines().skip(2).map(|l| format!("{l}\n")));
+            md.push_str(TABLE_HEADER);
         }
+        md.push_str(&table_rows(&s, &name));
         let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
         for (pol, d, episodes, total, span) in [
             (
@@ -127,13 +168,14 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
                 Some(s.total_slid.1),
                 s.span.1,
             ),
-            ("mean", s.mean(), None, None, None),
+            ("mean abs", -s.mean(), None, None, None),
         ] {
+            let d = sliding_of(d);
             csv.write_record([
                 name.clone(),
                 ky.to_string(),
                 pol.to_string(),
-                (d * 100.0).to_string(),
+                (d * 1e3).to_string(),
                 d.to_string(),
                 episodes.map_or(String::new(), |n| n.to_string()),
                 opt(total),

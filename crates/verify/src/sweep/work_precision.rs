@@ -21,7 +21,8 @@ use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::responses;
 use crate::analysis::sweep::{
-    Richardson, RungError, fitted_order, ladder, local_orders, resample, richardson, rung_error,
+    Richardson, RungError, asymptotic_order, fitted_order, ladder, local_orders, resample,
+    richardson, richardson_at_order, rung_error,
 };
 use crate::registry;
 use crate::run::{Outcome, TimeStats, Timed, guarded};
@@ -69,6 +70,43 @@ pub struct Rung {
     /// series (`None` for the finest rung or a failed run).
     #[serde(with = "crate::json::real_opt")]
     pub change: Option<f64>,
+}
+
+/// A value read off a rung (its peak displacement, its residual sliding).
+type RungValue = fn(&Rung) -> Option<f64>;
+
+impl SeriesResult {
+    /// The one observed order of the series, shown wherever an order is
+    /// ([`crate::analysis::sweep::ORDER_METHOD`]: the fit over the asymptotic rungs).
+    pub fn observed_order(&self) -> Option<f64> {
+        self.fine_order
+    }
+
+    /// Richardson extrapolation of peak relative displacement and residual sliding from
+    /// the two finest completed rungs with the series' one observed order (`None` where
+    /// a value or the order is missing).
+    pub fn extrapolations(&self, ratio: f64) -> Vec<(&'static str, Option<Richardson>)> {
+        let done: Vec<&Rung> = self.rungs.iter().filter(|r| r.completed()).collect();
+        let quantities: [(&'static str, RungValue); 2] = [
+            ("peak relative displacement", |r| r.peak_displacement),
+            ("residual sliding", |r| r.residual_sliding),
+        ];
+        quantities
+            .into_iter()
+            .filter(|(_, get)| done.last().is_some_and(|r| get(r).is_some()))
+            .map(|(name, get)| {
+                let n = done.len();
+                let est = match (n >= 2, self.observed_order()) {
+                    (true, Some(p)) => match (get(done[n - 1]), get(done[n - 2])) {
+                        (Some(f1), Some(f2)) => richardson_at_order(f1, f2, ratio, p),
+                        _ => None,
+                    },
+                    _ => None,
+                };
+                (name, est)
+            })
+            .collect()
+    }
 }
 
 impl Rung {
@@ -500,7 +538,7 @@ fn summarise(label: String, rungs: Vec<Rung>, ratio: f64) -> SeriesResult {
         richardson: rich,
         self_order: fitted_order(&changes),
         self_local_orders: local_orders(&changes),
-        fine_order: fitted_order(&points[points.len().saturating_sub(4)..]),
+        fine_order: asymptotic_order(&points),
         fine_self_order: fitted_order(&changes[changes.len().saturating_sub(3)..]),
         skipped: None,
         rungs,
