@@ -1185,7 +1185,10 @@ impl Validator<'_> {
         case_path: &Path,
     ) -> Option<Vertical> {
         const P: &str = "excitation.vertical";
-        self.old_pga_key(raw.scale_to_pga.as_ref(), "excitation.vertical.scale_to_pga");
+        self.old_pga_key(
+            raw.scale_to_pga.as_ref(),
+            "excitation.vertical.scale_to_pga",
+        );
         let signal = self.signal(&SignalKeys::of_vertical(raw), P, case_path);
         let (gravity, kind) = match model? {
             Model::Oscillator(o) => (o.gravity, "oscillator"),
