@@ -34,7 +34,7 @@ mu = 0.5
 [excitation]
 kind = "ground-acceleration"
 record = "rec.AT2"
-scale_to_pga = 0.980665
+scale_to_pga_g = 0.1
 polarity = 1
 
 [run]

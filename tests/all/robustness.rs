@@ -936,7 +936,7 @@ fn a_csv_time_column_that_needs_too_many_samples_is_an_error() {
 const GRID_BASE: &str = "title = \"t\"\nsource = \"s\"\nrequirement = \"r\"\n\n\
 [model]\nkind = \"oscillator\"\nmass = 1.0e6\ngravity = 1.0\n\n\
 [model.contact]\nkx = 9.8696e8\nkz = 3.94784e9\nmu = 0.5\n\n\
-[excitation]\nkind = \"ground-acceleration\"\nrecord = \"rec.AT2\"\nscale_to_pga = 0.980665\npolarity = 1\n\n\
+[excitation]\nkind = \"ground-acceleration\"\nrecord = \"rec.AT2\"\nscale_to_pga_g = 0.1\npolarity = 1\n\n\
 [run]\nduration = 1.0\ndt = 0.005\n\n[engines.predictor-corrector]\nvariants = [\"ground-accel\"]\ndt = 0.001\n";
 
 /// The fuzz corpus's full seed: 2 records × 2 PGAs × 3 μ × 2 polarities.
