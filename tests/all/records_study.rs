@@ -54,7 +54,7 @@ fn write_grid(dir: &Path, rapier: bool) -> PathBuf {
     let (base, rec) = short_base(dir, rapier);
     let text = format!(
         "title = \"test grid\"\nbase = \"{}\"\nrecords = [{{ path = \"{}\", unit = \"g\" }}]\n\
-         pga = [0.980665, 1.96133]\npolarity = [1, -1]\nmu = [0.4, 0.5]\ntail = 1.0\n",
+         pga_g = [0.1, 0.2]\npolarity = [1, -1]\nmu = [0.4, 0.5]\ntail = 1.0\n",
         base.display(),
         rec.display()
     );
@@ -198,14 +198,14 @@ fn grid_errors_are_located() {
     std::fs::write(
         &path,
         format!(
-            "base = \"{}\"\npga = [1.0, -2.0]\npolarity = [2]\n",
+            "base = \"{}\"\npga_g = [1.0, -2.0]\npolarity = [2]\n",
             base.display()
         ),
     )
     .unwrap();
     let e = load_grid(&path).unwrap_err().to_string();
     assert!(
-        e.contains("bad.toml:2:") && e.contains("pga[1]: is -2"),
+        e.contains("bad.toml:2:") && e.contains("pga_g[1]: is -2"),
         "{e}"
     );
     assert!(
@@ -244,11 +244,7 @@ fn stiff_pepo_tends_to_the_rigid_block() {
     assert!(!base_text.contains("dt = 0.001 ") && !base_text.contains("dt = 0.005 "));
     std::fs::write(dir.path().join("stiff.toml"), base_text).unwrap();
     let grid_path = dir.path().join("grid.toml");
-    std::fs::write(
-        &grid_path,
-        "base = \"stiff.toml\"\npga = [1.96133, 2.941995]\n",
-    )
-    .unwrap();
+    std::fs::write(&grid_path, "base = \"stiff.toml\"\npga_g = [0.2, 0.3]\n").unwrap();
     let grid = load_grid(&grid_path).unwrap();
     let out = dir.path().join("out");
     run_study(

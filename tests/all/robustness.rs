@@ -261,7 +261,7 @@ fn a_study_tail_above_the_step_limit_is_a_located_error() {
     std::fs::write(
         &grid,
         format!(
-            "title = \"t\"\nbase = {:?}\npga = [1.0]\ntail = 1e6\n",
+            "title = \"t\"\nbase = {:?}\npga_g = [0.1]\ntail = 1e6\n",
             base.display().to_string()
         ),
     )
@@ -942,7 +942,7 @@ const GRID_BASE: &str = "title = \"t\"\nsource = \"s\"\nrequirement = \"r\"\n\n\
 /// The fuzz corpus's full seed: 2 records × 2 PGAs × 3 μ × 2 polarities.
 const GRID_SEED: &str = "title = \"fuzz grid\"\nbase = \"base.toml\"\n\
 records = [\"rec.AT2\", { path = \"rec.csv\", unit = \"g\" }]\n\
-pga = [0.490333, 0.980665]\nmu = [0.3, 0.5, inf]\npolarity = [1, -1]\ntail = 0.5\nnewmark = true\n";
+pga_g = [0.05, 0.1]\nmu = [0.3, 0.5, inf]\npolarity = [1, -1]\ntail = 0.5\nnewmark = true\n";
 
 /// A folder holding `base.toml`, `rec.AT2` (10 samples) and `rec.csv` (4 samples), made
 /// once for every grid test.
@@ -980,6 +980,24 @@ fn the_seed_grid_expands_to_the_product_of_its_lists() {
         (last.record, last.mu, last.polarity),
         (1, Some(f64::INFINITY), -1.0)
     );
+    // pga_g is in g: 0.1 g is 0.980665 m/s² (the points keep SI)
+    assert_eq!(
+        g.points[1].amplitude,
+        rockslide::study::Amplitude::Pga(0.1 * 9.80665)
+    );
+}
+
+#[test]
+fn a_grid_pga_in_metres_per_second_squared_is_refused_with_the_g_key() {
+    let e = load_grid_text(
+        "old-pga.toml",
+        "base = \"base.toml\"\npga = [0.980665, 1.96133]\n",
+    )
+    .unwrap_err();
+    assert!(
+        e.contains("old-pga.toml:2:7: pga: is no longer read: target PGAs are given in g as `pga_g` (in g: pga_g = [0.1, 0.2])"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -1000,13 +1018,13 @@ fn a_grid_record_that_is_a_device_is_an_error_not_an_endless_read() {
 #[test]
 fn every_grid_error_is_located_and_reported_together() {
     let text = "base = \"base.toml\"\nrecords = [\"rec.AT2\", { path = \"missing.csv\", unit = \"furlong\" }]\n\
-                pga = []\nscale = [-1]\nmu = [-0.1]\npolarity = [2]\ntail = -1\n";
+                pga_g = []\nscale = [-1]\nmu = [-0.1]\npolarity = [2]\ntail = -1\n";
     let e = load_grid_text("errors.toml", text).unwrap_err();
     for want in [
         "errors.toml:2:23: records[1]: unit \"furlong\"",
-        "errors.toml:3:7: pga: must list at least one value",
+        "errors.toml:3:9: pga_g: must list at least one value",
         "errors.toml:4:10: scale[0]: is -1",
-        "errors.toml:4:9: scale: give `pga`",
+        "errors.toml:4:9: scale: give `pga_g`",
         "errors.toml:5:7: mu[0]: is -0.1",
         "errors.toml:6:13: polarity[0]: is 2",
         "errors.toml:7:8: tail: is -1",

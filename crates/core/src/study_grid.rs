@@ -28,7 +28,10 @@ struct RawGrid {
     title: Option<String>,
     base: String,
     records: Option<Vec<RawRecord>>,
-    pga: Option<Vec<f64>>,
+    /// Target PGAs, g.
+    pga_g: Option<Vec<f64>>,
+    /// The old key (m/s²), read only to be refused with the new one's name.
+    pga: Option<toml::Value>,
     scale: Option<Vec<f64>>,
     mu: Option<Vec<f64>>,
     polarity: Option<Vec<f64>>,
@@ -190,7 +193,7 @@ fn check_lists(raw: &RawGrid, loc: &Locator, errors: &mut Vec<InputError>) {
         }
     };
     let positive = |x: f64| x.is_finite() && x > 0.0;
-    list("pga", &raw.pga, &positive, "positive and finite, in m/s²");
+    list("pga_g", &raw.pga_g, &positive, "positive and finite, in g");
     list("scale", &raw.scale, &positive, "positive and finite");
     list(
         "mu",
@@ -204,12 +207,39 @@ fn check_lists(raw: &RawGrid, loc: &Locator, errors: &mut Vec<InputError>) {
         &|x: f64| x == 1.0 || x == -1.0,
         "1 or -1",
     );
-    if raw.pga.is_some() && raw.scale.is_some() {
+    if let Some(old) = &raw.pga {
+        errors.push(loc.error("pga", old_pga_message(old)));
+    }
+    if raw.pga_g.is_some() && raw.scale.is_some() {
         errors.push(loc.error(
             "scale",
-            "give `pga` (targets, m/s²) or `scale` (factors), not both",
+            "give `pga_g` (targets, g) or `scale` (factors), not both",
         ));
     }
+}
+
+/// `pga` (m/s²) was renamed `pga_g` (g, like a case's `scale_to_pga_g` and `rockslide
+/// newmark --pga`): the old key is refused with the new one's name and values.
+fn old_pga_message(old: &toml::Value) -> String {
+    let in_g: Option<Vec<String>> = old.as_array().and_then(|a| {
+        a.iter()
+            .map(|v| {
+                let x = v.as_float().or_else(|| v.as_integer().map(|i| i as f64))?;
+                Some(format!("{}", (x / STANDARD_GRAVITY * 1e6).round() / 1e6))
+            })
+            .collect()
+    });
+    let hint = in_g.map_or(String::new(), |g| {
+        format!(" (in g: pga_g = [{}])", g.join(", "))
+    });
+    format!("is no longer read: target PGAs are given in g as `pga_g`{hint}")
+}
+
+/// The grid's target PGAs in m/s², from `pga_g`.
+fn pga_targets(raw: &RawGrid) -> Option<Vec<f64>> {
+    raw.pga_g
+        .as_ref()
+        .map(|v| v.iter().map(|g| g * STANDARD_GRAVITY).collect())
 }
 
 /// A record as a grid names it: path as written, unit as written, resolved path, and the
@@ -342,7 +372,7 @@ fn check_sizes(
     }
     let len = |v: &Option<Vec<f64>>| v.as_ref().map_or(1.0, |v| v.len().max(1) as f64);
     let points = records.len().max(1) as f64
-        * len(&raw.pga).max(len(&raw.scale))
+        * len(&raw.pga_g).max(len(&raw.scale))
         * len(&raw.mu)
         * len(&raw.polarity);
     if let Err(why) = limits::check_count(points, MAX_POINTS, "points") {
@@ -353,7 +383,7 @@ fn check_sizes(
 /// Every point, record-major, then μ, polarity and amplitude (the order fixes the indices
 /// that result files are named by: never change it).
 fn expand(raw: &RawGrid, n_records: usize, base: &BaseExcitation) -> Vec<GridPoint> {
-    let amplitudes: Vec<Amplitude> = match (&raw.pga, &raw.scale) {
+    let amplitudes: Vec<Amplitude> = match (&pga_targets(raw), &raw.scale) {
         (Some(p), _) => p.iter().map(|&x| Amplitude::Pga(x)).collect(),
         (None, Some(s)) => s.iter().map(|&x| Amplitude::Scale(x)).collect(),
         (None, None) => vec![match base.pga {
