@@ -160,7 +160,7 @@ fn without_openseespy_the_case_says_not_applicable() {
     let report =
         std::fs::read_to_string(out.path().join("pepo-single-opensees/report.md")).unwrap();
     assert!(
-        report.contains("opensees: n/a — OpenSeesPy not found (pip install openseespy"),
+        report.contains("opensees: not applicable — OpenSeesPy not found (pip install openseespy"),
         "{}",
         String::from_utf8_lossy(&p.stderr)
     );

@@ -111,8 +111,8 @@ fn markdown_has_the_paper_table_with_na_columns_and_provenance() {
         "| Quantity | Unit | Reference (exact) | predictor-corrector/paper | Δ % | Tolerance | Result |"
     ), "{md}");
     // Engines that did not run get a reason under the table (no column of "n/a").
-    assert!(md.contains("- fe: n/a — "), "{md}");
-    assert!(md.contains("- rapier: n/a — "), "{md}");
+    assert!(md.contains("- fe: not applicable — "), "{md}");
+    assert!(md.contains("- rapier: not applicable — "), "{md}");
     // The failing row: gated, outside tolerance.
     let row = md
         .lines()

@@ -355,7 +355,7 @@ fn rpepo_report_compares_up_to_first_liftoff_and_draws_figs_8_to_11() {
     ));
     // Engines that did not run get a reason under the table, not an n/a column.
     assert!(md.contains("| Quantity | Unit | fe/single | fe/double | rapier/applied-force | Tolerance | Result |"), "{md}");
-    assert!(md.contains("- predictor-corrector: n/a — "));
+    assert!(md.contains("- predictor-corrector: not applicable — "));
 }
 
 /// The document-control block: ID from the case name and the inputs' SHA-256 (computed

@@ -1021,7 +1021,7 @@ pub fn read_external_participant(
     let read = crate::trace::read_external(file, &format)?;
     Ok(External {
         label: label.to_string(),
-        program: "not stated (command line)".into(),
+        program: "a program not stated (given on the command line)".into(),
         element: "not stated".into(),
         file: file.to_path_buf(),
         read,

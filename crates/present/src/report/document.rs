@@ -66,7 +66,7 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
             // Engines that did not run get no column (a column of "n/a" only hides the
             // numbers): the reason is listed right under the table.
             Column::Absent { engine, why } => {
-                notes.push(format!("{engine}: n/a — {why}"));
+                notes.push(format!("{engine}: not applicable — {why}"));
             }
         }
     }

@@ -1,6 +1,6 @@
 //! The paper-style table of a case, as data: response quantities as rows; one column per
 //! engine run (value and Δ % against the reference), the reference, and one column per
-//! engine that did not run, saying why ("n/a — …"); then the tolerance and the PASS/FAIL
+//! engine that did not run, saying why ("not applicable — …"); then the tolerance and the PASS/FAIL
 //! of the case's checks on that row. Markdown, HTML and CSV render the same table.
 
 use rockslide_verify::analysis::{
