@@ -167,3 +167,35 @@ fn a_contact_that_creeps_while_stuck_or_penetrates_fails_and_a_correct_one_passe
     let over = run_with(&[state(6000.0, 0.0, static_gap)]);
     assert!((worst(&over, "friction_bound") - 0.2).abs() < 1e-12);
 }
+
+/// Issue 12's rapier-under-record failure, caught without any reference: the former foot
+/// model (a 1 % foot on rapier's contact friction) at one substep under Northridge
+/// (μ = 0.1, 8 s) pushes the spring force to 1.78·μ·M·g (measured friction_bound 0.778,
+/// limit 0.05) while the foot's own contact holds |T| ≤ μN: the structure's side is held
+/// to μ·M·g, so the run fails. The joint-limit model (the default) holds it to round-off
+/// on the same record (measured 8.9e-15).
+#[test]
+fn the_friction_bound_catches_rapier_feet_under_a_record_without_a_reference() {
+    use rockslide::engine::Engine;
+    use rockslide::engine::rigid_body::Rapier;
+    let path = std::path::Path::new("cases/records/pepo-northridge.toml");
+    let text = std::fs::read_to_string(path)
+        .unwrap()
+        .replace("duration = 25.0", "duration = 8.0")
+        .replace("mu = 0.5", "mu = 0.1");
+    let bound = |options: &str| {
+        let text = text.replace("[engines.rapier]", &format!("[engines.rapier]\n{options}"));
+        let c = parse_case(path, &text).expect("parses");
+        let run = Rapier.run(&c, "inertial-force", 5e-3).unwrap();
+        let check = check_run(&c, &run)
+            .into_iter()
+            .find(|k| k.invariant == "friction_bound")
+            .unwrap();
+        println!("{options}: friction_bound {:.4e}", check.worst);
+        (check.worst, check.holds())
+    };
+    let (feet, feet_pass) = bound("contact_model = \"foot\"\nsubsteps = 1");
+    let (joint, joint_pass) = bound("");
+    assert!(!feet_pass && feet > 0.5, "feet: {feet}");
+    assert!(joint_pass && joint < 1e-9, "joint-limit: {joint}");
+}

@@ -161,7 +161,13 @@ fn contact_series<'a>(case: &Case, trace: &'a Trace) -> Option<ContactSeries<'a>
         .column("base_shear")
         .or_else(|| trace.column("resistance"))?;
     let slip = trace.column("slide")?;
+    // A horizontally shaken oscillator has no vertical dynamics in the scene: its normal
+    // force is M·g, whatever an engine's own model of it (rapier's foot) records, so the
+    // structure's resistance is held to μ·M·g. Under vertical motion N(t) is recorded.
     let normal = match (trace.column("normal"), &case.scene.model) {
+        (_, Model::Oscillator(o)) if case.scene.vertical().is_none() => {
+            Normal::Constant(o.normal_force())
+        }
         (Some(n), _) => Normal::Recorded(n),
         (None, Model::Oscillator(o)) => Normal::Constant(o.normal_force()),
         (None, _) => return None,
