@@ -96,7 +96,7 @@ fn write_case_traces(result: &CaseResult, dir: &Path) -> Result<(), Error> {
         })
         .collect();
     if let (Ok(r), Some(trace)) = (&result.reference, &reference) {
-        let file = dir.join(format!("reference-{}.csv", r.solution.name()));
+        let file = dir.join(format!("reference-{}.csv", file_safe(r.solution.name())));
         csv_files.push((trace.as_ref(), file));
     }
     let contact_files: Vec<(&rockslide_core::trace::ContactBlock, PathBuf)> = result
@@ -179,6 +179,20 @@ pub fn write_suite_outputs(results: &[CaseResult], out: &Path) -> Result<PathBuf
     write_atomically(&html, html::suite_html_in(results, Some(out)).as_bytes())?;
     write_atomically(&out.join("summary.csv"), &summary_csv(results)?)?;
     Ok(html)
+}
+
+/// A solution's name as a file-name part: letters, digits, `-` and `_` kept, every other
+/// run of characters one `-` ("exact EPO (vertical)" → "exact-EPO-vertical").
+fn file_safe(name: &str) -> String {
+    let mut out = String::with_capacity(name.len());
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+            out.push(c);
+        } else if !out.ends_with('-') {
+            out.push('-');
+        }
+    }
+    out.trim_matches('-').to_string()
 }
 
 #[cfg(test)]

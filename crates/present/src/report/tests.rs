@@ -162,3 +162,13 @@ fn reports_have_run_columns_na_column_figures_and_the_run_vs_run_failure() {
     assert_eq!(html.matches("<svg").count(), 5);
     assert!(!html.contains("://"));
 }
+
+#[test]
+fn reference_file_names_are_file_safe() {
+    assert_eq!(
+        super::file_safe("exact EPO (vertical)"),
+        "exact-EPO-vertical"
+    );
+    assert_eq!(super::file_safe("Newmark (record)"), "Newmark-record");
+    assert_eq!(super::file_safe("exact"), "exact");
+}
