@@ -19,7 +19,7 @@ use std::time::{Duration, Instant};
 
 use rockslide_core::case::{Case, EXTERNAL_VARIANT, External};
 use rockslide_core::error::InputErrors;
-use rockslide_core::trace::{ExternalFormat, Trace, read_external_csv};
+use rockslide_core::trace::{ExternalFormat, MAX_EXTERNAL_BYTES, Trace, read_external_csv};
 use rockslide_engine_api::{Run, RunStatus, SolverStats};
 use rockslide_export::opensees::{self as export, SECTION, Samples, Settings};
 
@@ -99,8 +99,10 @@ pub fn live(case: &Case, settings: Option<&Settings>) -> Live {
         Ok(out) => out,
         Err(why) => return Live::Failed(Box::new(failed(settings, why, Vec::new()))),
     };
-    if !out.ok {
-        let why = if out.timed_out {
+    if !out.ok || out.overflowed {
+        let why = if out.overflowed {
+            format!("the OpenSeesPy script wrote more than {MAX_EXTERNAL_BYTES} bytes of results")
+        } else if out.timed_out {
             format!(
                 "OpenSeesPy did not finish within {} s (engines.opensees.timeout)",
                 settings.timeout
@@ -184,6 +186,8 @@ fn tail(stderr: &str) -> Vec<String> {
 struct Output {
     ok: bool,
     timed_out: bool,
+    /// Standard output ran past [`MAX_EXTERNAL_BYTES`] (kept: the first bytes only).
+    overflowed: bool,
     stdout: String,
     stderr: String,
 }
@@ -206,16 +210,8 @@ fn run_script(script: &str, timeout: Duration) -> Result<Output, String> {
     });
     let mut stdout = child.stdout.take().ok_or("no standard output")?;
     let mut stderr = child.stderr.take().ok_or("no standard error")?;
-    let out_reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = stdout.read_to_string(&mut s);
-        s
-    });
-    let err_reader = std::thread::spawn(move || {
-        let mut s = String::new();
-        let _ = stderr.read_to_string(&mut s);
-        s
-    });
+    let out_reader = std::thread::spawn(move || read_bounded(&mut stdout, MAX_EXTERNAL_BYTES));
+    let err_reader = std::thread::spawn(move || read_bounded(&mut stderr, MAX_STDERR_BYTES).0);
     let started = Instant::now();
     let (status, timed_out) = loop {
         match child.try_wait() {
@@ -230,12 +226,39 @@ fn run_script(script: &str, timeout: Duration) -> Result<Output, String> {
         }
     };
     let _ = writer.join();
-    let stdout = out_reader.join().unwrap_or_default();
+    let (stdout, overflowed) = out_reader.join().unwrap_or_default();
     let stderr = err_reader.join().unwrap_or_default();
     Ok(Output {
         ok: status.is_some_and(|s| s.success()),
         timed_out,
+        overflowed,
         stdout,
         stderr,
     })
+}
+
+/// Standard error kept of a failed run (its last lines are shown).
+const MAX_STDERR_BYTES: u64 = 1 << 20;
+
+/// At most `limit` bytes of a child's stream, the rest drained (so the child never blocks
+/// on a full pipe), and whether there was more: memory bounded whatever the script prints.
+fn read_bounded(stream: &mut impl Read, limit: u64) -> (String, bool) {
+    let mut bytes = Vec::new();
+    let _ = stream.by_ref().take(limit).read_to_end(&mut bytes);
+    let rest = std::io::copy(stream, &mut std::io::sink()).unwrap_or(0);
+    (String::from_utf8_lossy(&bytes).into_owned(), rest > 0)
+}
+
+#[cfg(test)]
+mod bounded_read_tests {
+    use super::read_bounded;
+
+    #[test]
+    fn a_stream_longer_than_the_limit_is_cut_drained_and_flagged() {
+        let mut long: &[u8] = b"time [s],x\n0,1\n";
+        assert_eq!(read_bounded(&mut long, 4), ("time".to_string(), true));
+        assert!(long.is_empty(), "the rest is drained");
+        let mut short: &[u8] = b"0,1\n";
+        assert_eq!(read_bounded(&mut short, 4), ("0,1\n".to_string(), false));
+    }
 }
