@@ -135,7 +135,7 @@ fn static_preload(model: &mut Model, w: &mut Workspace) -> Result<(Vector3<f64>,
         model.assemble(&q, &mut w.un, 0.0, &mut w.asm);
         let rb = f - w.asm.pb;
         let mut r2 = rb.norm_squared();
-        for k in 0..model.nodes {
+        for k in 0..model.loop_nodes() {
             w.rn[k] = -w.asm.pn[k];
             r2 += w.rn[k].norm_squared();
         }
@@ -143,18 +143,18 @@ fn static_preload(model: &mut Model, w: &mut Workspace) -> Result<(Vector3<f64>,
             return Err("singular stiffness in the static preload".into());
         }
         let mut d2 = dq.norm_squared();
-        for k in 0..model.nodes {
+        for k in 0..model.loop_nodes() {
             d2 += w.dun[k].norm_squared();
         }
         if it > 0
             && r2.sqrt() <= 1e-10 * f.norm().max(1.0)
             && d2.sqrt() <= 1e-12 * q.norm().max(1e-9)
         {
-            model.commit();
+            model.commit_step(&w.asm, &mut w.un);
             return Ok((q, it as u64 + 1));
         }
         q += dq;
-        for k in 0..model.nodes {
+        for k in 0..model.loop_nodes() {
             w.un[k] += w.dun[k];
         }
     }
@@ -246,7 +246,7 @@ pub fn integrate(
             let h = dt / f64::from(1u32 << level);
             match newton_step(model, drive, opts, &mut w, &n, t, h, &mut counters) {
                 Ok(next) => {
-                    model.commit();
+                    model.commit_step(&w.asm, &mut w.un);
                     n = next;
                     w.un_n.copy_from_slice(&w.un);
                     w.pn_n.copy_from_slice(&w.asm.pn);
@@ -347,12 +347,16 @@ fn newton_step(
     let mut dq = Vector3::zeros();
     // Predictor: constant acceleration over the step.
     let mut q = n.q + n.v * h + n.a * (0.5 * h * h);
+    let nodes = model.loop_nodes();
     w.un.copy_from_slice(&w.un_n);
     // Predictor: nodes on the ground move with it (element 1 is the stiff one); a
     // node left behind would put element 1 far into slip and let Newton cycle.
-    for sup in &model.supports {
-        if let Some(k) = sup.node {
-            w.un[k].x += g.0 - n.g.0;
+    // (Condensed supports have no node unknowns: `relax_nodes` places them.)
+    if nodes > 0 {
+        for sup in &model.supports {
+            if let Some(k) = sup.node {
+                w.un[k].x += g.0 - n.g.0;
+            }
         }
     }
     let (mut a, mut v);
@@ -382,7 +386,7 @@ fn newton_step(
             - (n.f - n.pb - Vector3::new(n.damp, 0.0, 0.0)) * alpha
             - m.component_mul(&a);
         let mut r2 = rb.norm_squared();
-        for k in 0..model.nodes {
+        for k in 0..nodes {
             w.rn[k] = -w.asm.pn[k] * s + w.pn_n[k] * alpha;
             r2 += w.rn[k].norm_squared();
         }
@@ -390,7 +394,7 @@ fn newton_step(
         if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
             lambda *= 0.5;
             q = q_prev + dq_prev * lambda;
-            for k in 0..model.nodes {
+            for k in 0..nodes {
                 w.un[k] = w.un_prev[k] + w.dun_prev[k] * lambda;
             }
             continue;
@@ -431,7 +435,7 @@ fn newton_step(
             (q + dq - n.q).norm_squared(),
             q.norm_squared(),
         );
-        for k in 0..model.nodes {
+        for k in 0..nodes {
             d2 += w.dun[k].norm_squared();
             inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
             u2 += w.un[k].norm_squared();
@@ -476,7 +480,7 @@ fn newton_step(
         }
         (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
         q += dq;
-        for k in 0..model.nodes {
+        for k in 0..nodes {
             w.un_prev[k] = w.un[k];
             w.dun_prev[k] = w.dun[k];
             w.un[k] += w.dun[k];
