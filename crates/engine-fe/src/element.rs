@@ -91,6 +91,11 @@ impl Contact178 {
         &self.committed
     }
 
+    /// The state of the last trial (what `commit` would accept).
+    pub fn trial_state(&self) -> &ContactState {
+        &self.trial
+    }
+
     /// Start from `state` (committed and trial), e.g. a series equivalent taking over the
     /// state of the element whose slip it carries.
     pub fn set_committed(&mut self, state: ContactState) {

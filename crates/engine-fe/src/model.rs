@@ -23,7 +23,7 @@
 
 use nalgebra::{LU, Matrix2, Matrix2x3, Matrix3, Matrix3x2, U3, Vector2, Vector3};
 
-use super::element::{Contact178, Element};
+use super::element::{Contact178, ContactState, Element, Status};
 use super::options::Kinematics;
 use rockslide_core::case::{Contact, DoubleContact, Oscillator, RockingBody};
 
@@ -409,21 +409,16 @@ impl Model {
         }
     }
 
-    /// Commit the state of the last assembly `a`. With condensed double supports the
-    /// nodes `un` and the two elements of each support are first rebuilt from the body's
-    /// attachment points and the ground of that assembly (`relax_nodes`, the same closed
-    /// form), so outputs and the energy book see every element.
+    /// Commit the state of the last assembly `a`. With condensed double supports each
+    /// support's node and two elements are first rebuilt from its series equivalent
+    /// (`split_equivalent`), so outputs and the energy book see every element.
     pub fn commit_step(&mut self, a: &Assembly, un: &mut [Vector2<f64>]) {
         if self.condensed && self.nodes > 0 {
-            let ground = a.ground;
-            self.relax_nodes(&a.points, un, ground.x);
-            for (sup, p) in self.supports.iter().zip(&a.points) {
+            for (sup, eq) in self.supports.iter().zip(&self.equivalents) {
                 let Some(k) = sup.node else { continue };
-                let [l1, l2] = &mut self.links[sup.ground_link..sup.ground_link + 2] else {
-                    continue;
-                };
-                l1.element.trial(un[k] - ground);
-                l2.element.trial(p.u - un[k]);
+                if let [l1, l2] = &mut self.links[sup.ground_link..sup.ground_link + 2] {
+                    un[k] = split_equivalent(eq, &mut l1.element, &mut l2.element) + a.ground;
+                }
             }
         }
         self.commit();
@@ -494,6 +489,34 @@ pub fn series_equivalent(lower: &Contact178, upper: &Contact178) -> Option<Conta
     );
     eq.set_committed(*lower.state());
     Some(eq)
+}
+
+/// Set the committed states of a condensed support's element 1 (`lower`) and element 2
+/// (`upper`) from the last trial of their series equivalent `eq`; returns the node's
+/// position relative to the ground, δ1. Both elements carry the equivalent's force f;
+/// element 2 sticks, so its deflection is δ2 = (fx/kx2, fz/kz2) and δ1 = δt − δ2
+/// (δ1 = δt, δ2 = 0 when element 1 is open); element 1 has the equivalent's slip and
+/// status (`series_equivalent`).
+fn split_equivalent(
+    eq: &Contact178,
+    lower: &mut Contact178,
+    upper: &mut Contact178,
+) -> Vector2<f64> {
+    let st = *eq.trial_state();
+    let d2 = if st.status == Status::Open {
+        Vector2::zeros()
+    } else {
+        Vector2::new(st.force.x / upper.kx, st.force.y / upper.kz)
+    };
+    let d1 = st.delta - d2;
+    lower.set_committed(ContactState { delta: d1, ..st });
+    upper.set_committed(ContactState {
+        slip: upper.state().slip,
+        delta: d2,
+        force: st.force,
+        status: Status::Stick,
+    });
+    d1
 }
 
 /// Internal force on the body and its tangent from elements joining the ground to body

@@ -233,10 +233,13 @@ mod tests {
     }
 
     #[test]
-    fn condensed_pepo_double_is_the_node_model_bit_for_bit() {
-        // Measured: every channel identical, with the same 1900 Newton iterations.
+    fn condensed_pepo_double_is_the_node_model_to_round_off() {
+        // Measured: the body's motion identical bit for bit, with the same 1900 Newton
+        // iterations; the tangential force 2.8e-13 of its peak (1.4e-7 N of 5e5 N): the
+        // node model recomputes it as kx1·(δ1x − s1), kx1 = 1.01e11 N/m times the round-off
+        // of δ1x, where the equivalent gives ks·(δtx − s1) directly.
         let (pepo, iterations) = condensed_against_nodes("pepo-mass-accel.toml");
-        assert_eq!(pepo, 0.0);
+        assert!(pepo <= 3e-13, "{pepo:e}");
         assert_eq!(iterations, (1900, 1900));
     }
 
