@@ -310,9 +310,46 @@ struct StepState {
     g: (f64, f64, f64),
 }
 
+/// What ended a Newton iteration.
+enum FailureReason {
+    /// Displacement or residual not finite.
+    NotFinite,
+    /// Singular tangent at this iteration.
+    Singular(usize),
+    /// Iterations used; last relative residual, correction and step increment; the
+    /// tolerances.
+    NotConverged {
+        iterations: usize,
+        last: (f64, f64, f64),
+        force_tol: f64,
+        displacement_tol: f64,
+    },
+}
+
+impl std::fmt::Display for FailureReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Self::NotFinite => write!(f, "displacement or residual is not finite"),
+            Self::Singular(it) => write!(f, "singular tangent at iteration {it}"),
+            Self::NotConverged {
+                iterations,
+                last,
+                force_tol,
+                displacement_tol,
+            } => write!(
+                f,
+                "{} iterations: relative residual {:.3e} (limit {:.1e}), last correction {:.3e} m against a step increment of {:.3e} m (limit {:.1e})",
+                iterations, last.0, force_tol, last.1, last.2, displacement_tol
+            ),
+        }
+    }
+}
+
 /// Why a step failed.
 struct StepFailure {
-    reason: String,
+    /// Why, in numbers: formatted only if the run ends on it (a step that is cut and
+    /// retried allocates nothing).
+    reason: FailureReason,
     /// Not finite: cutting the step is not tried.
     diverged: bool,
 }
@@ -402,7 +439,7 @@ fn newton_step(
         if !(r2.is_finite() && q.iter().all(|x| x.is_finite())) {
             done(it, counters);
             return Err(StepFailure {
-                reason: "displacement or residual is not finite".into(),
+                reason: FailureReason::NotFinite,
                 diverged: true,
             });
         }
@@ -426,7 +463,7 @@ fn newton_step(
         if !solve(model, &sys, &mut w.asm, &rb, &w.rn, &mut dq, &mut w.dun) {
             done(it, counters);
             return Err(StepFailure {
-                reason: format!("singular tangent at iteration {it}"),
+                reason: FailureReason::Singular(it),
                 diverged: false,
             });
         }
@@ -488,10 +525,12 @@ fn newton_step(
     }
     done(it, counters);
     Err(StepFailure {
-        reason: format!(
-            "{} iterations: relative residual {:.3e} (limit {:.1e}), last correction {:.3e} m against a step increment of {:.3e} m (limit {:.1e})",
-            it, last.0, newton.force_tol, last.1, last.2, newton.displacement_tol
-        ),
+        reason: FailureReason::NotConverged {
+            iterations: it,
+            last,
+            force_tol: newton.force_tol,
+            displacement_tol: newton.displacement_tol,
+        },
         diverged: false,
     })
 }
