@@ -829,7 +829,11 @@ mod tests {
             seed ^= seed << 17;
             let mantissa = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
             let exponent = ((seed >> 3) % 25) as i32 - 12;
-            if seed % 11 == 0 { 0.0 } else { mantissa * 10f64.powi(exponent) }
+            if seed % 11 == 0 {
+                0.0
+            } else {
+                mantissa * 10f64.powi(exponent)
+            }
         };
         let mut singular = 0;
         for case in 0..20_000 {
@@ -843,7 +847,9 @@ mod tests {
             singular += usize::from(theirs.is_none());
             match (ours, theirs) {
                 (Some(x), Some(y)) => assert!(
-                    x.iter().zip(y.iter()).all(|(u, v)| u.to_bits() == v.to_bits()),
+                    x.iter()
+                        .zip(y.iter())
+                        .all(|(u, v)| u.to_bits() == v.to_bits()),
                     "{m} {b}: {x} against {y}"
                 ),
                 (None, None) => {}
