@@ -346,7 +346,10 @@ fn draw(
                 let style = c.stroke_width(if *i == 0 && has_reference { 2 } else { 1 });
                 let dashed = spec.channels.len() > 1 && *ci == 0;
                 if dashed {
-                    chart.draw_series(DashedLineSeries::new(p.iter().copied(), 6, 4, style))?;
+                    // one polyline marked for a dash pattern (see `dash_marked`), not one
+                    // element per dash: a noisy record's force is thousands of dashes
+                    let marked = c.mix(DASH_MARK).stroke_width(style.stroke_width);
+                    chart.draw_series(LineSeries::new(p.iter().copied(), marked))?;
                 } else {
                     chart.draw_series(LineSeries::new(p.iter().copied(), style))?;
                 }
@@ -360,7 +363,20 @@ fn draw(
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    svg
+    dash_marked(&svg)
+}
+
+/// The opacity that marks a line to be dashed: plotters writes a colour's alpha as the
+/// element's `opacity`, and no other element of a figure is drawn with this one.
+const DASH_MARK: f64 = 0.999;
+
+/// The lines drawn with [`DASH_MARK`] made opaque and dashed (6 on, 4 off, as plotters'
+/// own dashed series): one SVG element per line instead of one per dash.
+fn dash_marked(svg: &str) -> String {
+    svg.replace(
+        &format!("opacity=\"{DASH_MARK}\""),
+        "opacity=\"1\" stroke-dasharray=\"6 4\"",
+    )
 }
 
 #[cfg(test)]
