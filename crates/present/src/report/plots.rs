@@ -411,4 +411,26 @@ mod tests {
         assert_eq!(min, exact_min * 1e3);
         assert!(p.windows(2).all(|w| w[0].0 <= w[1].0), "time order kept");
     }
+
+    #[test]
+    fn a_dashed_line_of_many_points_is_one_svg_element_with_a_dash_pattern() {
+        // 2,000 points of a noisy line drawn as plotters draws a marked series: one
+        // polyline, dashed by the pattern plotters' own dashed series uses (6 on, 4 off)
+        let mut svg = String::new();
+        {
+            let root = SVGBackend::with_string(&mut svg, (400, 200)).into_drawing_area();
+            let mut chart = ChartBuilder::on(&root)
+                .build_cartesian_2d(0.0..1.0, -1.0..1.0)
+                .unwrap();
+            let points =
+                (0..2000).map(|i| (i as f64 / 2000.0, if i % 2 == 0 { 0.9 } else { -0.9 }));
+            let marked = RED.mix(DASH_MARK).stroke_width(1);
+            chart.draw_series(LineSeries::new(points, marked)).unwrap();
+            root.present().unwrap();
+        }
+        let svg = dash_marked(&svg);
+        assert_eq!(svg.matches("<polyline").count(), 1, "{svg}");
+        assert_eq!(svg.matches("stroke-dasharray=\"6 4\"").count(), 1);
+        assert!(!svg.contains("0.999"));
+    }
 }
