@@ -47,7 +47,9 @@ fn scenes() -> Vec<(String, Case)> {
     ]
     .iter()
     .map(|n| {
-        let c = load_case(Path::new(&format!("cases/{n}.toml"))).expect("case loads");
+        // the case files found from the package root, wherever cargo starts the bench
+        let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+        let c = load_case(&root.join(format!("cases/{n}.toml"))).expect("case loads");
         (n.to_string(), c)
     })
     .collect();

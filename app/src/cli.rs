@@ -12,10 +12,15 @@ use rockslide_core::case::{discover, limits};
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::io::{inside, remove_stale_temporaries_under};
 use rockslide_present::gate;
-use rockslide_present::report::{write_case_outputs, write_suite_outputs};
+use rockslide_present::report::{
+    OutputSet, WrittenCase, write_case_outputs_with, write_suite_outputs_with,
+};
 use rockslide_verify::registry;
 use rockslide_verify::registry::load_case;
 use rockslide_verify::suite::{CaseResult, plan, run_case};
+use rockslide_verify::sweep::stability::study;
+use rockslide_verify::sweep::work_precision::sweep_case;
+use rockslide_verify::timings;
 
 /// Cross-code verification of seismic sliding and rocking.
 #[derive(Debug, Parser)]
@@ -27,6 +32,17 @@ pub struct Cli {
     /// Print nothing but errors and failures.
     #[arg(long, short, global = true)]
     pub quiet: bool,
+    /// Also write the wall and CPU time of every stage (stability map, sweeps, each case's
+    /// engines, reference, analysis, trace files and pages) as `timings.json` and
+    /// `timings.md` in the output folder. Off by default: no other output changes.
+    #[arg(long, global = true)]
+    pub timings: bool,
+    /// The default command only: write every trace as CSV too (each run, its per-contact
+    /// block, the reference) and self-contained pages with every figure inline, as `run`
+    /// and `check` do. By default the traces are in each case's MCAP file only and the
+    /// pages link their figures.
+    #[arg(long)]
+    pub full_traces: bool,
 }
 
 /// The commands.
@@ -194,6 +210,14 @@ pub enum Target {
 }
 
 impl Command {
+    /// The folder `--timings` writes into: the command's output folder.
+    fn timings_folder(&self) -> Option<&Path> {
+        match self {
+            Command::Run { out, .. } | Command::Check { out, .. } => Some(out),
+            other => other.output_folder(),
+        }
+    }
+
     /// The output folder a command writes many files into (stale temporaries of an
     /// interrupted run there are removed first); `run` and `check` clear theirs themselves.
     fn output_folder(&self) -> Option<&Path> {
@@ -229,6 +253,37 @@ fn annotate(f: &gate::Failure) {
 
 /// Run the command line; returns the process exit code.
 pub fn main(cli: Cli) -> ExitCode {
+    if !cli.timings {
+        return dispatch(cli);
+    }
+    rockslide_verify::timings::enable();
+    let folder = cli
+        .command
+        .as_ref()
+        .map_or(Some(Path::new("reports")), Command::timings_folder)
+        .map(Path::to_path_buf);
+    let code = rockslide_verify::timings::time("total", "all", || dispatch(cli));
+    if let Some(folder) = folder
+        && let Err(e) = crate::timings::write(&rockslide_verify::timings::take(), &folder)
+    {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
+    code
+}
+
+/// Run one command; returns the process exit code.
+fn dispatch(cli: Cli) -> ExitCode {
+    let set = match cli.full_traces {
+        true => OutputSet::FULL,
+        false => OutputSet::LEAN,
+    };
+    if cli.full_traces && cli.command.is_some() {
+        eprintln!(
+            "error: --full-traces applies to the default command only (run and check write every trace)"
+        );
+        return ExitCode::from(2);
+    }
     let stale = cli
         .command
         .as_ref()
@@ -236,7 +291,7 @@ pub fn main(cli: Cli) -> ExitCode {
         .map_or(Ok(0), remove_stale_temporaries_under);
     let result = match stale.map(|_| cli.command) {
         Err(e) => Err(e),
-        Ok(None) => run_everything(Path::new("reports"), cli.quiet),
+        Ok(None) => run_everything(Path::new("reports"), cli.quiet, set),
         Ok(Some(Command::Run {
             cases,
             out,
@@ -395,30 +450,96 @@ fn bounded_jobs(jobs: Option<usize>) -> Option<usize> {
 
 /// The default command: the complete document. Stability map of `cases/stability/`,
 /// work-precision sweeps of the oscillator cases (cheap: each has an exact reference and
-/// runs in seconds per engine), then every case in `cases/`, `cases/records/` and `cases/vertical/` — whose reports pick up the
-/// sweeps and the stability map.
-fn run_everything(out: &Path, quiet: bool) -> Result<ExitCode, Error> {
+/// runs in seconds per engine), and every case in `cases/`, `cases/records/` and
+/// `cases/vertical/`, all three at once on every core. A case whose report shows a sweep
+/// is written once its sweep is; the others as soon as they are run. Output order is the
+/// cases' order, whatever finished first.
+fn run_everything(out: &Path, quiet: bool, set: OutputSet) -> Result<ExitCode, Error> {
+    use rayon::prelude::*;
     let options = rockslide_verify::sweep::Options {
         quiet,
         repeats: DEFAULT_RUN_REPEATS,
         budget: Some(DEFAULT_RUN_SWEEP_BUDGET),
         ..Default::default()
     };
-    let stability_cases = Path::new("cases/stability");
-    if stability_cases.is_dir() {
-        commands::stability::run(&[stability_cases.to_path_buf()], out, &options)?;
+    let stability_folder = Path::new("cases/stability");
+    let stability_cases = match stability_folder.is_dir() {
+        true => load_all(&case_paths_or(&[stability_folder.to_path_buf()], "")?)?,
+        false => Vec::new(),
+    };
+    if stability_folder.is_dir() && stability_cases.is_empty() {
+        return Err(Error::Other("stability: no case files found".into()));
     }
     // Sweeps of the top-level oscillators only: a record case's Δt ladder is minutes long.
-    let oscillators: Vec<PathBuf> = load_all(&case_paths_or(&[], "cases")?)?
+    let oscillators: Vec<rockslide_core::case::Case> = load_all(&case_paths_or(&[], "cases")?)?
         .into_iter()
         .filter(|c| matches!(c.scene.model, rockslide_core::case::Model::Oscillator(_)))
-        .map(|c| c.path)
         .collect();
-    if !oscillators.is_empty() {
-        commands::sweep::run(&oscillators, out, &options)?;
+    let mut cases = prepare_cases(&[], out, &[], false)?;
+    if set == OutputSet::LEAN {
+        for case in &mut cases {
+            let step = case.run.output_dt.unwrap_or(0.0).max(LEAN_FILE_STEP);
+            case.run.output_dt = Some(step);
+        }
     }
-    run(&[], out, quiet, None, &[])
+    let swept: Vec<&str> = oscillators.iter().map(|c| c.name.as_str()).collect();
+    let (stability, (sweeps, outcomes)) = rayon::join(
+        || {
+            (!stability_cases.is_empty())
+                .then(|| timings::time("stability", "all", || study(&stability_cases, &options)))
+                .transpose()
+        },
+        || {
+            rayon::join(
+                || {
+                    oscillators
+                        .par_iter()
+                        .map(|c| timings::time("sweep", &c.name, || sweep_case(c, &options)))
+                        .collect::<Result<Vec<_>, _>>()
+                },
+                || {
+                    cases
+                        .into_par_iter()
+                        .map(|case| {
+                            let write_now = !swept.contains(&case.name.as_str());
+                            let result = run_case(case)?;
+                            let written = write_now
+                                .then(|| write_case_outputs_with(&result, out, set))
+                                .transpose()?;
+                            Ok((result, written))
+                        })
+                        .collect::<Vec<Result<_, Error>>>()
+                },
+            )
+        },
+    );
+    if let Some(r) = stability? {
+        commands::stability::write(&r, out, quiet)?;
+    }
+    for r in &sweeps? {
+        commands::sweep::write(r, out, quiet)?;
+    }
+    // the swept cases' pages show their sweep: written now that it is there
+    let written: Vec<Result<(CaseResult, WrittenCase), Error>> = outcomes
+        .into_par_iter()
+        .map(|outcome| {
+            let (result, written) = outcome?;
+            let written = match written {
+                Some(w) => w,
+                None => write_case_outputs_with(&result, out, set)?,
+            };
+            Ok((result, written))
+        })
+        .collect();
+    finish(written, out, quiet, None)
 }
+
+/// The default command's trace files (the MCAP file) at most every 5 ms unless
+/// `--full-traces`: the case's `[run] output_dt` where it is coarser. 200 rows a simulated
+/// second — the records' own sampling — is 400 points across a 2-s case's Foxglove plot
+/// of 1,000-odd pixels and 200 frames a second in its 3D view; the analysis, the checks
+/// and the figures use every step whatever the files keep.
+const LEAN_FILE_STEP: f64 = 0.005;
 
 /// Timed repeats of each sweep rung in the default command: one. The timing of a run is
 /// reported as measured once; `rockslide sweep` (3 repeats by default) gives medians.
@@ -493,16 +614,40 @@ pub(crate) fn load_all(paths: &[PathBuf]) -> Result<Vec<rockslide_core::case::Ca
 fn run_and_write_all(
     cases: Vec<rockslide_core::case::Case>,
     out: &Path,
-) -> Vec<Result<(CaseResult, PathBuf), Error>> {
+    set: OutputSet,
+) -> Vec<Result<(CaseResult, WrittenCase), Error>> {
     use rayon::prelude::*;
     cases
         .into_par_iter()
         .map(|case| {
             let result = run_case(case)?;
-            let dir = write_case_outputs(&result, out)?;
-            Ok((result, dir))
+            let written = write_case_outputs_with(&result, out, set)?;
+            Ok((result, written))
         })
         .collect()
+}
+
+/// Load, check and plan the cases a run names (all of [`DEFAULT_CASE_FOLDERS`] when
+/// none), with `--external` participants; the output folder cleared of stale temporaries.
+/// `None` for an empty list that `check` refuses (said on stderr).
+fn prepare_cases(
+    args: &[PathBuf],
+    out: &Path,
+    external: &[String],
+    gate: bool,
+) -> Result<Vec<rockslide_core::case::Case>, Error> {
+    let mut cases = load_all(&case_paths(args)?)?;
+    add_externals(&mut cases, external)?;
+    if cases.is_empty() && gate {
+        return Ok(cases);
+    }
+    let engines = registry::all();
+    plan_all(&cases, &engines)?;
+    remove_stale_temporaries_under(out)?;
+    for case in &cases {
+        inside(out, &case.name)?;
+    }
+    Ok(cases)
 }
 
 /// Run the cases, write every report; with `junit` (the `check` command), also write the
@@ -514,8 +659,7 @@ fn run(
     junit: Option<&Path>,
     external: &[String],
 ) -> Result<ExitCode, Error> {
-    let mut cases = load_all(&case_paths(args)?)?;
-    add_externals(&mut cases, external)?;
+    let cases = prepare_cases(args, out, external, junit.is_some())?;
     if cases.is_empty() && junit.is_some() {
         let shown: Vec<String> = args.iter().map(|a| a.display().to_string()).collect();
         eprintln!(
@@ -528,15 +672,26 @@ fn run(
         );
         return Ok(ExitCode::from(1));
     }
-    let engines = registry::all();
-    plan_all(&cases, &engines)?;
+    finish(
+        run_and_write_all(cases, out, OutputSet::FULL),
+        out,
+        quiet,
+        junit,
+    )
+}
+
+/// Say each case's gate, write the suite's pages and (with `junit`) the JUnit XML; exit
+/// code 1 when the gate fails.
+fn finish(
+    outcomes: Vec<Result<(CaseResult, WrittenCase), Error>>,
+    out: &Path,
+    quiet: bool,
+    junit: Option<&Path>,
+) -> Result<ExitCode, Error> {
     let mut results: Vec<CaseResult> = Vec::new();
-    remove_stale_temporaries_under(out)?;
-    for case in &cases {
-        inside(out, &case.name)?;
-    }
-    for outcome in run_and_write_all(cases, out) {
-        let (result, dir) = outcome?;
+    let mut written: Vec<WrittenCase> = Vec::new();
+    for outcome in outcomes {
+        let (result, case_written) = outcome?;
         if !quiet {
             let name = &result.case.name;
             let passed = gate::failures(std::slice::from_ref(&result)).is_empty();
@@ -544,12 +699,13 @@ fn run(
                 "{name}: {} runs, gate {} → {}",
                 result.runs.len(),
                 if passed { "PASS" } else { "FAIL" },
-                dir.join("report.html").display()
+                case_written.dir.join("report.html").display()
             );
         }
         results.push(result);
+        written.push(case_written);
     }
-    let html = write_suite_outputs(&results, out)?;
+    let html = write_suite_outputs_with(&results, &written, out)?;
     if !quiet {
         for w in rockslide_verify::verdict::warnings(&results) {
             say!("{w}");

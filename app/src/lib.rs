@@ -24,6 +24,7 @@ macro_rules! say {
 
 pub mod cli;
 pub mod commands;
+pub mod timings;
 
 pub use rockslide_core::{error, io, response, trace};
 /// Scene export (`rockslide export`): another program's input written from a case.

@@ -201,3 +201,58 @@ fn newmark_into_a_closed_pipe_is_not_a_panic() {
     assert_eq!(o.status.code(), Some(0), "{err}");
     assert!(err.is_empty(), "{err}");
 }
+
+#[test]
+fn timings_are_written_only_when_asked_and_change_no_other_file() {
+    let (plain, timed) = (tempfile::tempdir().unwrap(), tempfile::tempdir().unwrap());
+    let case = "cases/linear-sdof.toml";
+    let o = rockslide(&["run", case, "--out", plain.path().to_str().unwrap(), "-q"]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let o = rockslide(&[
+        "run",
+        case,
+        "--out",
+        timed.path().to_str().unwrap(),
+        "-q",
+        "--timings",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let names = |d: &std::path::Path| {
+        let mut v: Vec<String> = std::fs::read_dir(d)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        v.sort();
+        v
+    };
+    assert!(!names(plain.path()).iter().any(|n| n.starts_with("timings")));
+    let mut with = names(timed.path());
+    with.retain(|n| !n.starts_with("timings"));
+    assert_eq!(with, names(plain.path()));
+    // one span per stage of the one case, and the whole command
+    let md = std::fs::read_to_string(timed.path().join("timings.md")).unwrap();
+    for stage in [
+        "total",
+        "engines",
+        "reference",
+        "analysis",
+        "traces",
+        "pages",
+        "summary",
+    ] {
+        assert!(md.contains(&format!("| {stage} | 1 |")), "{stage}: {md}");
+    }
+    assert!(md.contains("| linear-sdof |"), "{md}");
+    let json = std::fs::read_to_string(timed.path().join("timings.json")).unwrap();
+    assert_eq!(json.matches("\"stage\"").count(), 7, "{json}");
+}
+
+#[test]
+fn full_traces_is_for_the_default_command_only() {
+    let o = rockslide(&["--full-traces", "list"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(
+        String::from_utf8_lossy(&o.stderr)
+            .contains("--full-traces applies to the default command only")
+    );
+}

@@ -9,6 +9,7 @@ use std::process::ExitCode;
 use rockslide_core::error::Error;
 use rockslide_present::stability::write_stability;
 use rockslide_verify::sweep::Options;
+use rockslide_verify::sweep::StabilityResult;
 use rockslide_verify::sweep::stability::{DIR, study};
 
 use crate::cli::{case_paths_or, load_all};
@@ -20,10 +21,16 @@ pub fn run(args: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Err
         return Err(Error::Other("stability: no case files found".into()));
     }
     let r = study(&cases, opts)?;
+    write(&r, out, opts.quiet)?;
+    Ok(ExitCode::SUCCESS)
+}
+
+/// Write a study's result and pages into `<out>/stability/` and say its limits.
+pub fn write(r: &StabilityResult, out: &Path, quiet: bool) -> Result<(), Error> {
     let dir = out.join(DIR);
     r.save(&dir)?;
-    write_stability(&r, &dir)?;
-    if !opts.quiet {
+    write_stability(r, &dir)?;
+    if !quiet {
         for l in &r.limits {
             say!(
                 "{}: practical stability limit Δt/T = {}",
@@ -34,5 +41,5 @@ pub fn run(args: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Err
         }
         say!("→ {}", dir.join("stability.md").display());
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(())
 }

@@ -7,8 +7,8 @@ use std::process::ExitCode;
 
 use rockslide_core::error::Error;
 use rockslide_present::sweep::write_sweep;
-use rockslide_verify::sweep::Options;
 use rockslide_verify::sweep::work_precision::sweep_case;
+use rockslide_verify::sweep::{Options, SweepResult};
 
 use crate::cli::load_all;
 
@@ -21,28 +21,34 @@ pub fn run(cases: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Er
     }
     for case in &load_all(cases)? {
         let r = sweep_case(case, opts)?;
-        let dir = out.join(&r.case);
-        r.save(&dir)?;
-        write_sweep(&r, &dir)?;
-        if !opts.quiet {
-            for se in &r.series {
-                say!(
-                    "{}: {}: observed order p {} ({}){}",
-                    r.case,
-                    se.label,
-                    se.observed_order()
-                        .map_or("—".into(), |p| format!("{p:.2}")),
-                    rockslide_verify::analysis::sweep::ORDER_METHOD,
-                    se.skipped.as_ref().map_or(String::new(), |k| format!(
-                        "; cost budget: {} of {} rungs, Δt ≤ {:.3e} s skipped",
-                        se.rungs.len(),
-                        r.planned_rungs,
-                        k.from_dt
-                    ))
-                );
-            }
-            say!("{}: → {}", r.case, dir.join("sweep.md").display());
-        }
+        write(&r, out, opts.quiet)?;
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Write a sweep's result and pages into `<out>/<case>/` and say each series' order.
+pub fn write(r: &SweepResult, out: &Path, quiet: bool) -> Result<(), Error> {
+    let dir = out.join(&r.case);
+    r.save(&dir)?;
+    write_sweep(r, &dir)?;
+    if !quiet {
+        for se in &r.series {
+            say!(
+                "{}: {}: observed order p {} ({}){}",
+                r.case,
+                se.label,
+                se.observed_order()
+                    .map_or("—".into(), |p| format!("{p:.2}")),
+                rockslide_verify::analysis::sweep::ORDER_METHOD,
+                se.skipped.as_ref().map_or(String::new(), |k| format!(
+                    "; cost budget: {} of {} rungs, Δt ≤ {:.3e} s skipped",
+                    se.rungs.len(),
+                    r.planned_rungs,
+                    k.from_dt
+                ))
+            );
+        }
+        say!("{}: → {}", r.case, dir.join("sweep.md").display());
+    }
+    Ok(())
 }

@@ -15,6 +15,7 @@
 //! - [`external`]: other programs' results as runs, gated like an engine's.
 //! - [`verdict`]: the one pass/fail rule; [`record`]: a case result as a typed record
 //!   (`result.json`).
+//! - [`timings`]: opt-in wall and CPU time of a command's stages (`--timings`).
 //! - [`sweep`]: work-precision sweeps and stability studies; [`study`]: record/PGA/μ grids.
 //!   Their results are typed serde structs, saved and read back as JSON ([`json`]);
 //!   `rockslide-present` renders them.
@@ -34,4 +35,5 @@ pub mod run;
 pub mod study;
 pub mod suite;
 pub mod sweep;
+pub mod timings;
 pub mod verdict;

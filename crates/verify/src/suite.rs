@@ -10,6 +10,7 @@ use crate::analysis::{
     Check, Responses, evaluate_tolerances, history_difference, quantity_def, responses,
 };
 use crate::registry;
+use crate::timings;
 use rockslide_core::case::Case;
 use rockslide_core::error::{InputError, InputErrors};
 use rockslide_core::trace::Trace;
@@ -233,23 +234,40 @@ pub fn run_case(case: Case) -> Result<CaseResult, InputErrors> {
 
 /// [`run_case`] with the given engines instead of the registry's.
 pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResult, InputErrors> {
-    let mut case = case;
-    let mut plan = plan(&case, engines)?;
+    let plan = plan(&case, engines)?;
     let opensees = crate::opensees::prepare(&case)?;
+    let name = case.name.clone();
     let ((runs, live), reference) = rayon::join(
         || {
             rayon::join(
                 || {
-                    plan.runs
-                        .par_iter()
-                        .map(|p| execute(&case, engines, p))
-                        .collect::<Vec<_>>()
+                    timings::time("engines", &name, || {
+                        plan.runs
+                            .par_iter()
+                            .map(|p| execute(&case, engines, p))
+                            .collect::<Vec<_>>()
+                    })
                 },
                 || crate::opensees::live(&case, opensees.as_ref()),
             )
         },
-        || solve_reference(&case),
+        || timings::time("reference", &name, || solve_reference(&case)),
     );
+    timings::time("analysis", &name, || {
+        analyse(case, plan.not_applicable, runs, live, reference)
+    })
+}
+
+/// The runs and the reference of a case judged: external participants joined, the
+/// reference sampled where it is compared, responses, history errors, checks, invariants.
+fn analyse(
+    case: Case,
+    not_applicable: Vec<(&'static str, String)>,
+    runs: Vec<Result<Run, InputError>>,
+    live: crate::opensees::Live,
+    reference: Result<ReferenceResult, String>,
+) -> Result<CaseResult, InputErrors> {
+    let (mut case, mut not_applicable) = (case, not_applicable);
     let mut reference = reference;
     let runs: Vec<Run> = runs
         .into_iter()
@@ -259,7 +277,7 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
     match live {
         crate::opensees::Live::NotAsked => {}
         crate::opensees::Live::NotApplicable(why) => {
-            plan.not_applicable.push((crate::opensees::LABEL, why))
+            not_applicable.push((crate::opensees::LABEL, why))
         }
         crate::opensees::Live::Participant(e) => case.add_external(*e),
         crate::opensees::Live::Failed(run) => runs.push(*run),
@@ -291,7 +309,7 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
         runs,
         run_responses,
         history_errors,
-        not_applicable: plan.not_applicable,
+        not_applicable,
         reference,
         checks,
     })

@@ -30,7 +30,7 @@ td.muted { color: #888; font-style: italic; }
 .verdict.pass { background: #e3f4e1; color: #14531a; border: 1px solid #14531a; }
 .verdict.fail { background: #fbe0e0; color: #8a1010; border: 1px solid #8a1010; }
 figure { margin: 1rem 0 1.5rem; }
-figure svg { max-width: 100%; height: auto; border: 1px solid #ddd; }
+figure svg, figure img { max-width: 100%; height: auto; border: 1px solid #ddd; }
 figcaption { font-size: .88rem; color: #444; }
 pre { background: #f6f6f6; padding: .6rem; overflow-x: auto; font-size: .82rem; }
 section.case { border-top: 3px double #999; margin-top: 2.5rem; }
@@ -47,7 +47,7 @@ ul.facts li { margin: .1rem 0; }
   td.num { white-space: normal; overflow-wrap: normal; word-break: keep-all; }
   tr, figure, .verdict, ul.facts { break-inside: avoid; page-break-inside: avoid; }
   h1, h2, h3, h4 { break-after: avoid; page-break-after: avoid; }
-  figure svg { max-width: 100%; max-height: 170mm; }
+  figure svg, figure img { max-width: 100%; max-height: 170mm; }
   pre { white-space: pre-wrap; overflow: visible; font-size: 7pt; }
   details > summary { list-style: none; }
   td.pass, td.fail, td.warn, .verdict { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
@@ -130,8 +130,22 @@ pub(crate) fn inline_svg(svg: &str) -> String {
     body.replacen(" xmlns=\"http://www.w3.org/2000/svg\"", "", 1)
 }
 
-/// Render blocks as HTML body content.
+/// How a page shows its figures.
+pub(crate) enum Figures {
+    /// The SVG inline: the page is self-contained.
+    Inline,
+    /// An `<img>` of the figure's file, its name after this prefix (`""` beside the
+    /// page, `"<case>/"` from the summary page).
+    Linked(String),
+}
+
+/// Render blocks as HTML body content, figures inline.
 pub(crate) fn render(blocks: &[Block]) -> String {
+    render_with(blocks, &Figures::Inline)
+}
+
+/// Render blocks as HTML body content, figures shown as `figures` says.
+pub(crate) fn render_with(blocks: &[Block], figures: &Figures) -> String {
     let mut s = String::new();
     for b in blocks {
         match b {
@@ -168,11 +182,18 @@ pub(crate) fn render(blocks: &[Block]) -> String {
                 s.push_str("</ul>\n");
             }
             Block::Table(t) => table(&mut s, t),
-            Block::Figure { caption, svg, .. } => {
+            Block::Figure { caption, svg, file } => {
+                let figure = match figures {
+                    Figures::Inline => inline_svg(svg),
+                    Figures::Linked(prefix) => format!(
+                        "<img src=\"{}\" alt=\"{}\" loading=\"lazy\">",
+                        esc(&format!("{prefix}{file}")),
+                        esc(caption)
+                    ),
+                };
                 let _ = writeln!(
                     s,
-                    "<figure>\n{}\n<figcaption>{}</figcaption>\n</figure>",
-                    inline_svg(svg),
+                    "<figure>\n{figure}\n<figcaption>{}</figcaption>\n</figure>",
                     esc(caption)
                 );
             }
@@ -210,23 +231,39 @@ pub fn suite_html(results: &[CaseResult]) -> String {
 
 /// The suite page, with the sweeps and the stability study found under `out` (when given).
 pub(crate) fn suite_html_in(results: &[CaseResult], out: Option<&Path>) -> String {
-    let prov = Provenance::current();
     let att = out.map_or_else(Attachments::default, Attachments::for_suite);
-    let mut body = render(&suite_document(results, prov, &att));
-    for r in results {
-        let att = out.map_or_else(Attachments::default, |o| {
-            Attachments::for_case(&o.join(&r.case.name))
-        });
-        let blocks: Vec<Block> = case_document(r, prov, &att)
-            .into_iter()
-            .map(|b| b.demoted(1))
-            .collect();
-        let _ = writeln!(
-            body,
-            "<section class=\"case\" id=\"{}\">\n{}</section>",
-            anchor(&r.case.name),
-            render(&blocks)
-        );
+    let blocks = suite_document(results, Provenance::current(), &att);
+    let sections: Vec<String> = results.iter().map(|r| case_section_in(r, out)).collect();
+    suite_page(&blocks, &sections)
+}
+
+/// A case's section of the suite page, figures inline, with its sweep found under `out`
+/// (when given).
+pub(crate) fn case_section_in(r: &CaseResult, out: Option<&Path>) -> String {
+    let att = out.map_or_else(Attachments::default, |o| {
+        Attachments::for_case(&o.join(&r.case.name))
+    });
+    let blocks: Vec<Block> = case_document(r, Provenance::current(), &att)
+        .into_iter()
+        .map(|b| b.demoted(1))
+        .collect();
+    case_section(&r.case.name, &render(&blocks))
+}
+
+/// A case's rendered body as a section of the suite page (its anchor is the summary
+/// table's link target).
+pub(crate) fn case_section(case: &str, body: &str) -> String {
+    format!(
+        "<section class=\"case\" id=\"{}\">\n{body}</section>\n",
+        anchor(case)
+    )
+}
+
+/// The suite page: the summary, then every case's section.
+pub(crate) fn suite_page(blocks: &[Block], sections: &[String]) -> String {
+    let mut body = render(blocks);
+    for section in sections {
+        body.push_str(section);
     }
     page("rockslide — verification suite", &body)
 }

@@ -48,23 +48,72 @@ use rockslide_core::error::Error;
 use rockslide_core::io::write_atomically;
 use rockslide_core::trace::{Trace, write_contacts_csv, write_csv};
 use rockslide_verify::suite::CaseResult;
+use rockslide_verify::timings;
 
 pub use rockslide_core::response::show_value;
+
+/// Which files a case run writes. [`OutputSet::FULL`] (what `run` and `check` write, and
+/// the default command with `--full-traces`) holds every trace as CSV and self-contained
+/// pages; [`OutputSet::LEAN`] (the default command) leaves the traces to the MCAP file,
+/// which holds every channel of every run (state, per-contact block, 3D view) at the same
+/// rows, and has the pages link the figures written beside them instead of embedding a
+/// second copy. The analysis, the checks, the tables and the figures are the same in both.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct OutputSet {
+    /// A CSV trace per engine run, its per-contact block and the reference's CSV trace.
+    pub trace_csv: bool,
+    /// HTML pages embed every figure (self-contained, offline); else they link
+    /// `plot-*.svg` beside them (`<case>/plot-*.svg` from the summary page).
+    pub inline_figures: bool,
+}
+
+impl OutputSet {
+    /// Every file: CSV traces beside the MCAP file, self-contained pages.
+    pub const FULL: OutputSet = OutputSet {
+        trace_csv: true,
+        inline_figures: true,
+    };
+    /// The MCAP file alone for traces, pages linking their figures.
+    pub const LEAN: OutputSet = OutputSet {
+        trace_csv: false,
+        inline_figures: false,
+    };
+}
+
+/// What writing a case left for the suite page.
+#[derive(Debug, Clone)]
+pub struct WrittenCase {
+    /// The case's folder.
+    pub dir: PathBuf,
+    /// The case's section of the summary page (headings one level down), rendered once
+    /// with the case page.
+    section: String,
+}
 
 /// Write a case's outputs under `out/<case>/`: CSV traces (and each run's per-contact
 /// block as `<engine>-<variant>-contacts.csv`), the MCAP log, the typed record
 /// `result.json`, `report.md`, `report.html`, `summary.csv` and the plots as
-/// `plot-*.svg`; returns the folder.
+/// `plot-*.svg`; returns the folder. Every file ([`OutputSet::FULL`]).
 pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Error> {
-    let dir = out.join(&result.case.name);
+    write_case_outputs_with(result, out, OutputSet::FULL).map(|w| w.dir)
+}
+
+/// [`write_case_outputs`] with the files of `set`.
+pub fn write_case_outputs_with(
+    result: &CaseResult,
+    out: &Path,
+    set: OutputSet,
+) -> Result<WrittenCase, Error> {
+    let name = &result.case.name;
+    let dir = out.join(name);
     // The traces (the largest files) are written beside the pages, on another core.
     let (traces, pages) = rayon::join(
-        || write_case_traces(result, &dir),
-        || write_case_pages(result, &dir),
+        || timings::time("traces", name, || write_case_traces(result, &dir, set)),
+        || timings::time("pages", name, || write_case_pages(result, &dir, set)),
     );
     traces?;
-    pages?;
-    Ok(dir)
+    let section = pages?;
+    Ok(WrittenCase { dir, section })
 }
 
 /// The traces of a case's files: every row, or the rows at the case's output step
@@ -82,7 +131,7 @@ fn file_traces(result: &CaseResult) -> (Vec<Cow<'_, Trace>>, Option<Cow<'_, Trac
 
 /// A CSV trace per engine run (and its contacts) and of the reference, and the case's
 /// MCAP file, written in parallel.
-fn write_case_traces(result: &CaseResult, dir: &Path) -> Result<(), Error> {
+fn write_case_traces(result: &CaseResult, dir: &Path, set: OutputSet) -> Result<(), Error> {
     use rayon::prelude::*;
     let (runs, reference) = file_traces(result);
     let run_traces: Vec<&Trace> = runs.iter().map(|t| t.as_ref()).collect();
@@ -99,11 +148,14 @@ fn write_case_traces(result: &CaseResult, dir: &Path) -> Result<(), Error> {
         let file = dir.join(format!("reference-{}.csv", file_safe(r.solution.name())));
         csv_files.push((trace.as_ref(), file));
     }
+    if !set.trace_csv {
+        csv_files.clear();
+    }
     let contact_files: Vec<(&rockslide_core::trace::ContactBlock, PathBuf)> = result
         .runs
         .iter()
         .zip(&run_traces)
-        .filter(|(_, trace)| !trace.contacts.is_empty())
+        .filter(|(_, trace)| set.trace_csv && !trace.contacts.is_empty())
         .map(|(run, trace)| {
             let file = dir.join(format!("{}-{}-contacts.csv", run.engine, run.variant));
             (&trace.contacts, file)
@@ -131,8 +183,9 @@ fn write_case_traces(result: &CaseResult, dir: &Path) -> Result<(), Error> {
     mcap
 }
 
-/// The typed record, figures, `report.md`, `report.html` and `summary.csv` of a case.
-fn write_case_pages(result: &CaseResult, dir: &Path) -> Result<(), Error> {
+/// The typed record, figures, `report.md`, `report.html` and `summary.csv` of a case;
+/// returns its section of the summary page.
+fn write_case_pages(result: &CaseResult, dir: &Path, set: OutputSet) -> Result<String, Error> {
     // The typed record of the result, for commands and tools that read numbers.
     rockslide_verify::record::CaseRecord::of(result).save(dir)?;
     // The sweep of this case, when `rockslide sweep` left one here: picked up, not rerun.
@@ -147,16 +200,25 @@ fn write_case_pages(result: &CaseResult, dir: &Path) -> Result<(), Error> {
         &dir.join("report.md"),
         markdown::render(&blocks, "").as_bytes(),
     )?;
+    let figures = |prefix: &str| match set.inline_figures {
+        true => html::Figures::Inline,
+        false => html::Figures::Linked(prefix.to_string()),
+    };
     let page = html::page(
         &format!("rockslide — {}", result.case.name),
-        &html::render(&blocks),
+        &html::render_with(&blocks, &figures("")),
     );
     write_atomically(&dir.join("report.html"), page.as_bytes())?;
     write_atomically(
         &dir.join("summary.csv"),
         &summary_csv(std::slice::from_ref(result))?,
     )?;
-    Ok(())
+    let demoted: Vec<doc::Block> = blocks.into_iter().map(|b| b.demoted(1)).collect();
+    let prefix = format!("{}/", result.case.name);
+    Ok(html::case_section(
+        &result.case.name,
+        &html::render_with(&demoted, &figures(&prefix)),
+    ))
 }
 
 /// Write the suite's outputs under `out/`: `summary.md`, `summary.html` (every case in
@@ -164,21 +226,48 @@ fn write_case_pages(result: &CaseResult, dir: &Path) -> Result<(), Error> {
 /// each case's sweep (`out/<case>/sweep.json`) when those commands left them there.
 /// Returns the HTML path.
 pub fn write_suite_outputs(results: &[CaseResult], out: &Path) -> Result<PathBuf, Error> {
-    let att = attachments::Attachments::for_suite(out);
-    let blocks = document::suite_document(results, Provenance::current(), &att);
-    for b in &blocks {
-        if let doc::Block::Figure { file, svg, .. } = b {
-            write_atomically(&out.join(file), svg.as_bytes())?;
+    let sections: Vec<String> = results
+        .iter()
+        .map(|r| html::case_section_in(r, Some(out)))
+        .collect();
+    write_suite_pages(results, &sections, out)
+}
+
+/// [`write_suite_outputs`] with the cases' sections already rendered by
+/// [`write_case_outputs_with`] (in the order of `results`): no figure drawn twice.
+pub fn write_suite_outputs_with(
+    results: &[CaseResult],
+    written: &[WrittenCase],
+    out: &Path,
+) -> Result<PathBuf, Error> {
+    let sections: Vec<String> = written.iter().map(|w| w.section.clone()).collect();
+    write_suite_pages(results, &sections, out)
+}
+
+/// The suite's pages around the cases' sections.
+fn write_suite_pages(
+    results: &[CaseResult],
+    sections: &[String],
+    out: &Path,
+) -> Result<PathBuf, Error> {
+    timings::time("summary", "all", || {
+        let att = attachments::Attachments::for_suite(out);
+        let blocks = document::suite_document(results, Provenance::current(), &att);
+        for b in &blocks {
+            if let doc::Block::Figure { file, svg, .. } = b {
+                write_atomically(&out.join(file), svg.as_bytes())?;
+            }
         }
-    }
-    write_atomically(
-        &out.join("summary.md"),
-        markdown::render(&blocks, "").as_bytes(),
-    )?;
-    let html = out.join("summary.html");
-    write_atomically(&html, html::suite_html_in(results, Some(out)).as_bytes())?;
-    write_atomically(&out.join("summary.csv"), &summary_csv(results)?)?;
-    Ok(html)
+        write_atomically(
+            &out.join("summary.md"),
+            markdown::render(&blocks, "").as_bytes(),
+        )?;
+        let html = out.join("summary.html");
+        let page = html::suite_page(&blocks, sections);
+        write_atomically(&html, page.as_bytes())?;
+        write_atomically(&out.join("summary.csv"), &summary_csv(results)?)?;
+        Ok(html)
+    })
 }
 
 /// A solution's name as a file-name part: letters, digits, `-` and `_` kept, every other

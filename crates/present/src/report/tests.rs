@@ -172,3 +172,78 @@ fn reference_file_names_are_file_safe() {
     assert_eq!(super::file_safe("Newmark (record)"), "Newmark-record");
     assert_eq!(super::file_safe("exact"), "exact");
 }
+
+/// A fresh folder under the system's temporary folder, removed by the caller.
+fn scratch(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("rockslide-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    dir
+}
+
+/// The file names in a folder, sorted.
+fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+#[test]
+fn the_lean_set_leaves_traces_to_the_mcap_file_and_links_each_figure_once() {
+    let r = result();
+    let (full, lean) = (scratch("full"), scratch("lean"));
+    let full_case = super::write_case_outputs_with(&r, &full, super::OutputSet::FULL).unwrap();
+    let lean_case = super::write_case_outputs_with(&r, &lean, super::OutputSet::LEAN).unwrap();
+    let traces = [
+        "fe-single.csv",
+        "rapier-inertial.csv",
+        "synthetic-rocking.mcap",
+    ];
+    let full_files = names(&full_case.dir);
+    assert!(traces.iter().all(|t| full_files.contains(&t.to_string())));
+    let lean_files = names(&lean_case.dir);
+    // the same files but the CSV traces; the MCAP file byte for byte the same
+    let without_csv: Vec<&String> = full_files
+        .iter()
+        .filter(|f| !(f.ends_with(".csv") && *f != "summary.csv"))
+        .collect();
+    assert_eq!(lean_files.iter().collect::<Vec<_>>(), without_csv);
+    let mcap = |dir: &Path| std::fs::read(dir.join("synthetic-rocking.mcap")).unwrap();
+    assert_eq!(mcap(&full_case.dir), mcap(&lean_case.dir));
+    // full pages embed the five figures; lean pages link the files beside them
+    let page = |dir: &Path| std::fs::read_to_string(dir.join("report.html")).unwrap();
+    assert_eq!(page(&full_case.dir).matches("<svg").count(), 5);
+    let lean_page = page(&lean_case.dir);
+    assert_eq!(lean_page.matches("<svg").count(), 0);
+    for f in lean_files.iter().filter(|f| f.starts_with("plot-")) {
+        assert_eq!(
+            lean_page.matches(&format!("<img src=\"{f}\"")).count(),
+            1,
+            "{f}"
+        );
+    }
+    // the summary page: the full one as `write_suite_outputs` renders it, byte for byte;
+    // the lean one links every case figure by its path from the output folder
+    let results = [r];
+    let html = super::write_suite_outputs_with(&results, &[full_case], &full).unwrap();
+    let once = std::fs::read_to_string(html).unwrap();
+    super::write_suite_outputs(&results, &full).unwrap();
+    assert_eq!(
+        once,
+        std::fs::read_to_string(full.join("summary.html")).unwrap()
+    );
+    let html = super::write_suite_outputs_with(&results, &[lean_case], &lean).unwrap();
+    let summary = std::fs::read_to_string(html).unwrap();
+    assert_eq!(
+        summary
+            .matches("<img src=\"synthetic-rocking/plot-")
+            .count(),
+        5
+    );
+    assert!(!summary.contains("<svg"));
+    for dir in [full, lean] {
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+}
