@@ -20,7 +20,7 @@ mod world;
 
 pub use settings::{
     ACCURACY_MAX, ACCURACY_MIN, KEYS, MAX_STRIDE, OscillatorContact, OscillatorSteps,
-    RapierSettings,
+    RapierSettings, StepRule,
 };
 pub use simulate::Drive;
 pub use world::{SUPPORT_DAMPING_SHARE, Support};
@@ -100,8 +100,11 @@ impl Engine for Rapier {
                         describe_foot(osc, &rig, dt, &mut described, &mut findings);
                         (rig, 1)
                     }
-                    OscillatorContact::JointLimit => {
-                        let steps = OscillatorSteps::for_scene(osc, ex, dt, settings.accuracy);
+                    OscillatorContact::JointLimit | OscillatorContact::AppliedForce => {
+                        let mut steps = OscillatorSteps::for_scene(osc, ex, dt, settings.accuracy);
+                        if settings.step_rule == StepRule::None {
+                            steps = steps.at_output_step(dt);
+                        }
                         let rig = world::oscillator_joint_limit(
                             osc,
                             &settings,
@@ -122,7 +125,9 @@ impl Engine for Rapier {
                 simulate::run_oscillator(rig, osc.contact.kx, drive, ex, (dt, stride), duration)
             }
             Model::RigidBlock(b) => {
-                let stride = if drive == Drive::KinematicGround {
+                let stride = if drive == Drive::KinematicGround
+                    && settings.step_rule == StepRule::Scene
+                {
                     block_kinematic_stride(case, b, &settings, dt, &mut described, &mut findings)
                 } else {
                     1
@@ -141,18 +146,20 @@ impl Engine for Rapier {
                 ));
                 simulate::run_block(rig, b, drive, ex, (dt, stride), duration)
             }
-            Model::RockingBody(r)
-                if settings.oscillator_contact == OscillatorContact::JointLimit =>
-            {
+            Model::RockingBody(r) if settings.oscillator_contact != OscillatorContact::Foot => {
                 let omega_r = rocking_mode(r);
-                let stride = rocking_stride(omega_r, dt, settings.substeps);
+                let stride = match settings.step_rule {
+                    StepRule::Scene => rocking_stride(omega_r, dt, &settings),
+                    StepRule::None => 1,
+                };
                 let dt_in = dt / stride as f64;
-                let rig = world::rocking_body_joint_limit(r, &settings, dt_in, drive.ground_kind());
+                let rig = if settings.oscillator_contact == OscillatorContact::AppliedForce {
+                    world::rocking_body_applied_force(r, &settings, dt_in, drive.ground_kind())
+                } else {
+                    world::rocking_body_joint_limit(r, &settings, dt_in, drive.ground_kind())
+                };
                 describe_rocking_joint_limit(r, omega_r, dt_in, stride, &settings, &mut described);
-                findings.push(format!(
-                    "within the engine's validity for the rocking body before the first full lift-off (docs/rapier-engine.md): rocking mode of the rotational inertia on the supports √((n·Kx·h² + Kz·Σx²)/I) = {omega_r:.0} rad/s, ω·h = {:.3} per substep (rule ≤ {ROCKING_OMEGA_H})",
-                    omega_r * dt_in / settings.substeps as f64
-                ));
+                findings.push(rocking_validity(omega_r, dt_in, &settings));
                 simulate::run_rocking_joint_limit(rig, r, drive, ex, (dt, stride), duration)
             }
             Model::RockingBody(r) => {
@@ -268,6 +275,14 @@ impl Engine for Rapier {
 /// full lift-off by −11 %, and 1.78 the mass-acceleration case's by −11 %.
 pub const ROCKING_OMEGA_H: f64 = 1.1;
 
+/// The largest ω·h (h = the rapier step) the rocking body's applied-force supports
+/// (the default, `contact_model = "applied-force"`) run at: the supports' forces are
+/// held over each step, so the scheme is symplectic Euler on the support springs,
+/// stable for ω·h < 2. Measured on both RPEPO cases (docs/rapier-engine.md): ω·h from
+/// 1.07 to 1.93 changes every peak before the first full lift-off by less than 0.6 %
+/// of it and the lift-off by less than 1 ms; 1.5 keeps a margin of 25 % to the limit.
+pub const APPLIED_FORCE_OMEGA_H: f64 = 1.5;
+
 /// The rocking mode of a rocking body's rotational inertia on its supports,
 /// √((n·Kx·h² + Kz·Σx_i²)/I), rad/s: the stiffest mode of the scene.
 fn rocking_mode(r: &rockslide_core::case::RockingBody) -> f64 {
@@ -277,11 +292,42 @@ fn rocking_mode(r: &rockslide_core::case::RockingBody) -> f64 {
     .sqrt()
 }
 
-/// rapier steps per output step for the joint-limit rocking body: the fewest with
-/// ω_r·h ≤ [`ROCKING_OMEGA_H`], h = dt/(stride·substeps).
-fn rocking_stride(omega_r: f64, dt: f64, substeps: usize) -> usize {
-    let h_max = ROCKING_OMEGA_H / omega_r;
-    ((dt / (h_max * substeps as f64) * (1.0 - 1e-12)).ceil() as usize).clamp(1, MAX_STRIDE)
+/// The rocking body's validity finding: within while ω_r·h meets the rule (it does
+/// unless `step_rule = "none"` or the stride cap stopped it), else outside, with ω_r·h.
+fn rocking_validity(omega_r: f64, dt_in: f64, settings: &RapierSettings) -> String {
+    let omega_h = omega_r * dt_in / settings.substeps as f64;
+    let bound = rocking_omega_h(settings);
+    if omega_h <= bound * (1.0 + 1e-9) {
+        format!(
+            "within the engine's validity for the rocking body before the first full lift-off (docs/rapier-engine.md): rocking mode of the rotational inertia on the supports √((n·Kx·h² + Kz·Σx²)/I) = {omega_r:.0} rad/s, ω·h = {omega_h:.3} per substep (rule ≤ {bound})"
+        )
+    } else {
+        format!(
+            "outside the engine's validity: the rocking mode of the rotational inertia on the supports, {omega_r:.0} rad/s, has ω·h = {omega_h:.3} per substep (rule ≤ {bound}; symplectic Euler is unstable beyond 2){}",
+            if settings.step_rule == StepRule::None {
+                " — step_rule = \"none\": one rapier step per output step"
+            } else {
+                ""
+            }
+        )
+    }
+}
+
+/// The ω_r·h bound of the rocking body's model: [`APPLIED_FORCE_OMEGA_H`] for the
+/// applied-force supports, [`ROCKING_OMEGA_H`] for the joint-limit ones.
+fn rocking_omega_h(settings: &RapierSettings) -> f64 {
+    if settings.oscillator_contact == OscillatorContact::AppliedForce {
+        APPLIED_FORCE_OMEGA_H
+    } else {
+        ROCKING_OMEGA_H
+    }
+}
+
+/// rapier steps per output step for the rocking body without feet: the fewest with
+/// ω_r·h within the model's bound ([`rocking_omega_h`]), h = dt/(stride·substeps).
+fn rocking_stride(omega_r: f64, dt: f64, settings: &RapierSettings) -> usize {
+    let h_max = rocking_omega_h(settings) / omega_r;
+    ((dt / (h_max * settings.substeps as f64) * (1.0 - 1e-12)).ceil() as usize).clamp(1, MAX_STRIDE)
 }
 
 /// Settings of the joint-limit rocking body (the default).
@@ -293,31 +339,42 @@ fn describe_rocking_joint_limit(
     settings: &RapierSettings,
     described: &mut Vec<(String, String)>,
 ) {
-    described.push((
-        "contact model".into(),
+    let model = if settings.oscillator_contact == OscillatorContact::AppliedForce {
+        format!(
+            "applied-force: {} supports computed by the engine from the body's pose after each rapier step (Kz compression only, Kx capped at μ·N_i in series with a massless slider) and applied to the rapier body as one force and torque over the next step; no joints, no colliders",
+            r.supports
+        )
+    } else {
         format!(
             "joint-limit: {} supports, each two joints ground → body (no feet): Kz as a ForceBased motor on Y, compression only (force capped at 0 while the anchor is above the ground), Kx as a motor on X capped at μ·N_i in series with a massless slider (moved after each step)",
             r.supports
-        ),
-    ));
+        )
+    };
+    described.push(("contact model".into(), model));
     described.push((
         "rapier step [s] (output step / stride)".into(),
         format!("{dt_in} (stride {stride})"),
     ));
     described.push((
         "step rule".into(),
-        format!(
-            "ω_r·h ≤ {ROCKING_OMEGA_H}, ω_r = {omega_r:.0} rad/s (rocking mode of the rotational inertia on the supports), h = rapier step / {} substeps",
-            settings.substeps
-        ),
+        match settings.step_rule {
+            StepRule::Scene => format!(
+                "ω_r·h ≤ {}, ω_r = {omega_r:.0} rad/s (rocking mode of the rotational inertia on the supports), h = rapier step / {} substeps",
+                rocking_omega_h(settings),
+                settings.substeps
+            ),
+            StepRule::None => "none (step_rule = \"none\"): one rapier step per output step".into(),
+        },
     ));
-    described.push((
-        "spring damping passed to rapier".into(),
-        format!(
-            "−(1 − {})·h·K on each motor (cancels the motor's implicit damping; the scene has none)",
-            world::SUPPORT_DAMPING_SHARE
-        ),
-    ));
+    if settings.oscillator_contact == OscillatorContact::JointLimit {
+        described.push((
+            "spring damping passed to rapier".into(),
+            format!(
+                "−(1 − {})·h·K on each motor (cancels the motor's implicit damping; the scene has none)",
+                world::SUPPORT_DAMPING_SHARE
+            ),
+        ));
+    }
     described.push((
         "rotational inertia [kg·m²]".into(),
         format!("{}", world::rocking_inertia(r)),
@@ -420,8 +477,15 @@ fn describe_joint_limit(
         ));
     } else {
         findings.push(format!(
-            "outside the engine's validity: the accuracy target {} needs a rapier step ≤ {:.3e} s, more than {MAX_STRIDE} steps per output step; ran at {:.3e} s",
-            settings.accuracy, steps.dt_max, steps.dt_inner
+            "outside the engine's validity: the accuracy target {} needs a rapier step ≤ {:.3e} s, {}; ran at {:.3e} s",
+            settings.accuracy,
+            steps.dt_max,
+            if settings.step_rule == StepRule::None {
+                "but step_rule = \"none\" runs one rapier step per output step"
+            } else {
+                "more than the cap of steps per output step"
+            },
+            steps.dt_inner
         ));
     }
 }
