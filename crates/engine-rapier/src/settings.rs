@@ -59,7 +59,9 @@ pub struct RapierSettings {
     pub contact_hz: Option<f64>,
     /// `contact_damping_ratio`: damping ratio of the contact softness, default 10 (rapier's).
     pub contact_damping_ratio: f64,
-    /// `contact_model`: an oscillator's contact, `"joint-limit"` (default) or `"foot"`.
+    /// `contact_model`: the elastic-plastic supports: `"joint-limit"` (an oscillator's
+    /// default), `"applied-force"` (a rocking body's default; rocking body only) or
+    /// `"foot"`.
     pub oscillator_contact: OscillatorContact,
     /// `accuracy`: the relative accuracy the joint-limit oscillator's rapier step is
     /// chosen for (residual sliding and peak |u| against the exact solution), in
