@@ -63,6 +63,9 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
     for &(h, _) in &rig.inertial_masses {
         rig.world.bodies[h].reset_forces(false);
     }
+    if rig.applied_supports {
+        apply_support_forces(rig);
+    }
     match drive {
         Drive::AppliedForce => {
             if let Excitation::MassAcceleration(s) = ex {
@@ -82,6 +85,25 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
             ground.set_next_kinematic_translation(Vector::new(g.disp[k + 1], y, 0.0));
         }
     }
+}
+
+/// The applied-force supports' resultant on the structure for the next step: each
+/// support's force at its anchor (state after the last step), summed into one force at
+/// the CM and a torque about Z.
+fn apply_support_forces(rig: &mut Rig) {
+    let body = &mut rig.world.bodies[rig.structure];
+    let (cm, phi) = (body.translation(), angle_z(body));
+    let (mut fx, mut fy, mut torque) = (0.0, 0.0, 0.0);
+    for sup in &rig.supports {
+        let (ax, ay) = sup.anchor(cm, phi);
+        let (sx, sy) = sup.force_on_body();
+        fx += sx;
+        fy += sy;
+        torque += (ax - cm.x) * sy - (ay - cm.y) * sx;
+    }
+    body.reset_torques(false);
+    body.add_force(Vector::new(fx, fy, 0.0), false);
+    body.add_torque(Vector::new(0.0, 0.0, torque), false);
 }
 
 /// Run the oscillator rig (one foot, or the joint-limit contact) and record its channels
