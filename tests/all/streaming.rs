@@ -51,7 +51,7 @@ fn run_under_1gb(case: &Path, out: &Path) -> (Option<i32>, String) {
 
 #[test]
 fn the_disk_estimate_counts_the_rows_kept_at_output_dt() {
-    let values_per_row = 1 + q::ALL.len() as f64;
+    let values_per_row = 1.0 + q::ALL.len() as f64;
     let bytes_per_value = 2.0 * (25.0 + 15.0);
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
