@@ -2,7 +2,9 @@
 //! (cases/pepo-mass-accel.toml at Δt = 1 ms) run for 1,000 s, 10⁶ rows — the CSV file
 //! (`write_csv`) and the MCAP file (`write_mcap`), streamed to a temporary folder; and the
 //! MCAP chunk compression choices (zstd levels, lz4, none; chunk sizes) on the same
-//! messages, with the file size of each printed beside its time.
+//! messages, with the file size of each printed beside its time; and the two encodings of
+//! the state messages compared — JSON of shortest decimals (before) and CDR (now) — each
+//! encoded and written to MCAP with the chosen compression.
 //!
 //! Run: `cargo bench --bench writers`. Results are recorded in docs/performance.md.
 
@@ -15,7 +17,9 @@ use std::time::Duration;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rockslide::case::parse_case;
 use rockslide::engine;
-use rockslide::trace::{LoggedRun, Trace, TraceLog, mcap_bytes, write_csv, write_mcap};
+use rockslide::trace::{
+    CDR_LE_HEADER, LoggedRun, Trace, TraceLog, mcap_bytes, write_csv, write_mcap,
+};
 
 /// The shipped PEPO case at `duration`, predictor-corrector only, Δt = 1 ms.
 fn pepo_case(duration: f64) -> rockslide::case::Case {
@@ -54,7 +58,8 @@ fn log_of(trace: &Trace) -> TraceLog<'_> {
     }
 }
 
-/// Every message of an MCAP file as (channel topic, log time, payload).
+/// Every message of an MCAP file as (log time, payload): the state and contact
+/// messages, CDR.
 fn payloads(bytes: &[u8]) -> Vec<(u64, Vec<u8>)> {
     mcap::MessageStream::new(bytes)
         .expect("readable")
@@ -63,6 +68,48 @@ fn payloads(bytes: &[u8]) -> Vec<(u64, Vec<u8>)> {
             (m.log_time, m.data.into_owned())
         })
         .collect()
+}
+
+/// The state messages of `trace` as JSON of shortest round-trip decimals (the encoding
+/// before CDR), into `out` (cleared first).
+fn json_state_messages(trace: &Trace, out: &mut Vec<(u64, Vec<u8>)>) {
+    out.clear();
+    let mut number = zmij::Buffer::new();
+    let mut put = |buf: &mut Vec<u8>, x: f64| {
+        if x.is_finite() {
+            buf.extend_from_slice(number.format_finite(x).as_bytes());
+        } else {
+            buf.extend_from_slice(b"null");
+        }
+    };
+    for i in 0..trace.len() {
+        let mut buf = Vec::with_capacity(256);
+        buf.extend_from_slice(b"{\"time\":");
+        put(&mut buf, trace.time[i]);
+        for (c, col) in trace.channels.iter().zip(&trace.columns) {
+            buf.extend_from_slice(b",\"");
+            buf.extend_from_slice(c.key.as_bytes());
+            buf.extend_from_slice(b"\":");
+            put(&mut buf, col[i]);
+        }
+        buf.push(b'}');
+        out.push(((trace.time[i] * 1e9).round() as u64, buf));
+    }
+}
+
+/// The state messages of `trace` as little-endian CDR (what `write_mcap` writes), into
+/// `out` (cleared first).
+fn cdr_state_messages(trace: &Trace, out: &mut Vec<(u64, Vec<u8>)>) {
+    out.clear();
+    for i in 0..trace.len() {
+        let mut buf = Vec::with_capacity(4 + 8 * (1 + trace.columns.len()));
+        buf.extend_from_slice(&CDR_LE_HEADER);
+        buf.extend_from_slice(&trace.time[i].to_le_bytes());
+        for col in &trace.columns {
+            buf.extend_from_slice(&col[i].to_le_bytes());
+        }
+        out.push(((trace.time[i] * 1e9).round() as u64, buf));
+    }
 }
 
 /// Rewrite `messages` on one channel with `options`; the file's bytes.
@@ -85,6 +132,13 @@ fn rewrite(messages: &[(u64, Vec<u8>)], options: mcap::WriteOptions) -> Vec<u8> 
     }
     w.finish().expect("finish");
     w.into_inner().into_inner()
+}
+
+/// The chunks `write_mcap` writes: zstd level 1 on the calling thread, 1 MiB.
+fn writer_choice() -> mcap::WriteOptions {
+    mcap::WriteOptions::new()
+        .compression_threads(0)
+        .compression_level(1)
 }
 
 fn writers(c: &mut Criterion) {
@@ -140,6 +194,30 @@ fn writers(c: &mut Criterion) {
     let csv_size = std::fs::metadata(&csv).map_or(0, |m| m.len());
     let mcap_size = std::fs::metadata(&mcap).map_or(0, |m| m.len());
     eprintln!("sizes: csv {csv_size} B, mcap {mcap_size} B for {rows} rows");
+
+    // The state messages, JSON against CDR: encoding alone, then encoding and writing.
+    let mut encoded = Vec::with_capacity(trace.len());
+    for (label, encode) in [
+        (
+            "json",
+            json_state_messages as fn(&Trace, &mut Vec<(u64, Vec<u8>)>),
+        ),
+        ("cdr", cdr_state_messages),
+    ] {
+        encode(&trace, &mut encoded);
+        let raw: usize = encoded.iter().map(|(_, d)| d.len()).sum();
+        let size = rewrite(&encoded, writer_choice()).len();
+        eprintln!("state messages as {label}: payloads {raw} B, file {size} B (zstd 1)");
+        group.bench_function(format!("encode/{label}"), |b| {
+            b.iter(|| encode(black_box(&trace), &mut encoded))
+        });
+        group.bench_function(format!("encode+write/{label}"), |b| {
+            b.iter(|| {
+                encode(black_box(&trace), &mut encoded);
+                black_box(rewrite(&encoded, writer_choice()))
+            })
+        });
+    }
 
     let messages = payloads(&mcap_bytes(&log).expect("bytes"));
     let raw: usize = messages.iter().map(|(_, d)| d.len()).sum();

@@ -156,6 +156,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut forces: Vec<(u64, Value)> = Vec::new();
     for m in mcap::MessageStream::new(&bytes)? {
         let m = m?;
+        if m.channel.message_encoding != "json" {
+            continue; // the per-step channels are CDR; the 3D channels are JSON
+        }
         let v: Value = serde_json::from_slice(&m.data)?;
         match m.channel.topic.as_str() {
             "/fe/exact/scene" => scene = v,

@@ -37,6 +37,7 @@ mod report_outputs;
 mod report_sections;
 mod robustness;
 mod stability_classify;
+mod streaming;
 mod sweep_energy;
 mod sweep_order;
 mod vertical;

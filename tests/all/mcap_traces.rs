@@ -1,10 +1,12 @@
 //! MCAP traces (issue 5; SPEC §3 "Traces").
 //!
 //! Requirements checked:
-//! - rockslide shall write one MCAP file per case run with one `json` channel per engine
+//! - rockslide shall write one MCAP file per case run with one state channel per engine
 //!   run and for the reference, whose values read back equal the CSV trace bit for bit;
-//! - with JSON-schema encoding and each field's SI unit in the schema, log time =
-//!   simulation time in ns, zstd chunks, indexes and a summary;
+//! - per-step channels (state, contacts) as ROS 2 definitions (`ros2msg`, each field's SI
+//!   unit in a comment) and CDR messages, decoded here independently of the writer; the
+//!   3D and log channels as JSON in Foxglove's JSON-schema subset; log time = simulation
+//!   time in ns, zstd chunks, indexes and a summary;
 //! - only the fields the trace has (no rotation for a sliding-only oscillator, no 3D
 //!   channel for a scene without geometry);
 //! - for scenes with geometry, `foxglove.SceneUpdate`/`foxglove.FrameTransform` messages
@@ -24,9 +26,10 @@ use rockslide::suite::{CaseResult, run_case};
 use rockslide::trace::{Trace, q, read_csv, read_mcap};
 use serde_json::Value;
 
-/// Same f64, bit for bit; NaN and ±Inf are written as JSON null and read back as NaN.
+/// Same f64, bit for bit (±∞ included); any NaN equals any NaN (a CSV spells every NaN
+/// `NaN`, so its payload does not survive a CSV).
 fn same(a: f64, b: f64) -> bool {
-    a.to_bits() == b.to_bits() || (!a.is_finite() && b.is_nan())
+    a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())
 }
 
 fn assert_traces_equal(csv: &Trace, mcap: &Trace, what: &str) {
@@ -53,18 +56,109 @@ fn assert_traces_equal(csv: &Trace, mcap: &Trace, what: &str) {
     }
 }
 
-/// Every message of a file: (topic, schema name, log time, JSON).
+/// The top-level `float64` field names of a ROS 2 message definition (the text above the
+/// first dependency separator), in order; other field types are `None`.
+fn ros2_fields(definition: &str) -> Vec<(Option<String>, String)> {
+    definition
+        .lines()
+        .take_while(|l| !l.starts_with("==="))
+        .map(|l| l.split('#').next().unwrap().trim())
+        .filter(|l| !l.is_empty())
+        .map(|l| {
+            let mut words = l.split_whitespace();
+            let (ty, name) = (words.next().unwrap(), words.next().unwrap());
+            assert!(words.next().is_none(), "{l:?}: one type and one name");
+            ((ty == "float64").then(|| name.to_string()), ty.to_string())
+        })
+        .collect()
+}
+
+/// A CDR message (little-endian plain CDR, as ROS 2 writes it) of the flat `float64`
+/// definition `definition`, decoded here from the bytes: header 00 01 00 00, then 8-byte
+/// little-endian values with no padding (all aligned to 8).
+fn decode_cdr(definition: &str, data: &[u8]) -> Value {
+    assert_eq!(&data[..4], &[0, 1, 0, 0], "little-endian CDR header");
+    let fields = ros2_fields(definition);
+    let mut v = serde_json::Map::new();
+    let mut at = 4;
+    for (name, ty) in &fields {
+        match name {
+            Some(name) => {
+                let x = f64::from_le_bytes(data[at..at + 8].try_into().unwrap());
+                v.insert(name.clone(), Value::from(x));
+                at += 8;
+            }
+            None => {
+                assert_eq!(ty, "rockslide/Contact");
+                at += 32; // four float64
+            }
+        }
+    }
+    assert_eq!(at, data.len(), "every byte of the message is a field");
+    Value::Object(v)
+}
+
+/// Every message of a file: (topic, schema name, log time, JSON, or the CDR message's
+/// top-level `float64` fields as a JSON object).
 fn messages(path: &Path) -> Vec<(String, String, u64, Value)> {
     let bytes = std::fs::read(path).unwrap();
     mcap::MessageStream::new(&bytes)
         .unwrap()
         .map(|m| {
             let m = m.unwrap();
-            let schema = m.channel.schema.as_ref().unwrap().name.clone();
-            let v: Value = serde_json::from_slice(&m.data).unwrap();
-            (m.channel.topic.clone(), schema, m.log_time, v)
+            let schema = m.channel.schema.as_ref().unwrap();
+            let v: Value = match m.channel.message_encoding.as_str() {
+                "cdr" => decode_cdr(std::str::from_utf8(&schema.data).unwrap(), &m.data),
+                "json" => serde_json::from_slice(&m.data).unwrap(),
+                other => panic!("message encoding {other}"),
+            };
+            (m.channel.topic.clone(), schema.name.clone(), m.log_time, v)
         })
         .collect()
+}
+
+/// A ROS 2 message definition Foxglove's `ros2msg` parser and `mcap-ros2-support` read:
+/// comment lines, `<type> <name>` lines of `float64` or the one nested type
+/// `rockslide/Contact`, field names `[a-z][a-z0-9_]*`, and the nested type defined after
+/// the 80-`=` separator and `MSG: rockslide/Contact`.
+fn assert_ros2msg(definition: &str, name: &str) {
+    let (main, deps) = match definition.split_once(&format!("{}\n", "=".repeat(80))) {
+        Some((m, d)) => (m, Some(d)),
+        None => (definition, None),
+    };
+    let good_name = |n: &str| {
+        n.starts_with(|c: char| c.is_ascii_lowercase())
+            && n.chars()
+                .all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+    };
+    // a ROS 2 message name: package/Type
+    let (package, ty) = name.split_once('/').unwrap();
+    assert!(good_name(package), "{name}: package");
+    assert!(
+        ty.starts_with(|c: char| c.is_ascii_uppercase())
+            && ty.chars().all(|c| c.is_ascii_alphanumeric()),
+        "{name}: type name"
+    );
+    let fields = ros2_fields(main);
+    assert!(!fields.is_empty(), "{name}: no field");
+    let nested = fields.iter().any(|(f, _)| f.is_none());
+    for line in main.lines().filter(|l| !l.starts_with('#')) {
+        let field = line.split('#').next().unwrap().trim();
+        let (_, n) = field.split_once(' ').unwrap();
+        assert!(good_name(n), "{name}: field name {n:?}");
+    }
+    match deps {
+        Some(d) => {
+            assert!(nested, "{name}: a dependency nobody uses");
+            let d = d.strip_prefix("MSG: rockslide/Contact\n").unwrap();
+            let inner: Vec<_> = ros2_fields(d)
+                .into_iter()
+                .map(|(f, _)| f.unwrap())
+                .collect();
+            assert_eq!(inner, ["normal", "tangential", "slip", "gap"], "{name}");
+        }
+        None => assert!(!nested, "{name}: rockslide/Contact used but not defined"),
+    }
 }
 
 /// Foxglove turns a JSON schema into message definitions only within a subset: the root
@@ -97,6 +191,10 @@ fn assert_schemas_in_foxglove_subset(path: &Path) -> usize {
     let bytes = std::fs::read(path).unwrap();
     let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
     for s in summary.schemas.values() {
+        if s.encoding == "ros2msg" {
+            assert_ros2msg(std::str::from_utf8(&s.data).unwrap(), &s.name);
+            continue;
+        }
         assert_eq!(s.encoding, "jsonschema");
         let v: Value = serde_json::from_slice(&s.data).unwrap();
         assert_foxglove_subset(&v, &s.name);
@@ -142,13 +240,13 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
     let csv = read_csv(&dir.join(format!("reference-{}.csv", reference.solution.name()))).unwrap();
     assert_traces_equal(&csv, m.state("/reference/state").unwrap(), "reference");
 
-    // Schemas: jsonschema, units per field, only the trace's fields.
+    // Schemas: ROS 2 definitions and CDR messages, units per field, only the trace's fields.
     for c in m.channels.iter().filter(|c| c.topic.ends_with("/state")) {
         let label = c.topic.trim_start_matches('/').trim_end_matches("/state");
         assert_eq!(c.schema, rockslide::trace::state_schema_name(label));
         assert_eq!(
             (c.schema_encoding.as_str(), c.message_encoding.as_str()),
-            ("jsonschema", "json")
+            ("ros2msg", "cdr")
         );
     }
     let bytes = std::fs::read(&path).unwrap();
@@ -157,35 +255,46 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
         let Some(s) = &ch.schema else {
             panic!("{} has no schema", ch.topic)
         };
-        let schema: Value = serde_json::from_slice(&s.data).unwrap();
-        if s.name.starts_with("rockslide.Contacts.") {
-            // One object per contact, each field with its SI unit.
-            let base = &schema["properties"]["base"]["properties"];
-            let units: Vec<&str> = ["normal", "tangential", "slip", "gap"]
+        let text = std::str::from_utf8(&s.data).unwrap();
+        // the unit of a field: `# [unit]` after its declaration
+        let unit_of = |field: &str| {
+            text.lines()
+                .find(|l| l.split_whitespace().nth(1) == Some(field))
+                .and_then(|l| l.split_once("# [")?.1.split_once(']'))
+                .map(|(u, _)| u.to_string())
+                .unwrap_or_else(|| panic!("{}: {field} has no unit", s.name))
+        };
+        if s.name.starts_with("rockslide/Contacts") {
+            // One rockslide/Contact per contact, each field with its SI unit.
+            assert_eq!(s.encoding, "ros2msg");
+            assert!(text.contains("\nrockslide/Contact base "), "{text}");
+            let units: Vec<String> = ["normal", "tangential", "slip", "gap"]
                 .iter()
-                .map(|k| base[*k]["unit"].as_str().unwrap())
+                .map(|k| unit_of(k))
                 .collect();
             assert_eq!(units, ["N", "N", "m", "m"], "{}", s.name);
             continue;
         }
-        if !s.name.starts_with("rockslide.State.") {
+        if !s.name.starts_with("rockslide/State") {
             assert_eq!(s.name, "foxglove.Log");
             continue;
         }
-        let props = schema["properties"].as_object().unwrap();
-        assert!(!props.contains_key("rotation") && !props.contains_key("uplift"));
-        assert_eq!(props["time"]["unit"], "s");
-        for (k, p) in props.iter().filter(|(k, _)| *k != "time") {
+        assert_eq!(s.encoding, "ros2msg");
+        let fields: Vec<String> = ros2_fields(text)
+            .into_iter()
+            .map(|(f, _)| f.unwrap())
+            .collect();
+        assert!(!fields.iter().any(|f| f == "rotation" || f == "uplift"));
+        assert_eq!(fields[0], "time");
+        assert_eq!(unit_of("time"), "s");
+        for k in &fields[1..] {
             let qty = q::by_key(k).unwrap();
-            assert_eq!(p["unit"], qty.unit, "{k}");
-            assert!(p["description"].as_str().unwrap().contains(&format!(
-                "[{}]",
-                if qty.unit.is_empty() {
-                    "dimensionless"
-                } else {
-                    qty.unit
-                }
-            )));
+            let expected = if qty.unit.is_empty() {
+                "dimensionless"
+            } else {
+                qty.unit
+            };
+            assert_eq!(unit_of(k), expected, "{k}");
         }
     }
     // Chunked, zstd, indexed, with statistics.
@@ -544,10 +653,12 @@ fn sliding_block_without_rotation_has_no_rotation_field() {
         .values()
         .find(|c| c.topic == "/rapier/inertial/state")
         .unwrap();
-    let schema: Value = serde_json::from_slice(&state.schema.as_ref().unwrap().data).unwrap();
-    let mut fields: Vec<&String> = schema["properties"].as_object().unwrap().keys().collect();
-    fields.sort();
-    assert_eq!(fields, ["cm_x", "time", "vel"]);
+    let schema = std::str::from_utf8(&state.schema.as_ref().unwrap().data).unwrap();
+    let fields: Vec<String> = ros2_fields(schema)
+        .into_iter()
+        .map(|(f, _)| f.unwrap())
+        .collect();
+    assert_eq!(fields, ["time", "cm_x", "vel"]);
     // The body slides flat at the CM height: identity rotation, z = h.
     let msgs = messages(&path);
     let last = msgs
@@ -604,7 +715,9 @@ fn diverged_run_leaves_a_readable_file_with_the_reason() {
     let m = read_mcap(&path).unwrap();
     let back = m.state("/fe/exact/state").unwrap();
     assert_traces_equal(&trace, back, "diverged");
-    assert!(back.columns[0][7].is_nan() && back.columns[1][7].is_nan());
+    // CDR carries non-finite values exactly (JSON had to write them as null)
+    assert!(back.columns[0][7].is_nan());
+    assert_eq!(back.columns[1][7], f64::INFINITY);
     let meta = &m.metadata["run fe/exact"];
     assert_eq!(meta["status"], "diverged");
     assert_eq!(meta["stop_time_s"], "0.0035");

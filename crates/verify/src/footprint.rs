@@ -29,15 +29,19 @@ pub const DISK_LIMIT_VAR: &str = "ROCKSLIDE_MAX_DISK_BYTES";
 /// times for the history error, and its share of the reference output trace.
 const COPIES_IN_MEMORY: u64 = 3;
 /// Bytes per value on disk, at most: a shortest round-trip decimal and its separator in
-/// the CSV file (≤ 25) and in the MCAP file (≤ 35 with its JSON key, as compressed); twice
-/// for the run and its sampled reference.
-const DISK_BYTES_PER_VALUE: u64 = 2 * (25 + 35);
+/// the CSV file (≤ 25) and in the MCAP file (a CDR `float64`, 8, and its share of the
+/// message's record framing and index entry, ≤ 7 for the shortest rows, before
+/// compression); twice for the run and its sampled reference.
+const DISK_BYTES_PER_VALUE: u64 = 2 * (25 + 15);
 
 /// Estimated needs of a planned case.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Footprint {
     /// Rows over all runs (steps + 1 each).
     pub rows: u64,
+    /// Rows the trace files keep over all runs: every step, or one per `[run] output_dt`
+    /// (plus the first and the last) when the case sets it.
+    pub written_rows: u64,
     /// Memory of the traces and their reference samples, bytes (an upper estimate: every
     /// run counted with every quantity of the catalogue).
     pub memory: u64,
@@ -63,11 +67,23 @@ pub fn estimate(case: &Case, plan: &Plan) -> Footprint {
         .iter()
         .map(|p| rows_of(case.run.duration, p.dt))
         .fold(0u64, u64::saturating_add);
+    let written_rows = plan
+        .runs
+        .iter()
+        .map(|p| {
+            let kept = case.run.output_dt.map_or(p.dt, |o| o.max(p.dt));
+            // the first row, one per output step, and the last row
+            rows_of(case.run.duration, kept).saturating_add(u64::from(kept > p.dt))
+        })
+        .fold(0u64, u64::saturating_add);
     let values = rows.saturating_mul(values_per_row);
     Footprint {
         rows,
+        written_rows,
         memory: values.saturating_mul(8).saturating_mul(COPIES_IN_MEMORY),
-        disk: values.saturating_mul(DISK_BYTES_PER_VALUE),
+        disk: written_rows
+            .saturating_mul(values_per_row)
+            .saturating_mul(DISK_BYTES_PER_VALUE),
     }
 }
 
@@ -91,29 +107,47 @@ fn gb(bytes: u64) -> String {
 /// case's `run.duration` field saying how much, why, and how to override.
 pub fn check(case: &Case, plan: &Plan) -> Result<(), InputError> {
     let need = estimate(case, plan);
-    let over = |what: &str, var: &str, default: u64, bytes: u64| -> Result<(), InputError> {
-        let max = limit(var, default).map_err(|e| case.field_error("run.duration", e))?;
-        if bytes <= max {
-            return Ok(());
-        }
-        Err(case.field_error(
-            "run.duration",
-            format!(
-                "the {} planned run(s) record {} rows in all (duration / dt each), whose traces \
-                 need about {} of {what}, over the limit of {}: shorten the run, enlarge dt, \
+    let over =
+        |what: &str, var: &str, default: u64, bytes: u64, rows: u64| -> Result<(), InputError> {
+            let max = limit(var, default).map_err(|e| case.field_error("run.duration", e))?;
+            if bytes <= max {
+                return Ok(());
+            }
+            Err(case.field_error(
+                "run.duration",
+                format!(
+                    "the {} planned run(s) {} {rows} rows in all ({}), whose traces \
+                 need about {} of {what}, over the limit of {}: shorten the run, enlarge dt{}, \
                  or raise the limit with {var}=<bytes>",
-                plan.runs.len(),
-                need.rows,
-                gb(bytes),
-                gb(max)
-            ),
-        ))
-    };
+                    plan.runs.len(),
+                    if what == "disk" { "write" } else { "record" },
+                    if what == "disk" && case.run.output_dt.is_some() {
+                        "one per run.output_dt"
+                    } else {
+                        "duration / dt each"
+                    },
+                    gb(bytes),
+                    gb(max),
+                    if what == "disk" {
+                        " or set run.output_dt"
+                    } else {
+                        ""
+                    }
+                ),
+            ))
+        };
     over(
         "memory",
         MEMORY_LIMIT_VAR,
         DEFAULT_MEMORY_LIMIT,
         need.memory,
+        need.rows,
     )?;
-    over("disk", DISK_LIMIT_VAR, DEFAULT_DISK_LIMIT, need.disk)
+    over(
+        "disk",
+        DISK_LIMIT_VAR,
+        DEFAULT_DISK_LIMIT,
+        need.disk,
+        need.written_rows,
+    )
 }

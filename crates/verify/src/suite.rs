@@ -146,7 +146,10 @@ fn rows_at(trace: &Trace, times: &[f64]) -> Option<Trace> {
     let mut row = vec![0.0; trace.channels.len()];
     let mut at = 0;
     for &t in times {
-        at += trace.time.get(at..)?.partition_point(|&x| x < t);
+        // times ascend: walk forward from the last row (O(rows + times) in all)
+        while trace.time.get(at).is_some_and(|&x| x < t) {
+            at += 1;
+        }
         if trace.time.get(at).map(|x| x.to_bits()) != Some(t.to_bits()) {
             return None;
         }

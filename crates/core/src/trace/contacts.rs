@@ -17,13 +17,12 @@
 //! Rows are stored flat (row × contact × field) in one vector preallocated for the run,
 //! so that recording never allocates.
 
+use std::io::Write;
 use std::path::Path;
-
-use serde_json::{Value, json};
 
 use super::csv_file::shortest;
 use crate::error::{Error, InputError, InputErrors};
-use crate::io::write_atomically;
+use crate::io::write_atomically_with;
 
 /// The recorded fields of a contact: (key, SI unit, meaning).
 pub const CONTACT_FIELDS: [(&str, &str, &str); 4] = [
@@ -50,7 +49,10 @@ pub const CONTACT_FIELDS: [(&str, &str, &str); 4] = [
 ];
 
 /// Schema name prefix of the per-run contact channels.
-pub const CONTACTS_SCHEMA: &str = "rockslide.Contacts";
+pub const CONTACTS_SCHEMA: &str = "rockslide/Contacts";
+
+/// The prefix contact schemas had when their messages were JSON (still read).
+pub(crate) const JSON_CONTACTS_SCHEMA: &str = "rockslide.Contacts";
 
 /// One contact at one instant.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -137,6 +139,14 @@ impl ContactBlock {
         }
     }
 
+    /// Append one row given flat: `values` holds every contact's fields in order
+    /// (contact × [`CONTACT_FIELDS`]).
+    pub fn push_values(&mut self, t: f64, values: &[f64]) {
+        debug_assert_eq!(values.len(), self.names.len() * CONTACT_FIELDS.len());
+        self.time.push(t);
+        self.values.extend_from_slice(values);
+    }
+
     /// Number of contacts.
     pub fn count(&self) -> usize {
         self.names.len()
@@ -176,27 +186,32 @@ impl ContactBlock {
     }
 }
 
-/// Write `block` to `path` atomically (full round-trip precision, as the run's CSV).
+/// Write `block` to `path` atomically (full round-trip precision, as the run's CSV),
+/// streamed: the header through `csv::Writer` (quoting), then rows of shortest decimals
+/// written straight into the buffer, no per-row allocation.
 pub fn write_contacts_csv(block: &ContactBlock, path: &Path) -> Result<(), Error> {
-    let width = block.count() * CONTACT_FIELDS.len();
-    let mut buf = Vec::with_capacity(24 * (width + 1) * block.len());
+    write_atomically_with(path, |w| {
+        write_contacts_csv_to(block, w).map_err(|e| Error::io(path, e))
+    })
+}
+
+fn write_contacts_csv_to(block: &ContactBlock, w: &mut impl Write) -> std::io::Result<()> {
     {
-        let mut w = csv::Writer::from_writer(&mut buf);
-        let csv_error = |e: csv::Error| Error::Other(e.to_string());
-        w.write_record(block.header()).map_err(csv_error)?;
-        let mut number = zmij::Buffer::new();
-        for (i, t) in block.time.iter().enumerate() {
-            w.write_field(shortest(&mut number, *t))
-                .map_err(csv_error)?;
-            for v in &block.values[i * width..(i + 1) * width] {
-                w.write_field(shortest(&mut number, *v))
-                    .map_err(csv_error)?;
-            }
-            w.write_record(None::<&[u8]>).map_err(csv_error)?;
-        }
-        w.flush().map_err(|e| Error::io(path, e))?;
+        let mut header = csv::Writer::from_writer(&mut *w);
+        header.write_record(block.header())?;
+        header.flush()?;
     }
-    write_atomically(path, &buf)
+    let width = block.count() * CONTACT_FIELDS.len();
+    let mut number = zmij::Buffer::new();
+    for (i, t) in block.time.iter().enumerate() {
+        w.write_all(shortest(&mut number, *t).as_bytes())?;
+        for v in &block.values[i * width..(i + 1) * width] {
+            w.write_all(b",")?;
+            w.write_all(shortest(&mut number, *v).as_bytes())?;
+        }
+        w.write_all(b"\n")?;
+    }
+    Ok(())
 }
 
 /// Read a contact CSV written by [`write_contacts_csv`] (compliances are not in the CSV:
@@ -258,87 +273,10 @@ pub fn read_contacts_csv(path: &Path) -> Result<ContactBlock, InputErrors> {
     Ok(block)
 }
 
-/// The schema name of a run's contact messages: `rockslide.Contacts.<label>`.
+/// The schema name of a run's contact messages: `rockslide/Contacts<Label>`, the label
+/// in CamelCase (a ROS 2 message name, as [`super::state_schema_name`]).
 pub fn contacts_schema_name(label: &str) -> String {
-    format!(
-        "{CONTACTS_SCHEMA}.{}",
-        label.replace('/', ".").replace('-', "_")
-    )
-}
-
-/// The JSON schema of a run's contact messages: `time` and one object per contact with
-/// the fields of [`CONTACT_FIELDS`], each with its SI unit.
-pub fn contacts_schema(block: &ContactBlock, name: &str) -> Value {
-    let mut fields = serde_json::Map::new();
-    for (key, unit, doc) in CONTACT_FIELDS {
-        fields.insert(
-            key.into(),
-            json!({
-                "type": "number",
-                "description": format!("{doc} [{unit}]. null when not finite (NaN/Inf)."),
-                "unit": unit
-            }),
-        );
-    }
-    let mut props = serde_json::Map::new();
-    props.insert(
-        "time".into(),
-        json!({ "type": "number", "description": "Simulation time [s]", "unit": "s" }),
-    );
-    for (n, c) in block.names.iter().zip(&block.compliance) {
-        props.insert(
-            n.clone(),
-            json!({
-                "type": "object",
-                "description": format!("Contact {n} (normal compliance {c:e} m/N)."),
-                "properties": fields.clone(),
-                "additionalProperties": false
-            }),
-        );
-    }
-    json!({
-        "title": name,
-        "description": "Every contact of one run at one simulation instant, SI units (each field's `unit`). Message log time = simulation time in ns.",
-        "type": "object",
-        "properties": props,
-        "additionalProperties": false
-    })
-}
-
-/// The contact message of row `i`, into `buf` (no allocation once `buf` has grown).
-pub(crate) fn contacts_message(
-    buf: &mut String,
-    number: &mut zmij::Buffer,
-    block: &ContactBlock,
-    i: usize,
-) {
-    let put = |buf: &mut String, number: &mut zmij::Buffer, x: f64| {
-        if x.is_finite() {
-            buf.push_str(number.format_finite(x));
-        } else {
-            buf.push_str("null");
-        }
-    };
-    buf.clear();
-    buf.push_str("{\"time\":");
-    put(buf, number, block.time[i]);
-    for (c, name) in block.names.iter().enumerate() {
-        buf.push_str(",\"");
-        buf.push_str(name); // names are [a-z0-9]: no escaping needed
-        buf.push_str("\":{");
-        let s = block.at(i, c).fields();
-        for (f, (key, _, _)) in CONTACT_FIELDS.iter().enumerate() {
-            if f > 0 {
-                buf.push(',');
-            }
-            buf.push('"');
-            buf.push_str(key);
-            buf.push_str("\":");
-            put(buf, number, s[f]);
-        }
-        buf.push('}');
-    }
-    buf.push('}');
+    format!("{CONTACTS_SCHEMA}{}", super::cdr::camel_case(label))
 }
 
 #[cfg(test)]
@@ -365,17 +303,6 @@ mod tests {
         assert_eq!(b.at(1, 0).normal, 3.0);
         assert_eq!(b.at(0, 1).tangential, -1.0);
         assert!(b.at(1, 1).normal.is_nan());
-    }
-
-    #[test]
-    fn messages_are_json_with_null_for_non_finite_values() {
-        let b = block();
-        let (mut buf, mut num) = (String::new(), zmij::Buffer::new());
-        contacts_message(&mut buf, &mut num, &b, 1);
-        let v: Value = serde_json::from_str(&buf).unwrap();
-        assert_eq!(v["s1"]["normal"], json!(3.0));
-        assert_eq!(v["s2"]["normal"], Value::Null);
-        assert_eq!(v["time"], json!(0.1));
     }
 
     #[test]

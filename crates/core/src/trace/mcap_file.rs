@@ -3,12 +3,12 @@
 //!
 //! Layout of a file (see docs/traces.md):
 //! - one channel per run, `/<label>/state` (`label` = `engine/variant` or `reference`),
-//!   schema `rockslide.State.<label>` (encoding `jsonschema`, each field's SI unit in `unit` and in
+//!   schema `rockslide/State<Label>` (ROS 2 definition, encoding `ros2msg`, each field's SI unit in a comment), messages `cdr` (see [`super::cdr`]) — JSON before, still read —
 //!   its description), messages `json`, one per trace row, with exactly the trace's fields;
 //! - for scenes with geometry: `/<label>/scene` and `/<label>/forces`
 //!   (`foxglove.SceneUpdate`) and `/<label>/transform` (`foxglove.FrameTransform`), see
 //!   [`super::scene3d`]; these are decimated to one message per [`SCENE_PERIOD_NS`];
-//! - `/<label>/contacts` (schema `rockslide.Contacts.<label>`) for runs with a contact
+//! - `/<label>/contacts` (schema `rockslide/Contacts<Label>`, `ros2msg`/`cdr`) for runs with a contact
 //!   block: one message per trace row, each contact's N, T, slip and gap (see
 //!   [`super::contacts`]);
 //! - `/log` (`foxglove.Log`): how each run ended, at the time it stopped;
@@ -30,8 +30,9 @@ use std::path::Path;
 
 use mcap::records::{MessageHeader, Metadata};
 use mcap::{Attachment, Writer};
-use serde_json::{Value, json};
+use serde_json::Value;
 
+use super::cdr;
 use super::contacts::{self, ContactBlock};
 use super::scene3d::{self, Geometry, Pose};
 use super::{Trace, q};
@@ -39,17 +40,19 @@ use crate::error::{Error, InputError, InputErrors};
 use crate::io::write_atomically_with;
 
 /// Schema name prefix of the per-run state channels.
-pub const STATE_SCHEMA: &str = "rockslide.State";
+pub const STATE_SCHEMA: &str = "rockslide/State";
 
-/// The state schema name of a run: `rockslide.State.<label>` (`/` → `.`, `-` → `_`),
-/// e.g. `rockslide.State.fe.double`. One name per run, because viewers (Foxglove among
-/// them) key message definitions by schema name across the whole file, and runs record
-/// different fields.
+/// The prefix state schemas had when their messages were JSON (files written before the
+/// CDR encoding; still read).
+const JSON_STATE_SCHEMA: &str = "rockslide.State";
+
+/// The state schema name of a run: `rockslide/State<Label>`, the label in CamelCase, e.g.
+/// `rockslide/StateFeDouble`, `rockslide/StatePredictorCorrectorPaper`: a ROS 2 message
+/// name (`package/Type`, as ROS 2 tools and `mcap-ros2-support` require). One name per
+/// run, because viewers (Foxglove among them) key message definitions by schema name
+/// across the whole file, and runs record different fields.
 pub fn state_schema_name(label: &str) -> String {
-    format!(
-        "{STATE_SCHEMA}.{}",
-        label.replace('/', ".").replace('-', "_")
-    )
+    format!("{STATE_SCHEMA}{}", cdr::camel_case(label))
 }
 /// Interval between 3D messages of a run, ns (1 ms of simulated time): enough for smooth
 /// playback, far fewer messages than steps.
@@ -100,71 +103,6 @@ fn ns_of(t: f64, floor: u64) -> u64 {
     } else {
         floor
     }
-}
-
-/// The JSON schema of a trace's state messages: exactly its fields, units included.
-pub fn state_schema(trace: &Trace, name: &str) -> Value {
-    let mut props = serde_json::Map::new();
-    props.insert(
-        "time".into(),
-        json!({ "type": "number", "title": "Simulation time", "description": "Simulation time [s]", "unit": "s" }),
-    );
-    for c in &trace.channels {
-        let unit = if c.unit.is_empty() {
-            "dimensionless".to_string()
-        } else {
-            c.unit.to_string()
-        };
-        let display = if c.display.0.is_empty() || c.display.0 == c.unit {
-            String::new()
-        } else {
-            format!(" Display unit: {} (× {:e}).", c.display.0, c.display.1)
-        };
-        props.insert(
-            c.key.into(),
-            json!({
-                "type": "number", // a type list (with "null") is outside Foxglove's subset
-                "title": c.label,
-                "description": format!("{} [{unit}].{display} null when not finite (NaN/Inf).", c.doc),
-                "unit": c.unit
-            }),
-        );
-    }
-    let required: Vec<&str> = std::iter::once("time")
-        .chain(trace.channels.iter().map(|c| c.key))
-        .collect();
-    json!({
-        "title": name,
-        "description": "State of one run at one simulation instant, SI units (each field's `unit`). Message log time = simulation time in ns.",
-        "type": "object",
-        "properties": props,
-        "required": required,
-        "additionalProperties": false
-    })
-}
-
-/// Append `x` as JSON: shortest round-trip decimal (zmij: spelled as Ryū would, measured
-/// 1.4× faster in benches/writers.rs), `null` when not finite.
-fn push_number(buf: &mut String, number: &mut zmij::Buffer, x: f64) {
-    if x.is_finite() {
-        buf.push_str(number.format_finite(x));
-    } else {
-        buf.push_str("null");
-    }
-}
-
-/// The state message of row `i`, into `buf`.
-fn state_message(buf: &mut String, number: &mut zmij::Buffer, trace: &Trace, i: usize) {
-    buf.clear();
-    buf.push_str("{\"time\":");
-    push_number(buf, number, trace.time[i]);
-    for (c, col) in trace.channels.iter().zip(&trace.columns) {
-        buf.push_str(",\"");
-        buf.push_str(c.key); // keys are [a-z_]: no escaping needed
-        buf.push_str("\":");
-        push_number(buf, number, col[i]);
-    }
-    buf.push('}');
 }
 
 /// Channel ids of one run.
@@ -222,7 +160,6 @@ fn writer_options() -> mcap::WriteOptions {
         .compression_level(ZSTD_LEVEL)
         .compression_threads(0)
 }
-
 /// The MCAP bytes of `log`.
 pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
     Ok(write_mcap_to(log, Cursor::new(Vec::new()))?.into_inner())
@@ -298,7 +235,14 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
     let mut channels = Vec::with_capacity(log.runs.len());
     for run in &log.runs {
         let name = state_schema_name(&run.label);
-        let schema = json_schema(&mut out, &name, &state_schema(run.trace, &name))?;
+        let schema = out
+            .w
+            .add_schema(
+                &name,
+                cdr::SCHEMA_ENCODING,
+                cdr::state_definition(run.trace).as_bytes(),
+            )
+            .map_err(mcap_error)?;
         let mut meta = BTreeMap::new();
         meta.insert("run".to_string(), run.label.clone());
         meta.insert(
@@ -321,7 +265,12 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
         );
         let state = out
             .w
-            .add_channel(schema, &format!("/{}/state", run.label), "json", &meta)
+            .add_channel(
+                schema,
+                &format!("/{}/state", run.label),
+                cdr::MESSAGE_ENCODING,
+                &meta,
+            )
             .map_err(mcap_error)?;
         let contacts = contact_channel(&mut out, run)?;
         let view = match scene_schema {
@@ -372,8 +321,7 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
     let mut row = vec![0usize; log.runs.len()];
     let mut last_ns = vec![0u64; log.runs.len()];
     let mut next_view = vec![0u64; log.runs.len()];
-    let mut buf = String::with_capacity(512);
-    let mut number = zmij::Buffer::new();
+    let mut buf = Vec::with_capacity(512);
     loop {
         let next = (0..log.runs.len())
             .filter(|&r| row[r] < log.runs[r].trace.len())
@@ -382,13 +330,13 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
         let (run, ch, i) = (&log.runs[r], &channels[r], row[r]);
         let ns = ns_of(run.trace.time[i], last_ns[r]);
         last_ns[r] = ns;
-        state_message(&mut buf, &mut number, run.trace, i);
-        out.put(ch.state, ns, buf.as_bytes())?;
+        cdr::state_message(&mut buf, run.trace, i);
+        out.put(ch.state, ns, &buf)?;
         if let Some(cc) = ch.contacts
             && i < run.trace.contacts.len()
         {
-            contacts::contacts_message(&mut buf, &mut number, &run.trace.contacts, i);
-            out.put(cc, ns, buf.as_bytes())?;
+            cdr::contacts_message(&mut buf, &run.trace.contacts, i);
+            out.put(cc, ns, &buf)?;
         }
         let last_row = i + 1 == run.trace.len();
         if let (Some((_, forces, tf)), Some(g)) = (ch.view, &log.geometry)
@@ -435,10 +383,8 @@ fn contact_channel<W: Write + Seek>(
         .w
         .add_schema(
             &name,
-            "jsonschema",
-            contacts::contacts_schema(block, &name)
-                .to_string()
-                .as_bytes(),
+            cdr::SCHEMA_ENCODING,
+            cdr::contacts_definition(block).as_bytes(),
         )
         .map_err(mcap_error)?;
     let mut meta = BTreeMap::new();
@@ -452,7 +398,12 @@ fn contact_channel<W: Write + Seek>(
     meta.insert("units".to_string(), units.join(","));
     let id = out
         .w
-        .add_channel(schema, &format!("/{}/contacts", run.label), "json", &meta)
+        .add_channel(
+            schema,
+            &format!("/{}/contacts", run.label),
+            cdr::MESSAGE_ENCODING,
+            &meta,
+        )
         .map_err(mcap_error)?;
     Ok(Some(id))
 }
@@ -483,9 +434,9 @@ pub struct McapContents {
     pub time_range: (u64, u64),
     /// Every channel, by id order.
     pub channels: Vec<McapChannel>,
-    /// The `rockslide.State.*` channels as traces, (topic, trace), in channel order.
+    /// The `rockslide/State*` channels as traces, (topic, trace), in channel order.
     pub states: Vec<(String, Trace)>,
-    /// The `rockslide.Contacts.*` channels as contact blocks, (topic, block).
+    /// The `rockslide/Contacts*` channels as contact blocks, (topic, block).
     pub contacts: Vec<(String, ContactBlock)>,
     /// Metadata records by name.
     pub metadata: BTreeMap<String, BTreeMap<String, String>>,
@@ -739,7 +690,8 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             .map_or((String::new(), String::new()), |s| {
                 (s.name.clone(), s.encoding.clone())
             });
-        if schema.starts_with(STATE_SCHEMA) && c.metadata.contains_key("fields") {
+        let state = schema.starts_with(STATE_SCHEMA) || schema.starts_with(JSON_STATE_SCHEMA);
+        if state && c.metadata.contains_key("fields") {
             let fields = c.metadata.get("fields").map_or("", String::as_str);
             let mut qs = Vec::new();
             for key in fields.split(',').filter(|k| !k.is_empty()) {
@@ -756,7 +708,9 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
                 .states
                 .push((c.topic.clone(), Trace::with_channels(&qs, 0)));
         }
-        if schema.starts_with(contacts::CONTACTS_SCHEMA) {
+        if schema.starts_with(contacts::CONTACTS_SCHEMA)
+            || schema.starts_with(contacts::JSON_CONTACTS_SCHEMA)
+        {
             let names = c.metadata.get("contacts").map_or("", String::as_str);
             let names: Vec<&str> = names.split(',').filter(|n| !n.is_empty()).collect();
             contact_channels.insert(id, contents.contacts.len());
@@ -798,7 +752,43 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
                 ),
             )
         };
-        if let Some((si, qs)) = builders.get(&id) {
+        let is_cdr = contents.channels[ci].message_encoding == cdr::MESSAGE_ENCODING;
+        if let Some((si, qs)) = builders.get(&id)
+            && is_cdr
+        {
+            cdr::read_values(&m.data, qs.len() + 1, &mut values).map_err(|e| {
+                InputError::new(
+                    path,
+                    "",
+                    format!(
+                        "channel {}, message {}: not a CDR state message of {} values: {e}",
+                        m.channel.topic,
+                        m.sequence,
+                        qs.len() + 1
+                    ),
+                )
+            })?;
+            let trace = &mut contents.states[*si].1;
+            trace.push(values[0], &values[1..]);
+        } else if let Some(&bi) = contact_channels.get(&id)
+            && is_cdr
+        {
+            let block = &mut contents.contacts[bi].1;
+            let width = block.count() * contacts::CONTACT_FIELDS.len();
+            cdr::read_values(&m.data, width + 1, &mut values).map_err(|e| {
+                InputError::new(
+                    path,
+                    "",
+                    format!(
+                        "channel {}, message {}: not a CDR contact message of {} values: {e}",
+                        m.channel.topic,
+                        m.sequence,
+                        width + 1
+                    ),
+                )
+            })?;
+            block.push_values(values[0], &values[1..]);
+        } else if let Some((si, qs)) = builders.get(&id) {
             let obj: BTreeMap<String, Option<f64>> =
                 serde_json::from_slice(&m.data).map_err(|e| bad(&e))?;
             let field = |k: &str| {

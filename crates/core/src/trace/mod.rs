@@ -6,6 +6,7 @@
 //! `external` reads other programs' results (rockslide CSV in any known unit, foreign CSV
 //! with a column map, MCAP).
 
+mod cdr;
 mod contacts;
 mod csv_file;
 mod external;
@@ -13,9 +14,13 @@ mod mcap_file;
 mod quantity;
 pub mod scene3d;
 
+pub use cdr::{
+    CDR_LE_HEADER, MESSAGE_ENCODING as STEP_MESSAGE_ENCODING,
+    SCHEMA_ENCODING as STEP_SCHEMA_ENCODING, contacts_definition, state_definition,
+};
 pub use contacts::{
-    CONTACT_FIELDS, CONTACTS_SCHEMA, ContactBlock, ContactState, contacts_schema,
-    contacts_schema_name, read_contacts_csv, write_contacts_csv,
+    CONTACT_FIELDS, CONTACTS_SCHEMA, ContactBlock, ContactState, contacts_schema_name,
+    read_contacts_csv, write_contacts_csv,
 };
 pub use csv_file::{read_csv, write_csv};
 pub use external::{
@@ -24,7 +29,7 @@ pub use external::{
 };
 pub use mcap_file::{
     LoggedRun, McapChannel, McapContents, SCENE_PERIOD_NS, STATE_SCHEMA, TraceLog, describe,
-    mcap_bytes, mcap_info, read_mcap, read_mcap_bytes, state_schema, state_schema_name, write_mcap,
+    mcap_bytes, mcap_info, read_mcap, read_mcap_bytes, state_schema_name, write_mcap,
 };
 pub use quantity::{Quantity, q};
 
