@@ -27,6 +27,7 @@ mod modes;
 mod options;
 mod recording;
 mod simulate;
+pub mod space;
 mod stepper;
 
 pub use element::{Contact178, ContactState, Element, Status};
