@@ -110,7 +110,10 @@ impl ConeContact {
                 force,
                 status: Status::Stick,
             };
-            return (force, Matrix3::new(kt, 0.0, 0.0, 0.0, kt, 0.0, 0.0, 0.0, kz));
+            return (
+                force,
+                Matrix3::new(kt, 0.0, 0.0, 0.0, kt, 0.0, 0.0, 0.0, kz),
+            );
         }
         // Radial return onto the cone.
         let dir = t_trial / size;
@@ -193,7 +196,12 @@ mod tests {
         use crate::element::{Contact178, Element};
         let mut c2 = Contact178::new(1000.0, 4000.0, 0.5, false);
         let mut c3 = ConeContact::new(1000.0, 4000.0, 0.5, false);
-        for (x, z) in [(0.001, -0.001), (0.007, -0.001), (-0.002, -0.0015), (0.01, 0.002)] {
+        for (x, z) in [
+            (0.001, -0.001),
+            (0.007, -0.001),
+            (-0.002, -0.0015),
+            (0.01, 0.002),
+        ] {
             let (f2, k2) = c2.trial(nalgebra::Vector2::new(x, z));
             let (f3, k3) = c3.trial(Vector3::new(x, 0.0, z));
             assert_eq!((f3.x, f3.y, f3.z), (f2.x, 0.0, f2.y));

@@ -15,9 +15,7 @@
 //! A node links only to the ground and the body, so each node's 3×3 block is condensed
 //! out exactly, leaving a 6×6 body system (fixed-size arrays, nothing allocated).
 
-use nalgebra::{
-    Matrix3, Matrix3x6, Matrix6, Matrix6x3, Vector2, Vector3, Vector6, stack,
-};
+use nalgebra::{Matrix3, Matrix3x6, Matrix6, Matrix6x3, Vector2, Vector3, Vector6};
 
 use super::contact::ConeContact;
 use super::rotation::{right_jacobian, skew};
@@ -116,20 +114,32 @@ impl SpaceBody {
         }
     }
 
-    /// The 2D rocking body as a one-row grid (ny = 1) with an isotropic inertia `inertia`.
-    pub fn from_rocking(r: &RockingBody, inertia: f64, double: bool) -> Self {
+    /// The 2D rocking body in 3D: a symmetric two-row grid, each 2D support split into two
+    /// at y = ±`half_width` carrying half its stiffnesses, and an isotropic inertia
+    /// `inertia`. In its plane it is the 2D structure (the same sums of forces, each half
+    /// element at half the force); out of plane it stands (a single row of supports
+    /// would be a knife edge, free to tip sideways).
+    pub fn from_rocking(r: &RockingBody, inertia: f64, half_width: f64, double: bool) -> Self {
+        let half = |c: Contact| Contact {
+            kx: 0.5 * c.kx,
+            kz: 0.5 * c.kz,
+            mu: c.mu,
+        };
         Self::block(
             &BlockGrid {
                 mass: r.mass,
                 gravity: r.gravity,
                 cm_height: r.cm_height,
                 half_length: r.half_width,
-                half_width: 0.0,
+                half_width,
                 nx: r.supports,
-                ny: 1,
+                ny: 2,
                 inertia: Matrix3::identity() * inertia,
-                contact: r.contact,
-                double: r.double,
+                contact: half(r.contact),
+                double: r.double.map(|d| DoubleContact {
+                    lower: half(d.lower),
+                    upper: half(d.upper),
+                }),
             },
             double,
         )
@@ -278,8 +288,10 @@ impl SpaceModel {
                     a.knn[k] = d1 + d2;
                     let d2g = d2 * g;
                     let gtd2 = g.tr_mul(&d2);
-                    a.kbn[k] = -stack![d2; gtd2];
-                    a.knb[k] = -stack![d2, d2g];
+                    a.kbn[k].fixed_rows_mut::<3>(0).copy_from(&-d2);
+                    a.kbn[k].fixed_rows_mut::<3>(3).copy_from(&-gtd2);
+                    a.knb[k].fixed_columns_mut::<3>(0).copy_from(&-d2);
+                    a.knb[k].fixed_columns_mut::<3>(3).copy_from(&-d2g);
                     (f2, d2)
                 }
             };
