@@ -161,6 +161,12 @@ pub trait Engine: Send + Sync {
         let _ = case;
         Vec::new()
     }
+    /// Whether the engine models plan motion (a bidirectional, 3D scene: `Scene::spatial`).
+    /// The registry refuses a spatial scene for every engine that does not, so that no
+    /// 2D engine silently runs the planar part of a 3D scene.
+    fn models_plan_motion(&self) -> bool {
+        false
+    }
     /// Run one variant at time step `dt`. Divergence is a [`RunStatus`], never a panic.
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError>;
 }

@@ -1,11 +1,14 @@
 //! The one registry of engines: input validation (which `[engines.<id>]` a case may name),
-//! `list`, and every command that runs engines ask it.
+//! `list`, and every command that runs engines ask it. It is also the one gate on
+//! bidirectional (3D) scenes: an engine that does not model plan motion
+//! ([`Engine::models_plan_motion`]) is "not applicable" to a spatial scene, never run on
+//! its planar part.
 
 use std::path::Path;
 
-use rockslide_core::case::Case;
-use rockslide_core::error::InputErrors;
-use rockslide_engine_api::Engine;
+use rockslide_core::case::{Case, Scene};
+use rockslide_core::error::{InputError, InputErrors};
+use rockslide_engine_api::{Engine, NotApplicable, Run};
 
 /// Ids of every engine, as written in case files (`[engines.<id>]`), in report column order.
 pub const ENGINE_IDS: &[&str] = &["predictor-corrector", "fe", "rapier"];
@@ -14,13 +17,52 @@ pub const ENGINE_IDS: &[&str] = &["predictor-corrector", "fe", "rapier"];
 /// live OpenSees participant, [`crate::opensees`]: exported, run and read back).
 pub const CASE_SECTION_IDS: &[&str] = &["predictor-corrector", "fe", "rapier", "opensees"];
 
-/// Every engine, in report column order (the order of [`ENGINE_IDS`]).
+/// Every engine, in report column order (the order of [`ENGINE_IDS`]), each behind the
+/// spatial gate ([`PlanGate`]).
 pub fn all() -> Vec<Box<dyn Engine>> {
     vec![
-        Box::new(rockslide_engine_pc::PredictorCorrector),
-        Box::new(rockslide_engine_fe::Fe),
-        Box::new(rockslide_engine_rapier::Rapier),
+        Box::new(PlanGate(rockslide_engine_pc::PredictorCorrector)),
+        Box::new(PlanGate(rockslide_engine_fe::Fe)),
+        Box::new(PlanGate(rockslide_engine_rapier::Rapier)),
     ]
+}
+
+/// Why an engine that models motion in one vertical plane does not run a 3D scene.
+pub fn plan_motion_refusal(engine: &str) -> NotApplicable {
+    NotApplicable(format!(
+        "bidirectional (3D) scene is not modelled in {engine}"
+    ))
+}
+
+/// An engine behind the spatial gate: a scene with plan motion (`Scene::spatial`) is not
+/// applicable unless the engine models it; everything else is the engine's own answer.
+pub struct PlanGate<E>(pub E);
+
+impl<E: Engine> Engine for PlanGate<E> {
+    fn id(&self) -> &'static str {
+        self.0.id()
+    }
+    fn description(&self) -> &'static str {
+        self.0.description()
+    }
+    fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+        if scene.spatial.is_some() && !self.0.models_plan_motion() {
+            return Err(plan_motion_refusal(self.0.id()));
+        }
+        self.0.variants(scene)
+    }
+    fn check_options(&self, case: &Case) -> Vec<InputError> {
+        self.0.check_options(case)
+    }
+    fn models_plan_motion(&self) -> bool {
+        self.0.models_plan_motion()
+    }
+    fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
+        if case.scene.spatial.is_some() && !self.0.models_plan_motion() {
+            return Err(case.field_error("excitation", plan_motion_refusal(self.0.id()).0));
+        }
+        self.0.run(case, variant, dt)
+    }
 }
 
 /// Read and validate a case file against the registry's engines.

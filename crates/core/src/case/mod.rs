@@ -1,6 +1,6 @@
 //! Case files: the TOML a user writes (`raw`), the validated scene every engine reads
 //! (`scene`), the excitations that drive it (`signal`), recorded ground motions
-//! (`record`), and loading with located errors
+//! (`record`), bidirectional (3D) scenes (`spatial`), and loading with located errors
 //! (`load`). Engines never see TOML: they see [`Case`] and [`Scene`].
 
 pub mod limits;
@@ -11,6 +11,7 @@ pub mod record;
 mod scene;
 mod signal;
 pub mod slug;
+mod spatial;
 
 pub use load::{
     MAX_CASE_BYTES, discover, load_case, parse_case, read_external_participant, read_input_text,
@@ -22,3 +23,4 @@ pub use scene::{
     Oscillator, RigidBlock, RockingBody, RunSettings, Scene, Tolerance, ToleranceBasis, Vertical,
 };
 pub use signal::{Jump, Signal};
+pub use spatial::{Depth, Spatial};

@@ -81,6 +81,12 @@ pub struct RawModel {
     pub initial_tilt: Option<f64>,
     pub contact: Option<RawContact>,
     pub double: Option<RawDouble>,
+    // bidirectional (3D) scenes: depth along y and rotational inertias
+    pub half_depth: Option<f64>,
+    pub support_rows: Option<i64>,
+    pub rotational_inertia_x: Option<f64>,
+    pub rotational_inertia_y: Option<f64>,
+    pub rotational_inertia_z: Option<f64>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -120,6 +126,25 @@ pub struct RawExcitation {
     pub polarity: Option<f64>,
     /// `[excitation.vertical]`: the vertical ground acceleration (see [`RawVertical`]).
     pub vertical: Option<RawVertical>,
+    /// Azimuth of the signal in the horizontal plane, degrees from +x toward +y.
+    pub azimuth_deg: Option<f64>,
+    /// `[excitation.y]`: the second horizontal component (see [`RawSecond`]).
+    pub y: Option<RawSecond>,
+}
+
+/// `[excitation.y]`: the second horizontal component, the signal keys of the first.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawSecond {
+    pub shape: Option<String>,
+    pub amplitude: Option<f64>,
+    pub omega: Option<f64>,
+    pub cycles: Option<f64>,
+    pub record: Option<String>,
+    pub record_unit: Option<String>,
+    /// This component's target PGA, g.
+    pub scale_to_pga_g: Option<f64>,
+    pub polarity: Option<f64>,
 }
 
 // --- vertical ground motion: `[excitation.vertical]` ---

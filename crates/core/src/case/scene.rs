@@ -220,12 +220,20 @@ pub struct Scene {
     pub excitation: Excitation,
     /// The vertical ground acceleration, when the case gives one (`[excitation.vertical]`).
     pub vertical: Option<Vertical>,
+    /// Plan motion (a bidirectional, 3D scene), when the case gives any of its keys:
+    /// `excitation.azimuth_deg`, `[excitation.y]`, `model.half_depth`, `model.support_rows`,
+    /// `model.rotational_inertia_{x,y,z}`. `None`: a planar scene, as before.
+    pub spatial: Option<super::spatial::Spatial>,
 }
 
 impl Scene {
     /// The vertical component, if any.
     pub fn vertical(&self) -> Option<&Vertical> {
         self.vertical.as_ref()
+    }
+    /// The plan-motion part, if the scene is bidirectional (3D).
+    pub fn spatial(&self) -> Option<&super::spatial::Spatial> {
+        self.spatial.as_ref()
     }
 }
 

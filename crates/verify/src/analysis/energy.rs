@@ -462,6 +462,7 @@ mod tests {
                 cycles: 0.5,
             }),
             vertical: None,
+            spatial: None,
         }
     }
 
