@@ -49,6 +49,7 @@ fn bench(c: &mut Criterion) {
                 let run = run_space(
                     black_box(&body),
                     &case.scene.excitation,
+                    None,
                     azimuth,
                     case.run.duration,
                     dt,

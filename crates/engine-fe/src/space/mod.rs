@@ -8,15 +8,18 @@
 //! - `model`: the body and supports, assembly, node condensation, the 6×6 Newton solve.
 //! - `stepper`: static preload and the time loop on SO(3) (Simo–Vu Quoc material form).
 //! - `run`: one run, recorded as rows with (x, y) pairs.
+//! - `scene`: the engine on a bidirectional scene (model from `Scene::spatial`, trace).
 
 mod contact;
 mod model;
 mod rotation;
 mod run;
+mod scene;
 mod stepper;
 
 pub use contact::{ConeContact, ConeState};
 pub use model::{BlockGrid, SpaceBody, SpaceModel};
 pub use rotation::{exp as rotation_exp, log as rotation_log, right_jacobian};
 pub use run::{SpaceRow, SpaceRun, run_space};
+pub use scene::{qy, simulate_space, variants};
 pub use stepper::{SpaceCounters, SpaceDrive};

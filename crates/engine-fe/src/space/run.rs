@@ -8,7 +8,7 @@ use super::model::{SpaceBody, SpaceModel};
 use super::stepper::{SpaceCounters, SpaceDrive, SpaceSnapshot, integrate};
 use crate::element::Status;
 use crate::options::FeOptions;
-use rockslide_core::case::Excitation;
+use rockslide_core::case::{Excitation, Signal};
 use rockslide_engine_api::{RunStatus, step_count};
 
 /// The recorded state at one instant. Horizontal quantities are (x, y) pairs, relative
@@ -58,18 +58,20 @@ pub struct SpaceRun {
     pub counters: SpaceCounters,
 }
 
-/// Run `body` under `excitation` along `azimuth` (rad from x towards y) for `duration`
-/// at step `dt` with the 2D engine's options (integrator, Newton).
+/// Run `body` under `excitation` along `azimuth` (rad from x towards y), with an optional
+/// `second` signal of the same kind at right angles, for `duration` at step `dt` with the
+/// 2D engine's options (integrator, Newton).
 pub fn run_space(
     body: &SpaceBody,
     excitation: &Excitation,
+    second: Option<&Signal>,
     azimuth: f64,
     duration: f64,
     dt: f64,
     opts: &FeOptions,
 ) -> SpaceRun {
     let mut model = SpaceModel::new(body);
-    let drive = SpaceDrive::new(excitation, azimuth, body.mass);
+    let drive = SpaceDrive::new(excitation, second, azimuth, body.mass);
     let steps = step_count(duration, dt);
     let mut rows = Vec::with_capacity(steps + 1);
     // The reference point: the base centre O below the centre of mass (a rocking body),
@@ -92,7 +94,7 @@ pub fn run_space(
 }
 
 /// The row of one snapshot.
-fn record(
+pub(super) fn record(
     m: &SpaceModel,
     s: &SpaceSnapshot,
     drive: &SpaceDrive,

@@ -22,48 +22,63 @@ use nalgebra::{Matrix3, Vector3, Vector6};
 use super::model::{Pose, SpaceAssembly, SpaceModel, SpaceSystem, solve};
 use super::rotation::{exp, log, skew};
 use crate::options::FeOptions;
-use rockslide_core::case::Excitation;
+use rockslide_core::case::{Excitation, Signal};
 use rockslide_engine_api::RunStatus;
 
 /// How an excitation drives the 3D model: the scene's signal along the horizontal
-/// direction at `azimuth` (radians from x towards y).
+/// direction e₁ at `azimuth` (radians from x towards y) and an optional second signal of
+/// the same kind along e₂ = (−sin, cos) of the azimuth.
 #[derive(Debug, Clone, Copy)]
 pub struct SpaceDrive<'a> {
     excitation: &'a Excitation,
+    second: Option<&'a Signal>,
     mass: f64,
-    direction: Vector3<f64>,
+    first_direction: Vector3<f64>,
+    second_direction: Vector3<f64>,
 }
 
 impl<'a> SpaceDrive<'a> {
-    /// The drive of `excitation` at `azimuth` on a body of mass `mass`.
-    pub fn new(excitation: &'a Excitation, azimuth: f64, mass: f64) -> Self {
+    /// The drive of `excitation` (and `second`) at `azimuth` on a body of mass `mass`.
+    pub fn new(
+        excitation: &'a Excitation,
+        second: Option<&'a Signal>,
+        azimuth: f64,
+        mass: f64,
+    ) -> Self {
         let (s, c) = azimuth.sin_cos();
         Self {
             excitation,
+            second,
             mass,
-            direction: Vector3::new(c, s, 0.0),
+            first_direction: Vector3::new(c, s, 0.0),
+            second_direction: Vector3::new(-s, c, 0.0),
         }
     }
-    /// The horizontal unit vector of the excitation.
-    pub fn direction(&self) -> Vector3<f64> {
-        self.direction
+    /// The horizontal vector Σ value(signal)·direction, `value` one of the signal's
+    /// derivatives.
+    #[inline]
+    fn vector(&self, first: &Signal, value: impl Fn(&Signal) -> f64) -> Vector3<f64> {
+        let v = self.first_direction * value(first);
+        match self.second {
+            Some(s) => v + self.second_direction * value(s),
+            None => v,
+        }
     }
     /// Force on the body at `t` (ground acceleration in relative coordinates), N.
     pub fn force(&self, t: f64) -> Vector3<f64> {
-        let f = match self.excitation {
-            Excitation::MassAcceleration(s) => self.mass * s.value(t),
-            Excitation::GroundAcceleration(s) => -self.mass * s.value(t),
-            _ => 0.0,
-        };
-        self.direction * f
+        match self.excitation {
+            Excitation::MassAcceleration(s) => self.vector(s, |s| self.mass * s.value(t)),
+            Excitation::GroundAcceleration(s) => self.vector(s, |s| -self.mass * s.value(t)),
+            _ => Vector3::zeros(),
+        }
     }
     /// Prescribed ground (displacement, velocity, acceleration) at `t`.
     pub fn ground(&self, t: f64) -> [Vector3<f64>; 3] {
         match self.excitation {
             Excitation::GroundDisplacement(s) => [
-                self.direction * s.value(t),
-                self.direction * s.derivative(t),
-                self.direction * s.second_derivative(t),
+                self.vector(s, |s| s.value(t)),
+                self.vector(s, |s| s.derivative(t)),
+                self.vector(s, |s| s.second_derivative(t)),
             ],
             _ => [Vector3::zeros(); 3],
         }
@@ -72,7 +87,7 @@ impl<'a> SpaceDrive<'a> {
     pub fn equivalent_force(&self, t: f64) -> Vector3<f64> {
         match self.excitation {
             Excitation::GroundDisplacement(s) => {
-                self.direction * (-self.mass * s.second_derivative(t))
+                self.vector(s, |s| -self.mass * s.second_derivative(t))
             }
             _ => self.force(t),
         }
