@@ -15,7 +15,7 @@
 //! A node links only to the ground and the body, so each node's 3×3 block is condensed
 //! out exactly, leaving a 6×6 body system (fixed-size arrays, nothing allocated).
 
-use nalgebra::{Matrix3, Matrix3x6, Matrix6, Matrix6x3, Vector2, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
 use super::contact::ConeContact;
 use super::rotation::{right_jacobian, skew};
@@ -174,17 +174,21 @@ pub struct SpaceModel {
 pub struct SpaceAssembly {
     /// Internal force on the body: force (ground frame) and moment (body frame).
     pub pb: Vector6<f64>,
-    /// Tangent of `pb` with respect to (X, Θ).
+    /// Tangent of `pb` with respect to (X, Θ), the nodes condensed out: a double support
+    /// enters through its series tangent D2 − D2·(D1 + D2)⁻¹·D2.
     pub kbb: Matrix6<f64>,
     /// Internal force on each node.
     pub pn: Vec<Vector3<f64>>,
-    /// Node blocks ∂pn/∂un.
-    pub knn: Vec<Matrix3<f64>>,
-    /// ∂pb/∂un.
-    pub kbn: Vec<Matrix6x3<f64>>,
-    /// ∂pn/∂(X, Θ).
-    pub knb: Vec<Matrix3x6<f64>>,
+    /// Inverses of the node blocks (D1 + D2)⁻¹.
     knn_inv: Vec<Matrix3<f64>>,
+    /// Element 2's tangent D2 of each node (its coupling to the body).
+    d2: Vec<Matrix3<f64>>,
+    /// G = −R·d̂ of each node's body point.
+    g: Vec<Matrix3<f64>>,
+    /// J_r(Θ) of the assembly's pose (the identity when Θ = 0).
+    jr: Matrix3<f64>,
+    /// A node block was singular.
+    singular: bool,
 }
 
 impl SpaceAssembly {
@@ -195,10 +199,11 @@ impl SpaceAssembly {
             pb: Vector6::zeros(),
             kbb: Matrix6::zeros(),
             pn: vec![Vector3::zeros(); n],
-            knn: vec![Matrix3::zeros(); n],
-            kbn: vec![Matrix6x3::zeros(); n],
-            knb: vec![Matrix3x6::zeros(); n],
             knn_inv: vec![Matrix3::zeros(); n],
+            d2: vec![Matrix3::zeros(); n],
+            g: vec![Matrix3::zeros(); n],
+            jr: Matrix3::identity(),
+            singular: false,
         }
     }
 }
@@ -262,7 +267,7 @@ impl SpaceModel {
 
     /// Evaluate every element at `pose` (nodes `un`, ground at `ground`) and assemble the
     /// internal forces and the consistent tangent into `a`. The massless nodes are first
-    /// put at their exact local equilibrium (`relax_node`).
+    /// put at their exact local equilibrium (`relax_node`) and condensed out.
     pub fn assemble(
         &mut self,
         pose: &Pose,
@@ -272,6 +277,7 @@ impl SpaceModel {
     ) {
         a.pb = Vector6::zeros();
         a.kbb = Matrix6::zeros();
+        a.singular = false;
         let rt = pose.r.transpose();
         for (k, sup) in self.supports.iter_mut().enumerate() {
             let d = sup.offset;
@@ -285,14 +291,15 @@ impl SpaceModel {
                     let (f1, d1) = sup.lower.trial(un[k] - ground);
                     let (f2, d2) = upper.trial(u - un[k]);
                     a.pn[k] = f1 - f2;
-                    a.knn[k] = d1 + d2;
-                    let d2g = d2 * g;
-                    let gtd2 = g.tr_mul(&d2);
-                    a.kbn[k].fixed_rows_mut::<3>(0).copy_from(&-d2);
-                    a.kbn[k].fixed_rows_mut::<3>(3).copy_from(&-gtd2);
-                    a.knb[k].fixed_columns_mut::<3>(0).copy_from(&-d2);
-                    a.knb[k].fixed_columns_mut::<3>(3).copy_from(&-d2g);
-                    (f2, d2)
+                    let inv = (d1 + d2).try_inverse().unwrap_or_else(|| {
+                        a.singular = true;
+                        Matrix3::zeros()
+                    });
+                    a.knn_inv[k] = inv;
+                    a.d2[k] = d2;
+                    a.g[k] = g;
+                    // Static condensation of the node (exact): the series tangent.
+                    (f2, d2 - d2 * inv * d2)
                 }
             };
             let rtf = rt * f;
@@ -312,14 +319,11 @@ impl SpaceModel {
             k11 += gtd * g + dh * skew(&rtf);
         }
         // From the body-frame virtual rotation W to the unknown Θ: W = J_r(Θ)·δΘ.
+        a.jr = Matrix3::identity();
         if self.body.rotation && pose.theta != Vector3::zeros() {
-            let jr = right_jacobian(&pose.theta);
-            let cols = a.kbb.fixed_columns::<3>(3) * jr;
+            a.jr = right_jacobian(&pose.theta);
+            let cols = a.kbb.fixed_columns::<3>(3) * a.jr;
             a.kbb.fixed_columns_mut::<3>(3).copy_from(&cols);
-            for k in 0..self.nodes {
-                let cols = a.knb[k].fixed_columns::<3>(3) * jr;
-                a.knb[k].fixed_columns_mut::<3>(3).copy_from(&cols);
-            }
         }
     }
 
@@ -393,6 +397,9 @@ pub struct SpaceSystem {
 }
 
 /// Solve the Newton system: writes the body correction and the nodes'; false if singular.
+/// The nodes are condensed in the assembly; here their residuals enter the right-hand
+/// side, rhs += [v; Gᵀv] with v = D2·(D1 + D2)⁻¹·rn, and are recovered after the body's
+/// solve, Δun = (D1 + D2)⁻¹·(rn/s + D2·(Δx + G·J_r·ΔΘ)).
 pub fn solve(
     model: &SpaceModel,
     sys: &SpaceSystem,
@@ -402,6 +409,9 @@ pub fn solve(
     dq: &mut Vector6<f64>,
     dun: &mut [Vector3<f64>],
 ) -> bool {
+    if a.singular {
+        return false;
+    }
     let mut s_mat = a.kbb * sys.s;
     let m = model.body.mass * sys.c0;
     s_mat[(0, 0)] += m + sys.damp;
@@ -411,13 +421,12 @@ pub fn solve(
     rot += sys.inertial;
     let mut rhs = *rb;
     for (k, r) in rn.iter().enumerate().take(model.nodes) {
-        let Some(inv) = a.knn[k].try_inverse() else {
-            return false;
-        };
-        a.knn_inv[k] = inv;
-        let kbn_inv = a.kbn[k] * inv;
-        s_mat -= kbn_inv * a.knb[k] * sys.s;
-        rhs -= kbn_inv * r;
+        let v = a.d2[k] * (a.knn_inv[k] * r);
+        let mut rx = rhs.fixed_rows_mut::<3>(0);
+        rx += v;
+        let gv = a.g[k].tr_mul(&v);
+        let mut rw = rhs.fixed_rows_mut::<3>(3);
+        rw += gv;
     }
     if !model.body.rotation {
         for i in 3..6 {
@@ -433,8 +442,10 @@ pub fn solve(
         return false;
     };
     *dq = x;
+    let dx = x.fixed_rows::<3>(0).into_owned();
+    let dw = a.jr * x.fixed_rows::<3>(3);
     for k in 0..model.nodes {
-        dun[k] = a.knn_inv[k] * (rn[k] / sys.s - a.knb[k] * x);
+        dun[k] = a.knn_inv[k] * (rn[k] / sys.s + a.d2[k] * (dx + a.g[k] * dw));
     }
     true
 }
