@@ -303,8 +303,7 @@ impl SpaceModel {
                 }
             };
             let rtf = rt * f;
-            let dg = dm * g;
-            let gtd = g.tr_mul(&dm);
+            let (dg, gtd) = tangent_times_g(&dm, &g);
             let mut pb = a.pb.fixed_rows_mut::<3>(0);
             pb += f;
             let mut pr = a.pb.fixed_rows_mut::<3>(3);
@@ -316,7 +315,8 @@ impl SpaceModel {
             let mut k10 = a.kbb.fixed_view_mut::<3, 3>(3, 0);
             k10 += gtd;
             let mut k11 = a.kbb.fixed_view_mut::<3, 3>(3, 3);
-            k11 += gtd * g + dh * skew(&rtf);
+            // d̂·(Rᵀf)^ = (Rᵀf)·dᵀ − (d·Rᵀf)·I
+            k11 += gtd * g + rtf * d.transpose() - Matrix3::identity() * d.dot(&rtf);
         }
         // From the body-frame virtual rotation W to the unknown Θ: W = J_r(Θ)·δΘ.
         a.jr = Matrix3::identity();
@@ -345,6 +345,24 @@ impl SpaceModel {
                 u.restore();
             }
         }
+    }
+}
+
+/// (D·G, Gᵀ·D) of an element tangent D: a diagonal D (a sticking or bonded element)
+/// scales G's rows, the same bits as the full products (the other terms are exact zeros).
+#[inline]
+fn tangent_times_g(dm: &Matrix3<f64>, g: &Matrix3<f64>) -> (Matrix3<f64>, Matrix3<f64>) {
+    let diagonal = dm[(0, 1)] == 0.0
+        && dm[(0, 2)] == 0.0
+        && dm[(1, 0)] == 0.0
+        && dm[(1, 2)] == 0.0
+        && dm[(2, 0)] == 0.0
+        && dm[(2, 1)] == 0.0;
+    if diagonal {
+        let dg = Matrix3::from_fn(|i, j| dm[(i, i)] * g[(i, j)]);
+        (dg, dg.transpose())
+    } else {
+        (dm * g, g.tr_mul(dm))
     }
 }
 
