@@ -291,7 +291,7 @@ impl SpaceModel {
                     let (f1, d1) = sup.lower.trial(un[k] - ground);
                     let (f2, d2) = upper.trial(u - un[k]);
                     a.pn[k] = f1 - f2;
-                    let inv = (d1 + d2).try_inverse().unwrap_or_else(|| {
+                    let inv = node_inverse(&(d1 + d2)).unwrap_or_else(|| {
                         a.singular = true;
                         Matrix3::zeros()
                     });
@@ -348,17 +348,36 @@ impl SpaceModel {
     }
 }
 
+/// The inverse of a node block D1 + D2: reciprocals when it is diagonal (both elements
+/// sticking or open), else the general inverse.
+#[inline]
+fn node_inverse(k: &Matrix3<f64>) -> Option<Matrix3<f64>> {
+    if is_diagonal(k) {
+        let d = k.diagonal();
+        if d.iter().all(|x| *x != 0.0) {
+            return Some(Matrix3::from_diagonal(&d.map(|x| 1.0 / x)));
+        }
+        return None;
+    }
+    k.try_inverse()
+}
+
+/// Whether every off-diagonal entry is exactly zero.
+#[inline]
+fn is_diagonal(m: &Matrix3<f64>) -> bool {
+    m[(0, 1)] == 0.0
+        && m[(0, 2)] == 0.0
+        && m[(1, 0)] == 0.0
+        && m[(1, 2)] == 0.0
+        && m[(2, 0)] == 0.0
+        && m[(2, 1)] == 0.0
+}
+
 /// (D·G, Gᵀ·D) of an element tangent D: a diagonal D (a sticking or bonded element)
 /// scales G's rows, the same bits as the full products (the other terms are exact zeros).
 #[inline]
 fn tangent_times_g(dm: &Matrix3<f64>, g: &Matrix3<f64>) -> (Matrix3<f64>, Matrix3<f64>) {
-    let diagonal = dm[(0, 1)] == 0.0
-        && dm[(0, 2)] == 0.0
-        && dm[(1, 0)] == 0.0
-        && dm[(1, 2)] == 0.0
-        && dm[(2, 0)] == 0.0
-        && dm[(2, 1)] == 0.0;
-    if diagonal {
+    if is_diagonal(dm) {
         let dg = Matrix3::from_fn(|i, j| dm[(i, i)] * g[(i, j)]);
         (dg, dg.transpose())
     } else {
