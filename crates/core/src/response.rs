@@ -164,6 +164,18 @@ defs![
         q::ROTATION,
         PeakAbsAfterFirstCrossing
     ),
+    (
+        "peak_resultant_sliding",
+        "Peak resultant sliding |p| (3D)",
+        q::SLIDE_RESULTANT,
+        Max
+    ),
+    (
+        "residual_resultant_sliding",
+        "Residual resultant sliding |p| (3D)",
+        q::SLIDE_RESULTANT,
+        Last
+    ),
 ];
 
 /// The definition of a quantity key.

@@ -4,6 +4,7 @@
 
 #![warn(missing_docs)]
 
+pub mod bidirectional;
 mod block_case;
 pub mod block_record;
 mod duhamel;
@@ -44,6 +45,9 @@ pub trait ExactSolution: Send + Sync {
 /// The reference for a case, or why there is none.
 pub fn for_case(case: &Case) -> Result<Box<dyn ExactSolution>, String> {
     let scene = &case.scene;
+    if scene.spatial().is_some() {
+        return bidirectional::for_case(case);
+    }
     if scene.vertical().is_some() {
         return vertical::for_case(case);
     }

@@ -252,6 +252,53 @@ pub mod q {
         "The part of energy_error made by the contact law's kinks inside a step, summed since t = 0 (positive: lost): an element opening or closing (its trapezoidal work ½(fₙ + fₙ₊₁)·Δδ minus its strain-energy change) and a slip reversal (the negative trapezoid ½(Tₙ + Tₙ₊₁)·Δs). A numerical error of stepping across a kink, not a physical loss."
     );
 
+    // --- plan motion (bidirectional, 3D scenes) ---
+    quantity!(
+        REL_DISP_Y,
+        "rel_disp_y",
+        "Relative displacement y",
+        "m",
+        "mm",
+        1e3,
+        "Displacement of the mass (or of base point O) relative to the ground along y (3D scenes)."
+    );
+    quantity!(
+        SLIDE_Y,
+        "slide_y",
+        "Sliding yp",
+        "m",
+        "mm",
+        1e3,
+        "Accumulated slip of the base on the ground along y (3D scenes; `slide` is the x component)."
+    );
+    quantity!(
+        VEL_Y,
+        "vel_y",
+        "Relative velocity along y",
+        "m/s",
+        "mm/s",
+        1e3,
+        "Velocity of the mass relative to the ground along y (3D scenes)."
+    );
+    quantity!(
+        SLIDE_RESULTANT,
+        "slide_resultant",
+        "Resultant sliding |p|",
+        "m",
+        "mm",
+        1e3,
+        "Length of the accumulated slip vector (slide, slide_y) in the horizontal plane."
+    );
+    quantity!(
+        SLIDE_AZIMUTH,
+        "slide_azimuth",
+        "Sliding direction",
+        "°",
+        "°",
+        1.0,
+        "Azimuth of the slip vector (slide, slide_y), degrees from +x toward +y (0 where it is zero)."
+    );
+
     /// The channels every sliding-oscillator trace has, in this order (engines and
     /// references alike), with `GROUND_DISP` after them when the ground moves.
     pub fn sliding(moving_ground: bool) -> Vec<&'static Quantity> {
@@ -288,6 +335,11 @@ pub mod q {
         &ENERGY_FRICTION,
         &ENERGY_POTENTIAL,
         &ENERGY_NONSMOOTH,
+        &REL_DISP_Y,
+        &SLIDE_Y,
+        &VEL_Y,
+        &SLIDE_RESULTANT,
+        &SLIDE_AZIMUTH,
     ];
 
     /// The quantity with this key.

@@ -1,0 +1,97 @@
+//! The horizontal drive of a 3D scene as a 2-vector function of time, with its kinks.
+
+use rockslide_core::case::{Excitation, Scene, Signal};
+
+/// The force per unit mass d(t) on the body (relative coordinates), in (x, y), and the
+/// vertical ground acceleration a_v(t) when the scene has one.
+#[derive(Debug, Clone)]
+pub struct PlanDrive {
+    first: Option<Signal>,
+    second: Option<Signal>,
+    /// e₁ and e₂ times the sign (+1 mass acceleration, −1 ground acceleration).
+    e1: [f64; 2],
+    e2: [f64; 2],
+    vertical: Option<Signal>,
+}
+
+impl PlanDrive {
+    /// The drive of `first` along unit vector `e1` and `second` along `e2`, times `sign`.
+    pub fn new(
+        first: Option<Signal>,
+        e1: [f64; 2],
+        second: Option<Signal>,
+        e2: [f64; 2],
+        sign: f64,
+    ) -> Self {
+        PlanDrive {
+            first,
+            second,
+            e1: [sign * e1[0], sign * e1[1]],
+            e2: [sign * e2[0], sign * e2[1]],
+            vertical: None,
+        }
+    }
+
+    /// With a vertical ground acceleration a_v(t) (positive upward).
+    pub fn with_vertical(mut self, vertical: Signal) -> Self {
+        self.vertical = Some(vertical);
+        self
+    }
+
+    /// The drive of a scene: its `[excitation]` along e₁, `[excitation.y]` along e₂ (a
+    /// planar scene: along +x), a mass or ground acceleration.
+    pub fn of_scene(scene: &Scene) -> Result<Self, String> {
+        let (sign, first) = match &scene.excitation {
+            Excitation::None => (1.0, None),
+            Excitation::MassAcceleration(s) => (1.0, Some(s.clone())),
+            Excitation::GroundAcceleration(s) => (-1.0, Some(s.clone())),
+            Excitation::GroundDisplacement(_) => {
+                return Err("the plan-motion references take a mass or ground acceleration, not a ground displacement".into());
+            }
+        };
+        let (e1, e2, second) = match scene.spatial() {
+            Some(s) => (s.first_direction(), s.second_direction(), s.second.clone()),
+            None => ([1.0, 0.0], [0.0, 1.0], None),
+        };
+        let drive = PlanDrive::new(first, e1, second, e2, sign);
+        Ok(match scene.vertical() {
+            Some(v) => drive.with_vertical(v.signal.clone()),
+            None => drive,
+        })
+    }
+
+    /// d(t), m/s².
+    pub fn at(&self, t: f64) -> [f64; 2] {
+        let a = self.first.as_ref().map_or(0.0, |s| s.value(t));
+        let b = self.second.as_ref().map_or(0.0, |s| s.value(t));
+        [
+            a * self.e1[0] + b * self.e2[0],
+            a * self.e1[1] + b * self.e2[1],
+        ]
+    }
+
+    /// The vertical ground acceleration a_v(t), m/s² (0 without one).
+    pub fn vertical(&self, t: f64) -> f64 {
+        self.vertical.as_ref().map_or(0.0, |s| s.value(t))
+    }
+
+    /// The times in (0, end) where the drive is not smooth: record samples, pulse ends.
+    pub fn kinks(&self, end: f64) -> Vec<f64> {
+        let mut k = Vec::new();
+        for s in [&self.first, &self.second, &self.vertical]
+            .into_iter()
+            .flatten()
+        {
+            match s {
+                Signal::SinePulse { .. } => k.push(s.end()),
+                Signal::Record { dt, samples, .. } => {
+                    k.extend((1..samples.len()).map(|i| i as f64 * dt));
+                }
+            }
+        }
+        k.retain(|&t| t > 0.0 && t < end);
+        k.sort_by(f64::total_cmp);
+        k.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * end);
+        k
+    }
+}

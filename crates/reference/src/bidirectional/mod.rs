@@ -1,0 +1,56 @@
+//! Bidirectional (plan-motion) references: the rigid-plastic block sliding on an isotropic
+//! friction cone ([`PlanBlock`]) and the elastic-perfectly-plastic oscillator with a
+//! circular yield surface ([`PlanEpo`]), under the horizontal drive of a 3D scene
+//! ([`PlanDrive`]). Neither has a closed form in general: both are integrated by the
+//! classical fourth-order Runge–Kutta method on a grid that has a node at every kink of the
+//! drive (record samples, pulse ends), with every phase change (slip onset, stop, yield,
+//! unloading) located by bisection on the event function of a step of variable length
+//! ([`integrate`]), so that no step straddles an event. Convergence is measured by
+//! halving the step (docs/bidirectional.md).
+//!
+//! Coordinates: relative to the ground; the drive d(t) is the force per unit mass on the
+//! body, a(t) for a mass acceleration, −a_g(t) for a ground acceleration, a 2-vector.
+
+mod block;
+mod drive;
+mod epo;
+mod integrate;
+
+pub use block::{PlanBlock, PlanBlockPhase};
+pub use drive::PlanDrive;
+pub use epo::{PlanEpo, PlanEpoPhase};
+pub use integrate::{Sample, rotate};
+
+use rockslide_core::case::{Case, Model};
+
+/// Default largest integration step of the case references, s.
+pub const DEFAULT_STEP: f64 = 1e-4;
+
+/// The plan-motion reference of a 3D case, or why there is none.
+pub fn for_case(case: &Case) -> Result<Box<dyn crate::ExactSolution>, String> {
+    let scene = &case.scene;
+    let drive = PlanDrive::of_scene(scene)?;
+    match &scene.model {
+        Model::Oscillator(o) => {
+            if scene.vertical.is_some() {
+                return Err("the plan-motion oscillator reference does not take a vertical component (the friction cone's radius would follow N(t)): not modelled".into());
+            }
+            Ok(Box::new(PlanEpo::solve(
+                o,
+                &drive,
+                case.run.duration,
+                DEFAULT_STEP,
+            )?))
+        }
+        Model::RigidBlock(b) => Ok(Box::new(PlanBlock::solve(
+            b.mu,
+            b.gravity,
+            &drive,
+            case.run.duration,
+            DEFAULT_STEP,
+        )?)),
+        Model::RockingBody(_) => {
+            Err("no exact solution exists for the rocking elastic-plastic oscillator in 3D".into())
+        }
+    }
+}
