@@ -17,7 +17,9 @@ use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{NotApplicable, Run, SolverStats, step_count};
 
-/// The y-direction channels of a 3D run (the x ones keep the catalogue's 2D keys).
+/// The y-direction channels of a 3D run that the catalogue does not have yet (the x ones
+/// keep the 2D keys; `rel_disp_y`, `slide_y`, `vel_y`, `slide_resultant`, `slide_azimuth`
+/// are the catalogue's).
 pub mod qy {
     use rockslide_core::trace::Quantity;
 
@@ -200,13 +202,15 @@ fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Qua
         &q::RESISTANCE,
         &qy::RESISTANCE_Y,
         &q::REL_DISP,
-        &qy::REL_DISP_Y,
+        &q::REL_DISP_Y,
         &q::SLIDE,
-        &qy::SLIDE_Y,
+        &q::SLIDE_Y,
         &q::VEL,
-        &qy::VEL_Y,
+        &q::VEL_Y,
         &q::ACC,
         &qy::ACC_Y,
+        &q::SLIDE_RESULTANT,
+        &q::SLIDE_AZIMUTH,
     ];
     if moves_ground {
         c.push(&q::GROUND_DISP);
@@ -287,6 +291,12 @@ pub fn simulate_space(
             put(v.x);
             put(v.y);
         }
+        put(r.slide.norm());
+        put(if r.slide == nalgebra::Vector2::zeros() {
+            0.0
+        } else {
+            r.slide.y.atan2(r.slide.x).to_degrees()
+        });
         if moves_ground {
             put(s.ground[0].x);
         }
