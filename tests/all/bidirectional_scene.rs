@@ -166,3 +166,29 @@ fn every_2d_engine_refuses_a_3d_scene() {
         assert!(engine.variants(&planar.scene).is_ok());
     }
 }
+
+#[test]
+fn the_spatial_cases_load_and_select_the_plan_references() {
+    for (name, method) in [
+        ("spatial/pepo-pulse-azimuth30", "circular yield surface"),
+        ("spatial/block-record-pair", "isotropic friction cone"),
+    ] {
+        let c = case(name);
+        assert!(c.scene.spatial.is_some());
+        let r = rockslide::reference::for_case(&c).unwrap();
+        assert!(r.method().contains(method), "{}", r.method());
+        for engine in rockslide::engine::all() {
+            assert!(engine.variants(&c.scene).is_err());
+        }
+    }
+    // the pair's peak resultant sliding as measured (docs/bidirectional.md)
+    let c = case("spatial/block-record-pair");
+    let r = rockslide::reference::for_case(&c).unwrap();
+    let peak = r
+        .exact_quantities()
+        .into_iter()
+        .find(|(k, _)| *k == "peak_resultant_sliding")
+        .unwrap()
+        .1;
+    assert!((peak - 3.2167e-2).abs() < 5e-5, "{peak}");
+}
