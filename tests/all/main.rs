@@ -11,6 +11,7 @@ mod energy_rpepo;
 mod external;
 mod fe_pepo;
 mod fe_rpepo;
+mod fe_space;
 mod footprint;
 mod gate_check;
 mod golden;

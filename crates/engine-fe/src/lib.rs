@@ -27,6 +27,7 @@ mod modes;
 mod options;
 mod recording;
 mod simulate;
+pub mod space;
 mod stepper;
 
 pub use element::{Contact178, ContactState, Element, Status};
@@ -60,6 +61,9 @@ impl Engine for Fe {
     }
 
     fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+        if let (Some(s), None) = (scene.spatial(), scene.vertical()) {
+            return space::variants(scene, s);
+        }
         if scene.vertical().is_some() {
             return Err(NotApplicable(
                 "vertical excitation is not yet modelled in fe".into(),
@@ -90,6 +94,13 @@ impl Engine for Fe {
         if let Some(e) = errors.into_iter().next() {
             return Err(e);
         }
-        simulate(case, variant, dt, &opts)
+        match case.scene.spatial() {
+            Some(s) => space::simulate_space(case, s, variant, dt, &opts),
+            None => simulate(case, variant, dt, &opts),
+        }
+    }
+
+    fn models_plan_motion(&self) -> bool {
+        true
     }
 }

@@ -1,0 +1,395 @@
+//! The fe engine on a bidirectional (3D) scene (`Scene::spatial`): the 3D model built from
+//! the scene (the oscillator on one isotropic contact; the rocking body on its
+//! `supports` × `support_rows` grid), driven by the excitation pair, recorded as a trace
+//! whose x channels keep the 2D keys and whose y channels are added (`*_y`), with the
+//! per-contact block giving |T| and |slip| (the cone's magnitudes) and the gap.
+
+use nalgebra::{Matrix3, Vector3};
+
+use super::model::{BlockGrid, SpaceBody, SpaceModel};
+use super::run::record;
+use super::stepper::{SpaceDrive, integrate};
+use crate::model::default_rotational_inertia;
+use crate::options::{FeOptions, Integrator};
+use crate::variant;
+use rockslide_core::case::{Case, Excitation, Model as SceneModel, Scene, Spatial};
+use rockslide_core::error::InputError;
+use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
+use rockslide_engine_api::{NotApplicable, Run, SolverStats, step_count};
+
+/// The y-direction channels of a 3D run that the catalogue does not have yet (the x ones
+/// keep the 2D keys; `rel_disp_y`, `slide_y`, `vel_y`, `slide_resultant`, `slide_azimuth`
+/// are the catalogue's).
+pub mod qy {
+    use rockslide_core::trace::Quantity;
+
+    macro_rules! quantity {
+        ($name:ident, $key:literal, $label:literal, $unit:literal, $dunit:literal, $f:expr, $doc:literal) => {
+            #[doc = $doc]
+            pub static $name: Quantity = Quantity {
+                key: $key,
+                label: $label,
+                unit: $unit,
+                display: ($dunit, $f),
+                doc: $doc,
+            };
+        };
+    }
+    quantity!(
+        FORCE_Y,
+        "force_y",
+        "Applied force F, y",
+        "N",
+        "kN",
+        1e-3,
+        "Force on the mass along y (relative coordinates)."
+    );
+    quantity!(
+        RESISTANCE_Y,
+        "resistance_y",
+        "Resistance R, y",
+        "N",
+        "kN",
+        1e-3,
+        "Base reaction along y (sum over supports)."
+    );
+    quantity!(
+        REL_DISP_Y,
+        "rel_disp_y",
+        "Relative displacement y",
+        "m",
+        "mm",
+        1e3,
+        "Displacement along y of the mass (or of base point O) relative to the ground."
+    );
+    quantity!(
+        SLIDE_Y,
+        "slide_y",
+        "Sliding, y",
+        "m",
+        "mm",
+        1e3,
+        "Accumulated slip along y (mean over supports)."
+    );
+    quantity!(
+        VEL_Y,
+        "vel_y",
+        "Relative velocity, y",
+        "m/s",
+        "mm/s",
+        1e3,
+        "Velocity of the centre of mass along y relative to the ground."
+    );
+    quantity!(
+        ACC_Y,
+        "acc_y",
+        "Relative acceleration, y",
+        "m/s²",
+        "m/s²",
+        1.0,
+        "Acceleration of the centre of mass along y relative to the ground."
+    );
+    quantity!(
+        CM_Y,
+        "cm_y",
+        "CM displacement, y",
+        "m",
+        "mm",
+        1e3,
+        "Centre of mass along y relative to the ground."
+    );
+    quantity!(
+        ROTATION_X,
+        "rotation_x",
+        "Rotation about x",
+        "rad",
+        "mrad",
+        1e3,
+        "x component of the body's rotation vector."
+    );
+    quantity!(
+        ROTATION_Z,
+        "rotation_z",
+        "Rotation about z (twist)",
+        "rad",
+        "mrad",
+        1e3,
+        "z component of the body's rotation vector."
+    );
+}
+
+/// The variants of a 3D scene, or why fe does not run it.
+pub fn variants(scene: &Scene, spatial: &Spatial) -> Result<Vec<&'static str>, NotApplicable> {
+    let double = match &scene.model {
+        SceneModel::Oscillator(o) => o.double.is_some(),
+        SceneModel::RockingBody(r) => {
+            if spatial.depth.is_some_and(|d| d.support_rows < 2) {
+                return Err(NotApplicable(
+                    "one row of supports is a knife edge along x: in 3D the body has no stiffness against tipping about it (give support_rows ≥ 2)".into(),
+                ));
+            }
+            r.double.is_some()
+        }
+        SceneModel::RigidBlock(_) => {
+            return Err(NotApplicable(
+                "the penalty FE model needs contact stiffnesses, and a rigid block on a rigid ground has none".into(),
+            ));
+        }
+    };
+    Ok(if double {
+        vec![variant::SINGLE, variant::DOUBLE]
+    } else {
+        vec![variant::SINGLE]
+    })
+}
+
+/// The 3D body of the scene and where its inertia came from.
+fn body(case: &Case, spatial: &Spatial, double: bool) -> Result<(SpaceBody, String), InputError> {
+    match &case.scene.model {
+        SceneModel::Oscillator(o) => Ok((SpaceBody::oscillator(o, double), String::new())),
+        SceneModel::RockingBody(r) => {
+            let depth = spatial.depth.ok_or_else(|| {
+                case.field_error(
+                    "model.half_depth",
+                    "is required for a rocking body in a 3D scene",
+                )
+            })?;
+            let (inertia, note) = match spatial.inertia {
+                Some([ix, iy, iz]) => (
+                    Matrix3::from_diagonal(&Vector3::new(ix, iy, iz)),
+                    format!(
+                        "{ix}, {iy}, {iz} kg·m² about x, y, z (model.rotational_inertia_x, _y, _z)"
+                    ),
+                ),
+                None => {
+                    let i = if r.rotational_inertia > 0.0 {
+                        r.rotational_inertia
+                    } else {
+                        default_rotational_inertia(r)
+                    };
+                    (
+                        Matrix3::identity() * i,
+                        format!("{i} kg·m² about every axis (the planar value, isotropic)"),
+                    )
+                }
+            };
+            let grid = BlockGrid {
+                mass: r.mass,
+                gravity: r.gravity,
+                cm_height: r.cm_height,
+                half_length: r.half_width,
+                half_width: depth.half_depth,
+                nx: r.supports,
+                ny: depth.support_rows,
+                inertia,
+                contact: r.contact,
+                double: r.double,
+            };
+            Ok((SpaceBody::block(&grid, double), note))
+        }
+        SceneModel::RigidBlock(_) => Err(case.field_error(
+            "model.kind",
+            "the fe engine does not run rigid blocks (no contact stiffness)",
+        )),
+    }
+}
+
+/// The channels of a 3D run.
+fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Quantity> {
+    let mut c = vec![
+        &q::FORCE,
+        &qy::FORCE_Y,
+        &q::RESISTANCE,
+        &qy::RESISTANCE_Y,
+        &q::REL_DISP,
+        &q::REL_DISP_Y,
+        &q::SLIDE,
+        &q::SLIDE_Y,
+        &q::VEL,
+        &q::VEL_Y,
+        &q::ACC,
+        &qy::ACC_Y,
+        &q::SLIDE_RESULTANT,
+        &q::SLIDE_AZIMUTH,
+    ];
+    if moves_ground {
+        c.push(&q::GROUND_DISP);
+    }
+    if rocking {
+        c.extend([
+            &q::CM_X,
+            &qy::CM_Y,
+            &q::CM_Z,
+            &q::ROTATION,
+            &qy::ROTATION_X,
+            &qy::ROTATION_Z,
+            &q::UPLIFT,
+            &q::CONTACTS,
+        ]);
+    }
+    c.push(&q::NORMAL);
+    if double {
+        c.push(&q::NODE_DISP);
+    }
+    c
+}
+
+/// Run `variant` of a 3D scene at step `dt`.
+pub fn simulate_space(
+    case: &Case,
+    spatial: &Spatial,
+    variant: &str,
+    dt: f64,
+    opts: &FeOptions,
+) -> Result<Run, InputError> {
+    let double = match variant {
+        variant::SINGLE => false,
+        variant::DOUBLE => true,
+        other => {
+            return Err(case.field_error(
+                "engines.fe.variants",
+                format!("\"{other}\" is not a variant of fe; variants: single, double"),
+            ));
+        }
+    };
+    let (body, inertia_note) = body(case, spatial, double)?;
+    if double && body.double.is_none() {
+        return Err(case.field_error(
+            "model.double",
+            "is required for the fe engine's \"double\" variant",
+        ));
+    }
+    let excitation = &case.scene.excitation;
+    let moves_ground = matches!(excitation, Excitation::GroundDisplacement(_));
+    let rocking = body.rotation;
+    let steps = step_count(case.run.duration, dt);
+    let mut trace = Trace::with_channels(&channels(rocking, moves_ground, double), steps + 1);
+    let kz = body.double.map_or(body.contact.kz, |d| d.lower.kz);
+    trace.contacts = ContactBlock::for_supports(body.supports.len(), 1.0 / kz, steps + 1);
+    let mut states = vec![ContactState::default(); body.supports.len()];
+    let drive = SpaceDrive::new(
+        excitation,
+        spatial.second.as_ref(),
+        spatial.azimuth(),
+        body.mass,
+    );
+    let o_offset = if rocking {
+        Vector3::new(0.0, 0.0, body.supports[0].z)
+    } else {
+        Vector3::zeros()
+    };
+    let mut model = SpaceModel::new(&body);
+    let mut values = [0.0_f64; 32];
+    let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
+        let r = record(m, s, &drive, &o_offset);
+        let mut i = 0;
+        let mut put = |v: f64| {
+            values[i] = v;
+            i += 1;
+        };
+        for v in [r.force, r.resistance, r.rel_disp, r.slide, r.vel, r.acc] {
+            put(v.x);
+            put(v.y);
+        }
+        put(r.slide.norm());
+        put(if r.slide == nalgebra::Vector2::zeros() {
+            0.0
+        } else {
+            r.slide.y.atan2(r.slide.x).to_degrees()
+        });
+        if moves_ground {
+            put(s.ground[0].x);
+        }
+        if rocking {
+            put(r.cm.x);
+            put(r.cm.y);
+            put(r.cm.z);
+            put(-r.rotation.y);
+            put(r.rotation.x);
+            put(r.rotation.z);
+            put(r.uplift);
+            put(r.contacts as f64);
+        }
+        put(r.normal);
+        if double {
+            put(r.node_disp.x);
+        }
+        trace.push(s.t, &values[..i]);
+        for (c, sup) in states.iter_mut().zip(&m.supports) {
+            let st = sup.lower.state();
+            *c = ContactState {
+                normal: sup.lower.normal(),
+                tangential: sup.lower.tangential().norm(),
+                slip: st.slip.norm(),
+                gap: st.delta.z,
+            };
+        }
+        trace.contacts.push(s.t, &states);
+    });
+    Ok(Run {
+        engine: "fe",
+        variant: variant.to_string(),
+        dt,
+        settings: settings(spatial, dt, opts, &body, inertia_note),
+        stats: SolverStats {
+            steps: counters.steps,
+            substeps_per_step: None,
+            newton_iterations: Some(counters.iterations),
+            max_step_iterations: Some(counters.max_step_iterations),
+            static_iterations: Some(counters.static_iterations),
+            step_cuts: Some(counters.step_cuts),
+            roundoff_accepted: Some(counters.roundoff_accepted),
+        },
+        findings: Vec::new(),
+        trace,
+        status,
+        wall_seconds: 0.0,
+    })
+}
+
+/// What shaped a 3D run, as (name, value).
+fn settings(
+    spatial: &Spatial,
+    dt: f64,
+    opts: &FeOptions,
+    body: &SpaceBody,
+    inertia_note: String,
+) -> Vec<(String, String)> {
+    let (alpha, beta, gamma) = opts.integrator.parameters();
+    let mut s: Vec<(String, String)> = vec![
+        ("dt [s]".into(), format!("{dt}")),
+        (
+            "integrator".into(),
+            match opts.integrator {
+                Integrator::Newmark => "Newmark average acceleration".into(),
+                Integrator::Hht { .. } => "HHT-α".into(),
+            },
+        ),
+        ("α, β, γ".into(), format!("{alpha}, {beta:.6}, {gamma:.6}")),
+        (
+            "model".into(),
+            "3D: six degrees of freedom, exact finite rotations (Simo–Vu Quoc incremental rotation vector, right-Jacobian tangent); cone contacts with radial return".into(),
+        ),
+        (
+            "excitation".into(),
+            format!(
+                "azimuth {}°{}",
+                spatial.azimuth_deg,
+                if spatial.second.is_some() {
+                    ", second component at right angles"
+                } else {
+                    ""
+                }
+            ),
+        ),
+        ("supports".into(), format!("{}", body.supports.len())),
+        (
+            "gravity".into(),
+            "static preload: the run starts from equilibrium under M·g".into(),
+        ),
+    ];
+    if body.rotation {
+        s.push(("rotational inertia".into(), inertia_note));
+    }
+    s
+}
