@@ -40,4 +40,5 @@ mod stability_classify;
 mod sweep_energy;
 mod sweep_order;
 mod vertical;
+mod vertical_engines;
 mod vertical_integrator;

@@ -425,14 +425,26 @@ fn the_friction_bound_uses_the_instantaneous_normal_force() {
 }
 
 #[test]
-fn fe_and_rapier_say_vertical_motion_is_not_applicable() {
-    let c = vertical_case("pepo-mass-accel-vertical");
+fn engines_say_which_vertical_scenes_they_do_not_model() {
+    // fe models the contact's Kz: a rigid vertical contact (quasi-static N) is not its
+    // scene; rapier does not model vertical motion yet.
+    let dynamic = vertical_case("pepo-mass-accel-vertical");
+    let rigid = vertical_case("pepo-mass-accel-vertical-rigid");
     for engine in rockslide::engine::all() {
-        let v = engine.variants(&c.scene);
         match engine.id() {
-            "predictor-corrector" => assert_eq!(v.unwrap(), vec!["paper"]),
+            "predictor-corrector" => {
+                assert_eq!(engine.variants(&dynamic.scene).unwrap(), vec!["paper"]);
+                assert_eq!(engine.variants(&rigid.scene).unwrap(), vec!["paper"]);
+            }
+            "fe" => {
+                assert_eq!(engine.variants(&dynamic.scene).unwrap(), vec!["single"]);
+                assert_eq!(
+                    engine.variants(&rigid.scene).unwrap_err().0,
+                    "fe's contacts have their vertical stiffness Kz: a rigid vertical contact (normal_force = \"quasi-static\") is not its model"
+                );
+            }
             id => assert_eq!(
-                v.unwrap_err().0,
+                engine.variants(&dynamic.scene).unwrap_err().0,
                 format!("vertical excitation is not yet modelled in {id}")
             ),
         }

@@ -16,6 +16,7 @@
 //! - `recording`: the trace channels and the row recorded at every step.
 //! - `energy`: the energy bookkeeping of rocking runs.
 //! - `findings`: eigenfrequencies, self-checks and sensitivity reported as findings.
+//! - `vertical`: vertical ground motion as an inertial load (issue 15).
 
 #![warn(missing_docs)]
 
@@ -28,6 +29,7 @@ mod options;
 mod recording;
 mod simulate;
 mod stepper;
+mod vertical;
 
 pub use element::{Contact178, ContactState, Element, Status};
 pub use model::{Model, default_rotational_inertia};
@@ -60,11 +62,7 @@ impl Engine for Fe {
     }
 
     fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
-        if scene.vertical().is_some() {
-            return Err(NotApplicable(
-                "vertical excitation is not yet modelled in fe".into(),
-            ));
-        }
+        vertical::check(scene)?;
         let double = match &scene.model {
             SceneModel::Oscillator(o) => o.double.is_some(),
             SceneModel::RockingBody(r) => r.double.is_some(),
