@@ -143,7 +143,7 @@ impl ExactSolution for VerticalBlock {
 
     fn method(&self) -> String {
         format!(
-            "exact two-way rigid-plastic block (Newmark 1965) with friction limit μ·M·(g + a_v) and lift-off when g + a_v < 0 (ballistic flight; at landing the vertical velocity is lost, the horizontal kept): closed form per grid interval ({}), {} slides and flights located by root finding",
+            "exact two-way rigid-plastic block (Newmark 1965) with friction limit μ·M·(g + a_v) and lift-off when g + a_v < 0 (ballistic flight; at landing the vertical velocity is lost and Coulomb friction acts on the impact impulse, |Δv| ≤ μ·|w|): closed form per grid interval ({}), {} slides and flights located by root finding",
             self.inputs.note,
             self.history.motions.len()
         )
