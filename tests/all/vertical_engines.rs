@@ -129,3 +129,33 @@ fn rapier_converges_to_the_vertical_oscillator_reference() {
         "orders {p1} {p2}"
     );
 }
+
+#[test]
+fn without_vertical_motion_the_engines_run_todays_scene_bit_for_bit() {
+    // The RPEPO with its vertical table at amplitude 0 against the horizontal-only case:
+    // fe's load −M·0 and rapier's zero body force and zero ground height change nothing.
+    let horizontal = case("rpepo-mass-accel");
+    let zero = crate::common::case_with(
+        "vertical/rpepo-mass-accel-vertical",
+        "amplitude = -0.654",
+        "amplitude = 0.0",
+    );
+    let fe = rockslide::engine::fe::Fe;
+    let rapier = rockslide::engine::rigid_body::Rapier;
+    for (engine, variant) in [
+        (&fe as &dyn Engine, "single"),
+        (&rapier as &dyn Engine, "applied-force"),
+    ] {
+        let (a, b) = (
+            run(engine, &horizontal, variant, 1e-3),
+            run(engine, &zero, variant, 1e-3),
+        );
+        assert_eq!(a.trace.columns, b.trace.columns, "{}", engine.id());
+        assert_eq!(
+            a.trace.contacts.values,
+            b.trace.contacts.values,
+            "{}",
+            engine.id()
+        );
+    }
+}
