@@ -590,3 +590,69 @@ fn the_vertical_component_changes_residual_sliding() {
     );
     assert!((exact_residual(&c) * 1e3 - 8.7562).abs() < 1e-4);
 }
+
+/// A case in a fresh folder beside `pair.csv` (its text given), loaded.
+fn pair_case(tag: &str, csv: &[u8], horizontal: &str, vertical: &str) -> Result<Case, String> {
+    let dir = std::env::temp_dir().join(format!("rs-pair-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("pair.csv"), csv).unwrap();
+    let text = format!(
+        "title = \"pair\"\nsource = \"test\"\nrequirement = \"test\"\n\n[model]\nkind = \"oscillator\"\nmass = 1.0e6\ngravity = 1.0\n\n[model.contact]\nkx = 9.8696e8\nkz = 3.94784e9\nmu = 0.5\n\n[excitation]\nkind = \"ground-acceleration\"\nrecord = \"pair.csv\"\nrecord_unit = \"g\"\n{horizontal}\n\n[excitation.vertical]\nrecord = \"pair.csv\"\nrecord_unit = \"g\"\n{vertical}\n\n[run]\nduration = 0.1\ndt = 0.01\n"
+    );
+    let path = dir.join("case.toml");
+    std::fs::write(&path, &text).unwrap();
+    let out = load_case(&path).map_err(|e| e.to_string());
+    std::fs::remove_dir_all(&dir).unwrap();
+    out
+}
+
+#[test]
+fn a_horizontal_vertical_pair_in_one_csv_is_one_excitation_with_a_scale_per_component() {
+    // time, horizontal, vertical; a byte-order mark and CRLF line ends, as other readers
+    let csv =
+        b"\xEF\xBB\xBF# pair\r\ntime,h,v\r\n0.0,0.0,0.0\r\n0.02,0.1,-0.05\r\n0.04,-0.2,0.02\r\n";
+    let c = pair_case(
+        "ok",
+        csv,
+        "record_column = 1\nscale_to_pga_g = 0.1",
+        "record_column = 2\nscale_to_pga_g = 0.05",
+    )
+    .unwrap();
+    let g = rockslide::case::record::STANDARD_GRAVITY;
+    let h = c.scene.excitation.signal().unwrap();
+    let v = &c.scene.vertical().unwrap().signal;
+    // each component scaled to its own PGA: h peaks at −0.2 g → −0.1 g, v at −0.05 g → −0.05 g
+    assert!((h.value(0.04) + 0.1 * g).abs() < 1e-12, "{}", h.value(0.04));
+    assert!((h.value(0.02) - 0.05 * g).abs() < 1e-12);
+    assert!(
+        (v.value(0.02) + 0.05 * g).abs() < 1e-12,
+        "{}",
+        v.value(0.02)
+    );
+    assert!((v.value(0.04) - 0.02 * g).abs() < 1e-12);
+    // a missing column is located in the record file, under the case field
+    let e = pair_case("short", csv, "record_column = 1", "record_column = 3").unwrap_err();
+    assert!(
+        e.contains("pair.csv:3:")
+            && e.contains("excitation.vertical.record")
+            && e.contains(
+                "expected at least 4 columns (time in s, then acceleration column 3 in g), found 3"
+            ),
+        "{e}"
+    );
+    // a three-column file without a column, and a column below 1
+    let e = pair_case("none", csv, "", "record_column = 2").unwrap_err();
+    assert!(
+        e.contains("expected 2 columns (time in s, acceleration in g), found 3"),
+        "{e}"
+    );
+    let e = pair_case("zero", csv, "record_column = 1", "record_column = 0").unwrap_err();
+    assert!(
+        e.contains("excitation.vertical.record_column: is 0, but must be at least 1"),
+        "{e}"
+    );
+    // a bad number in the vertical column: line and column of the token
+    let bad = b"0.0,0.0,0.0\n0.02,0.1,x\n";
+    let e = pair_case("bad", bad, "record_column = 1", "record_column = 2").unwrap_err();
+    assert!(e.contains("pair.csv:2:10"), "{e}");
+}
