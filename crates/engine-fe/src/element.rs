@@ -91,6 +91,18 @@ impl Contact178 {
         &self.committed
     }
 
+    /// The state of the last trial (what `commit` would accept).
+    pub fn trial_state(&self) -> &ContactState {
+        &self.trial
+    }
+
+    /// Start from `state` (committed and trial), e.g. a series equivalent taking over the
+    /// state of the element whose slip it carries.
+    pub fn set_committed(&mut self, state: ContactState) {
+        self.committed = state;
+        self.trial = state;
+    }
+
     /// Normal compression N ≥ 0 of the committed state (tension for bonded elements is
     /// returned negative), N.
     pub fn normal(&self) -> f64 {

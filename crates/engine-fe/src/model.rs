@@ -10,12 +10,20 @@
 //! exact elimination, not an approximation, and it keeps a step allocation-free and
 //! cheap (fixed-size nalgebra matrices on the stack).
 //!
+//! Condensed supports: when element 2 of the double arrangement is bonded with μ2 = ∞
+//! (every shipped case), the pair in series *is* one CONTA178-like element with the
+//! series stiffnesses and element 1's friction and slip (`series_equivalent`, derived
+//! there). The time loop then iterates on that element alone, ground to body, exactly like
+//! the single arrangement (`assemble_direct`): no node unknowns, no node blocks, no Schur
+//! complement. The node and the two elements' states are rebuilt from it once per
+//! converged step (`commit_step`) for the outputs and the energy book.
+//!
 //! Gravity is a constant load −M·g on Z; the run starts from the static equilibrium
 //! under it (`static_preload`).
 
-use nalgebra::{LU, Matrix2, Matrix2x3, Matrix3, Matrix3x2, U3, Vector2, Vector3};
+use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
 
-use super::element::{Contact178, Element};
+use super::element::{Contact178, ContactState, Element, Status};
 use super::options::Kinematics;
 use rockslide_core::case::{Contact, DoubleContact, Oscillator, RockingBody};
 
@@ -83,6 +91,14 @@ pub struct Model {
     pub kinematics: Kinematics,
     /// Second-order rotation terms with small-rotation kinematics.
     pub p_delta: bool,
+    /// The double arrangement's supports as single series-equivalent elements, ground to
+    /// body attachment `i` (`series_equivalent`); empty for the single arrangement.
+    pub equivalents: Vec<Contact178>,
+    /// Whether the time loop iterates on the body alone (the single arrangement, or the
+    /// double one with every support condensed into its `equivalents`). `false` runs the
+    /// node unknowns through Newton (element 2 with finite friction, or set by a test to
+    /// compare with the uncondensed model).
+    pub condensed: bool,
 }
 
 /// Preallocated results of one assembly.
@@ -107,10 +123,86 @@ pub struct Assembly {
     /// The last condensed Newton matrix and its LU factors, reused while the matrix is
     /// bit for bit the same (a contact state that does not change, small rotations).
     factors: Option<Factors>,
+    /// The ground point (displacement) of the last assembly.
+    ground: Vector2<f64>,
 }
 
 /// A condensed Newton matrix and its LU factors (fixed size, on the stack).
-type Factors = (Matrix3<f64>, LU<f64, U3, U3>);
+type Factors = (Matrix3<f64>, Lu3);
+
+/// LU factors of a 3×3 matrix with partial pivoting, `lu[row][column]`: nalgebra's `LU`
+/// algorithm written out for 3×3 — the first largest |pivot| of the column, the
+/// multipliers times the pivot's reciprocal, the same updates in the same order — so the
+/// factors and solutions are the same bits (unit test) at a fraction of the instructions.
+#[derive(Debug, Clone, Copy)]
+pub struct Lu3 {
+    lu: [[f64; 3]; 3],
+    /// Row swapped with row `i` at step `i`.
+    swaps: [usize; 3],
+}
+
+impl Lu3 {
+    /// Factor `m`.
+    pub fn new(m: &Matrix3<f64>) -> Self {
+        let mut a = [
+            [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
+            [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
+            [m[(2, 0)], m[(2, 1)], m[(2, 2)]],
+        ];
+        let mut swaps = [0, 1, 2];
+        for i in 0..3 {
+            let mut piv = i;
+            let mut max = a[i][i].abs();
+            for (j, row) in a.iter().enumerate().skip(i + 1) {
+                if row[i].abs() > max {
+                    max = row[i].abs();
+                    piv = j;
+                }
+            }
+            let diag = a[piv][i];
+            if diag == 0.0 {
+                continue;
+            }
+            swaps[i] = piv;
+            a.swap(i, piv);
+            let inv = 1.0 / diag;
+            let pivot_row = a[i];
+            for row in a.iter_mut().skip(i + 1) {
+                row[i] *= inv;
+                for k in i + 1..3 {
+                    row[k] += -pivot_row[k] * row[i];
+                }
+            }
+        }
+        Self { lu: a, swaps }
+    }
+
+    /// Solve `m·x = b`; `None` if `m` is singular.
+    pub fn solve(&self, b: &Vector3<f64>) -> Option<Vector3<f64>> {
+        let mut x = [b.x, b.y, b.z];
+        for (i, &p) in self.swaps.iter().enumerate() {
+            x.swap(i, p);
+        }
+        let a = &self.lu;
+        for i in 0..2 {
+            let c = x[i];
+            for j in i + 1..3 {
+                x[j] += -c * a[j][i];
+            }
+        }
+        for i in (0..3).rev() {
+            if a[i][i] == 0.0 {
+                return None;
+            }
+            let c = x[i] / a[i][i];
+            x[i] = c;
+            for j in 0..i {
+                x[j] += -c * a[j][i];
+            }
+        }
+        Some(Vector3::new(x[0], x[1], x[2]))
+    }
+}
 
 impl Assembly {
     /// Room for a model's nodes and attachment points.
@@ -126,6 +218,7 @@ impl Assembly {
             knb: vec![Matrix2x3::zeros(); nodes],
             knn_inv: vec![Matrix2::zeros(); nodes],
             factors: None,
+            ground: Vector2::zeros(),
         }
     }
 }
@@ -214,7 +307,10 @@ impl Model {
             gravity: o.gravity,
             kinematics: Kinematics::SmallRotation,
             p_delta: false,
+            equivalents: Vec::new(),
+            condensed: false,
         }
+        .with_equivalents()
     }
 
     /// The rocking body with its supports.
@@ -245,7 +341,10 @@ impl Model {
             gravity: r.gravity,
             kinematics,
             p_delta,
+            equivalents: Vec::new(),
+            condensed: false,
         }
+        .with_equivalents()
     }
 
     /// Body mass matrix diagonal (M, M, I).
@@ -282,14 +381,8 @@ impl Model {
         xg: f64,
         a: &mut Assembly,
     ) {
-        a.pb = Vector3::zeros();
-        a.kbb = Matrix3::zeros();
-        for k in 0..self.nodes {
-            a.pn[k] = Vector2::zeros();
-            a.knn[k] = Matrix2::zeros();
-            a.kbn[k] = Matrix3x2::zeros();
-            a.knb[k] = Matrix2x3::zeros();
-        }
+        let ground = Vector2::new(xg, 0.0);
+        a.ground = ground;
         let cs = if self.kinematics == Kinematics::Exact {
             (q.z.cos(), q.z.sin())
         } else {
@@ -298,8 +391,31 @@ impl Model {
         for (p, d) in a.points.iter_mut().zip(&self.body.attachments) {
             *p = point_kin(self.kinematics, self.p_delta, q, cs, d);
         }
+        if self.condensed {
+            (a.pb, a.kbb) = if self.nodes == 0 {
+                let elements = self.links.iter_mut().map(|l| &mut l.element);
+                assemble_direct(elements, &a.points, ground)
+            } else {
+                assemble_direct(self.equivalents.iter_mut(), &a.points, ground)
+            };
+            return;
+        }
+        self.assemble_with_nodes(un, a);
+    }
+
+    /// The uncondensed assembly: every element, the massless nodes as unknowns.
+    fn assemble_with_nodes(&mut self, un: &mut [Vector2<f64>], a: &mut Assembly) {
+        let ground = a.ground;
+        let xg = ground.x;
+        a.pb = Vector3::zeros();
+        a.kbb = Matrix3::zeros();
+        for k in 0..self.nodes {
+            a.pn[k] = Vector2::zeros();
+            a.knn[k] = Matrix2::zeros();
+            a.kbn[k] = Matrix3x2::zeros();
+            a.knb[k] = Matrix2x3::zeros();
+        }
         self.relax_nodes(&a.points, un, xg);
-        let ground = Vector2::new(xg, 0.0);
         let un: &[Vector2<f64>] = un;
         for link in &mut self.links {
             let at = |p: Point| match p {
@@ -362,6 +478,24 @@ impl Model {
         for l in &mut self.links {
             l.element.commit();
         }
+        for e in &mut self.equivalents {
+            e.commit();
+        }
+    }
+
+    /// Commit the state of the last assembly `a`. With condensed double supports each
+    /// support's node and two elements are first rebuilt from its series equivalent
+    /// (`split_equivalent`), so outputs and the energy book see every element.
+    pub fn commit_step(&mut self, a: &Assembly, un: &mut [Vector2<f64>]) {
+        if self.condensed && self.nodes > 0 {
+            for (sup, eq) in self.supports.iter().zip(&self.equivalents) {
+                let Some(k) = sup.node else { continue };
+                if let [l1, l2] = &mut self.links[sup.ground_link..sup.ground_link + 2] {
+                    un[k] = split_equivalent(eq, &mut l1.element, &mut l2.element) + a.ground;
+                }
+            }
+        }
+        self.commit();
     }
 
     /// Restore every element's committed state.
@@ -369,7 +503,132 @@ impl Model {
         for l in &mut self.links {
             l.element.restore();
         }
+        for e in &mut self.equivalents {
+            e.restore();
+        }
     }
+
+    /// Unknowns of the massless nodes the Newton iteration carries (none when condensed).
+    pub fn loop_nodes(&self) -> usize {
+        if self.condensed { 0 } else { self.nodes }
+    }
+
+    /// Condense every double support into its series equivalent where it is exact.
+    fn with_equivalents(mut self) -> Self {
+        if self.nodes == 0 {
+            self.condensed = true;
+            return self;
+        }
+        let pairs = self.supports.iter().map(|sup| {
+            let (l1, l2) = (
+                &self.links[sup.ground_link],
+                self.links.get(sup.ground_link + 1),
+            );
+            l2.and_then(|l2| series_equivalent(&l1.element, &l2.element))
+        });
+        if let Some(eq) = pairs.collect::<Option<Vec<_>>>() {
+            self.equivalents = eq;
+            self.condensed = true;
+        }
+        self
+    }
+}
+
+/// The exact single element of two CONTA178-like elements in series through a massless
+/// node, element 1 (ground side: compression-only, friction μ1) and element 2 (bonded,
+/// μ2 = ∞); `None` for any other pair.
+///
+/// Derivation. The node carries no load, so both elements transmit the same force f.
+/// Normal: element 1 closed (δtz ≤ 0) gives N = kz1·(−δ1z) = kz2·(δ1z − δtz), so
+/// N = kzs·(−δtz) with kzs = kz1·kz2/(kz1 + kz2); δtz > 0 opens element 1 and nothing is
+/// transmitted (element 2 is bonded, so it only follows). Tangential, with element 1's
+/// slip s1: sticking, T = kx1·(δ1x − s1) = kx2·(δtx − δ1x) gives T = ks·(δtx − s1),
+/// ks = kx1·kx2/(kx1 + kx2), and the pair sticks while |T| ≤ μ1·N — the same test on the
+/// same numbers; slipping, T = ±μ1·N and s1 = δ1x − T/kx1 = δtx − T/kx2 − T/kx1 = δtx − T/ks,
+/// the return mapping of an element (ks, kzs, μ1) whose slip is s1. Open: δ1 = δt, and
+/// CONTA178 moves the tangential origin with the point, s1 = δtx, again the same. The
+/// consistent tangents agree too: the Schur complement D2·(D1 + D2)⁻¹·D1 of the node is
+/// diag(ks, kzs) sticking and [[0, −sg·μ1·kzs], [0, kzs]] slipping. So the equivalent is
+/// exact in every state; only round-off differs (kzs·δtz against kz1·(kz2·δtz/(kz1 + kz2))).
+pub fn series_equivalent(lower: &Contact178, upper: &Contact178) -> Option<Contact178> {
+    if lower.bonded || !upper.bonded || upper.mu.is_finite() {
+        return None;
+    }
+    let series = |a: f64, b: f64| a * b / (a + b);
+    let mut eq = Contact178::new(
+        series(lower.kx, upper.kx),
+        series(lower.kz, upper.kz),
+        lower.mu,
+        false,
+    );
+    eq.set_committed(*lower.state());
+    Some(eq)
+}
+
+/// Set the committed states of a condensed support's element 1 (`lower`) and element 2
+/// (`upper`) from the last trial of their series equivalent `eq`; returns the node's
+/// position relative to the ground, δ1. Both elements carry the equivalent's force f;
+/// element 2 sticks, so its deflection is δ2 = (fx/kx2, fz/kz2) and δ1 = δt − δ2
+/// (δ1 = δt, δ2 = 0 when element 1 is open); element 1 has the equivalent's slip and
+/// status (`series_equivalent`).
+fn split_equivalent(
+    eq: &Contact178,
+    lower: &mut Contact178,
+    upper: &mut Contact178,
+) -> Vector2<f64> {
+    let st = *eq.trial_state();
+    let d2 = if st.status == Status::Open {
+        Vector2::zeros()
+    } else {
+        Vector2::new(st.force.x / upper.kx, st.force.y / upper.kz)
+    };
+    let d1 = st.delta - d2;
+    lower.set_committed(ContactState { delta: d1, ..st });
+    upper.set_committed(ContactState {
+        slip: upper.state().slip,
+        delta: d2,
+        force: st.force,
+        status: Status::Stick,
+    });
+    d1
+}
+
+/// Internal force on the body and its tangent from elements joining the ground to body
+/// attachment `i` (the `i`-th element): Gᵀf and GᵀDG + f·∂²u/∂θ² with G = [I₂ | g].
+/// Plain scalars in the loop (no matrix temporaries); the same sums in the same order as
+/// the general assembly, so a single arrangement gives the same bits.
+fn assemble_direct<'e>(
+    elements: impl Iterator<Item = &'e mut Contact178>,
+    points: &[PointKin],
+    ground: Vector2<f64>,
+) -> (Vector3<f64>, Matrix3<f64>) {
+    let (mut p0, mut p1, mut p2) = (0.0, 0.0, 0.0);
+    let mut k = [[0.0_f64; 3]; 3];
+    for (e, pk) in elements.zip(points) {
+        let (f, d) = e.trial(pk.u - ground);
+        let (gx, gz) = (pk.g.x, pk.g.y);
+        let (d00, d01, d10, d11) = (d[(0, 0)], d[(0, 1)], d[(1, 0)], d[(1, 1)]);
+        let (dgx, dgy) = (d00 * gx + d01 * gz, d10 * gx + d11 * gz);
+        let (gtdx, gtdy) = (d00 * gx + d10 * gz, d01 * gx + d11 * gz);
+        p0 += f.x;
+        p1 += f.y;
+        p2 += gx * f.x + gz * f.y;
+        k[0][0] += d00;
+        k[0][1] += d01;
+        k[1][0] += d10;
+        k[1][1] += d11;
+        k[0][2] += dgx;
+        k[1][2] += dgy;
+        k[2][0] += gtdx;
+        k[2][1] += gtdy;
+        k[2][2] += (gx * dgx + gz * dgy) + (f.x * pk.h.x + f.y * pk.h.y);
+    }
+    (
+        Vector3::new(p0, p1, p2),
+        Matrix3::new(
+            k[0][0], k[0][1], k[0][2], k[1][0], k[1][1], k[1][2], k[2][0], k[2][1], k[2][2],
+        ),
+    )
 }
 
 /// Links and supports for `n` supports (body attachment `i` each).
@@ -444,7 +703,7 @@ pub fn solve(
     let mut s_mat = Matrix3::from_diagonal(&(m * sys.c0)) + a.kbb * sys.s;
     s_mat[(0, 0)] += sys.damp_xx;
     let mut rhs = *rb;
-    for (k, r) in rn.iter().enumerate().take(model.nodes) {
+    for (k, r) in rn.iter().enumerate().take(model.loop_nodes()) {
         let Some(inv) = a.knn[k].try_inverse() else {
             return false;
         };
@@ -461,14 +720,14 @@ pub fn solve(
         s_mat[(2, 2)] = 1.0;
         rhs.z = 0.0;
     }
-    // LU with partial pivoting: the closed-form 3×3 inverse is a little cheaper but
+    // LU with partial pivoting (`Lu3`): the closed-form 3×3 inverse is a little cheaper but
     // loses digits, and the tight preset then needs more iterations. The factors are
     // reused while the matrix is unchanged (the same bits, so the same solution).
     let Some(x) = factors_of(&mut a.factors, &s_mat).and_then(|lu| lu.solve(&rhs)) else {
         return false;
     };
     *dq = x;
-    for k in 0..model.nodes {
+    for k in 0..model.loop_nodes() {
         dun[k] = a.knn_inv[k] * (rn[k] / sys.s - a.knb[k] * x);
     }
     true
@@ -476,17 +735,14 @@ pub fn solve(
 
 /// The LU factors of `s_mat`: the cached ones when `s_mat` is bit for bit the matrix they
 /// factor, else new ones (cached). On the stack: no allocation.
-fn factors_of<'a>(
-    cache: &'a mut Option<Factors>,
-    s_mat: &Matrix3<f64>,
-) -> Option<&'a LU<f64, U3, U3>> {
+fn factors_of<'a>(cache: &'a mut Option<Factors>, s_mat: &Matrix3<f64>) -> Option<&'a Lu3> {
     let same = |m: &Matrix3<f64>| {
         m.iter()
             .zip(s_mat.iter())
             .all(|(x, y)| x.to_bits() == y.to_bits())
     };
     if !matches!(cache, Some((m, _)) if same(m)) {
-        *cache = Some((*s_mat, s_mat.lu()));
+        *cache = Some((*s_mat, Lu3::new(s_mat)));
     }
     cache.as_ref().map(|(_, lu)| lu)
 }
@@ -495,7 +751,7 @@ fn factors_of<'a>(
 /// states (Schur complement of the node blocks); `None` if a node block is singular.
 pub fn condensed_tangent(model: &Model, a: &Assembly) -> Option<Matrix3<f64>> {
     let mut k = a.kbb;
-    for n in 0..model.nodes {
+    for n in 0..model.loop_nodes() {
         let inv = a.knn[n].try_inverse()?;
         k -= a.kbn[n] * inv * a.knb[n];
     }
@@ -555,5 +811,51 @@ impl Model {
             };
             un[k] = d1 + Vector2::new(xg, 0.0);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `Lu3` against nalgebra's `LU` on matrices of every pivoting pattern (entries over
+    /// 24 orders of magnitude, zeros, singular ones): the same solution bits.
+    #[test]
+    fn lu3_is_nalgebras_lu_bit_for_bit() {
+        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let mantissa = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            let exponent = ((seed >> 3) % 25) as i32 - 12;
+            if seed % 11 == 0 {
+                0.0
+            } else {
+                mantissa * 10f64.powi(exponent)
+            }
+        };
+        let mut singular = 0;
+        for case in 0..20_000 {
+            let mut m = Matrix3::from_fn(|_, _| next());
+            if case % 97 == 0 {
+                m.set_row(2, &(m.row(0) * 2.0)); // singular
+            }
+            let b = Vector3::new(next(), next(), next());
+            let ours = Lu3::new(&m).solve(&b);
+            let theirs = m.lu().solve(&b);
+            singular += usize::from(theirs.is_none());
+            match (ours, theirs) {
+                (Some(x), Some(y)) => assert!(
+                    x.iter()
+                        .zip(y.iter())
+                        .all(|(u, v)| u.to_bits() == v.to_bits()),
+                    "{m} {b}: {x} against {y}"
+                ),
+                (None, None) => {}
+                _ => panic!("{m}: {ours:?} against {theirs:?}"),
+            }
+        }
+        assert!(singular > 0);
     }
 }

@@ -149,7 +149,7 @@ fn static_preload(model: &mut Model, w: &mut Workspace) -> Result<(Vector3<f64>,
         model.assemble(&q, &mut w.un, 0.0, &mut w.asm);
         let rb = f - w.asm.pb;
         let mut r2 = rb.norm_squared();
-        for k in 0..model.nodes {
+        for k in 0..model.loop_nodes() {
             w.rn[k] = -w.asm.pn[k];
             r2 += w.rn[k].norm_squared();
         }
@@ -157,18 +157,18 @@ fn static_preload(model: &mut Model, w: &mut Workspace) -> Result<(Vector3<f64>,
             return Err("singular stiffness in the static preload".into());
         }
         let mut d2 = dq.norm_squared();
-        for k in 0..model.nodes {
+        for k in 0..model.loop_nodes() {
             d2 += w.dun[k].norm_squared();
         }
         if it > 0
             && r2.sqrt() <= 1e-10 * f.norm().max(1.0)
             && d2.sqrt() <= 1e-12 * q.norm().max(1e-9)
         {
-            model.commit();
+            model.commit_step(&w.asm, &mut w.un);
             return Ok((q, it as u64 + 1));
         }
         q += dq;
-        for k in 0..model.nodes {
+        for k in 0..model.loop_nodes() {
             w.un[k] += w.dun[k];
         }
     }
@@ -260,7 +260,7 @@ pub fn integrate(
             let h = dt / f64::from(1u32 << level);
             match newton_step(model, drive, opts, &mut w, &n, t, h, &mut counters) {
                 Ok(next) => {
-                    model.commit();
+                    model.commit_step(&w.asm, &mut w.un);
                     n = next;
                     w.un_n.copy_from_slice(&w.un);
                     w.pn_n.copy_from_slice(&w.asm.pn);
@@ -324,9 +324,46 @@ struct StepState {
     g: (f64, f64, f64),
 }
 
+/// What ended a Newton iteration.
+enum FailureReason {
+    /// Displacement or residual not finite.
+    NotFinite,
+    /// Singular tangent at this iteration.
+    Singular(usize),
+    /// Iterations used; last relative residual, correction and step increment; the
+    /// tolerances.
+    NotConverged {
+        iterations: usize,
+        last: (f64, f64, f64),
+        force_tol: f64,
+        displacement_tol: f64,
+    },
+}
+
+impl std::fmt::Display for FailureReason {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            Self::NotFinite => write!(f, "displacement or residual is not finite"),
+            Self::Singular(it) => write!(f, "singular tangent at iteration {it}"),
+            Self::NotConverged {
+                iterations,
+                last,
+                force_tol,
+                displacement_tol,
+            } => write!(
+                f,
+                "{} iterations: relative residual {:.3e} (limit {:.1e}), last correction {:.3e} m against a step increment of {:.3e} m (limit {:.1e})",
+                iterations, last.0, force_tol, last.1, last.2, displacement_tol
+            ),
+        }
+    }
+}
+
 /// Why a step failed.
 struct StepFailure {
-    reason: String,
+    /// Why, in numbers: formatted only if the run ends on it (a step that is cut and
+    /// retried allocates nothing).
+    reason: FailureReason,
     /// Not finite: cutting the step is not tried.
     diverged: bool,
 }
@@ -365,12 +402,16 @@ fn newton_step(
     let mut dq = Vector3::zeros();
     // Predictor: constant acceleration over the step.
     let mut q = n.q + n.v * h + n.a * (0.5 * h * h);
+    let nodes = model.loop_nodes();
     w.un.copy_from_slice(&w.un_n);
     // Predictor: nodes on the ground move with it (element 1 is the stiff one); a
     // node left behind would put element 1 far into slip and let Newton cycle.
-    for sup in &model.supports {
-        if let Some(k) = sup.node {
-            w.un[k].x += g.0 - n.g.0;
+    // (Condensed supports have no node unknowns: `relax_nodes` places them.)
+    if nodes > 0 {
+        for sup in &model.supports {
+            if let Some(k) = sup.node {
+                w.un[k].x += g.0 - n.g.0;
+            }
         }
     }
     let (mut a, mut v);
@@ -400,7 +441,7 @@ fn newton_step(
             - (n.f - n.pb - Vector3::new(n.damp, 0.0, 0.0)) * alpha
             - m.component_mul(&a);
         let mut r2 = rb.norm_squared();
-        for k in 0..model.nodes {
+        for k in 0..nodes {
             w.rn[k] = -w.asm.pn[k] * s + w.pn_n[k] * alpha;
             r2 += w.rn[k].norm_squared();
         }
@@ -408,7 +449,7 @@ fn newton_step(
         if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
             lambda *= 0.5;
             q = q_prev + dq_prev * lambda;
-            for k in 0..model.nodes {
+            for k in 0..nodes {
                 w.un[k] = w.un_prev[k] + w.dun_prev[k] * lambda;
             }
             continue;
@@ -416,7 +457,7 @@ fn newton_step(
         if !(r2.is_finite() && q.iter().all(|x| x.is_finite())) {
             done(it, counters);
             return Err(StepFailure {
-                reason: "displacement or residual is not finite".into(),
+                reason: FailureReason::NotFinite,
                 diverged: true,
             });
         }
@@ -440,7 +481,7 @@ fn newton_step(
         if !solve(model, &sys, &mut w.asm, &rb, &w.rn, &mut dq, &mut w.dun) {
             done(it, counters);
             return Err(StepFailure {
-                reason: format!("singular tangent at iteration {it}"),
+                reason: FailureReason::Singular(it),
                 diverged: false,
             });
         }
@@ -449,7 +490,7 @@ fn newton_step(
             (q + dq - n.q).norm_squared(),
             q.norm_squared(),
         );
-        for k in 0..model.nodes {
+        for k in 0..nodes {
             d2 += w.dun[k].norm_squared();
             inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
             u2 += w.un[k].norm_squared();
@@ -494,7 +535,7 @@ fn newton_step(
         }
         (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
         q += dq;
-        for k in 0..model.nodes {
+        for k in 0..nodes {
             w.un_prev[k] = w.un[k];
             w.dun_prev[k] = w.dun[k];
             w.un[k] += w.dun[k];
@@ -502,10 +543,12 @@ fn newton_step(
     }
     done(it, counters);
     Err(StepFailure {
-        reason: format!(
-            "{} iterations: relative residual {:.3e} (limit {:.1e}), last correction {:.3e} m against a step increment of {:.3e} m (limit {:.1e})",
-            it, last.0, newton.force_tol, last.1, last.2, newton.displacement_tol
-        ),
+        reason: FailureReason::NotConverged {
+            iterations: it,
+            last,
+            force_tol: newton.force_tol,
+            displacement_tol: newton.displacement_tol,
+        },
         diverged: false,
     })
 }
