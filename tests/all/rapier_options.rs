@@ -68,3 +68,47 @@ fn runs_record_their_settings() {
     assert_eq!(run.stats.steps, 250);
     assert_eq!(run.stats.substeps_per_step, Some(16));
 }
+
+/// `step_rule = "none"` (what the stability map runs) makes rapier take exactly one step
+/// per output step, and says so; `contact_model = "applied-force"` on a scene that is not
+/// a rocking body is a located error; a bad `step_rule` lists the valid ones.
+#[test]
+fn step_rule_none_steps_once_per_output_step() {
+    let c = with_options("step_rule = \"none\"");
+    let dt = 2e-3;
+    let run = Rapier.run(&c, "fixed-ground", dt).unwrap();
+    let n = rockslide::engine::step_count(c.run.duration, dt) as u64;
+    assert_eq!(run.stats.steps, n, "one rapier step per output step");
+    let ruled = Rapier.run(&with_options(""), "fixed-ground", dt).unwrap();
+    assert_eq!(
+        ruled.stats.steps, n,
+        "the block's rule divides only record runs"
+    );
+    let osc = std::fs::read_to_string("cases/pepo-mass-accel.toml").unwrap();
+    let with = |o: &str| {
+        let t = osc.replacen("[engines.rapier]", &format!("[engines.rapier]\n{o}"), 1);
+        parse_case(Path::new("pepo.toml"), &t).unwrap()
+    };
+    let none = Rapier
+        .run(&with("step_rule = \"none\""), "applied-force", 5e-3)
+        .unwrap();
+    let rule = Rapier.run(&with(""), "applied-force", 5e-3).unwrap();
+    assert_eq!(
+        rule.stats.steps,
+        5 * none.stats.steps,
+        "the rule: 1 ms steps under 5 ms"
+    );
+    assert!(
+        none.findings
+            .iter()
+            .any(|f| f.starts_with("outside the engine's validity") && f.contains("step_rule")),
+        "{:?}",
+        none.findings
+    );
+    let errors = Rapier.check_options(&with("contact_model = \"applied-force\""));
+    assert_eq!(errors.len(), 1);
+    assert!(errors[0].to_string().contains("rocking body only"));
+    let errors = Rapier.check_options(&with("step_rule = \"sometimes\""));
+    assert_eq!(errors.len(), 1);
+    assert!(errors[0].to_string().contains("\"none\""), "{}", errors[0]);
+}

@@ -219,3 +219,36 @@ fn sweep_converges_through_the_step_rule() {
         assert!(rel(g.error.unwrap().max, e0) < 0.01);
     }
 }
+
+/// The stability map runs rapier at one step per rung (`step_rule = "none"`), so its row
+/// shows rapier's own first-order error and limit, not its step rule's (which gave the
+/// same ~1 ms step at every rung): on `mu-zero` (free sliding under a pulse, exact
+/// reference) rapier's error is proportional to Δt on the rungs T/100 … T/10 — measured
+/// error/(Δt/T) = 0.11111, 0.11111, 0.11112, 0.11115 (spread 0.04 %) — and runs at the
+/// rule would give one error for all of them.
+#[test]
+fn stability_map_runs_rapier_at_the_rung_step() {
+    use rockslide::sweep::Options;
+    use rockslide::sweep::stability::study;
+    let case = rockslide::case::load_case(Path::new("cases/stability/mu-zero.toml")).unwrap();
+    let opts = Options {
+        quiet: true,
+        ..Options::default()
+    };
+    let r = study(&[case], &opts).unwrap();
+    let rows: Vec<(f64, f64)> = r
+        .runs
+        .iter()
+        .filter(|run| run.series.starts_with("rapier/") && run.dt_over_t <= 0.1)
+        .map(|run| (run.dt_over_t, run.error.expect("completed, with an error")))
+        .collect();
+    assert_eq!(rows.len(), 4, "{rows:?}");
+    let first = rows[0].1 / rows[0].0;
+    for (x, e) in &rows {
+        println!("Δt/T {x}: error {e:.6e}, error/(Δt/T) {:.6}", e / x);
+        assert!(
+            (e / x / first - 1.0).abs() < 1e-3,
+            "not first order in the rung's Δt"
+        );
+    }
+}

@@ -70,8 +70,8 @@ fn pepo_under_records_against_exact() {
 /// The rigid block on the moving kinematic ground under the shipped Northridge record,
 /// with the block's step rule (accuracy 0.01: the slip estimate ½·Δt·∫|ag|dt within 1 %
 /// of the total slid): total slid within 1 % of the exact block reference (issue 17's
-/// target), residual within 2 %. Measured: total slid +0.453 %, residual −0.763 %, at 13
-/// rapier steps per 1 ms (without the rule, at 1 ms: +2.86 %).
+/// target), residual within 2 %. Measured: total slid +0.386 %, residual −0.762 %, at 13
+/// rapier steps of one substep per 1 ms (without the rule, at 1 ms: +2.86 %).
 #[test]
 fn block_on_kinematic_ground_meets_the_target_with_its_step_rule() {
     let c = load_case(Path::new("cases/records/block-northridge.toml")).unwrap();

@@ -22,7 +22,7 @@ mod world;
 
 pub use settings::{
     ACCURACY_MAX, ACCURACY_MIN, KEYS, MAX_STRIDE, OscillatorContact, OscillatorSteps,
-    RapierSettings,
+    RapierSettings, StepRule,
 };
 pub use simulate::Drive;
 pub use world::{SUPPORT_DAMPING_SHARE, Support};
@@ -52,7 +52,7 @@ impl Engine for Rapier {
     }
 
     fn description(&self) -> &'static str {
-        "rigid bodies with Coulomb contact (rapier3d-f64); elasticity as spring joints to light feet"
+        "rigid bodies with Coulomb contact (rapier3d-f64); elastic-plastic supports as capped spring joints (oscillator) or engine-computed support forces (rocking body)"
     }
 
     fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
@@ -80,7 +80,7 @@ impl Engine for Rapier {
     }
 
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
-        let settings = RapierSettings::from_case(case).map_err(|mut e| e.remove(0))?;
+        let mut settings = RapierSettings::from_case(case).map_err(|mut e| e.remove(0))?;
         vertical::check_settings(case, &settings)?;
         let vert = case.scene.vertical();
         let drive = match variant {
@@ -121,8 +121,11 @@ impl Engine for Rapier {
                         describe_foot(osc, &rig, dt, &mut described, &mut findings);
                         (rig, 1)
                     }
-                    OscillatorContact::JointLimit => {
-                        let steps = OscillatorSteps::for_scene(osc, ex, dt, settings.accuracy);
+                    OscillatorContact::JointLimit | OscillatorContact::AppliedForce => {
+                        let mut steps = OscillatorSteps::for_scene(osc, ex, dt, settings.accuracy);
+                        if settings.step_rule == StepRule::None {
+                            steps = steps.at_output_step(dt);
+                        }
                         let rig = world::oscillator_joint_limit(
                             osc,
                             &settings,
@@ -143,12 +146,24 @@ impl Engine for Rapier {
                 simulate::run_oscillator(rig, osc.contact.kx, drive, ex, (dt, stride), duration)
             }
             Model::RigidBlock(b) => {
-                let stride = if drive == Drive::KinematicGround {
+                let stride = if drive == Drive::KinematicGround
+                    && settings.step_rule == StepRule::Scene
+                {
                     block_kinematic_stride(case, b, &settings, dt, &mut described, &mut findings)
                 } else {
                     1
                 };
                 let dt_in = dt / stride as f64;
+                if stride > 1 {
+                    settings.substeps = block_substeps(settings.substeps, stride);
+                    described.push((
+                        "substeps per rapier step (block step rule)".into(),
+                        format!(
+                            "{}: the substeps divided among the {stride} rapier steps of an output step (at least 1), so the solver's substep stays as fine as at the output step",
+                            settings.substeps
+                        ),
+                    ));
+                }
                 let rig = world::rigid_block(b, &settings, dt_in, drive.ground_kind());
                 described.push((
                     "block".into(),
@@ -162,18 +177,20 @@ impl Engine for Rapier {
                 ));
                 simulate::run_block(rig, b, drive, (ex, vert), (dt, stride), duration)
             }
-            Model::RockingBody(r)
-                if settings.oscillator_contact == OscillatorContact::JointLimit =>
-            {
+            Model::RockingBody(r) if settings.oscillator_contact != OscillatorContact::Foot => {
                 let omega_r = rocking_mode(r);
-                let stride = rocking_stride(omega_r, dt, settings.substeps);
+                let stride = match settings.step_rule {
+                    StepRule::Scene => rocking_stride(omega_r, dt, &settings),
+                    StepRule::None => 1,
+                };
                 let dt_in = dt / stride as f64;
-                let rig = world::rocking_body_joint_limit(r, &settings, dt_in, drive.ground_kind());
+                let rig = if settings.oscillator_contact == OscillatorContact::AppliedForce {
+                    world::rocking_body_applied_force(r, &settings, dt_in, drive.ground_kind())
+                } else {
+                    world::rocking_body_joint_limit(r, &settings, dt_in, drive.ground_kind())
+                };
                 describe_rocking_joint_limit(r, omega_r, dt_in, stride, &settings, &mut described);
-                findings.push(format!(
-                    "within the engine's validity for the rocking body before the first full lift-off (docs/rapier-engine.md): rocking mode of the rotational inertia on the supports √((n·Kx·h² + Kz·Σx²)/I) = {omega_r:.0} rad/s, ω·h = {:.3} per substep (rule ≤ {ROCKING_OMEGA_H})",
-                    omega_r * dt_in / settings.substeps as f64
-                ));
+                findings.push(rocking_validity(omega_r, dt_in, &settings));
                 simulate::run_rocking_joint_limit(rig, r, drive, (ex, vert), (dt, stride), duration)
             }
             Model::RockingBody(r) => {
@@ -290,6 +307,14 @@ impl Engine for Rapier {
 /// full lift-off by −11 %, and 1.78 the mass-acceleration case's by −11 %.
 pub const ROCKING_OMEGA_H: f64 = 1.1;
 
+/// The largest ω·h (h = the rapier step) the rocking body's applied-force supports
+/// (the default, `contact_model = "applied-force"`) run at: the supports' forces are
+/// held over each step, so the scheme is symplectic Euler on the support springs,
+/// stable for ω·h < 2. Measured on both RPEPO cases (docs/rapier-engine.md): ω·h from
+/// 1.07 to 1.93 changes every peak before the first full lift-off by less than 0.6 %
+/// of it and the lift-off by less than 1 ms; 1.5 keeps a margin of 25 % to the limit.
+pub const APPLIED_FORCE_OMEGA_H: f64 = 1.5;
+
 /// The rocking mode of a rocking body's rotational inertia on its supports,
 /// √((n·Kx·h² + Kz·Σx_i²)/I), rad/s: the stiffest mode of the scene.
 fn rocking_mode(r: &rockslide_core::case::RockingBody) -> f64 {
@@ -299,11 +324,47 @@ fn rocking_mode(r: &rockslide_core::case::RockingBody) -> f64 {
     .sqrt()
 }
 
-/// rapier steps per output step for the joint-limit rocking body: the fewest with
-/// ω_r·h ≤ [`ROCKING_OMEGA_H`], h = dt/(stride·substeps).
-fn rocking_stride(omega_r: f64, dt: f64, substeps: usize) -> usize {
-    let h_max = ROCKING_OMEGA_H / omega_r;
-    ((dt / (h_max * substeps as f64) * (1.0 - 1e-12)).ceil() as usize).clamp(1, MAX_STRIDE)
+/// The rocking body's validity finding: within while ω_r·h meets the rule (it does
+/// unless `step_rule = "none"` or the stride cap stopped it), else outside, with ω_r·h.
+fn rocking_validity(omega_r: f64, dt_in: f64, settings: &RapierSettings) -> String {
+    let omega_h = omega_r * dt_in / settings.substeps as f64;
+    let bound = rocking_omega_h(settings);
+    if omega_h <= bound * (1.0 + 1e-9) {
+        let measured = if settings.oscillator_contact == OscillatorContact::AppliedForce {
+            "applied-force supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 3.4 %, lift-off within 2 ms, at 31–35 ms of CPU per simulated second"
+        } else {
+            "joint-limit supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 2.9 %, lift-off within 2 ms, at 99–110 ms of CPU per simulated second"
+        };
+        format!(
+            "within the engine's validity for the rocking body before the first full lift-off (docs/rapier-engine.md): rocking mode of the rotational inertia on the supports √((n·Kx·h² + Kz·Σx²)/I) = {omega_r:.0} rad/s, ω·h = {omega_h:.3} per substep (rule ≤ {bound}); {measured}"
+        )
+    } else {
+        format!(
+            "outside the engine's validity: the rocking mode of the rotational inertia on the supports, {omega_r:.0} rad/s, has ω·h = {omega_h:.3} per substep (rule ≤ {bound}; symplectic Euler is unstable beyond 2){}",
+            if settings.step_rule == StepRule::None {
+                " — step_rule = \"none\": one rapier step per output step"
+            } else {
+                ""
+            }
+        )
+    }
+}
+
+/// The ω_r·h bound of the rocking body's model: [`APPLIED_FORCE_OMEGA_H`] for the
+/// applied-force supports, [`ROCKING_OMEGA_H`] for the joint-limit ones.
+fn rocking_omega_h(settings: &RapierSettings) -> f64 {
+    if settings.oscillator_contact == OscillatorContact::AppliedForce {
+        APPLIED_FORCE_OMEGA_H
+    } else {
+        ROCKING_OMEGA_H
+    }
+}
+
+/// rapier steps per output step for the rocking body without feet: the fewest with
+/// ω_r·h within the model's bound ([`rocking_omega_h`]), h = dt/(stride·substeps).
+fn rocking_stride(omega_r: f64, dt: f64, settings: &RapierSettings) -> usize {
+    let h_max = rocking_omega_h(settings) / omega_r;
+    ((dt / (h_max * settings.substeps as f64) * (1.0 - 1e-12)).ceil() as usize).clamp(1, MAX_STRIDE)
 }
 
 /// Settings of the joint-limit rocking body (the default).
@@ -315,31 +376,42 @@ fn describe_rocking_joint_limit(
     settings: &RapierSettings,
     described: &mut Vec<(String, String)>,
 ) {
-    described.push((
-        "contact model".into(),
+    let model = if settings.oscillator_contact == OscillatorContact::AppliedForce {
+        format!(
+            "applied-force: {} supports computed by the engine from the body's pose after each rapier step (Kz compression only, Kx capped at μ·N_i in series with a massless slider) and applied to the rapier body as one force and torque over the next step; no joints, no colliders",
+            r.supports
+        )
+    } else {
         format!(
             "joint-limit: {} supports, each two joints ground → body (no feet): Kz as a ForceBased motor on Y, compression only (force capped at 0 while the anchor is above the ground), Kx as a motor on X capped at μ·N_i in series with a massless slider (moved after each step)",
             r.supports
-        ),
-    ));
+        )
+    };
+    described.push(("contact model".into(), model));
     described.push((
         "rapier step [s] (output step / stride)".into(),
         format!("{dt_in} (stride {stride})"),
     ));
     described.push((
         "step rule".into(),
-        format!(
-            "ω_r·h ≤ {ROCKING_OMEGA_H}, ω_r = {omega_r:.0} rad/s (rocking mode of the rotational inertia on the supports), h = rapier step / {} substeps",
-            settings.substeps
-        ),
+        match settings.step_rule {
+            StepRule::Scene => format!(
+                "ω_r·h ≤ {}, ω_r = {omega_r:.0} rad/s (rocking mode of the rotational inertia on the supports), h = rapier step / {} substeps",
+                rocking_omega_h(settings),
+                settings.substeps
+            ),
+            StepRule::None => "none (step_rule = \"none\"): one rapier step per output step".into(),
+        },
     ));
-    described.push((
-        "spring damping passed to rapier".into(),
-        format!(
-            "−(1 − {})·h·K on each motor (cancels the motor's implicit damping; the scene has none)",
-            world::SUPPORT_DAMPING_SHARE
-        ),
-    ));
+    if settings.oscillator_contact == OscillatorContact::JointLimit {
+        described.push((
+            "spring damping passed to rapier".into(),
+            format!(
+                "−(1 − {})·h·K on each motor (cancels the motor's implicit damping; the scene has none)",
+                world::SUPPORT_DAMPING_SHARE
+            ),
+        ));
+    }
     described.push((
         "rotational inertia [kg·m²]".into(),
         format!("{}", world::rocking_inertia(r)),
@@ -433,7 +505,7 @@ fn describe_joint_limit(
     let pga = peak_ground_acceleration(ex);
     if steps.within_target() {
         findings.push(format!(
-            "within the engine's validity: rapier step {:.3e} s ≤ {:.3e} s for accuracy {} (ω·Δt = {:.4}); |R| ≤ μ·N by construction; a stick–slip transition lags at most ½(PGA + μg)·Δt² = {:.2e} m",
+            "within the engine's validity: rapier step {:.3e} s ≤ {:.3e} s for accuracy {} (ω·Δt = {:.4}); |R| ≤ μ·N by construction; a stick–slip transition lags at most ½(PGA + μg)·Δt² = {:.2e} m; measured at accuracy 0.01 on the shipped records against the exact reference: residual sliding within 0.021 %, max |u| within 0.032 %, at 3–6 ms of CPU per simulated second (docs/rapier-engine.md)",
             steps.dt_inner,
             steps.dt_max,
             settings.accuracy,
@@ -442,8 +514,15 @@ fn describe_joint_limit(
         ));
     } else {
         findings.push(format!(
-            "outside the engine's validity: the accuracy target {} needs a rapier step ≤ {:.3e} s, more than {MAX_STRIDE} steps per output step; ran at {:.3e} s",
-            settings.accuracy, steps.dt_max, steps.dt_inner
+            "outside the engine's validity: the accuracy target {} needs a rapier step ≤ {:.3e} s, {}; ran at {:.3e} s",
+            settings.accuracy,
+            steps.dt_max,
+            if settings.step_rule == StepRule::None {
+                "but step_rule = \"none\" runs one rapier step per output step"
+            } else {
+                "more than the cap of steps per output step"
+            },
+            steps.dt_inner
         ));
     }
 }
@@ -537,7 +616,7 @@ fn block_kinematic_stride(
     ));
     if dt_in <= dt_max * (1.0 + 1e-12) {
         findings.push(format!(
-            "within the engine's validity for the total distance slid: the kinematic ground's slip estimate ½·Δt·∫|ag|dt = {estimate:.3e} m is {:.3} % of the total slid {slid:.4e} m (target {} %; docs/rapier-engine.md)",
+            "within the engine's validity for the total distance slid: the kinematic ground's slip estimate ½·Δt·∫|ag|dt = {estimate:.3e} m is {:.3} % of the total slid {slid:.4e} m (target {} %; measured on the shipped Northridge block against the exact reference at this rule: total slid +0.39 %, residual −0.76 %; docs/rapier-engine.md)",
             100.0 * estimate / slid,
             100.0 * eps
         ));
@@ -548,6 +627,17 @@ fn block_kinematic_stride(
         ));
     }
     stride
+}
+
+/// Substeps of each rapier step when the rigid block's step rule splits the output step
+/// into `stride` rapier steps: the output step's substeps shared among them, at least 1
+/// (the solver's substep no coarser than at the output step). Measured on
+/// `cases/records/block-northridge.toml` (13 steps of 76.9 µs, kinematic ground, against
+/// the exact block reference): 1 substep gives total slid +0.39 %, residual −0.76 %, peak
+/// |sliding| −0.76 %, stop −0.25 ms, 2 episodes as the reference, in 1.49 s of CPU; 4
+/// substeps +0.45 %, −0.76 %, −0.52 %, −0.25 ms, 2 episodes, in 2.74 s (docs/rapier-engine.md).
+fn block_substeps(substeps: usize, stride: usize) -> usize {
+    substeps.div_ceil(stride).max(1)
 }
 
 /// Sum of |x(k+1) − x(k)|: the total distance a channel travels.

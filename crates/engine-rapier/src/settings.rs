@@ -18,6 +18,22 @@ pub enum OscillatorContact {
     /// `"foot"`: a spring joint to a light foot body that slides on the ground with
     /// rapier's contact friction (the foot's inertia joins the oscillator).
     Foot,
+    /// `"applied-force"` (rocking body only): the supports' springs and Coulomb law
+    /// computed by the engine from the body's pose after each rapier step and applied to
+    /// the rapier body as an external force and torque for the next one; rapier
+    /// integrates a single body with no joints and no colliders.
+    AppliedForce,
+}
+
+/// How rapier's own step is chosen from the output step.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepRule {
+    /// `"scene"` (default): the scene's step rule (oscillator accuracy, rocking mode,
+    /// block slip estimate) divides the output step into several rapier steps.
+    Scene,
+    /// `"none"`: one rapier step per output step, whatever the scene; what the stability
+    /// map runs, so that it shows rapier's own stability limit.
+    None,
 }
 
 /// What one rapier run uses besides the time step.
@@ -43,12 +59,16 @@ pub struct RapierSettings {
     pub contact_hz: Option<f64>,
     /// `contact_damping_ratio`: damping ratio of the contact softness, default 10 (rapier's).
     pub contact_damping_ratio: f64,
-    /// `contact_model`: an oscillator's contact, `"joint-limit"` (default) or `"foot"`.
+    /// `contact_model`: the elastic-plastic supports: `"joint-limit"` (an oscillator's
+    /// default), `"applied-force"` (a rocking body's default; rocking body only) or
+    /// `"foot"`.
     pub oscillator_contact: OscillatorContact,
     /// `accuracy`: the relative accuracy the joint-limit oscillator's rapier step is
     /// chosen for (residual sliding and peak |u| against the exact solution), in
     /// [1e-4, 0.2]; default 0.01.
     pub accuracy: f64,
+    /// `step_rule`: `"scene"` (default) or `"none"` (one rapier step per output step).
+    pub step_rule: StepRule,
 }
 
 /// How the joint-limit oscillator is stepped: rapier steps of `dt_inner` (the output
@@ -118,6 +138,17 @@ impl OscillatorSteps {
         (STEP_ERROR_CONSTANT * (dt / period).powi(2)).clamp(ACCURACY_MIN, ACCURACY_MAX)
     }
 
+    /// The same scene stepped without the rule (`step_rule = "none"`): one rapier step
+    /// per output step, `dt_max` still the rule's, so that [`Self::within_target`] says
+    /// whether the output step happens to meet it.
+    pub fn at_output_step(self, dt: f64) -> Self {
+        Self {
+            stride: 1,
+            dt_inner: dt,
+            ..self
+        }
+    }
+
     /// Whether the chosen step meets the accuracy target (false only when the stride
     /// would exceed [`MAX_STRIDE`]).
     pub fn within_target(&self) -> bool {
@@ -154,6 +185,7 @@ impl Default for RapierSettings {
             contact_damping_ratio: 10.0,
             oscillator_contact: OscillatorContact::JointLimit,
             accuracy: 0.01,
+            step_rule: StepRule::Scene,
         }
     }
 }
@@ -246,22 +278,44 @@ impl RapierSettings {
                 FrictionModel::Simplified
             }
         };
-        let oscillator_contact =
-            match case.engine_text(ID, "contact_model", "joint-limit", &["joint-limit", "foot"]) {
-                Ok(s) if s == "foot" => OscillatorContact::Foot,
-                Ok(_) => OscillatorContact::JointLimit,
-                Err(e) => {
-                    errors.push(e);
-                    OscillatorContact::JointLimit
+        let oscillator_contact = match case.engine_text(
+            ID,
+            "contact_model",
+            d.contact_model_name(),
+            &["joint-limit", "foot", "applied-force"],
+        ) {
+            Ok(s) if s == "foot" => OscillatorContact::Foot,
+            Ok(s) if s == "applied-force" => {
+                if !matches!(case.scene.model, Model::RockingBody(_)) {
+                    errors.push(case.field_error(
+                        &format!("engines.{ID}.contact_model"),
+                        "is \"applied-force\", which is built for a rocking body only; use \"joint-limit\" or \"foot\"",
+                    ));
                 }
-            };
+                OscillatorContact::AppliedForce
+            }
+            Ok(_) => OscillatorContact::JointLimit,
+            Err(e) => {
+                errors.push(e);
+                OscillatorContact::JointLimit
+            }
+        };
+        let step_rule = match case.engine_text(ID, "step_rule", "scene", &["scene", "none"]) {
+            Ok(s) if s == "none" => StepRule::None,
+            Ok(_) => StepRule::Scene,
+            Err(e) => {
+                errors.push(e);
+                StepRule::Scene
+            }
+        };
         let has_substeps = case
             .engine(ID)
             .is_some_and(|r| r.options.contains_key("substeps"));
-        let substeps = if oscillator_contact == OscillatorContact::Foot && !has_substeps {
-            Self::default().substeps as f64
-        } else {
-            substeps
+        let substeps = match oscillator_contact {
+            OscillatorContact::Foot if !has_substeps => Self::default().substeps as f64,
+            // Applied forces are held over the whole rapier step: substeps add nothing.
+            OscillatorContact::AppliedForce if !has_substeps => 1.0,
+            _ => substeps,
         };
         // The rocking body's feet need 8 sweeps (their loaded contacts creep with 1); the
         // joint-limit supports are as accurate with 1 (docs/rapier-engine.md).
@@ -301,6 +355,7 @@ impl RapierSettings {
             contact_damping_ratio: zeta,
             oscillator_contact,
             accuracy,
+            step_rule,
         })
     }
 
@@ -325,9 +380,19 @@ impl RapierSettings {
             },
             Model::RockingBody(_) => Self {
                 contact_hz: Some(1000.0),
+                oscillator_contact: OscillatorContact::AppliedForce,
                 ..Self::default()
             },
             _ => Self::default(),
+        }
+    }
+
+    /// The `contact_model` name of the model's default.
+    fn contact_model_name(&self) -> &'static str {
+        match self.oscillator_contact {
+            OscillatorContact::JointLimit => "joint-limit",
+            OscillatorContact::Foot => "foot",
+            OscillatorContact::AppliedForce => "applied-force",
         }
     }
 
@@ -406,4 +471,5 @@ pub const KEYS: &[&str] = &[
     "contact_damping_ratio",
     "contact_model",
     "accuracy",
+    "step_rule",
 ];

@@ -63,6 +63,9 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
     for &(h, _) in &rig.inertial_masses {
         rig.world.bodies[h].reset_forces(false);
     }
+    if rig.applied_supports {
+        apply_support_forces(rig);
+    }
     match drive {
         Drive::AppliedForce => {
             if let Excitation::MassAcceleration(s) = ex {
@@ -83,6 +86,25 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
         }
     }
     super::vertical::drive_step(rig, drive, g, k, dt);
+}
+
+/// The applied-force supports' resultant on the structure for the next step: each
+/// support's force at its anchor (state after the last step), summed into one force at
+/// the CM and a torque about Z.
+fn apply_support_forces(rig: &mut Rig) {
+    let body = &mut rig.world.bodies[rig.structure];
+    let (cm, phi) = (body.translation(), angle_z(body));
+    let (mut fx, mut fy, mut torque) = (0.0, 0.0, 0.0);
+    for sup in &rig.supports {
+        let (ax, ay) = sup.anchor(cm, phi);
+        let (sx, sy) = sup.force_on_body();
+        fx += sx;
+        fy += sy;
+        torque += (ax - cm.x) * sy - (ay - cm.y) * sx;
+    }
+    body.reset_torques(false);
+    body.add_force(Vector::new(fx, fy, 0.0), false);
+    body.add_torque(Vector::new(0.0, 0.0, torque), false);
 }
 
 /// Run the oscillator rig (one foot, or the joint-limit contact) and record its channels
@@ -243,7 +265,7 @@ pub(crate) fn time_loop<M>(
     for k in 0..n {
         drive_step(rig, drive, ex, g, k, dt);
         rig.world.step();
-        slip_after_step(rig);
+        slip_after_step(rig, super::vertical::ground_height(drive, g, k + 1));
         let finite = rig
             .world
             .bodies
@@ -269,8 +291,8 @@ pub(crate) fn time_loop<M>(
 
 /// The joint-limit contact's return mapping after a step: where the capped spring has
 /// taken the mass beyond Ru/Kx, the slider follows, and the motor's target with it.
-fn slip_after_step(rig: &mut Rig) {
-    supports_after_step(rig);
+fn slip_after_step(rig: &mut Rig, ground_height: f64) {
+    supports_after_step(rig, ground_height);
     let Some(slider) = rig.slider.as_mut() else {
         return;
     };
@@ -287,14 +309,16 @@ fn slip_after_step(rig: &mut Rig) {
 
 /// The joint-limit supports after a step: each one's normal force, friction cap and
 /// slider (return mapping), written back into its joint's X motor.
-fn supports_after_step(rig: &mut Rig) {
+/// `ground_height`: the moving ground's height above its start (vertical motion on the
+/// kinematic route; 0 otherwise), from which the supports' gaps are measured.
+fn supports_after_step(rig: &mut Rig, ground_height: f64) {
     if rig.supports.is_empty() {
         return;
     }
     let body = &rig.world.bodies[rig.structure];
     let (cm, phi) = (body.translation(), angle_z(body));
     let gx = rig.world.bodies[rig.ground].translation().x;
-    let gy = super::vertical::current_ground_height(rig);
+    let gy = ground_height;
     for sup in rig.supports.iter_mut() {
         let (ax, ay) = sup.anchor(cm, phi);
         let (s, cap) = sup.update((ax - gx - sup.x, ay - gy));

@@ -131,8 +131,9 @@ pub(crate) fn inertial_acceleration(
 pub(crate) fn drive_step(rig: &mut Rig, drive: Drive, g: &GroundTable, k: usize, dt: f64) {
     let Some(v) = &g.vertical else { return };
     if drive == Drive::KinematicGround {
+        // from where the ground started (the rigs place it differently), to yg(t_{n+1})
         let ground = &mut rig.world.bodies[rig.ground];
-        let y = -world::GROUND_HALF.1 + v.disp[k + 1];
+        let y = ground.translation().y - v.disp[k] + v.disp[k + 1];
         ground.set_next_kinematic_translation(Vector::new(g.disp[k + 1], y, 0.0));
     } else {
         let av = (v.vel[k + 1] - v.vel[k]) / dt;
@@ -140,11 +141,6 @@ pub(crate) fn drive_step(rig: &mut Rig, drive: Drive, g: &GroundTable, k: usize,
             rig.world.bodies[h].add_force(Vector::new(0.0, -m * av, 0.0), false);
         }
     }
-}
-
-/// The ground's current height above its start, m (0 for a fixed ground).
-pub(crate) fn current_ground_height(rig: &Rig) -> f64 {
-    rig.world.bodies[rig.ground].translation().y + world::GROUND_HALF.1
 }
 
 /// rapier's step for the oscillator on a support: the horizontal rule
@@ -227,6 +223,7 @@ pub(crate) fn oscillator_with_supports(
         mass: m,
         foot_mass: 0.0,
         slider: None,
+        applied_supports: false,
         supports: vec![Support {
             joint,
             vertical,

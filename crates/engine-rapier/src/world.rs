@@ -50,9 +50,12 @@ pub struct Rig {
     /// The elastic-plastic joint of an oscillator built without a foot
     /// ([`oscillator_joint_limit`]); `None` for every other rig.
     pub slider: Option<Slider>,
-    /// The supports of a rocking body built without feet ([`rocking_body_joint_limit`]);
-    /// empty for every other rig.
+    /// The supports of a rocking body built without feet ([`rocking_body_joint_limit`],
+    /// [`rocking_body_applied_force`]); empty for every other rig.
     pub supports: Vec<Support>,
+    /// Whether the supports act as forces the engine applies to the structure before
+    /// each step ([`rocking_body_applied_force`]) rather than through joints.
+    pub applied_supports: bool,
 }
 
 /// An elastic-perfectly-plastic contact as one joint: a spring Kx (a ForceBased motor on
@@ -165,6 +168,7 @@ pub fn oscillator(osc: &Oscillator, s: &RapierSettings, dt: f64, kind: GroundKin
         foot_mass: mf,
         slider: None,
         supports: Vec::new(),
+        applied_supports: false,
     }
 }
 
@@ -237,6 +241,7 @@ pub fn oscillator_joint_limit(
             s: 0.0,
         }),
         supports: Vec::new(),
+        applied_supports: false,
     }
 }
 
@@ -276,6 +281,7 @@ pub fn rigid_block(b: &RigidBlock, s: &RapierSettings, dt: f64, kind: GroundKind
         foot_mass: 0.0,
         slider: None,
         supports: Vec::new(),
+        applied_supports: false,
     }
 }
 
@@ -376,6 +382,7 @@ pub fn rocking_body(r: &RockingBody, s: &RapierSettings, dt: f64, kind: GroundKi
         foot_mass: mf,
         slider: None,
         supports: Vec::new(),
+        applied_supports: false,
     }
 }
 
@@ -446,6 +453,12 @@ impl Support {
             cm.x + cs * self.x + sn * self.cm_height,
             cm.y + sn * self.x - cs * self.cm_height,
         )
+    }
+
+    /// The support's force on the body at its state after the last step, (Fx, Fz), N:
+    /// the capped horizontal spring pulling the anchor back, the normal force pushing up.
+    pub fn force_on_body(&self) -> (f64, f64) {
+        (-self.shear(), self.normal)
     }
 
     /// Horizontal spring force on the ground point (the base shear's share), N.
@@ -541,5 +554,69 @@ pub fn rocking_body_joint_limit(
         foot_mass: 0.0,
         slider: None,
         supports,
+        applied_supports: false,
+    }
+}
+
+/// The rocking body (RPEPO) with its supports as forces the engine computes
+/// ([`Support::force_on_body`]) and applies to the rapier body before each step: the
+/// same body as [`rocking_body_joint_limit`] (mass M, the stated rotational inertia, X–Z
+/// translations and rotation about Z, starting in static equilibrium), no joints and no
+/// colliders, so that rapier's step is its rigid-body integration alone. The ground is a
+/// body without a collider (moved for the kinematic route; the supports read its x).
+pub fn rocking_body_applied_force(
+    r: &RockingBody,
+    s: &RapierSettings,
+    dt: f64,
+    kind: GroundKind,
+) -> Rig {
+    let mut world = new_world(s, dt, r.gravity);
+    let ground_body = match kind {
+        GroundKind::Fixed => RigidBodyBuilder::fixed(),
+        GroundKind::Kinematic => RigidBodyBuilder::kinematic_position_based(),
+    };
+    let ground = world.insert_body(ground_body);
+    let n = r.supports;
+    let preload = r.weight() / (n as f64 * r.contact.kz);
+    let inertia = rocking_inertia(r);
+    let body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, r.cm_height - preload, 0.0))
+        .additional_mass_properties(MassProperties::new(
+            Vector::ZERO,
+            r.mass,
+            Vector::new(inertia, inertia, inertia),
+        ))
+        .enabled_translations(true, true, false)
+        .enabled_rotations(false, false, true)
+        .can_sleep(false);
+    let structure = world.insert_body(body);
+    let supports = r
+        .support_positions()
+        .into_iter()
+        .map(|x| Support {
+            joint: ImpulseJointHandle::invalid(),
+            vertical: ImpulseJointHandle::invalid(),
+            x,
+            cm_height: r.cm_height,
+            kx: r.contact.kx,
+            kz: r.contact.kz,
+            mu: r.contact.mu,
+            damping: (0.0, 0.0),
+            s: 0.0,
+            normal: r.weight() / n as f64,
+            delta: (0.0, -preload),
+        })
+        .collect();
+    Rig {
+        world,
+        ground,
+        structure,
+        feet: vec![],
+        inertial_masses: vec![(structure, r.mass)],
+        mass: r.mass,
+        foot_mass: 0.0,
+        slider: None,
+        supports,
+        applied_supports: true,
     }
 }

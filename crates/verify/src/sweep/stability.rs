@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::Options;
-use super::plan::{Series, applicable, characteristic_period};
+use super::plan::{Series, applicable, characteristic_period, rapier_at_rung_step};
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::stability::{Class, Criteria, classify};
@@ -274,6 +274,7 @@ fn classify_run(
 /// Run and classify every scene.
 pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
     opts.validate()?;
+    let cases: &[Case] = &cases.iter().map(rapier_at_rung_step).collect::<Vec<_>>();
     let criteria = Criteria::default();
     let engines = registry::all();
     let mut plans = Vec::new();

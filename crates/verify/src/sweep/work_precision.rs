@@ -15,7 +15,9 @@ use std::path::Path;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::plan::{NotApplicable, applicable, characteristic_period};
+use super::plan::{
+    NotApplicable, applicable, characteristic_period, rapier_at_rung_step, rapier_rule_unset,
+};
 use super::{Options, Series};
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
@@ -248,6 +250,10 @@ pub fn prepare(case: &Case) -> (Case, Vec<String>) {
         applied.push(
             "`[engines.rapier] accuracy` per rung: the target whose step rule gives the rung's Δt as rapier's step, 300·(Δt/T_min)² within 1e-4…0.2 (a coarser rung is divided by the rule), so the ladder is the rule's own steps".into(),
         );
+    } else if rapier_step_per_rung(&case) {
+        applied.push(
+            "`[engines.rapier] step_rule = \"none\"` per rung: rapier steps once per rung Δt (its rocking and block step rules would divide the coarse rungs), so the ladder is rapier's own steps".into(),
+        );
     }
     (case, applied)
 }
@@ -261,14 +267,28 @@ fn rapier_accuracy_per_rung(case: &Case) -> bool {
             .is_some_and(|r| r.options.contains_key("accuracy"))
 }
 
+/// Whether the sweep runs rapier at one step per rung: a rocking body or a rigid block
+/// (scenes whose step rule is not driven by an accuracy target) whose case does not
+/// set `step_rule` itself.
+fn rapier_step_per_rung(case: &Case) -> bool {
+    !matches!(case.scene.model, Model::Oscillator(_)) && rapier_rule_unset(case)
+}
+
 /// The case one rung of one series runs: for rapier on an oscillator, with the accuracy
 /// target whose step rule gives rapier steps of `dt`
-/// ([`OscillatorSteps::accuracy_for_step`]); `None`: the case as it is.
+/// ([`OscillatorSteps::accuracy_for_step`]); on a rocking body or a rigid block, with
+/// one rapier step per rung ([`rapier_at_rung_step`]); `None`: the case as it is.
 fn rung_case(case: &Case, engine_id: &str, dt: f64) -> Option<Case> {
+    if engine_id != "rapier" {
+        return None;
+    }
+    if rapier_step_per_rung(case) {
+        return Some(rapier_at_rung_step(case));
+    }
     let Model::Oscillator(osc) = &case.scene.model else {
         return None;
     };
-    if engine_id != "rapier" || !rapier_accuracy_per_rung(case) {
+    if !rapier_accuracy_per_rung(case) {
         return None;
     }
     let accuracy = OscillatorSteps::accuracy_for_step(osc, &case.scene.excitation, dt);

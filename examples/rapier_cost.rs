@@ -1,0 +1,89 @@
+//! The rapier engine's share of the default command: every shipped case the command runs
+//! (`cases/`, `cases/records/`, `cases/vertical/`) that asks for rapier (or names no
+//! engine), each variant at the case's own step, with the thread's CPU time per run and
+//! in all. The numbers behind the cost table of docs/rapier-engine.md.
+//!
+//! ```text
+//! cargo run --release --example rapier_cost [-- <case files or folders>]
+//! ```
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use rockslide::case::load_case;
+use rockslide::engine::Engine;
+use rockslide::engine::rigid_body::Rapier;
+
+/// The thread's CPU time in seconds, or the wall clock where the kernel does not say.
+fn cpu_seconds(start: Instant) -> f64 {
+    std::fs::read_to_string("/proc/thread-self/schedstat")
+        .ok()
+        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
+        .map_or_else(|| start.elapsed().as_secs_f64(), |ns| ns * 1e-9)
+}
+
+/// The case files named, or in the folders named, sorted.
+fn case_files(args: &[String]) -> Vec<PathBuf> {
+    let mut files = Vec::new();
+    for a in args {
+        let p = Path::new(a);
+        if p.is_dir() {
+            let mut here: Vec<PathBuf> = std::fs::read_dir(p)
+                .into_iter()
+                .flatten()
+                .flatten()
+                .map(|e| e.path())
+                .filter(|f| f.extension().is_some_and(|x| x == "toml"))
+                .collect();
+            here.sort();
+            files.extend(here);
+        } else {
+            files.push(p.to_path_buf());
+        }
+    }
+    files
+}
+
+fn main() {
+    let mut args: Vec<String> = std::env::args().skip(1).collect();
+    if args.is_empty() {
+        args = ["cases", "cases/records", "cases/vertical"]
+            .map(String::from)
+            .to_vec();
+    }
+    let origin = Instant::now();
+    let mut total = 0.0;
+    for file in case_files(&args) {
+        let Ok(case) = load_case(&file) else {
+            println!("{}: not a case", file.display());
+            continue;
+        };
+        let request = case.engine("rapier");
+        if !case.engines.is_empty() && request.is_none() {
+            continue;
+        }
+        let Ok(available) = Rapier.variants(&case.scene) else {
+            continue;
+        };
+        let wanted: Vec<String> = request
+            .and_then(|r| r.variants.clone())
+            .unwrap_or_else(|| available.iter().map(|s| s.to_string()).collect());
+        let dt = case.dt_for("rapier");
+        for variant in &wanted {
+            let t0 = cpu_seconds(origin);
+            let run = Rapier.run(&case, variant, dt).expect("runs");
+            let cpu = cpu_seconds(origin) - t0;
+            total += cpu;
+            println!(
+                "{:<34} {:<17} {:>8.3} s CPU  {:>6.1} ms per simulated s  {} rapier steps  {:?}",
+                case.name,
+                variant,
+                cpu,
+                1e3 * cpu / case.run.duration,
+                run.stats.steps,
+                run.status
+            );
+        }
+    }
+    println!("rapier in all: {total:.3} s CPU");
+}
