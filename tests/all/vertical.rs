@@ -582,6 +582,19 @@ fn the_vertical_component_changes_residual_sliding() {
         );
         assert!((ra - with_mm).abs() < 1e-4 && (rb - without_mm).abs() < 1e-4);
     }
+    // on the contact's Kz, through the openings, at 6 s (the case's run) against the
+    // horizontal-only run to 6 s
+    let (a, b) = (
+        case("vertical/pepo-northridge-vertical-dynamic"),
+        case_with(
+            "records/pepo-northridge",
+            "duration = 25.0",
+            "duration = 6.0",
+        ),
+    );
+    let (ra, rb) = (exact_residual(&a) * 1e3, exact_residual(&b) * 1e3);
+    println!("Northridge on Kz at 6 s: {ra:.4} mm, horizontal only {rb:.4} mm");
+    assert!((ra - 20.9022).abs() < 1e-4 && (rb - 4.6061).abs() < 1e-4);
     // and the horizontal-only case is the vertical one without its vertical table
     let c = case_with(
         "vertical/pepo-mass-accel-vertical",
