@@ -10,15 +10,16 @@
 //!   ground, applied force) takes its vertical component this way too.
 //!
 //! What then carries the normal force is the model's own: the rigid block's rapier contact
-//! (restitution 0: a landing block loses its vertical velocity and keeps sliding with its
-//! horizontal one, as the exact reference's plastic impact), and the joint-limit supports'
-//! compression-only springs Kz (the rocking body's, and [`oscillator_with_supports`] for
-//! the oscillator: one such support under a mass free in X and Z), whose friction cap is
+//! (restitution 0: a landing block loses its vertical velocity, and Coulomb friction acts
+//! through the landing, as the exact reference's plastic impact), and the supports'
+//! compression-only springs Kz (the rocking body's, applied-force or joint-limit, their
+//! gaps measured from the moving ground; [`oscillator_with_supports`] for the oscillator:
+//! one joint-limit support under a mass free in X and Z), whose friction cap is
 //! μ times the support's own N after every step and whose slider follows an open support
 //! (CONTA178's reset at re-closure). A rigid vertical contact (`normal_force =
 //! "quasi-static"`) is not a rapier model of the oscillator (its springs have Kz), and the
-//! feet models (`contact_model = "foot"`) do not take vertical motion: both say "not
-//! applicable".
+//! feet models (`contact_model = "foot"`) do not take vertical motion: "not applicable"
+//! and a located error.
 
 use rapier3d_f64::prelude::*;
 
