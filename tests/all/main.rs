@@ -44,4 +44,5 @@ mod streaming;
 mod sweep_energy;
 mod sweep_order;
 mod vertical;
+mod vertical_engines;
 mod vertical_integrator;

@@ -22,15 +22,23 @@ fn vertical_case(name: &str) -> Case {
 /// Contact phase of the integrated oscillator.
 #[derive(Clone, Copy, Debug)]
 enum Osc {
-    Stick { up: f64 },
-    Slip { dir: f64 },
+    Stick {
+        up: f64,
+    },
+    Slip {
+        dir: f64,
+    },
+    /// The compression-only contact open: free flight, the stick point with the mass.
+    Open,
 }
 
 /// The oscillator integrated independently on the reference's grid: u at every grid point.
+/// With Kz the contact opens where N reaches 0 (flight: δ'' = g + a_v, u'' = d) and closes
+/// unstressed where the gap does (the stick point at the mass).
 fn integrate_epo(c: &EpoConstants, inputs: &LinearInputs) -> Vec<f64> {
     let (m, k, mu, g) = (c.m, c.k, c.mu, c.g);
     let normal = |y: &Y, av: f64| match c.kz {
-        Some(kz) => kz * y[2],
+        Some(kz) => kz * y[2].max(0.0),
         None => m * (g + av),
     };
     let h = inputs.h;
@@ -55,25 +63,35 @@ fn integrate_epo(c: &EpoConstants, inputs: &LinearInputs) -> Vec<f64> {
                 let acc = match phase {
                     Osc::Stick { up } => d - k * (y[0] - up) / m,
                     Osc::Slip { dir } => d - dir * mu * n / m,
+                    Osc::Open => d,
                 };
-                let az = match c.kz {
-                    Some(kz) => g + av - kz * y[2] / m,
-                    None => 0.0,
+                let az = match (c.kz, phase) {
+                    (Some(_), Osc::Open) => g + av,
+                    (Some(kz), _) => g + av - kz * y[2] / m,
+                    (None, _) => 0.0,
                 };
                 [y[1], acc, y[3], az]
+            };
+            // the contact opens where the compression falls through 0 (with Kz)
+            let opens = |y: &Y| match c.kz {
+                Some(_) => -y[2] - 1e-15,
+                None => f64::NEG_INFINITY,
             };
             let event = |t: f64, y: &Y| {
                 let (_, av) = lin(t);
                 let n = normal(y, av);
                 match phase {
-                    Osc::Stick { up } => k * (y[0] - up).abs() - mu * n - 1e-8 * mu * m * g,
+                    Osc::Stick { up } => {
+                        (k * (y[0] - up).abs() - mu * n - 1e-8 * mu * m * g).max(opens(y))
+                    }
                     Osc::Slip { dir } => {
                         let rate = match c.kz {
                             Some(kz) => kz * y[3],
                             None => m * gamma,
                         };
-                        -(dir * y[1] - mu * rate / k) - 1e-14
+                        (-(dir * y[1] - mu * rate / k) - 1e-14).max(opens(y))
                     }
+                    Osc::Open => y[2] - 1e-15,
                 }
             };
             let (te, ye, hit) = advance(&rhs, &event, t, t1, y, &scale);
@@ -81,6 +99,8 @@ fn integrate_epo(c: &EpoConstants, inputs: &LinearInputs) -> Vec<f64> {
             if hit {
                 let (_, av) = lin(t);
                 phase = match phase {
+                    Osc::Open => Osc::Stick { up: y[0] },
+                    _ if opens(&y) > 0.0 => Osc::Open,
                     Osc::Stick { up } => Osc::Slip {
                         dir: (y[0] - up).signum(),
                     },
@@ -140,6 +160,28 @@ fn oscillator_reference_agrees_with_an_independent_integrator() {
         assert!(worst <= 1e-8, "{name}: {worst:e} m");
         assert!(!reference.history.slips.is_empty(), "{name} slides");
     }
+}
+
+#[test]
+fn oscillator_reference_through_contact_openings_agrees_with_the_integrator() {
+    // Northridge with its synthetic vertical and the contact's Kz: the 10 Hz vertical
+    // oscillator rings the compression-only contact open (flights, then elastic landings
+    // with the stick point reset).
+    let c = case_with(
+        "vertical/pepo-northridge-vertical",
+        "normal_force = \"quasi-static\"",
+        "normal_force = \"dynamic\"",
+    );
+    let (worst, reference) = epo_against_integrator(&c);
+    let flights = &reference.history.flights;
+    println!(
+        "Northridge, dynamic N: max |Δu| = {worst:.3e} m, {} slips, {} flights, first {:?}",
+        reference.history.slips.len(),
+        flights.len(),
+        flights.first()
+    );
+    assert!(worst <= 1e-8, "{worst:e} m");
+    assert!(!flights.is_empty());
 }
 
 /// Phase of the integrated block.
@@ -203,6 +245,8 @@ fn integrate_block(mu: f64, g: f64, inputs: &LinearInputs) -> (Vec<f64>, Option<
                         Blk::Stuck
                     }
                     Blk::Air => {
+                        // plastic impact, friction impulse ≤ μ·|w| against the slide
+                        y[1] = y[1].signum() * (y[1].abs() - mu * y[3].abs()).max(0.0);
                         (y[2], y[3]) = (0.0, 0.0);
                         if y[1] == 0.0 {
                             Blk::Stuck
@@ -220,7 +264,7 @@ fn integrate_block(mu: f64, g: f64, inputs: &LinearInputs) -> (Vec<f64>, Option<
 
 #[test]
 fn lift_off_block_reference_agrees_with_an_independent_integrator() {
-    let c = load_case(&repo("cases/vertical/reference-only/block-liftoff.toml")).unwrap();
+    let c = load_case(&repo("cases/vertical/block-liftoff.toml")).unwrap();
     let inputs = LinearInputs::of_scene(&c.scene, c.run.duration).unwrap();
     let rockslide::case::Model::RigidBlock(b) = &c.scene.model else {
         panic!()
@@ -425,18 +469,43 @@ fn the_friction_bound_uses_the_instantaneous_normal_force() {
 }
 
 #[test]
-fn fe_and_rapier_say_vertical_motion_is_not_applicable() {
-    let c = vertical_case("pepo-mass-accel-vertical");
+fn engines_say_which_vertical_scenes_they_do_not_model() {
+    // fe and rapier model the contact's Kz: a rigid vertical contact (quasi-static N) is
+    // not their oscillator; the predictor-corrector runs both.
+    let dynamic = vertical_case("pepo-mass-accel-vertical");
+    let rigid = vertical_case("pepo-mass-accel-vertical-rigid");
     for engine in rockslide::engine::all() {
-        let v = engine.variants(&c.scene);
-        match engine.id() {
-            "predictor-corrector" => assert_eq!(v.unwrap(), vec!["paper"]),
-            id => assert_eq!(
-                v.unwrap_err().0,
-                format!("vertical excitation is not yet modelled in {id}")
-            ),
+        let (id, v) = (engine.id(), engine.variants(&dynamic.scene));
+        match id {
+            "predictor-corrector" => {
+                assert_eq!(v.unwrap(), vec!["paper"]);
+                assert_eq!(engine.variants(&rigid.scene).unwrap(), vec!["paper"]);
+                continue;
+            }
+            "fe" => assert_eq!(v.unwrap(), vec!["single"]),
+            _ => assert_eq!(v.unwrap(), vec!["applied-force"]),
         }
+        let why = engine.variants(&rigid.scene).unwrap_err().0;
+        assert!(
+            why.contains("vertical stiffness Kz: a rigid vertical contact (normal_force = \"quasi-static\") is not its model"),
+            "{id}: {why}"
+        );
     }
+    // rapier's feet model does not take vertical motion: a located error
+    let c = crate::common::case_with(
+        "vertical/pepo-mass-accel-vertical",
+        "[engines.rapier]",
+        "[engines.rapier]\ncontact_model = \"foot\"\n",
+    );
+    use rockslide::engine::Engine;
+    let e = rockslide::engine::rigid_body::Rapier
+        .run(&c, "applied-force", 1e-3)
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("engines.rapier.contact_model: \"foot\" does not take vertical ground motion"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -513,6 +582,19 @@ fn the_vertical_component_changes_residual_sliding() {
         );
         assert!((ra - with_mm).abs() < 1e-4 && (rb - without_mm).abs() < 1e-4);
     }
+    // on the contact's Kz, through the openings, at 6 s (the case's run) against the
+    // horizontal-only run to 6 s
+    let (a, b) = (
+        case("vertical/pepo-northridge-vertical-dynamic"),
+        case_with(
+            "records/pepo-northridge",
+            "duration = 25.0",
+            "duration = 6.0",
+        ),
+    );
+    let (ra, rb) = (exact_residual(&a) * 1e3, exact_residual(&b) * 1e3);
+    println!("Northridge on Kz at 6 s: {ra:.4} mm, horizontal only {rb:.4} mm");
+    assert!((ra - 20.9022).abs() < 1e-4 && (rb - 4.6061).abs() < 1e-4);
     // and the horizontal-only case is the vertical one without its vertical table
     let c = case_with(
         "vertical/pepo-mass-accel-vertical",
@@ -520,4 +602,70 @@ fn the_vertical_component_changes_residual_sliding() {
         "amplitude = 0.0",
     );
     assert!((exact_residual(&c) * 1e3 - 8.7562).abs() < 1e-4);
+}
+
+/// A case in a fresh folder beside `pair.csv` (its text given), loaded.
+fn pair_case(tag: &str, csv: &[u8], horizontal: &str, vertical: &str) -> Result<Case, String> {
+    let dir = std::env::temp_dir().join(format!("rs-pair-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("pair.csv"), csv).unwrap();
+    let text = format!(
+        "title = \"pair\"\nsource = \"test\"\nrequirement = \"test\"\n\n[model]\nkind = \"oscillator\"\nmass = 1.0e6\ngravity = 1.0\n\n[model.contact]\nkx = 9.8696e8\nkz = 3.94784e9\nmu = 0.5\n\n[excitation]\nkind = \"ground-acceleration\"\nrecord = \"pair.csv\"\nrecord_unit = \"g\"\n{horizontal}\n\n[excitation.vertical]\nrecord = \"pair.csv\"\nrecord_unit = \"g\"\n{vertical}\n\n[run]\nduration = 0.1\ndt = 0.01\n"
+    );
+    let path = dir.join("case.toml");
+    std::fs::write(&path, &text).unwrap();
+    let out = load_case(&path).map_err(|e| e.to_string());
+    std::fs::remove_dir_all(&dir).unwrap();
+    out
+}
+
+#[test]
+fn a_horizontal_vertical_pair_in_one_csv_is_one_excitation_with_a_scale_per_component() {
+    // time, horizontal, vertical; a byte-order mark and CRLF line ends, as other readers
+    let csv =
+        b"\xEF\xBB\xBF# pair\r\ntime,h,v\r\n0.0,0.0,0.0\r\n0.02,0.1,-0.05\r\n0.04,-0.2,0.02\r\n";
+    let c = pair_case(
+        "ok",
+        csv,
+        "record_column = 1\nscale_to_pga_g = 0.1",
+        "record_column = 2\nscale_to_pga_g = 0.05",
+    )
+    .unwrap();
+    let g = rockslide::case::record::STANDARD_GRAVITY;
+    let h = c.scene.excitation.signal().unwrap();
+    let v = &c.scene.vertical().unwrap().signal;
+    // each component scaled to its own PGA: h peaks at −0.2 g → −0.1 g, v at −0.05 g → −0.05 g
+    assert!((h.value(0.04) + 0.1 * g).abs() < 1e-12, "{}", h.value(0.04));
+    assert!((h.value(0.02) - 0.05 * g).abs() < 1e-12);
+    assert!(
+        (v.value(0.02) + 0.05 * g).abs() < 1e-12,
+        "{}",
+        v.value(0.02)
+    );
+    assert!((v.value(0.04) - 0.02 * g).abs() < 1e-12);
+    // a missing column is located in the record file, under the case field
+    let e = pair_case("short", csv, "record_column = 1", "record_column = 3").unwrap_err();
+    assert!(
+        e.contains("pair.csv:3:")
+            && e.contains("excitation.vertical.record")
+            && e.contains(
+                "expected at least 4 columns (time in s, then acceleration column 3 in g), found 3"
+            ),
+        "{e}"
+    );
+    // a three-column file without a column, and a column below 1
+    let e = pair_case("none", csv, "", "record_column = 2").unwrap_err();
+    assert!(
+        e.contains("expected 2 columns (time in s, acceleration in g), found 3"),
+        "{e}"
+    );
+    let e = pair_case("zero", csv, "record_column = 1", "record_column = 0").unwrap_err();
+    assert!(
+        e.contains("excitation.vertical.record_column: is 0, but must be at least 1"),
+        "{e}"
+    );
+    // a bad number in the vertical column: line and column of the token
+    let bad = b"0.0,0.0,0.0\n0.02,0.1,x\n";
+    let e = pair_case("bad", bad, "record_column = 1", "record_column = 2").unwrap_err();
+    assert!(e.contains("pair.csv:2:10"), "{e}");
 }

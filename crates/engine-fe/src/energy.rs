@@ -8,7 +8,8 @@ use super::stepper::Snapshot;
 /// The energy terms of a run, accumulated from the engine's own element states and
 /// kinematics at every converged step (rocking bodies; `analysis::energy` audits them):
 ///
-/// - input work W: ½(Fₙ + Fₙ₊₁)·ΔX_cm of the applied horizontal force, plus the moving
+/// - input work W: ½(Fₙ + Fₙ₊₁)·ΔX_cm of the applied horizontal force and
+///   ½(Fzₙ + Fzₙ₊₁)·ΔZ_cm of the vertical ground motion's load −M·a_v, plus the moving
 ///   ground's work −½(Tₙ + Tₙ₊₁)·Δxg on each ground element (T the element's force on
 ///   its upper end; the ground pushes its lower end with −T);
 /// - kinetic K = ½M(vx² + vz²) + ½I·ω² (absolute velocities in the model's frame);
@@ -35,8 +36,9 @@ use super::stepper::Snapshot;
 pub(crate) struct EnergyBook {
     /// Per element at the last recorded step.
     prev: Vec<ElementEnergy>,
-    /// Applied horizontal force, X_cm and ground displacement at the last step.
-    last: (f64, f64, f64),
+    /// Applied horizontal force, X_cm, ground displacement, vertical load −M·a_v and Z_cm
+    /// at the last step.
+    last: (f64, f64, f64, f64, f64),
     /// E0 = K + U + V at t = 0.
     initial: f64,
     input: f64,
@@ -65,7 +67,7 @@ impl EnergyBook {
     pub(crate) fn new(links: usize) -> Self {
         Self {
             prev: vec![ElementEnergy::default(); links],
-            last: (0.0, 0.0, 0.0),
+            last: (0.0, 0.0, 0.0, 0.0, 0.0),
             initial: 0.0,
             input: 0.0,
             friction: 0.0,
@@ -74,9 +76,10 @@ impl EnergyBook {
         }
     }
 
-    /// Book the converged state `s` (applied force `f`); returns
+    /// Book the converged state `s` (applied horizontal force and vertical load `f`); returns
     /// (W, K, U, D, V, E0 + W − (K + U + D + V), non-smooth part). Allocation-free.
-    pub(crate) fn record(&mut self, m: &Model, s: &Snapshot, f: f64) -> [f64; 7] {
+    pub(crate) fn record(&mut self, m: &Model, s: &Snapshot, f: (f64, f64)) -> [f64; 7] {
+        let (f, fz) = f;
         let xg = s.ground.0;
         let body = &m.body;
         let kinetic =
@@ -127,13 +130,14 @@ impl EnergyBook {
             };
         }
         if self.started {
-            let (f_n, x_n, xg_n) = self.last;
-            self.input += 0.5 * (f_n + f) * (s.q.x - x_n) - ground_force * (xg - xg_n);
+            let (f_n, x_n, xg_n, fz_n, z_n) = self.last;
+            self.input += 0.5 * (f_n + f) * (s.q.x - x_n) - ground_force * (xg - xg_n)
+                + 0.5 * (fz_n + fz) * (s.q.y - z_n);
         } else {
             self.initial = kinetic + strain + potential;
             self.started = true;
         }
-        self.last = (f, s.q.x, xg);
+        self.last = (f, s.q.x, xg, fz, s.q.y);
         let error = self.initial + self.input - (kinetic + strain + self.friction + potential);
         [
             self.input,

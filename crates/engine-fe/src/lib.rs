@@ -16,6 +16,7 @@
 //! - `recording`: the trace channels and the row recorded at every step.
 //! - `energy`: the energy bookkeeping of rocking runs.
 //! - `findings`: eigenfrequencies, self-checks and sensitivity reported as findings.
+//! - `vertical`: vertical ground motion as an inertial load (issue 15).
 
 #![warn(missing_docs)]
 
@@ -29,6 +30,7 @@ mod recording;
 mod simulate;
 pub mod space;
 mod stepper;
+mod vertical;
 
 pub use element::{Contact178, ContactState, Element, Status};
 pub use model::{Model, default_rotational_inertia};
@@ -61,14 +63,16 @@ impl Engine for Fe {
     }
 
     fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
-        if let (Some(s), None) = (scene.spatial(), scene.vertical()) {
+        if let Some(s) = scene.spatial() {
+            if scene.vertical().is_some() {
+                return Err(NotApplicable(
+                    "vertical excitation in a bidirectional (3D) scene is not yet modelled in fe"
+                        .into(),
+                ));
+            }
             return space::variants(scene, s);
         }
-        if scene.vertical().is_some() {
-            return Err(NotApplicable(
-                "vertical excitation is not yet modelled in fe".into(),
-            ));
-        }
+        vertical::check(scene)?;
         let double = match &scene.model {
             SceneModel::Oscillator(o) => o.double.is_some(),
             SceneModel::RockingBody(r) => r.double.is_some(),

@@ -83,7 +83,8 @@ pub(crate) fn run_model(
         .map_or(0.0, |s| model.links[s.ground_link].element.kz);
     trace.contacts = ContactBlock::for_supports(model.supports.len(), 1.0 / ground_kz, steps + 1);
     let mut states = vec![ContactState::default(); model.supports.len()];
-    let drive = Drive::new(excitation, model.body.mass);
+    let drive = Drive::new(excitation, model.body.mass)
+        .with_vertical(case.scene.vertical().map(|v| &v.signal));
     let o_offset = match &case.scene.model {
         SceneModel::RockingBody(r) => Vector2::new(0.0, -r.cm_height),
         _ => Vector2::zeros(),
@@ -159,7 +160,7 @@ pub(crate) fn run_model(
             put(node_sum / m.supports.len() as f64);
         }
         if rocking {
-            for v in book.record(m, s, drive.force(s.t)) {
+            for v in book.record(m, s, (drive.force(s.t), drive.vertical_force(s.t))) {
                 put(v);
             }
         }

@@ -172,6 +172,7 @@ fn settings(
             },
         ),
     ];
+    settings.extend(super::vertical::describe(scene));
     if rocking {
         settings.push(("kinematics".into(), opts.kinematics.name().into()));
         settings.push((

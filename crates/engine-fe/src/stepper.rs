@@ -12,7 +12,7 @@ use nalgebra::{Vector2, Vector3};
 
 use super::model::{Assembly, Model, System, solve};
 use super::options::FeOptions;
-use rockslide_core::case::Excitation;
+use rockslide_core::case::{Excitation, Signal};
 use rockslide_engine_api::RunStatus;
 
 /// How the excitation drives the model.
@@ -20,12 +20,26 @@ use rockslide_engine_api::RunStatus;
 pub struct Drive<'a> {
     excitation: &'a Excitation,
     mass: f64,
+    /// The vertical ground acceleration a_v(t), if any (`vertical`).
+    vertical: Option<&'a Signal>,
 }
 
 impl<'a> Drive<'a> {
     /// The drive of an excitation on a body of mass `mass`.
     pub fn new(excitation: &'a Excitation, mass: f64) -> Self {
-        Self { excitation, mass }
+        Self {
+            excitation,
+            mass,
+            vertical: None,
+        }
+    }
+    /// The same drive with a vertical ground acceleration a_v(t) (positive upward).
+    pub fn with_vertical(self, vertical: Option<&'a Signal>) -> Self {
+        Self { vertical, ..self }
+    }
+    /// Vertical force on the body at `t` beyond the preload, N: −M·a_v(t) (`vertical`).
+    pub fn vertical_force(&self, t: f64) -> f64 {
+        super::vertical::load(self.vertical, self.mass, t)
     }
     /// Horizontal force applied to the body at `t`, N. A ground acceleration record is
     /// run in relative coordinates (force −M·ag, ground fixed).
@@ -200,7 +214,7 @@ pub fn integrate(
         q: q_static,
         v: Vector3::zeros(),
         a: Vector3::zeros(),
-        f: Vector3::new(drive.force(0.0), -weight, 0.0),
+        f: Vector3::new(drive.force(0.0), -weight + drive.vertical_force(0.0), 0.0),
         pb: Vector3::zeros(),
         damp: c * (0.0 - g0.1),
         g: g0,
@@ -380,7 +394,11 @@ fn newton_step(
     };
     let newton = opts.newton;
     let g = drive.ground(t);
-    let f = Vector3::new(drive.force(t), -model.weight(), 0.0);
+    let f = Vector3::new(
+        drive.force(t),
+        -model.weight() + drive.vertical_force(t),
+        0.0,
+    );
     let mut dq = Vector3::zeros();
     // Predictor: constant acceleration over the step.
     let mut q = n.q + n.v * h + n.a * (0.5 * h * h);

@@ -29,6 +29,8 @@ pub struct GroundTable {
     pub disp: Vec<f64>,
     /// vg(t_n⁺), m/s.
     pub vel: Vec<f64>,
+    /// The vertical ground motion at the same times, if the scene has one (`vertical`).
+    pub vertical: Option<super::vertical::VerticalTable>,
 }
 
 impl GroundTable {
@@ -54,7 +56,20 @@ impl GroundTable {
             disp.push(x);
             vel.push(v);
         }
-        Self { disp, vel }
+        Self {
+            disp,
+            vel,
+            vertical: None,
+        }
+    }
+
+    /// The same tables with the scene's vertical ground motion (if any) at the same times.
+    pub fn with_vertical(self, vertical: Option<&rockslide_core::case::Vertical>, dt: f64) -> Self {
+        let n = self.disp.len() - 1;
+        Self {
+            vertical: vertical.map(|v| super::vertical::VerticalTable::new(v, dt, n)),
+            ..self
+        }
     }
 
     /// Mean ground acceleration over step `k → k+1`, m/s² (velocity jumps included).

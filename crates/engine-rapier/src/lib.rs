@@ -8,7 +8,8 @@
 //! - `world`: building the world (ground, structure, feet, joints);
 //! - `ground`: ground displacement and velocity tables for both ground-motion routes;
 //! - `simulate`: the time loop and the recorded channels;
-//! - `contact_forces`: the ground's force on a body from rapier's contact impulses.
+//! - `contact_forces`: the ground's force on a body from rapier's contact impulses;
+//! - `vertical`: vertical ground motion by both routes, the oscillator on a support.
 
 #![warn(missing_docs)]
 
@@ -16,6 +17,7 @@ mod contact_forces;
 mod ground;
 mod settings;
 mod simulate;
+mod vertical;
 mod world;
 
 pub use settings::{
@@ -54,11 +56,7 @@ impl Engine for Rapier {
     }
 
     fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
-        if scene.vertical().is_some() {
-            return Err(NotApplicable(
-                "vertical excitation is not yet modelled in rapier".into(),
-            ));
-        }
+        vertical::check(scene)?;
         match &scene.model {
             Model::Oscillator(o) => {
                 if o.double.is_some() {
@@ -83,6 +81,8 @@ impl Engine for Rapier {
 
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
         let mut settings = RapierSettings::from_case(case).map_err(|mut e| e.remove(0))?;
+        vertical::check_settings(case, &settings)?;
+        let vert = case.scene.vertical();
         let drive = match variant {
             variant::KINEMATIC_GROUND => Drive::KinematicGround,
             variant::INERTIAL_FORCE => Drive::InertialForce,
@@ -93,6 +93,27 @@ impl Engine for Rapier {
         let mut described = settings.describe(dt);
         let mut findings = Vec::new();
         let outcome = match &case.scene.model {
+            Model::Oscillator(osc) if let Some(v) = vert => {
+                let (stride, dt_in, steps) =
+                    vertical::oscillator_steps(osc, ex, v, dt, settings.accuracy);
+                let rig =
+                    vertical::oscillator_with_supports(osc, &settings, dt_in, drive.ground_kind());
+                describe_joint_limit(osc, &settings, &steps, ex, &mut described, &mut findings);
+                described.retain(|(k, _)| {
+                    !k.starts_with("contact model")
+                        && !k.starts_with("rapier step")
+                        && !k.starts_with("friction limit")
+                });
+                described.push((
+                    "contact model".into(),
+                    "joint-limit support: mass free in X and Z on two joints ground → mass: Kz as a ForceBased motor on Y, compression only, and Kx on X capped at μ·N(t) after every step, in series with a massless slider".into(),
+                ));
+                described.push((
+                    "rapier step [s] (output step / stride)".into(),
+                    format!("{dt_in} (stride {stride}; the step rule's period scaled to the vertical mode √(Kz/M) when faster)"),
+                ));
+                vertical::run_oscillator(rig, drive, (ex, v), (dt, stride), duration)
+            }
             Model::Oscillator(osc) => {
                 let (rig, stride) = match settings.oscillator_contact {
                     OscillatorContact::Foot => {
@@ -154,7 +175,7 @@ impl Engine for Rapier {
                         b.mass
                     ),
                 ));
-                simulate::run_block(rig, b, drive, ex, (dt, stride), duration)
+                simulate::run_block(rig, b, drive, (ex, vert), (dt, stride), duration)
             }
             Model::RockingBody(r) if settings.oscillator_contact != OscillatorContact::Foot => {
                 let omega_r = rocking_mode(r);
@@ -170,7 +191,7 @@ impl Engine for Rapier {
                 };
                 describe_rocking_joint_limit(r, omega_r, dt_in, stride, &settings, &mut described);
                 findings.push(rocking_validity(omega_r, dt_in, &settings));
-                simulate::run_rocking_joint_limit(rig, r, drive, ex, (dt, stride), duration)
+                simulate::run_rocking_joint_limit(rig, r, drive, (ex, vert), (dt, stride), duration)
             }
             Model::RockingBody(r) => {
                 let rig = world::rocking_body(r, &settings, dt, drive.ground_kind());
@@ -245,6 +266,7 @@ impl Engine for Rapier {
             }
         };
         described.push(("ground motion".into(), ground.into()));
+        described.extend(vertical::describe(case, drive));
         if matches!(
             ex,
             Excitation::GroundAcceleration(rockslide_core::case::Signal::Record { .. })
@@ -551,7 +573,14 @@ fn block_kinematic_stride(
     };
     let duration = case.run.duration;
     let pilot_rig = world::rigid_block(b, settings, dt, world::GroundKind::Fixed);
-    let pilot = simulate::run_block(pilot_rig, b, Drive::InertialForce, ex, (dt, 1), duration);
+    let pilot = simulate::run_block(
+        pilot_rig,
+        b,
+        Drive::InertialForce,
+        (ex, case.scene.vertical()),
+        (dt, 1),
+        duration,
+    );
     let slid = total_variation(
         pilot
             .trace

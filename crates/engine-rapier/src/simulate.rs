@@ -7,7 +7,7 @@ use rapier3d_f64::prelude::*;
 use super::contact_forces::ground_force;
 use super::ground::GroundTable;
 use super::world::{FOOT_HALF, GroundKind, ROCK_FOOT_HALF, Rig, angle_z};
-use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Signal};
+use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Signal, Vertical};
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{RunStatus, step_count};
 
@@ -43,12 +43,12 @@ pub struct Outcome {
 }
 
 /// Mean of a mass-acceleration signal over [t, t + dt] (Simpson's rule), m/s².
-fn mean_over_step(s: &Signal, t: f64, dt: f64) -> f64 {
+pub(crate) fn mean_over_step(s: &Signal, t: f64, dt: f64) -> f64 {
     (s.value(t) + 4.0 * s.value(t + 0.5 * dt) + s.value(t + dt)) / 6.0
 }
 
 /// The force channel: M·a(t) for mass acceleration, −M·ag(t) for ground motion.
-fn force_at(excitation: &Excitation, m: f64, t: f64) -> f64 {
+pub(crate) fn force_at(excitation: &Excitation, m: f64, t: f64) -> f64 {
     match excitation {
         Excitation::None => 0.0,
         Excitation::MassAcceleration(s) => m * s.value(t),
@@ -85,6 +85,7 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
             ground.set_next_kinematic_translation(Vector::new(g.disp[k + 1], y, 0.0));
         }
     }
+    super::vertical::drive_step(rig, drive, g, k, dt);
 }
 
 /// The applied-force supports' resultant on the structure for the next step: each
@@ -229,7 +230,7 @@ fn oscillator_contact(
 
 /// Where the recorder measures from at step `k`: the moving ground's (displacement,
 /// velocity) for a kinematic ground, zero for a fixed one.
-fn ground_frame(drive: Drive, g: &GroundTable, k: usize) -> (f64, f64) {
+pub(crate) fn ground_frame(drive: Drive, g: &GroundTable, k: usize) -> (f64, f64) {
     if drive == Drive::KinematicGround {
         (g.disp[k], g.vel[k])
     } else {
@@ -239,7 +240,7 @@ fn ground_frame(drive: Drive, g: &GroundTable, k: usize) -> (f64, f64) {
 
 /// With the inertial-force route a ground velocity that jumps at t = 0 gives every body
 /// the relative velocity −vg(0⁺) in the ground's frame.
-fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable) {
+pub(crate) fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable) {
     if drive == Drive::InertialForce && g.vel[0] != 0.0 {
         for &(h, _) in &rig.inertial_masses {
             rig.world.bodies[h].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
@@ -251,7 +252,7 @@ fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable) {
 /// ground, step the world, record after every `stride`-th step (the recorder gets the
 /// step index) with the recorder's own memory; a body whose pose stops being finite ends
 /// the run as `Diverged` (a result, not a panic).
-fn time_loop<M>(
+pub(crate) fn time_loop<M>(
     rig: &mut Rig,
     (drive, ex, g): (Drive, &Excitation, &GroundTable),
     (n, dt, stride): (usize, f64, usize),
@@ -264,7 +265,7 @@ fn time_loop<M>(
     for k in 0..n {
         drive_step(rig, drive, ex, g, k, dt);
         rig.world.step();
-        slip_after_step(rig);
+        slip_after_step(rig, super::vertical::ground_height(drive, g, k + 1));
         let finite = rig
             .world
             .bodies
@@ -290,8 +291,8 @@ fn time_loop<M>(
 
 /// The joint-limit contact's return mapping after a step: where the capped spring has
 /// taken the mass beyond Ru/Kx, the slider follows, and the motor's target with it.
-fn slip_after_step(rig: &mut Rig) {
-    supports_after_step(rig);
+fn slip_after_step(rig: &mut Rig, ground_height: f64) {
+    supports_after_step(rig, ground_height);
     let Some(slider) = rig.slider.as_mut() else {
         return;
     };
@@ -308,16 +309,19 @@ fn slip_after_step(rig: &mut Rig) {
 
 /// The joint-limit supports after a step: each one's normal force, friction cap and
 /// slider (return mapping), written back into its joint's X motor.
-fn supports_after_step(rig: &mut Rig) {
+/// `ground_height`: the moving ground's height above its start (vertical motion on the
+/// kinematic route; 0 otherwise), from which the supports' gaps are measured.
+fn supports_after_step(rig: &mut Rig, ground_height: f64) {
     if rig.supports.is_empty() {
         return;
     }
     let body = &rig.world.bodies[rig.structure];
     let (cm, phi) = (body.translation(), angle_z(body));
     let gx = rig.world.bodies[rig.ground].translation().x;
+    let gy = ground_height;
     for sup in rig.supports.iter_mut() {
         let (ax, ay) = sup.anchor(cm, phi);
-        let (s, cap) = sup.update((ax - gx - sup.x, ay));
+        let (s, cap) = sup.update((ax - gx - sup.x, ay - gy));
         if let Some(joint) = rig.world.impulse_joints.get_mut(sup.joint, false) {
             joint
                 .data
@@ -341,13 +345,13 @@ pub fn run_block(
     mut rig: Rig,
     block: &RigidBlock,
     drive: Drive,
-    ex: &Excitation,
+    (ex, vertical): (&Excitation, Option<&Vertical>),
     (dt, stride): (f64, usize),
     duration: f64,
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in, n * stride);
+    let g = GroundTable::new(ex, dt_in, n * stride).with_vertical(vertical, dt_in);
     let moves = ex.moves_ground();
     let mut channels: Vec<&'static Quantity> = vec![
         &q::FORCE,
@@ -405,6 +409,7 @@ pub fn run_block(
         let cm = body.translation();
         let phi = angle_z(body);
         let off = ground_frame(drive, &g, k).0;
+        let hg = super::vertical::ground_height(drive, &g, k);
         let o_x = cm.x + phi.sin() * hh - off;
         let v = body.linvel().x - ground_frame(drive, &g, k).1;
         let vy = body.linvel().y;
@@ -421,10 +426,12 @@ pub fn run_block(
             _ => 0.0,
         };
         let contact_x = m * (a + ag) - f_true;
-        let normal = m * (ay + grav);
-        let corners = corners_of(cm, phi);
+        let normal =
+            m * (ay + grav + super::vertical::inertial_acceleration(drive, &g, k, stride, dt));
+        let corners = corners_of(cm, phi).map(|(x, y)| (x, y - hg));
         let mut n_contact = 0.0;
         let mut d_slide = 0.0;
+        let mut d_all = 0.0;
         let mut uplift: f64 = 0.0;
         // The contact's own slip: the lowest corner's horizontal motion while it touches
         // (a block rocking about a corner does not slip there).
@@ -435,6 +442,7 @@ pub fn run_block(
         for (i, &(cx, cy)) in corners.iter().enumerate() {
             uplift = uplift.max(cy);
             let x_rel = cx - off;
+            d_all += 0.5 * (x_rel - st.corners[i]);
             if cy < contact_gap {
                 n_contact += 1.0;
                 d_slide += x_rel - st.corners[i];
@@ -443,6 +451,11 @@ pub fn run_block(
         }
         if n_contact > 0.0 && k > 0 {
             st.slide += d_slide / n_contact;
+        } else if k > 0 && g.vertical.is_some() {
+            // Under vertical motion a block off the ground moves relative to it and lands
+            // elsewhere: its flight counts as sliding (block minus ground), as in the
+            // exact reference.
+            st.slide += d_all;
         }
         st.v = v;
         st.vy = vy;
@@ -454,7 +467,7 @@ pub fn run_block(
             v,
             a,
             cm.x - off,
-            cm.y - hh,
+            cm.y - hh - hg,
             phi,
             uplift.max(0.0),
             n_contact,
@@ -647,13 +660,13 @@ pub fn run_rocking_joint_limit(
     mut rig: Rig,
     body: &RockingBody,
     drive: Drive,
-    ex: &Excitation,
+    (ex, vertical): (&Excitation, Option<&Vertical>),
     (dt, stride): (f64, usize),
     duration: f64,
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in, n * stride);
+    let g = GroundTable::new(ex, dt_in, n * stride).with_vertical(vertical, dt_in);
     let moves = ex.moves_ground();
     let channels = rocking_channels(moves);
     let mut trace = Trace::with_channels(&channels, n + 1);
@@ -707,7 +720,7 @@ pub fn run_rocking_joint_limit(
             v,
             a,
             cm.x - off - cm0.x,
-            cm.y - cm0.y,
+            cm.y - cm0.y - super::vertical::ground_height(drive, &g, k),
             phi - phi0,
             uplift.max(0.0),
             contacts,

@@ -13,7 +13,7 @@ use rockslide_core::case::{Oscillator, RigidBlock, RockingBody};
 
 /// Half-extents of the ground slab, m: wide enough for a block sliding or a ground
 /// coasting for many metres; its top face is y = 0.
-const GROUND_HALF: (f64, f64) = (1.0e4, 1.0);
+pub(crate) const GROUND_HALF: (f64, f64) = (1.0e4, 1.0);
 
 /// Friction coefficient standing in for μ = ∞ (a friction limit 1e6 times the weight).
 pub const MU_INFINITE: f64 = 1.0e6;
@@ -92,7 +92,7 @@ impl Slider {
     }
 }
 
-fn new_world(s: &RapierSettings, dt: f64, gravity: f64) -> PhysicsWorld {
+pub(crate) fn new_world(s: &RapierSettings, dt: f64, gravity: f64) -> PhysicsWorld {
     PhysicsWorld {
         gravity: Vector::new(0.0, -gravity, 0.0),
         integration_parameters: s.integration_parameters(dt),
@@ -100,7 +100,7 @@ fn new_world(s: &RapierSettings, dt: f64, gravity: f64) -> PhysicsWorld {
     }
 }
 
-fn add_ground(world: &mut PhysicsWorld, kind: GroundKind, mu: f64) -> RigidBodyHandle {
+pub(crate) fn add_ground(world: &mut PhysicsWorld, kind: GroundKind, mu: f64) -> RigidBodyHandle {
     let body = match kind {
         GroundKind::Fixed => RigidBodyBuilder::fixed(),
         GroundKind::Kinematic => RigidBodyBuilder::kinematic_position_based(),

@@ -12,7 +12,7 @@ use super::raw::{
     RawCase, RawContact, RawDouble, RawEngine, RawExcitation, RawExpectedOutcome,
     RawExpectedViolation, RawExternal, RawModel, RawSecond, RawTolerance, RawVertical,
 };
-use super::record::{AccelUnit, STANDARD_GRAVITY, read_record};
+use super::record::{AccelUnit, STANDARD_GRAVITY, read_record_column};
 use super::scene::*;
 use super::signal::Signal;
 use super::spatial::{Depth, Spatial};
@@ -479,6 +479,7 @@ impl Validator<'_> {
             ("excitation.cycles", e.cycles.is_some()),
             ("excitation.record", e.record.is_some()),
             ("excitation.record_unit", e.record_unit.is_some()),
+            ("excitation.record_column", e.record_column.is_some()),
             ("excitation.scale_to_pga_g", e.scale_to_pga_g.is_some()),
             ("excitation.polarity", e.polarity.is_some()),
         ] {
@@ -494,6 +495,7 @@ impl Validator<'_> {
         }
         for (f, p) in [
             (&format!("{p}.record_unit"), e.record_unit.is_some()),
+            (&format!("{p}.record_column"), e.record_column.is_some()),
             (&format!("{p}.scale_to_pga_g"), e.scale_to_pga_g.is_some()),
             (&format!("{p}.polarity"), e.polarity.is_some()),
         ] {
@@ -594,9 +596,20 @@ impl Validator<'_> {
                 );
             }
         }
+        let column = match e.record_column {
+            None => None,
+            Some(c) if c >= 1 => Some(c as usize),
+            Some(c) => {
+                self.fail(
+                    &format!("{p}.record_column"),
+                    format!("is {c}, but must be at least 1 (the first acceleration column after the time column)"),
+                );
+                return None;
+            }
+        };
         let dir = case_path.parent().unwrap_or(Path::new(""));
         let path = dir.join(record);
-        let mut rec = match read_record(&path, unit) {
+        let mut rec = match read_record_column(&path, unit, column) {
             Ok(r) => r,
             Err(errs) => {
                 // The record's own errors, located in the record file, under the case field.
@@ -1144,6 +1157,7 @@ struct SignalKeys<'a> {
     cycles: Option<f64>,
     record: Option<&'a str>,
     record_unit: Option<&'a str>,
+    record_column: Option<i64>,
     scale_to_pga_g: Option<f64>,
     polarity: Option<f64>,
 }
@@ -1157,6 +1171,7 @@ impl<'a> SignalKeys<'a> {
             cycles: e.cycles,
             record: e.record.as_deref(),
             record_unit: e.record_unit.as_deref(),
+            record_column: e.record_column,
             scale_to_pga_g: e.scale_to_pga_g,
             polarity: e.polarity,
         }
@@ -1170,6 +1185,7 @@ impl<'a> SignalKeys<'a> {
             cycles: e.cycles,
             record: e.record.as_deref(),
             record_unit: e.record_unit.as_deref(),
+            record_column: e.record_column,
             scale_to_pga_g: e.scale_to_pga_g,
             polarity: e.polarity,
         }

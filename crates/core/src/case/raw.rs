@@ -119,6 +119,8 @@ pub struct RawExcitation {
     pub cycles: Option<f64>,
     pub record: Option<String>,
     pub record_unit: Option<String>,
+    /// Acceleration column of a CSV with several (1-based after the time column).
+    pub record_column: Option<i64>,
     /// The record's target PGA, g.
     pub scale_to_pga_g: Option<f64>,
     /// The old key (m/s²), read only to be refused with the new one's name.
@@ -160,6 +162,8 @@ pub struct RawVertical {
     pub cycles: Option<f64>,
     pub record: Option<String>,
     pub record_unit: Option<String>,
+    /// Acceleration column of a CSV with several (1-based after the time column).
+    pub record_column: Option<i64>,
     /// The vertical record's target PGA, g.
     pub scale_to_pga_g: Option<f64>,
     /// The old key (m/s²), read only to be refused with the new one's name.

@@ -133,10 +133,29 @@ impl Record {
 /// as two-column CSV. `unit` is required for CSV (the file does not say) and, for AT2,
 /// must agree with the header's units line when given.
 pub fn read_record(path: &Path, unit: Option<AccelUnit>) -> Result<Record, InputErrors> {
+    read_record_column(path, unit, None)
+}
+
+/// [`read_record`] taking acceleration column `column` (1-based, after the time column) of
+/// a CSV with several — a horizontal–vertical pair in one file, each component its own
+/// column; `None`: a two-column CSV. AT2 files have one component: a column is an error.
+pub fn read_record_column(
+    path: &Path,
+    unit: Option<AccelUnit>,
+    column: Option<usize>,
+) -> Result<Record, InputErrors> {
     let text = read_text(path)?;
     let is_at2 = path
         .extension()
         .is_some_and(|e| e.eq_ignore_ascii_case("at2"));
+    if is_at2 && column.is_some() {
+        return Err(InputError::new(
+            path,
+            "",
+            "an AT2 file holds one component: a column (`record_column`) applies only to a CSV record",
+        )
+        .into());
+    }
     if is_at2 {
         parse_at2(path, &text, unit).map_err(Into::into)
     } else {
@@ -148,7 +167,7 @@ pub fn read_record(path: &Path, unit: Option<AccelUnit>) -> Result<Record, Input
             )
             .into());
         };
-        parse_csv(path, &text, unit).map_err(Into::into)
+        parse_csv_column(path, &text, unit, column).map_err(Into::into)
     }
 }
 
@@ -467,6 +486,17 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
 /// lines are skipped, one header row of column names is allowed before the data, the
 /// separator is a comma, semicolon or whitespace.
 pub fn parse_csv(path: &Path, text: &str, unit: AccelUnit) -> Result<Record, InputError> {
+    parse_csv_column(path, text, unit, None)
+}
+
+/// [`parse_csv`] reading acceleration column `column` (1-based after the time column) of a
+/// CSV with at least that many; `None`: exactly two columns.
+pub fn parse_csv_column(
+    path: &Path,
+    text: &str,
+    unit: AccelUnit,
+    column: Option<usize>,
+) -> Result<Record, InputError> {
     let text = strip_bom(text);
     let mut description = String::new();
     let mut times: Vec<f64> = Vec::new();
@@ -491,20 +521,32 @@ pub fn parse_csv(path: &Path, text: &str, unit: AccelUnit) -> Result<Record, Inp
             seen_header = true; // column names
             continue;
         }
-        if toks.len() != 2 {
+        let col = column.unwrap_or(1);
+        let fits = match column {
+            None => toks.len() == 2,
+            Some(c) => toks.len() > c,
+        };
+        if !fits {
+            let expected = match column {
+                None => format!(
+                    "expected 2 columns (time in s, acceleration in {})",
+                    unit.name()
+                ),
+                Some(c) => format!(
+                    "expected at least {} columns (time in s, then acceleration column {c} in {})",
+                    c + 1,
+                    unit.name()
+                ),
+            };
             return Err(at(
                 path,
                 line_no,
                 None,
-                format!(
-                    "expected 2 columns (time in s, acceleration in {}), found {}",
-                    unit.name(),
-                    toks.len()
-                ),
+                format!("{expected}, found {}", toks.len()),
             ));
         }
         let t = number(path, line_no, toks[0].0, toks[0].1)?;
-        let a = number(path, line_no, toks[1].0, toks[1].1)?;
+        let a = number(path, line_no, toks[col].0, toks[col].1)?;
         if let Some(&prev) = times.last() {
             if t <= prev {
                 return Err(at(

@@ -11,9 +11,13 @@
 //!   quadratic and u cubic) until v returns to zero.
 //! - g_e < 0: the ground pulls away faster than gravity — the block is airborne: no
 //!   friction, v' = d, z'' = −g_e (cubic z), until it lands (z returns to 0). At landing
-//!   the vertical velocity is lost (a plastic impact on rigid ground) and the horizontal
-//!   one kept: the block slides on in the direction of v (one-way: a landing with v < 0
-//!   stops it).
+//!   the vertical velocity w is lost (a plastic impact on rigid ground, normal impulse
+//!   M·|w|) and Coulomb friction acts on the impact impulse: the friction impulse is at
+//!   most μ·M·|w| against the slide, so |v| falls by μ·|w| (Routh's plastic impact with
+//!   friction, no reversal), or to zero and the block sticks; it slides on in the direction
+//!   of v (one-way: a landing with v < 0 stops it). Keeping the horizontal velocity instead
+//!   would let the impulsive normal force act without its friction — the law |T| = μ·N of
+//!   a sliding contact broken for the one instant N is largest.
 //!
 //! Events: onset and lift-off where a linear function crosses zero (closed form), a
 //! slide's stop at the root of a quadratic ([`crate::block_record::stop_time`]), a landing
@@ -203,7 +207,12 @@ impl BlockWalker {
         );
         self.state.v = v0 + d0 * tau + ds * tau * tau / 2.0;
         if landing.is_some() {
-            // plastic landing: vertical velocity lost, horizontal kept
+            // plastic landing with Coulomb friction on the impact impulse: the vertical
+            // velocity w is lost (normal impulse M·|w|), the friction impulse is at most
+            // μ·M·|w| against the slide, so |v| falls by μ·|w| or the block sticks
+            let w = w0 - ge0 * tau - gs * tau * tau / 2.0;
+            let v = self.state.v;
+            self.state.v = v.signum() * (v.abs() - self.mu * w.abs()).max(0.0);
             self.state.z = 0.0;
             self.state.w = 0.0;
             let v = self.state.v;

@@ -7,7 +7,15 @@
 //! δ = M·g/Kz; on an interval g + a_v = g_e0 + γτ, so (Duhamel, closed form)
 //! δ = (g_e0 + γτ)/ωz² + C cos ωzτ + D sin ωzτ and N = Kz·δ. A rigid vertical contact
 //! (`"quasi-static"`) has N = M·(g_e0 + γτ). Either way N(τ) = n0 + n1τ + a cos ωzτ +
-//! b sin ωzτ, and the reference holds while N ≥ 0 (an opening contact is an error here).
+//! b sin ωzτ. With Kz the contact is compression-only: where N reaches 0 it opens and the
+//! mass flies — vertically ballistic, δ'' = g + a_v (δ < 0 a gap, cubic on an interval),
+//! horizontally free, u'' = d, no force — until the gap closes (δ rises through 0). The Kz
+//! spring is elastic: the mass lands with its vertical velocity and the spring takes it up
+//! again (no impact loss). The horizontal stick point follows the mass while the contact is
+//! open and the contact closes unstressed (e = 0), as CONTA178 re-establishes sticking
+//! at contact (and as the fe engine's element does): the flight's horizontal travel is
+//! sliding. A rigid vertical contact whose g + a_v falls below 0 is an error here (the
+//! rigid block's reference has that flight).
 //!
 //! Horizontal, relative coordinates, drive d = d0 + d'τ per unit mass, e = u − up:
 //! - stuck: e'' + ω²e = d, so e = (d0 + d'τ)/ω² + C cos ωτ + D sin ωτ, R = K·e;
@@ -86,6 +94,8 @@ pub enum EpoPhase {
     Stuck,
     /// Slipping in direction s (±1).
     Slipping(f64),
+    /// The contact open (N = 0): flying, the stick point following the mass.
+    Open,
 }
 
 /// The oscillator's state.
@@ -183,6 +193,8 @@ pub struct EpoWalker {
     pub state: EpoState,
     /// Every slip.
     pub slips: Vec<VerticalSlip>,
+    /// Every flight (contact open): start, end, horizontal travel (direction 0).
+    pub flights: Vec<VerticalSlip>,
 }
 
 impl EpoWalker {
@@ -192,6 +204,7 @@ impl EpoWalker {
             c,
             state,
             slips: Vec::new(),
+            flights: Vec::new(),
         }
     }
 
@@ -204,29 +217,104 @@ impl EpoWalker {
         av: (f64, f64),
     ) -> Result<(), String> {
         let (ds, gamma) = ((d.1 - d.0) / h, (av.1 - av.0) / h);
-        let law = self.c.normal_law(&self.state, self.c.g + av.0, gamma);
         let mut s = 0.0;
         let mut events = 0;
         while s < h {
-            events += 1;
+            let (d0, ge0) = (d.0 + ds * s, self.c.g + av.0 + gamma * s);
+            s += if self.state.phase == EpoPhase::Open {
+                events += 1;
+                self.fly(t0 + s, (d0, ds), (ge0, gamma), h - s)
+            } else {
+                self.closed(t0 + s, (d0, ds), (ge0, gamma), h - s, &mut events)?
+            };
             if events > EVENTS_PER_INTERVAL {
                 return Err(format!(
                     "more than {EVENTS_PER_INTERVAL} events in the grid interval at t = {t0} s: the vertical oscillator reference is not progressing"
                 ));
             }
-            let local = law.shifted(s);
-            let d0 = d.0 + ds * s;
-            s += match self.state.phase {
-                EpoPhase::Stuck => self.stuck(t0 + s, &local, d0, ds, h - s),
-                EpoPhase::Slipping(dir) => self.slip(t0 + s, dir, &local, d0, ds, h - s),
-            };
-        }
-        // the vertical oscillator over the whole interval (independent of the horizontal)
-        if let Some(kz) = self.c.kz {
-            self.state.dz = law.at(h) / kz;
-            self.state.vz = law.rate(h) / kz;
         }
         Ok(())
+    }
+
+    /// The contact closed over `span` from `t`, or until it opens (N falls to 0; with Kz
+    /// only — a rigid vertical contact with g + a_v < 0 is an error); returns the time used.
+    fn closed(
+        &mut self,
+        t: f64,
+        (d0, ds): (f64, f64),
+        (ge0, gamma): (f64, f64),
+        span: f64,
+        events: &mut usize,
+    ) -> Result<f64, String> {
+        let law = self.c.normal_law(&self.state, ge0, gamma);
+        let curvature = law.wz * law.wz * law.amplitude() + self.c.m * gamma.abs();
+        // The contact opens where N falls below zero by more than a rounding residue (1e-12
+        // of the weight): a contact that has just closed starts at N = 0 to rounding.
+        let residue = 1e-12 * self.c.m * self.c.g;
+        let opening = first_rise(|x| -law.at(x) - residue, span, curvature, law.wz);
+        if opening.is_some() && self.c.kz.is_none() {
+            return Err(format!(
+                "g + a_v < 0 at t ≈ {:.6} s: a rigid vertical contact would lift off, which this oscillator reference does not model",
+                t + opening.unwrap_or(0.0)
+            ));
+        }
+        let sub = opening.unwrap_or(span);
+        let mut s = 0.0;
+        while s < sub {
+            *events += 1;
+            if *events > EVENTS_PER_INTERVAL {
+                return Ok(s.max(f64::MIN_POSITIVE));
+            }
+            let local = law.shifted(s);
+            let d_s = d0 + ds * s;
+            s += match self.state.phase {
+                EpoPhase::Slipping(dir) => self.slip(t + s, dir, &local, d_s, ds, sub - s),
+                _ => self.stuck(t + s, &local, d_s, ds, sub - s),
+            };
+        }
+        // the vertical oscillator over the span (independent of the horizontal)
+        if let Some(kz) = self.c.kz {
+            self.state.dz = law.at(sub) / kz;
+            self.state.vz = law.rate(sub) / kz;
+        }
+        if opening.is_some() {
+            self.state.phase = EpoPhase::Open;
+            self.state.up = self.state.u;
+            self.flights.push(VerticalSlip {
+                start: t + sub,
+                end: t + sub,
+                direction: 0.0,
+                distance: 0.0,
+            });
+        }
+        Ok(sub)
+    }
+
+    /// The contact open: ballistic vertically (δ'' = g_e), free horizontally (u'' = d), the
+    /// stick point with the mass, until the gap closes or the span ends; returns the time
+    /// used. At closure the contact is closed and unstressed (e = 0), δ = 0.
+    fn fly(&mut self, t: f64, (d0, ds): (f64, f64), (ge0, gamma): (f64, f64), span: f64) -> f64 {
+        let (u0, v0, z0, w0) = (self.state.u, self.state.v, self.state.dz, self.state.vz);
+        let dz = |x: f64| z0 + w0 * x + ge0 * x * x / 2.0 + gamma * x * x * x / 6.0;
+        let curvature = ge0.abs().max((ge0 + gamma * span).abs());
+        let closing = first_rise(dz, span, curvature, 0.0);
+        let tau = closing.unwrap_or(span);
+        let u = u0 + v0 * tau + d0 * tau * tau / 2.0 + ds * tau * tau * tau / 6.0;
+        self.state.v = v0 + d0 * tau + ds * tau * tau / 2.0;
+        self.state.vz = w0 + ge0 * tau + gamma * tau * tau / 2.0;
+        if let Some(flight) = self.flights.last_mut() {
+            flight.distance += u - self.state.up;
+            flight.end = t + tau;
+        }
+        self.state.u = u;
+        self.state.up = u;
+        if closing.is_some() {
+            self.state.dz = 0.0;
+            self.state.phase = EpoPhase::Stuck;
+        } else {
+            self.state.dz = dz(tau).min(0.0);
+        }
+        tau
     }
 
     /// Elastic until an onset or the span's end; returns the time used.
@@ -308,9 +396,12 @@ pub struct EpoHistory {
     pub states: Vec<EpoState>,
     /// Every slip.
     pub slips: Vec<VerticalSlip>,
+    /// Every flight (the contact open).
+    pub flights: Vec<VerticalSlip>,
 }
 
-/// Solve from static rest under `inputs`; an error if N falls below zero.
+/// Solve from static rest under `inputs` (through contact openings with Kz; an error if a
+/// rigid vertical contact's g + a_v falls below zero).
 pub fn solve_epo(inputs: &LinearInputs, c: EpoConstants) -> Result<EpoHistory, String> {
     let valid = |x: f64| x.is_finite() && x > 0.0;
     if !(valid(c.m) && valid(c.k) && valid(c.g) && c.mu >= 0.0 && c.kz.is_none_or(valid)) {
@@ -323,19 +414,12 @@ pub fn solve_epo(inputs: &LinearInputs, c: EpoConstants) -> Result<EpoHistory, S
     for i in 1..inputs.drive.len() {
         let t0 = (i - 1) as f64 * h;
         let av = (inputs.vertical[i - 1], inputs.vertical[i]);
-        let law = c.normal_law(&walker.state, c.g + av.0, (av.1 - av.0) / h);
-        let curvature = law.wz * law.wz * law.amplitude();
-        if let Some(tau) = first_rise(|t| -law.at(t), h, curvature, law.wz) {
-            return Err(format!(
-                "the contact opens (N < 0) at t ≈ {:.6} s: the exact oscillator reference holds only while the contact is closed",
-                t0 + tau
-            ));
-        }
         walker.interval(t0, h, (inputs.drive[i - 1], inputs.drive[i]), av)?;
         states.push(walker.state);
     }
     Ok(EpoHistory {
         states,
         slips: walker.slips,
+        flights: walker.flights,
     })
 }

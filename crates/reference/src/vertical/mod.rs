@@ -143,7 +143,7 @@ impl ExactSolution for VerticalBlock {
 
     fn method(&self) -> String {
         format!(
-            "exact two-way rigid-plastic block (Newmark 1965) with friction limit μ·M·(g + a_v) and lift-off when g + a_v < 0 (ballistic flight; at landing the vertical velocity is lost, the horizontal kept): closed form per grid interval ({}), {} slides and flights located by root finding",
+            "exact two-way rigid-plastic block (Newmark 1965) with friction limit μ·M·(g + a_v) and lift-off when g + a_v < 0 (ballistic flight; at landing the vertical velocity is lost and Coulomb friction acts on the impact impulse, |Δv| ≤ μ·|w|): closed form per grid interval ({}), {} slides and flights located by root finding",
             self.inputs.note,
             self.history.motions.len()
         )
@@ -232,7 +232,7 @@ impl VerticalEpo {
             };
         }
         let normal = match self.c.kz {
-            Some(kz) => kz * state.dz,
+            Some(kz) => kz * state.dz.max(0.0),
             None => self.c.m * (self.c.g + av),
         };
         (state, normal)
@@ -270,6 +270,7 @@ impl ExactSolution for VerticalEpo {
         let resistance = match s.phase {
             EpoPhase::Stuck => self.c.k * (s.u - s.up),
             EpoPhase::Slipping(dir) => dir * self.c.mu * normal,
+            EpoPhase::Open => 0.0,
         };
         out[0] = self.c.m * d;
         out[1] = resistance;
@@ -281,14 +282,21 @@ impl ExactSolution for VerticalEpo {
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {
+        // slips and flights (the stick point travels with a flying mass) in time order
+        let mut moves: Vec<VerticalSlip> = self.history.slips.clone();
+        moves.extend(self.history.flights.iter().copied());
+        moves.sort_by(|a, b| a.start.total_cmp(&b.start));
         let slips = &self.history.slips;
         let mut q = Vec::new();
-        if let (Some(first), Some(last)) = (slips.first(), slips.last()) {
+        if let (Some(first), Some(last)) = (moves.first(), moves.last()) {
             q.push(("slip_start", first.start));
-            q.push(("slip_end", last.end));
+            q.push((
+                "slip_end",
+                last.end.max(slips.last().map_or(0.0, |s| s.end)),
+            ));
         }
         let (mut up, mut peak, mut total) = (0.0_f64, 0.0_f64, 0.0);
-        for s in slips {
+        for s in &moves {
             up += s.distance;
             peak = peak.max(up.abs());
             total += s.distance.abs();
