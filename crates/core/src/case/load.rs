@@ -1267,6 +1267,7 @@ impl<'a> SignalKeys<'a> {
             cycles: e.cycles,
             record: e.record.as_deref(),
             record_unit: e.record_unit.as_deref(),
+            record_column: e.record_column,
             scale_to_pga_g: e.scale_to_pga_g,
             polarity: e.polarity,
         }

@@ -144,6 +144,8 @@ pub struct RawSecond {
     pub cycles: Option<f64>,
     pub record: Option<String>,
     pub record_unit: Option<String>,
+    /// Acceleration column of a CSV with several (1-based after the time column).
+    pub record_column: Option<i64>,
     /// This component's target PGA, g.
     pub scale_to_pga_g: Option<f64>,
     pub polarity: Option<f64>,
