@@ -140,8 +140,18 @@ fn the_pepo_in_plane_is_the_two_dimensional_model_to_round_off() {
             let gaps = relative(&plane, &plane_gaps(&plane, &space, f64::INFINITY));
             eprintln!("{path} {variant}: {gaps:?}");
             for (k, g) in gaps {
-                // Measured: every channel identical bit for bit (0), out of plane 0.
-                assert!(g == 0.0, "{path} {variant} {k}: {g:e}");
+                // Measured: single identical bit for bit (0), out of plane 0. The 2D double
+                // now condenses each support into its series equivalent while the 3D model
+                // folds the massless node into the body's matrix: the body's motion is still
+                // the same bit for bit, the element forces differ at round-off (resistance
+                // 2.8e-13 of its peak, the gap docs/fe-engine.md measures between the 2D
+                // condensed and node models).
+                let bound = if double && k != "out of plane" {
+                    5e-13
+                } else {
+                    0.0
+                };
+                assert!(g <= bound, "{path} {variant} {k}: {g:e}");
             }
         }
     }
