@@ -12,7 +12,7 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 use std::path::Path;
 
-use rockslide::case::{Case, load_case};
+use rockslide::case::{Case, load_case, parse_case};
 use rockslide::engine::{self, Engine};
 
 /// The system allocator, counting the allocations (and reallocations) of each thread.
@@ -61,6 +61,25 @@ fn case(name: &str) -> Case {
     load_case(&root.join("cases").join(name)).expect("a shipped case loads")
 }
 
+/// The RPEPO as a 3D scene: on 10 × 2 supports (half-depth 0.3 m), its pulse at azimuth
+/// 30°, run for 1 s (the pulse's five cycles).
+fn rpepo_in_space() -> Case {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/rpepo-mass-accel.toml");
+    let text = std::fs::read_to_string(&path).expect("the RPEPO case");
+    let edits = [
+        ("[model]\n", "[model]\nhalf_depth = 0.3\nsupport_rows = 2\n"),
+        ("cycles = 5.0 ", "cycles = 5.0\nazimuth_deg = 30.0 "),
+        ("duration = 2.0 ", "duration = 1.0 "),
+    ];
+    let text = edits.iter().fold(text, |t, (from, to)| {
+        assert!(t.contains(from), "{from:?} in the RPEPO case");
+        t.replacen(from, to, 1)
+    });
+    let case = parse_case(&path, &text).expect("the 3D RPEPO loads");
+    assert!(case.scene.spatial.is_some(), "a 3D scene");
+    case
+}
+
 /// Allocations of one run of `engine`/`variant` on `case` lasting `duration`, and its
 /// step count.
 fn allocations(engine: &dyn Engine, case: &Case, variant: &str, duration: f64) -> (u64, u64) {
@@ -75,7 +94,11 @@ fn allocations(engine: &dyn Engine, case: &Case, variant: &str, duration: f64) -
 
 /// (allocations for T, for 2T, steps for T) of every variant of engine `id` on `name`.
 fn measured(id: &str, name: &str) -> Vec<(String, u64, u64, u64)> {
-    let case = case(name);
+    measured_on(id, name, &case(name))
+}
+
+/// As [`measured`], on a case given whole (`name` labels the messages).
+fn measured_on(id: &str, name: &str, case: &Case) -> Vec<(String, u64, u64, u64)> {
     let engines = engine::all();
     let engine = engines.iter().find(|e| e.id() == id).expect("registered");
     let variants = engine.variants(&case.scene).expect("runs the case");
@@ -84,9 +107,9 @@ fn measured(id: &str, name: &str) -> Vec<(String, u64, u64, u64)> {
         .into_iter()
         .map(|variant| {
             // A first run warms whatever is set up once per process (lazy tables).
-            allocations(engine.as_ref(), &case, variant, t);
-            let (short, steps) = allocations(engine.as_ref(), &case, variant, t);
-            let (long, steps_long) = allocations(engine.as_ref(), &case, variant, 2.0 * t);
+            allocations(engine.as_ref(), case, variant, t);
+            let (short, steps) = allocations(engine.as_ref(), case, variant, t);
+            let (long, steps_long) = allocations(engine.as_ref(), case, variant, 2.0 * t);
             assert_eq!(steps_long, 2 * steps, "{id}/{variant}: the long run is twice as long");
             eprintln!("{id}/{variant} on {name}: {short} allocations in {steps} steps, {long} in {steps_long}");
             (variant.to_string(), short, long, steps)
@@ -95,7 +118,11 @@ fn measured(id: &str, name: &str) -> Vec<(String, u64, u64, u64)> {
 }
 
 fn assert_loop_allocation_free(id: &str, name: &str) {
-    for (variant, short, long, steps) in measured(id, name) {
+    assert_allocation_free_on(id, name, &case(name));
+}
+
+fn assert_allocation_free_on(id: &str, name: &str, case: &Case) {
+    for (variant, short, long, steps) in measured_on(id, name, case) {
         assert!(
             steps >= 1000,
             "{id}/{variant}: {steps} steps, too few to tell"
@@ -115,6 +142,16 @@ fn fe_pepo_single_and_double_allocate_nothing_per_step() {
 #[test]
 fn fe_rpepo_single_and_double_allocate_nothing_per_step() {
     assert_loop_allocation_free("fe", "rpepo-mass-accel.toml");
+}
+
+#[test]
+fn fe_pepo_in_space_allocates_nothing_per_step() {
+    assert_loop_allocation_free("fe", "spatial/pepo-pulse-azimuth30.toml");
+}
+
+#[test]
+fn fe_rocking_body_in_space_single_and_double_allocate_nothing_per_step() {
+    assert_allocation_free_on("fe", "the 3D RPEPO", &rpepo_in_space());
 }
 
 #[test]

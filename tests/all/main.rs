@@ -19,6 +19,7 @@ mod guarded_run;
 mod mcap_cli;
 mod mcap_traces;
 mod opensees;
+mod orbit_plot;
 mod output_step;
 mod paper_values;
 mod predictor_corrector;

@@ -27,6 +27,7 @@ pub(crate) mod format;
 mod html;
 pub(crate) mod markdown;
 mod mcap_log;
+mod orbit_plot;
 mod plots;
 mod provenance;
 mod record_plot;

@@ -176,6 +176,7 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
         .fold(None, |m: Option<f64>, t| Some(m.map_or(t, |m| m.min(t))));
     let mut out: Vec<Figure> = super::record_plot::record_figure(r).into_iter().collect();
     out.extend(super::vertical_plot::vertical_figure(r));
+    out.extend(super::orbit_plot::orbit_figure(r));
     for spec in SPECS {
         let members: Vec<usize> = (0..all.len())
             .filter(|&i| spec.channels.iter().any(|c| all[i].trace.has(c.key)))
