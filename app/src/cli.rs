@@ -26,7 +26,7 @@ use rockslide_verify::timings;
 #[derive(Debug, Parser)]
 #[command(name = "rockslide", version, about, long_about = None)]
 pub struct Cli {
-    /// What to do (default: run every case in `cases/`, `cases/records/` and `cases/vertical/` and write `reports/`).
+    /// What to do (default: run every case in `cases/`, `cases/records/`, `cases/vertical/` and `cases/spatial/` and write `reports/`).
     #[command(subcommand)]
     pub command: Option<Command>,
     /// Print nothing but errors and failures.
@@ -50,7 +50,7 @@ pub struct Cli {
 pub enum Command {
     /// Run cases and write their traces and reports.
     Run {
-        /// Case files or folders (default: `cases/`, `cases/records/` and `cases/vertical/`).
+        /// Case files or folders (default: `cases/`, `cases/records/`, `cases/vertical/` and `cases/spatial/`).
         cases: Vec<PathBuf>,
         /// Output folder.
         #[arg(long, short, default_value = "reports")]
@@ -63,7 +63,7 @@ pub enum Command {
     },
     /// List the cases and which engines apply to each.
     List {
-        /// Case files or folders (default: `cases/`, `cases/records/` and `cases/vertical/`).
+        /// Case files or folders (default: `cases/`, `cases/records/`, `cases/vertical/` and `cases/spatial/`).
         cases: Vec<PathBuf>,
     },
     /// Write a case's reference solution (exact or closed form) as a CSV trace.
@@ -81,7 +81,7 @@ pub enum Command {
     /// any fails (one line per failure on stderr), 2 on bad input. Writes the reports and
     /// JUnit XML.
     Check {
-        /// Case files or folders (default: `cases/`, `cases/records/` and `cases/vertical/`).
+        /// Case files or folders (default: `cases/`, `cases/records/`, `cases/vertical/` and `cases/spatial/`).
         cases: Vec<PathBuf>,
         /// Output folder for reports and traces.
         #[arg(long, short, default_value = "reports")]
@@ -554,7 +554,8 @@ const DEFAULT_RUN_SWEEP_BUDGET: f64 = 3.0;
 /// The folders `run`, `check` and `list` read when given no case: the top-level cases and
 /// the record cases. `cases/stability/` is not among them: its scenes are meant to break
 /// engines and are classified by `rockslide stability`, not gated.
-const DEFAULT_CASE_FOLDERS: &[&str] = &["cases", "cases/records", "cases/vertical"];
+const DEFAULT_CASE_FOLDERS: &[&str] =
+    &["cases", "cases/records", "cases/vertical", "cases/spatial"];
 
 /// Expand case arguments: files as given, folders to their `*.toml`; with none, every
 /// folder of [`DEFAULT_CASE_FOLDERS`] that exists (`cases/` itself must).

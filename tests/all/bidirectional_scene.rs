@@ -171,7 +171,10 @@ fn every_2d_engine_refuses_a_3d_scene() {
 fn the_spatial_cases_load_and_select_the_plan_references() {
     for (name, method) in [
         ("spatial/pepo-pulse-azimuth30", "circular yield surface"),
-        ("spatial/block-record-pair", "isotropic friction cone"),
+        (
+            "spatial/reference-only/block-record-pair",
+            "isotropic friction cone",
+        ),
     ] {
         let c = case(name);
         assert!(c.scene.spatial.is_some());
@@ -189,7 +192,7 @@ fn the_spatial_cases_load_and_select_the_plan_references() {
         }
     }
     // the pair's peak resultant sliding as measured (docs/bidirectional.md)
-    let c = case("spatial/block-record-pair");
+    let c = case("spatial/reference-only/block-record-pair");
     let r = rockslide::reference::for_case(&c).unwrap();
     let peak = r
         .exact_quantities()
