@@ -29,84 +29,15 @@ fn ground(dt: f64, acc: &[f64], t: f64) -> f64 {
     acc[i] * (1.0 - f) + acc[i + 1] * f
 }
 
-/// One Dormand–Prince 5(4) step of y' = f(t, y): (5th-order solution, error estimate).
+/// One Dormand–Prince 5(4) step of y' = f(t, y): (5th-order solution, absolute error
+/// estimate).
 fn dp_step<const N: usize>(
-    f: &dyn Fn(f64, &[f64; N]) -> [f64; N],
+    f: &impl Fn(f64, &[f64; N]) -> [f64; N],
     t: f64,
     y: &[f64; N],
     h: f64,
 ) -> ([f64; N], f64) {
-    const C: [f64; 7] = [0.0, 0.2, 0.3, 0.8, 8.0 / 9.0, 1.0, 1.0];
-    const A: [[f64; 6]; 7] = [
-        [0.0; 6],
-        [0.2, 0.0, 0.0, 0.0, 0.0, 0.0],
-        [3.0 / 40.0, 9.0 / 40.0, 0.0, 0.0, 0.0, 0.0],
-        [44.0 / 45.0, -56.0 / 15.0, 32.0 / 9.0, 0.0, 0.0, 0.0],
-        [
-            19372.0 / 6561.0,
-            -25360.0 / 2187.0,
-            64448.0 / 6561.0,
-            -212.0 / 729.0,
-            0.0,
-            0.0,
-        ],
-        [
-            9017.0 / 3168.0,
-            -355.0 / 33.0,
-            46732.0 / 5247.0,
-            49.0 / 176.0,
-            -5103.0 / 18656.0,
-            0.0,
-        ],
-        [
-            35.0 / 384.0,
-            0.0,
-            500.0 / 1113.0,
-            125.0 / 192.0,
-            -2187.0 / 6784.0,
-            11.0 / 84.0,
-        ],
-    ];
-    const B5: [f64; 7] = [
-        35.0 / 384.0,
-        0.0,
-        500.0 / 1113.0,
-        125.0 / 192.0,
-        -2187.0 / 6784.0,
-        11.0 / 84.0,
-        0.0,
-    ];
-    const B4: [f64; 7] = [
-        5179.0 / 57600.0,
-        0.0,
-        7571.0 / 16695.0,
-        393.0 / 640.0,
-        -92097.0 / 339200.0,
-        187.0 / 2100.0,
-        1.0 / 40.0,
-    ];
-    let mut k = [[0.0; N]; 7];
-    for s in 0..7 {
-        let mut ys = *y;
-        for (j, kj) in k.iter().enumerate().take(s) {
-            for n in 0..N {
-                ys[n] += h * A[s][j] * kj[n];
-            }
-        }
-        k[s] = f(t + C[s] * h, &ys);
-    }
-    let mut y5 = *y;
-    let mut err = 0.0_f64;
-    for n in 0..N {
-        let (mut d5, mut d4) = (0.0, 0.0);
-        for s in 0..7 {
-            d5 += B5[s] * k[s][n];
-            d4 += B4[s] * k[s][n];
-        }
-        y5[n] += h * d5;
-        err = err.max((h * (d5 - d4)).abs());
-    }
-    (y5, err)
+    crate::vertical_integrator::step(f, t, y, h, &[1.0; N])
 }
 
 /// The EPO integrated phase by phase with adaptive Dormand–Prince steps that never cross a

@@ -3,6 +3,7 @@
 //! separately (the inputs have kinks only at grid points), and locating the switching
 //! events (stick/slip, lift-off, landing) by bisecting the step size until the event is
 //! bracketed within 1e-14 s. It shares no code with the references: only the inputs.
+//! Its Dormand–Prince step (`step`) also serves the record references' tests.
 
 /// State of four components.
 pub type Y = [f64; 4];
@@ -61,21 +62,27 @@ const B4: [f64; 7] = [
     1.0 / 40.0,
 ];
 
-/// One Dormand–Prince step: the fifth-order result and its error estimate (max norm,
-/// scaled by `scale`).
-pub fn step(f: &impl Rhs, t: f64, y: &Y, h: f64, scale: &Y) -> (Y, f64) {
-    let mut k = [[0.0; 4]; 7];
+/// One Dormand–Prince step of y' = f(t, y) for any number of components: the fifth-order
+/// result and its error estimate (max norm, scaled per component by `scale`).
+pub fn step<const N: usize>(
+    f: &impl Fn(f64, &[f64; N]) -> [f64; N],
+    t: f64,
+    y: &[f64; N],
+    h: f64,
+    scale: &[f64; N],
+) -> ([f64; N], f64) {
+    let mut k = [[0.0; N]; 7];
     for s in 0..7 {
         let mut ys = *y;
         for (j, kj) in k.iter().enumerate().take(s) {
-            for i in 0..4 {
+            for i in 0..N {
                 ys[i] += h * A[s][j] * kj[i];
             }
         }
         k[s] = f(t + C[s] * h, &ys);
     }
     let (mut y5, mut err) = (*y, 0.0_f64);
-    for i in 0..4 {
+    for i in 0..N {
         let (mut d5, mut d4) = (0.0, 0.0);
         for s in 0..7 {
             d5 += B5[s] * k[s][i];
