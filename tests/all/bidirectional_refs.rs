@@ -204,10 +204,10 @@ fn rotating_both_components_rotates_the_answer() {
 }
 
 /// The error of each step of a ladder against the finest, on a record pair (no closed
-/// form): the largest |Δs| over the run.
+/// form): the largest |Δs| over the run. Prints each error and the observed orders.
 fn ladder(solve: impl Fn(f64) -> Vec<[f64; 2]>, steps: &[f64]) -> Vec<f64> {
     let finest = solve(*steps.last().unwrap());
-    steps[..steps.len() - 1]
+    let errs: Vec<f64> = steps[..steps.len() - 1]
         .iter()
         .map(|&h| {
             solve(h)
@@ -216,7 +216,14 @@ fn ladder(solve: impl Fn(f64) -> Vec<[f64; 2]>, steps: &[f64]) -> Vec<f64> {
                 .map(|(a, b)| (a[0] - b[0]).hypot(a[1] - b[1]))
                 .fold(0.0, f64::max)
         })
-        .collect()
+        .collect();
+    for (h, e) in steps.iter().zip(&errs) {
+        println!("h = {h:e}: {e:.3e} m");
+    }
+    for w in errs.windows(2) {
+        println!("observed order {:.2}", order(w[0], w[1], 2.0, 1.0));
+    }
+    errs
 }
 
 #[test]
@@ -229,12 +236,6 @@ fn the_block_reference_converges_under_a_record_pair() {
         },
         &steps,
     );
-    for (h, e) in steps.iter().zip(&errs) {
-        println!("h = {h:e}: {e:.3e} m");
-    }
-    for w in errs.windows(2) {
-        println!("observed order {:.2}", order(w[0], w[1], 2.0, 1.0));
-    }
     // measured 4.5e-4, 2.0e-4, 1.4e-4, 5.1e-5 m (of a 32 mm slide): first order, from
     // the slaved direction below |ṡ| = 2·a_f·h (docs/bidirectional.md)
     assert!(errs.windows(2).all(|w| w[1] < w[0]), "{errs:?}");
@@ -255,12 +256,6 @@ fn the_oscillator_reference_converges_under_a_record_pair() {
         },
         &steps,
     );
-    for (h, e) in steps.iter().zip(&errs) {
-        println!("h = {h:e}: {e:.3e} m");
-    }
-    for w in errs.windows(2) {
-        println!("observed order {:.2}", order(w[0], w[1], 2.0, 1.0));
-    }
     // measured 1.1e-9, 2.1e-10, 2.5e-11, 1.6e-12 m: order 2.4 → 3.95
     assert!(errs.windows(2).all(|w| w[1] < 0.25 * w[0]), "{errs:?}");
     assert!(errs[3] < 2e-12, "{errs:?}");
