@@ -107,47 +107,50 @@ fn gb(bytes: u64) -> String {
 /// case's `run.duration` field saying how much, why, and how to override.
 pub fn check(case: &Case, plan: &Plan) -> Result<(), InputError> {
     let need = estimate(case, plan);
-    let over =
-        |what: &str, var: &str, default: u64, bytes: u64, rows: u64| -> Result<(), InputError> {
-            let max = limit(var, default).map_err(|e| case.field_error("run.duration", e))?;
-            if bytes <= max {
-                return Ok(());
-            }
-            Err(case.field_error(
-                "run.duration",
-                format!(
-                    "the {} planned run(s) {} {rows} rows in all ({}), whose traces \
-                 need about {} of {what}, over the limit of {}: shorten the run, enlarge dt{}, \
-                 or raise the limit with {var}=<bytes>",
-                    plan.runs.len(),
-                    if what == "disk" { "write" } else { "record" },
-                    if what == "disk" && case.run.output_dt.is_some() {
-                        "one per run.output_dt"
-                    } else {
-                        "duration / dt each"
-                    },
-                    gb(bytes),
-                    gb(max),
-                    if what == "disk" {
-                        " or set run.output_dt"
-                    } else {
-                        ""
-                    }
-                ),
-            ))
-        };
+    // `rows`: what the runs do with how many rows, and how they are counted; `remedy`: a
+    // way out besides the run's length and step.
+    let over = |what: &str,
+                var: &str,
+                default: u64,
+                bytes: u64,
+                rows: String,
+                remedy: &str|
+     -> Result<(), InputError> {
+        let max = limit(var, default).map_err(|e| case.field_error("run.duration", e))?;
+        if bytes <= max {
+            return Ok(());
+        }
+        Err(case.field_error(
+            "run.duration",
+            format!(
+                "the {} planned run(s) {rows}, whose traces need about {} of {what}, over the \
+                 limit of {}: shorten the run, enlarge dt{remedy}, or raise the limit with \
+                 {var}=<bytes>",
+                plan.runs.len(),
+                gb(bytes),
+                gb(max),
+            ),
+        ))
+    };
     over(
         "memory",
         MEMORY_LIMIT_VAR,
         DEFAULT_MEMORY_LIMIT,
         need.memory,
-        need.rows,
+        format!("record {} rows in all (duration / dt each)", need.rows),
+        "",
     )?;
+    let written = if case.run.output_dt.is_some() {
+        "one per run.output_dt"
+    } else {
+        "duration / dt each"
+    };
     over(
         "disk",
         DISK_LIMIT_VAR,
         DEFAULT_DISK_LIMIT,
         need.disk,
-        need.written_rows,
+        format!("write {} rows in all ({written})", need.written_rows),
+        " or set run.output_dt",
     )
 }

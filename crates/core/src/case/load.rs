@@ -18,6 +18,26 @@ use super::signal::Signal;
 use super::spatial::{Depth, Spatial};
 use crate::error::{InputError, InputErrors, line_col};
 
+/// [`SignalKeys`] borrowed from a raw excitation table: `RawExcitation`, `RawVertical` or
+/// `RawSecond`, which spell the signal keys alike (serde's `deny_unknown_fields` does not
+/// combine with `flatten`, so the raw tables cannot share one struct).
+macro_rules! signal_keys {
+    ($e:expr) => {{
+        let e = $e;
+        SignalKeys {
+            shape: e.shape.as_deref(),
+            amplitude: e.amplitude,
+            omega: e.omega,
+            cycles: e.cycles,
+            record: e.record.as_deref(),
+            record_unit: e.record_unit.as_deref(),
+            record_column: e.record_column,
+            scale_to_pga_g: e.scale_to_pga_g,
+            polarity: e.polarity,
+        }
+    }};
+}
+
 /// Read and validate the case file at `path`; `engine_ids` are the engines a case may name
 /// (the registry's, passed in so that there is one list).
 pub fn load_case(path: &Path, engine_ids: &[&str]) -> Result<Case, InputErrors> {
@@ -416,7 +436,7 @@ impl Validator<'_> {
             self.nothing_beside_none(e);
             return Some(Excitation::None);
         }
-        let signal = self.signal(&SignalKeys::of_horizontal(e), "excitation", case_path)?;
+        let signal = self.signal(&signal_keys!(e), "excitation", case_path)?;
         if e.record.is_some() && e.kind == "ground-displacement" {
             self.fail(
                 "excitation.kind",
@@ -1162,36 +1182,6 @@ struct SignalKeys<'a> {
     polarity: Option<f64>,
 }
 
-impl<'a> SignalKeys<'a> {
-    fn of_horizontal(e: &'a RawExcitation) -> Self {
-        SignalKeys {
-            shape: e.shape.as_deref(),
-            amplitude: e.amplitude,
-            omega: e.omega,
-            cycles: e.cycles,
-            record: e.record.as_deref(),
-            record_unit: e.record_unit.as_deref(),
-            record_column: e.record_column,
-            scale_to_pga_g: e.scale_to_pga_g,
-            polarity: e.polarity,
-        }
-    }
-
-    fn of_vertical(e: &'a RawVertical) -> Self {
-        SignalKeys {
-            shape: e.shape.as_deref(),
-            amplitude: e.amplitude,
-            omega: e.omega,
-            cycles: e.cycles,
-            record: e.record.as_deref(),
-            record_unit: e.record_unit.as_deref(),
-            record_column: e.record_column,
-            scale_to_pga_g: e.scale_to_pga_g,
-            polarity: e.polarity,
-        }
-    }
-}
-
 impl Validator<'_> {
     /// `[excitation.vertical]`: a vertical ground acceleration a_v(t) (positive upward),
     /// a sine pulse or a record (its own file and scale), and how N follows it. A scene
@@ -1208,7 +1198,7 @@ impl Validator<'_> {
             raw.scale_to_pga.as_ref(),
             "excitation.vertical.scale_to_pga",
         );
-        let signal = self.signal(&SignalKeys::of_vertical(raw), P, case_path);
+        let signal = self.signal(&signal_keys!(raw), P, case_path);
         let (gravity, kind) = match model? {
             Model::Oscillator(o) => (o.gravity, "oscillator"),
             Model::RockingBody(r) => (r.gravity, "rocking-body"),
@@ -1257,22 +1247,6 @@ impl Validator<'_> {
 }
 
 // --- bidirectional (3D) scenes: `azimuth_deg`, `[excitation.y]`, depth along y ---
-
-impl<'a> SignalKeys<'a> {
-    fn of_second(e: &'a RawSecond) -> Self {
-        SignalKeys {
-            shape: e.shape.as_deref(),
-            amplitude: e.amplitude,
-            omega: e.omega,
-            cycles: e.cycles,
-            record: e.record.as_deref(),
-            record_unit: e.record_unit.as_deref(),
-            record_column: e.record_column,
-            scale_to_pga_g: e.scale_to_pga_g,
-            polarity: e.polarity,
-        }
-    }
-}
 
 /// Whether the case gives any key of a bidirectional scene.
 fn gives_spatial_keys(m: &RawModel, e: &RawExcitation) -> bool {
@@ -1335,7 +1309,7 @@ impl Validator<'_> {
     /// `[excitation.y]`: a signal of the first component's kind.
     fn second(&mut self, y: &RawSecond, e: &RawExcitation, case_path: &Path) -> Option<Signal> {
         const P: &str = "excitation.y";
-        let signal = self.signal(&SignalKeys::of_second(y), P, case_path)?;
+        let signal = self.signal(&signal_keys!(y), P, case_path)?;
         if y.record.is_some() && e.kind == "ground-displacement" {
             self.fail(
                 P,

@@ -6,7 +6,7 @@
 //! (so finished points are recognised on resume) and builds the case each point runs.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use sha2::{Digest, Sha256};
 
@@ -17,45 +17,30 @@ use rockslide_core::error::{InputError, InputErrors};
 pub use rockslide_core::study_grid::{Amplitude, DEFAULT_TAIL, GridPoint, GridRecord, short_name};
 use rockslide_core::study_grid::{GridSpec, read_grid};
 
-/// A validated, expanded grid and the engine runs its base case plans.
+/// A validated, expanded grid and the engine runs its base case plans; it reads as the
+/// [`GridSpec`] it wraps (`grid.points`, `grid.base`, …).
 #[derive(Debug, Clone)]
 pub struct Grid {
-    /// Grid file.
-    pub path: PathBuf,
-    /// Title (default: the file stem).
-    pub title: String,
-    /// SHA-256 of the grid file.
-    pub sha256: String,
-    /// The base case (model, engines, run settings).
-    pub base: Case,
-    /// Records.
-    pub records: Vec<GridRecord>,
-    /// Seconds of quiet ground after each record's end.
-    pub tail: f64,
-    /// Whether to add Newmark's rigid block (ky = μ·g of the model) to every point.
-    pub newmark: bool,
-    /// Every point, in index order.
-    pub points: Vec<GridPoint>,
+    /// The grid file read, validated and expanded.
+    pub spec: GridSpec,
     /// The engine runs the base case plans (`engine/variant@dt`, …): part of every point's
     /// hash, so that results made before an engine joined are not mistaken for complete.
     pub plan_signature: String,
+}
+
+impl std::ops::Deref for Grid {
+    type Target = GridSpec;
+    fn deref(&self) -> &GridSpec {
+        &self.spec
+    }
 }
 
 /// Read, validate and expand a grid file (the reader is `rockslide_core::study_grid`;
 /// the base case is checked against this registry's engines), then plan its base case.
 pub fn load_grid(path: &Path) -> Result<Grid, InputErrors> {
     let text = rockslide_core::case::read_input_text(path, "grid file")?;
-    let GridSpec {
-        path,
-        title,
-        sha256,
-        base,
-        records,
-        tail,
-        newmark,
-        points,
-    } = read_grid(path, &text, &crate::registry::load_case)?;
-    let plan = crate::suite::plan(&base, &crate::registry::all())?;
+    let spec = read_grid(path, &text, &crate::registry::load_case)?;
+    let plan = crate::suite::plan(&spec.base, &crate::registry::all())?;
     let plan_signature = plan
         .runs
         .iter()
@@ -63,14 +48,7 @@ pub fn load_grid(path: &Path) -> Result<Grid, InputErrors> {
         .collect::<Vec<_>>()
         .join(",");
     Ok(Grid {
-        path,
-        title,
-        sha256,
-        base,
-        records,
-        tail,
-        newmark,
-        points,
+        spec,
         plan_signature,
     })
 }
