@@ -622,9 +622,7 @@ fn check_chunk(body: &[u8]) -> Result<(), String> {
     let records = &body[32 + name_len + 8..];
     let inner: std::borrow::Cow<'_, [u8]> = match compression {
         b"" => records.into(),
-        b"zstd" => zstd::bulk::decompress(records, declared as usize)
-            .map_err(|e| format!("does not decompress: {e}"))?
-            .into(),
+        b"zstd" => decompress_at_most(records, declared)?.into(),
         other => {
             return Err(format!(
                 "compression \"{}\" is not read (rockslide writes zstd)",
@@ -649,6 +647,27 @@ fn check_chunk(body: &[u8]) -> Result<(), String> {
         at += 9 + len as usize;
     }
     Ok(())
+}
+
+/// A zstd chunk's records, at most `declared` bytes of them. The buffer grows with what
+/// actually decompresses instead of being reserved at the declared size up front, so a
+/// small corrupt file that claims a large chunk costs memory in proportion to its real
+/// content, not to its claim.
+fn decompress_at_most(records: &[u8], declared: u64) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let decoder = zstd::stream::read::Decoder::new(records)
+        .map_err(|e| format!("does not decompress: {e}"))?;
+    let mut inner = Vec::new();
+    decoder
+        .take(declared + 1)
+        .read_to_end(&mut inner)
+        .map_err(|e| format!("does not decompress: {e}"))?;
+    if inner.len() as u64 > declared {
+        return Err(format!(
+            "decompresses to more than its declared {declared} uncompressed bytes"
+        ));
+    }
+    Ok(inner)
 }
 
 fn u64_at(b: &[u8], i: usize) -> u64 {
@@ -892,4 +911,23 @@ pub fn describe(contents: &McapContents) -> String {
 /// Read an MCAP file and describe it (`rockslide trace-info`).
 pub fn mcap_info(path: &Path) -> Result<String, Error> {
     Ok(describe(&read_mcap(path)?))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::decompress_at_most;
+
+    #[test]
+    fn a_chunk_costs_memory_for_what_it_holds_not_for_what_it_claims() {
+        let content: Vec<u8> = (0..1000u32).map(|i| (i % 251) as u8).collect();
+        let packed = zstd::bulk::compress(&content, 1).unwrap();
+        assert_eq!(decompress_at_most(&packed, 1000).unwrap(), content);
+        // a claim of 200 MiB for 1000 bytes: the buffer follows the bytes, not the claim
+        let inner = decompress_at_most(&packed, 200 << 20).unwrap();
+        assert_eq!(inner, content);
+        assert!(inner.capacity() < 1 << 20, "{}", inner.capacity());
+        let e = decompress_at_most(&packed, 999).unwrap_err();
+        assert!(e.contains("more than its declared 999"), "{e}");
+        assert!(decompress_at_most(b"not zstd", 10).is_err());
+    }
 }
