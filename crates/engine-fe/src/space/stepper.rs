@@ -117,22 +117,8 @@ pub struct SpaceSnapshot<'a> {
     pub x_static: Vector3<f64>,
 }
 
-/// Deterministic counters of a run (as the 2D ones).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct SpaceCounters {
-    /// Time steps.
-    pub steps: u64,
-    /// Newton iterations over all steps.
-    pub iterations: u64,
-    /// Most iterations in a step.
-    pub max_step_iterations: u64,
-    /// Iterations of the static preload.
-    pub static_iterations: u64,
-    /// Step attempts retried as two halves.
-    pub step_cuts: u64,
-    /// Steps accepted at the round-off floor.
-    pub roundoff_accepted: u64,
-}
+/// Deterministic counters of a run: the 2D ones.
+pub use crate::stepper::Counters as SpaceCounters;
 
 /// Every vector the loop needs, allocated once.
 struct Workspace {
