@@ -8,7 +8,7 @@
 //! Massless nodes carry no inertia: their rows are (1 + α)·p₊ − α·pₙ = 0.
 //! Nothing is allocated inside the loop: every vector lives in a [`Workspace`].
 
-use nalgebra::{Vector2, Vector3};
+use nalgebra::{SVector, Vector2, Vector3};
 
 use super::model::{Assembly, Model, System, solve};
 use super::options::FeOptions;
@@ -103,6 +103,52 @@ pub struct Counters {
     /// Steps accepted at the round-off floor (residual within tolerance and no longer
     /// falling, correction still above the displacement criterion).
     pub roundoff_accepted: u64,
+}
+
+/// The Newmark/HHT-α coefficients of one step of length `h` (the 2D and 3D steppers').
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Newmark {
+    /// HHT's α (0 for Newmark).
+    pub alpha: f64,
+    /// Newmark's β and γ.
+    pub beta: f64,
+    pub gamma: f64,
+    /// 1 + α, the weight of the end-of-step forces.
+    pub s: f64,
+    /// ∂a/∂q = 1/(β·h²) and ∂v/∂q = γ/(β·h).
+    pub c0: f64,
+    pub c1: f64,
+    /// Step, s.
+    pub h: f64,
+}
+
+impl Newmark {
+    pub(crate) fn new(opts: &FeOptions, h: f64) -> Self {
+        let (alpha, beta, gamma) = opts.integrator.parameters();
+        Self {
+            alpha,
+            beta,
+            gamma,
+            s: 1.0 + alpha,
+            c0: 1.0 / (beta * h * h),
+            c1: gamma / (beta * h),
+            h,
+        }
+    }
+
+    /// Acceleration and velocity at the end of the step from the displacement increment
+    /// `dq` = q − qₙ and the start's velocity and acceleration (Newmark's relations).
+    #[inline]
+    pub(crate) fn kinematics<const D: usize>(
+        &self,
+        dq: SVector<f64, D>,
+        vn: &SVector<f64, D>,
+        an: &SVector<f64, D>,
+    ) -> (SVector<f64, D>, SVector<f64, D>) {
+        let a = (dq - vn * self.h) * self.c0 - an * (0.5 / self.beta - 1.0);
+        let v = vn + (an * (1.0 - self.gamma) + a * self.gamma) * self.h;
+        (a, v)
+    }
 }
 
 /// Every vector the loop needs, allocated once.
@@ -384,9 +430,10 @@ fn newton_step(
 ) -> Result<StepState, StepFailure> {
     let m = model.mass_diag();
     let c = model.body.damping;
-    let (alpha, beta, gamma) = opts.integrator.parameters();
-    let s = 1.0 + alpha;
-    let (c0, c1) = (1.0 / (beta * h * h), gamma / (beta * h));
+    let nm = Newmark::new(opts, h);
+    let Newmark {
+        alpha, s, c0, c1, ..
+    } = nm;
     let sys = System {
         c0,
         s,
@@ -428,8 +475,7 @@ fn newton_step(
     };
     while it < newton.max_iterations {
         it += 1;
-        a = (q - n.q - n.v * h) * c0 - n.a * (0.5 / beta - 1.0); // Newmark
-        v = n.v + (n.a * (1.0 - gamma) + a * gamma) * h;
+        (a, v) = nm.kinematics(q - n.q, &n.v, &n.a);
         if !model.body.rotation {
             a.z = 0.0;
             v.z = 0.0;

@@ -24,6 +24,7 @@ use nalgebra::{Matrix3, Vector3, Vector6};
 use super::model::{Pose, SpaceAssembly, SpaceModel, SpaceSystem, solve};
 use super::rotation::{exp, log, skew};
 use crate::options::FeOptions;
+use crate::stepper::Newmark;
 use rockslide_core::case::{Excitation, Signal};
 use rockslide_engine_api::RunStatus;
 
@@ -117,22 +118,8 @@ pub struct SpaceSnapshot<'a> {
     pub x_static: Vector3<f64>,
 }
 
-/// Deterministic counters of a run (as the 2D ones).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub struct SpaceCounters {
-    /// Time steps.
-    pub steps: u64,
-    /// Newton iterations over all steps.
-    pub iterations: u64,
-    /// Most iterations in a step.
-    pub max_step_iterations: u64,
-    /// Iterations of the static preload.
-    pub static_iterations: u64,
-    /// Step attempts retried as two halves.
-    pub step_cuts: u64,
-    /// Steps accepted at the round-off floor.
-    pub roundoff_accepted: u64,
-}
+/// Deterministic counters of a run: the 2D ones.
+pub use crate::stepper::Counters as SpaceCounters;
 
 /// Every vector the loop needs, allocated once.
 struct Workspace {
@@ -408,9 +395,10 @@ fn newton_step(
     counters: &mut SpaceCounters,
 ) -> Result<StepState, StepFailure> {
     let c = model.body.damping;
-    let (alpha, beta, gamma) = opts.integrator.parameters();
-    let s = 1.0 + alpha;
-    let (c0, c1) = (1.0 / (beta * h * h), gamma / (beta * h));
+    let nm = Newmark::new(opts, h);
+    let Newmark {
+        alpha, s, c0, c1, ..
+    } = nm;
     let newton = opts.newton;
     let g = drive.ground(t);
     let fd = drive.force(t);
@@ -458,8 +446,7 @@ fn newton_step(
     };
     while it < newton.max_iterations {
         it += 1;
-        a = (q - q_n - n.v * h) * c0 - n.a * (0.5 / beta - 1.0);
-        v = n.v + (n.a * (1.0 - gamma) + a * gamma) * h;
+        (a, v) = nm.kinematics(q - q_n, &n.v, &n.a);
         if !rotation {
             a.fixed_rows_mut::<3>(3).fill(0.0);
             v.fixed_rows_mut::<3>(3).fill(0.0);
