@@ -58,6 +58,30 @@ pub struct Rig {
     pub applied_supports: bool,
 }
 
+impl Rig {
+    /// A rig of one structure of mass `mass` without feet, slider or supports (the
+    /// constructors add what their rig has).
+    pub(crate) fn single(
+        world: PhysicsWorld,
+        ground: RigidBodyHandle,
+        structure: RigidBodyHandle,
+        mass: f64,
+    ) -> Rig {
+        Rig {
+            world,
+            ground,
+            structure,
+            feet: Vec::new(),
+            inertial_masses: vec![(structure, mass)],
+            mass,
+            foot_mass: 0.0,
+            slider: None,
+            supports: Vec::new(),
+            applied_supports: false,
+        }
+    }
+}
+
 /// An elastic-perfectly-plastic contact as one joint: a spring Kx (a ForceBased motor on
 /// X) whose force rapier caps at the friction limit μ·N (the motor's maximum force), in
 /// series with a massless slider at `s`, the motor's target. rapier caps the force within
@@ -226,13 +250,6 @@ pub fn oscillator_joint_limit(
     .build();
     let joint = world.insert_impulse_joint(ground, structure, joint);
     Rig {
-        world,
-        ground,
-        structure,
-        feet: vec![],
-        inertial_masses: vec![(structure, m)],
-        mass: m,
-        foot_mass: 0.0,
         slider: Some(Slider {
             joint,
             kx,
@@ -240,8 +257,7 @@ pub fn oscillator_joint_limit(
             limit,
             s: 0.0,
         }),
-        supports: Vec::new(),
-        applied_supports: false,
+        ..Rig::single(world, ground, structure, m)
     }
 }
 
@@ -271,18 +287,7 @@ pub fn rigid_block(b: &RigidBlock, s: &RapierSettings, dt: f64, kind: GroundKind
         .restitution(0.0)
         .restitution_combine_rule(CoefficientCombineRule::Min);
     let structure = world.insert(body, collider).0;
-    Rig {
-        world,
-        ground,
-        structure,
-        feet: vec![],
-        inertial_masses: vec![(structure, b.mass)],
-        mass: b.mass,
-        foot_mass: 0.0,
-        slider: None,
-        supports: Vec::new(),
-        applied_supports: false,
-    }
+    Rig::single(world, ground, structure, b.mass)
 }
 
 /// Rotation of a body about rapier's z axis, rad (counter-clockwise positive).
@@ -545,16 +550,8 @@ pub fn rocking_body_joint_limit(
         });
     }
     Rig {
-        world,
-        ground,
-        structure,
-        feet: vec![],
-        inertial_masses: vec![(structure, m)],
-        mass: m,
-        foot_mass: 0.0,
-        slider: None,
         supports,
-        applied_supports: false,
+        ..Rig::single(world, ground, structure, m)
     }
 }
 
@@ -608,15 +605,8 @@ pub fn rocking_body_applied_force(
         })
         .collect();
     Rig {
-        world,
-        ground,
-        structure,
-        feet: vec![],
-        inertial_masses: vec![(structure, r.mass)],
-        mass: r.mass,
-        foot_mass: 0.0,
-        slider: None,
         supports,
         applied_supports: true,
+        ..Rig::single(world, ground, structure, r.mass)
     }
 }
