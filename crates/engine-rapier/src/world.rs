@@ -487,18 +487,7 @@ pub fn rocking_body_joint_limit(
     let n = r.supports;
     let m = r.mass;
     let preload = r.weight() / (n as f64 * r.contact.kz);
-    let inertia = rocking_inertia(r);
-    let body = RigidBodyBuilder::dynamic()
-        .translation(Vector::new(0.0, r.cm_height - preload, 0.0))
-        .additional_mass_properties(MassProperties::new(
-            Vector::ZERO,
-            m,
-            Vector::new(inertia, inertia, inertia),
-        ))
-        .enabled_translations(true, true, false)
-        .enabled_rotations(false, false, true)
-        .can_sleep(false);
-    let structure = world.insert_body(body);
+    let structure = insert_rocking_structure(&mut world, r, preload);
     let h = dt / s.substeps as f64;
     let (kx, kz) = (r.contact.kx, r.contact.kz);
     let share = 1.0 - SUPPORT_DAMPING_SHARE;
@@ -555,6 +544,28 @@ pub fn rocking_body_joint_limit(
     }
 }
 
+/// The rocking body's structure without feet (mass M, the stated rotational inertia, X–Z
+/// translations and rotation about Z), its centre of mass at the CM height less the
+/// supports' static `preload`.
+fn insert_rocking_structure(
+    world: &mut PhysicsWorld,
+    r: &RockingBody,
+    preload: f64,
+) -> RigidBodyHandle {
+    let inertia = rocking_inertia(r);
+    let body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, r.cm_height - preload, 0.0))
+        .additional_mass_properties(MassProperties::new(
+            Vector::ZERO,
+            r.mass,
+            Vector::new(inertia, inertia, inertia),
+        ))
+        .enabled_translations(true, true, false)
+        .enabled_rotations(false, false, true)
+        .can_sleep(false);
+    world.insert_body(body)
+}
+
 /// The rocking body (RPEPO) with its supports as forces the engine computes
 /// ([`Support::force_on_body`]) and applies to the rapier body before each step: the
 /// same body as [`rocking_body_joint_limit`] (mass M, the stated rotational inertia, X–Z
@@ -575,18 +586,7 @@ pub fn rocking_body_applied_force(
     let ground = world.insert_body(ground_body);
     let n = r.supports;
     let preload = r.weight() / (n as f64 * r.contact.kz);
-    let inertia = rocking_inertia(r);
-    let body = RigidBodyBuilder::dynamic()
-        .translation(Vector::new(0.0, r.cm_height - preload, 0.0))
-        .additional_mass_properties(MassProperties::new(
-            Vector::ZERO,
-            r.mass,
-            Vector::new(inertia, inertia, inertia),
-        ))
-        .enabled_translations(true, true, false)
-        .enabled_rotations(false, false, true)
-        .can_sleep(false);
-    let structure = world.insert_body(body);
+    let structure = insert_rocking_structure(&mut world, r, preload);
     let supports = r
         .support_positions()
         .into_iter()
