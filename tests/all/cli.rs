@@ -1,15 +1,7 @@
 //! The command line as a user meets it: `run` writes CSV traces with units and a
 //! paper-style report; `list` shows cases and engines.
 
-use std::process::Command;
-
-fn rockslide(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_rockslide"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use crate::common::{into_closed_pipe, rockslide};
 
 #[test]
 fn run_writes_traces_with_units_and_a_report() {
@@ -182,21 +174,12 @@ fn list_and_run_accept_the_same_variants() {
 /// exits 0 with nothing on stderr (it printed through `print!`, which panics, exit 101).
 #[test]
 fn newmark_into_a_closed_pipe_is_not_a_panic() {
-    use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rockslide"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args([
-            "newmark",
-            "cases/records/Loma_Prieta_1989_HSP-000.AT2",
-            "--ky",
-            "0.1",
-        ])
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    drop(child.stdout.take());
-    let o = child.wait_with_output().unwrap();
+    let o = into_closed_pipe(&[
+        "newmark",
+        "cases/records/Loma_Prieta_1989_HSP-000.AT2",
+        "--ky",
+        "0.1",
+    ]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "{err}");
     assert!(err.is_empty(), "{err}");

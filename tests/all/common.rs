@@ -2,6 +2,7 @@
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
 
 use rockslide::case::{Case, load_case, parse_case};
 
@@ -26,4 +27,27 @@ pub fn case_with(name: &str, from: &str, to: &str) -> Case {
 /// Observed order of accuracy between two errors at steps dt1 > dt2.
 pub fn order(e1: f64, e2: f64, dt1: f64, dt2: f64) -> f64 {
     (e1 / e2).ln() / (dt1 / dt2).ln()
+}
+
+/// `rockslide args` run from the repository's root; its exit code and output.
+pub fn rockslide(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(args)
+        .output()
+        .unwrap()
+}
+
+/// `rockslide args | head -0` from the repository's root: the reading end of standard
+/// output closed before the command writes; its exit code and standard error.
+pub fn into_closed_pipe(args: &[&str]) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    child.wait_with_output().unwrap()
 }

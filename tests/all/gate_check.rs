@@ -282,18 +282,9 @@ fn check_on_an_empty_selection_fails() {
 
 #[test]
 fn a_closed_pipe_is_not_a_panic() {
-    use std::process::Stdio;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rockslide"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .arg("list")
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    // Close the reading end before `list` has loaded its cases: every write meets a closed
-    // pipe (`rockslide list | head -0`).
-    drop(child.stdout.take());
-    let o = child.wait_with_output().unwrap();
+    // The reading end closed before `list` has loaded its cases: every write meets a
+    // closed pipe (`rockslide list | head -0`).
+    let o = crate::common::into_closed_pipe(&["list"]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(0), "{err}");
     assert!(!err.contains("panicked"), "{err}");
@@ -303,18 +294,9 @@ fn a_closed_pipe_is_not_a_panic() {
 /// answers with its exit code (here 1: the case fails), never a panic (101).
 #[test]
 fn check_into_a_closed_pipe_is_not_a_panic() {
-    use std::process::Stdio;
     let dir = tempfile::tempdir().unwrap();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_rockslide"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(["check", "tests/data/too-tight.toml", "--out"])
-        .arg(dir.path())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
-    drop(child.stdout.take());
-    let o = child.wait_with_output().unwrap();
+    let out = dir.path().to_str().unwrap();
+    let o = crate::common::into_closed_pipe(&["check", "tests/data/too-tight.toml", "--out", out]);
     let err = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(1), "{err}");
     assert!(!err.contains("panicked"), "{err}");

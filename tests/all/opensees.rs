@@ -10,15 +10,7 @@ use rockslide::opensees::{NOT_FOUND, available};
 use rockslide::suite::{CaseResult, run_case};
 use rockslide::trace::Trace;
 
-use crate::common::{case, repo};
-
-fn rockslide(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_rockslide"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
-}
+use crate::common::{case, repo, rockslide};
 
 /// Whether the live tests can run; prints why not.
 fn live(test: &str) -> bool {

@@ -14,15 +14,7 @@ use rockslide::engine::fe::{FeOptions, simulate};
 use rockslide::io::{inside, remove_stale_temporaries, write_atomically};
 use rockslide::trace::read_mcap_bytes;
 
-use crate::common::repo;
-
-fn rockslide(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_rockslide"))
-        .args(args)
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .output()
-        .expect("rockslide runs")
-}
+use crate::common::{repo, rockslide};
 
 /// A shipped case's text with `from` replaced by `to` (which must occur).
 fn text_with(name: &str, from: &str, to: &str) -> String {

@@ -216,15 +216,6 @@ pub(crate) fn oscillator_with_supports(
         spring(JointAxis::LinY, kz, damping.1, f64::INFINITY),
     );
     Rig {
-        world: w,
-        ground,
-        structure,
-        feet: vec![],
-        inertial_masses: vec![(structure, m)],
-        mass: m,
-        foot_mass: 0.0,
-        slider: None,
-        applied_supports: false,
         supports: vec![Support {
             joint,
             vertical,
@@ -238,6 +229,7 @@ pub(crate) fn oscillator_with_supports(
             normal,
             delta: (0.0, -preload),
         }],
+        ..Rig::single(w, ground, structure, m)
     }
 }
 

@@ -58,6 +58,30 @@ pub struct Rig {
     pub applied_supports: bool,
 }
 
+impl Rig {
+    /// A rig of one structure of mass `mass` without feet, slider or supports (the
+    /// constructors add what their rig has).
+    pub(crate) fn single(
+        world: PhysicsWorld,
+        ground: RigidBodyHandle,
+        structure: RigidBodyHandle,
+        mass: f64,
+    ) -> Rig {
+        Rig {
+            world,
+            ground,
+            structure,
+            feet: Vec::new(),
+            inertial_masses: vec![(structure, mass)],
+            mass,
+            foot_mass: 0.0,
+            slider: None,
+            supports: Vec::new(),
+            applied_supports: false,
+        }
+    }
+}
+
 /// An elastic-perfectly-plastic contact as one joint: a spring Kx (a ForceBased motor on
 /// X) whose force rapier caps at the friction limit μ·N (the motor's maximum force), in
 /// series with a massless slider at `s`, the motor's target. rapier caps the force within
@@ -226,13 +250,6 @@ pub fn oscillator_joint_limit(
     .build();
     let joint = world.insert_impulse_joint(ground, structure, joint);
     Rig {
-        world,
-        ground,
-        structure,
-        feet: vec![],
-        inertial_masses: vec![(structure, m)],
-        mass: m,
-        foot_mass: 0.0,
         slider: Some(Slider {
             joint,
             kx,
@@ -240,8 +257,7 @@ pub fn oscillator_joint_limit(
             limit,
             s: 0.0,
         }),
-        supports: Vec::new(),
-        applied_supports: false,
+        ..Rig::single(world, ground, structure, m)
     }
 }
 
@@ -271,18 +287,7 @@ pub fn rigid_block(b: &RigidBlock, s: &RapierSettings, dt: f64, kind: GroundKind
         .restitution(0.0)
         .restitution_combine_rule(CoefficientCombineRule::Min);
     let structure = world.insert(body, collider).0;
-    Rig {
-        world,
-        ground,
-        structure,
-        feet: vec![],
-        inertial_masses: vec![(structure, b.mass)],
-        mass: b.mass,
-        foot_mass: 0.0,
-        slider: None,
-        supports: Vec::new(),
-        applied_supports: false,
-    }
+    Rig::single(world, ground, structure, b.mass)
 }
 
 /// Rotation of a body about rapier's z axis, rad (counter-clockwise positive).
@@ -482,18 +487,7 @@ pub fn rocking_body_joint_limit(
     let n = r.supports;
     let m = r.mass;
     let preload = r.weight() / (n as f64 * r.contact.kz);
-    let inertia = rocking_inertia(r);
-    let body = RigidBodyBuilder::dynamic()
-        .translation(Vector::new(0.0, r.cm_height - preload, 0.0))
-        .additional_mass_properties(MassProperties::new(
-            Vector::ZERO,
-            m,
-            Vector::new(inertia, inertia, inertia),
-        ))
-        .enabled_translations(true, true, false)
-        .enabled_rotations(false, false, true)
-        .can_sleep(false);
-    let structure = world.insert_body(body);
+    let structure = insert_rocking_structure(&mut world, r, preload);
     let h = dt / s.substeps as f64;
     let (kx, kz) = (r.contact.kx, r.contact.kz);
     let share = 1.0 - SUPPORT_DAMPING_SHARE;
@@ -545,17 +539,31 @@ pub fn rocking_body_joint_limit(
         });
     }
     Rig {
-        world,
-        ground,
-        structure,
-        feet: vec![],
-        inertial_masses: vec![(structure, m)],
-        mass: m,
-        foot_mass: 0.0,
-        slider: None,
         supports,
-        applied_supports: false,
+        ..Rig::single(world, ground, structure, m)
     }
+}
+
+/// The rocking body's structure without feet (mass M, the stated rotational inertia, X–Z
+/// translations and rotation about Z), its centre of mass at the CM height less the
+/// supports' static `preload`.
+fn insert_rocking_structure(
+    world: &mut PhysicsWorld,
+    r: &RockingBody,
+    preload: f64,
+) -> RigidBodyHandle {
+    let inertia = rocking_inertia(r);
+    let body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, r.cm_height - preload, 0.0))
+        .additional_mass_properties(MassProperties::new(
+            Vector::ZERO,
+            r.mass,
+            Vector::new(inertia, inertia, inertia),
+        ))
+        .enabled_translations(true, true, false)
+        .enabled_rotations(false, false, true)
+        .can_sleep(false);
+    world.insert_body(body)
 }
 
 /// The rocking body (RPEPO) with its supports as forces the engine computes
@@ -578,18 +586,7 @@ pub fn rocking_body_applied_force(
     let ground = world.insert_body(ground_body);
     let n = r.supports;
     let preload = r.weight() / (n as f64 * r.contact.kz);
-    let inertia = rocking_inertia(r);
-    let body = RigidBodyBuilder::dynamic()
-        .translation(Vector::new(0.0, r.cm_height - preload, 0.0))
-        .additional_mass_properties(MassProperties::new(
-            Vector::ZERO,
-            r.mass,
-            Vector::new(inertia, inertia, inertia),
-        ))
-        .enabled_translations(true, true, false)
-        .enabled_rotations(false, false, true)
-        .can_sleep(false);
-    let structure = world.insert_body(body);
+    let structure = insert_rocking_structure(&mut world, r, preload);
     let supports = r
         .support_positions()
         .into_iter()
@@ -608,15 +605,8 @@ pub fn rocking_body_applied_force(
         })
         .collect();
     Rig {
-        world,
-        ground,
-        structure,
-        feet: vec![],
-        inertial_masses: vec![(structure, r.mass)],
-        mass: r.mass,
-        foot_mass: 0.0,
-        slider: None,
         supports,
         applied_supports: true,
+        ..Rig::single(world, ground, structure, r.mass)
     }
 }

@@ -6,6 +6,8 @@
 
 use plotters::coord::Shift;
 use plotters::prelude::*;
+use rockslide_core::trace::Trace;
+use rockslide_verify::suite::CaseResult;
 
 /// The reference's colour: black, drawn wider than the runs.
 pub(crate) const REFERENCE: RGBColor = RGBColor(0, 0, 0);
@@ -27,6 +29,23 @@ pub(crate) fn palette(i: usize) -> RGBColor {
         RGBColor(0x17, 0xbe, 0xcf),
     ];
     P[i % P.len()]
+}
+
+/// The reference (black) and every run (the palette, in order) of a case, each with its
+/// label and trace: the participants the report's overlay figures draw.
+pub(crate) fn participants(r: &CaseResult) -> Vec<(String, &Trace, RGBColor)> {
+    let mut lines: Vec<(String, &Trace, RGBColor)> = Vec::new();
+    if let Ok(x) = &r.reference {
+        lines.push((
+            format!("reference ({})", x.solution.name()),
+            &x.output,
+            REFERENCE,
+        ));
+    }
+    for (i, run) in r.runs.iter().enumerate() {
+        lines.push((run.label(), &run.trace, palette(i)));
+    }
+    lines
 }
 
 /// One legend entry: label, colour, dashed line.

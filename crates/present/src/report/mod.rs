@@ -192,15 +192,7 @@ fn write_case_pages(result: &CaseResult, dir: &Path, set: OutputSet) -> Result<S
     // The sweep of this case, when `rockslide sweep` left one here: picked up, not rerun.
     let att = attachments::Attachments::for_case(dir);
     let blocks = document::case_document(result, Provenance::current(), &att);
-    for b in &blocks {
-        if let doc::Block::Figure { file, svg, .. } = b {
-            write_atomically(&dir.join(file), svg.as_bytes())?;
-        }
-    }
-    write_atomically(
-        &dir.join("report.md"),
-        markdown::render(&blocks, "").as_bytes(),
-    )?;
+    write_figures_and_markdown(&blocks, dir, "report.md")?;
     let figures = |prefix: &str| match set.inline_figures {
         true => html::Figures::Inline,
         false => html::Figures::Linked(prefix.to_string()),
@@ -220,6 +212,20 @@ fn write_case_pages(result: &CaseResult, dir: &Path, set: OutputSet) -> Result<S
         &result.case.name,
         &html::render_with(&demoted, &figures(&prefix)),
     ))
+}
+
+/// A document's figures (`plot-*.svg`) and its Markdown rendering `md_file` in `dir`.
+fn write_figures_and_markdown(
+    blocks: &[doc::Block],
+    dir: &Path,
+    md_file: &str,
+) -> Result<(), Error> {
+    for b in blocks {
+        if let doc::Block::Figure { file, svg, .. } = b {
+            write_atomically(&dir.join(file), svg.as_bytes())?;
+        }
+    }
+    write_atomically(&dir.join(md_file), markdown::render(blocks, "").as_bytes())
 }
 
 /// Write the suite's outputs under `out/`: `summary.md`, `summary.html` (every case in
@@ -254,15 +260,7 @@ fn write_suite_pages(
     timings::time("summary", "all", || {
         let att = attachments::Attachments::for_suite(out);
         let blocks = document::suite_document(results, Provenance::current(), &att);
-        for b in &blocks {
-            if let doc::Block::Figure { file, svg, .. } = b {
-                write_atomically(&out.join(file), svg.as_bytes())?;
-            }
-        }
-        write_atomically(
-            &out.join("summary.md"),
-            markdown::render(&blocks, "").as_bytes(),
-        )?;
+        write_figures_and_markdown(&blocks, out, "summary.md")?;
         let html = out.join("summary.html");
         let page = html::suite_page(&blocks, sections);
         write_atomically(&html, page.as_bytes())?;

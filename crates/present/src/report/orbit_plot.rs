@@ -7,7 +7,7 @@
 
 use plotters::prelude::*;
 
-use super::figure::{GRID, REFERENCE, draw_legend, failed_svg, legend_height, palette};
+use super::figure::{GRID, draw_legend, failed_svg, legend_height, participants};
 use super::plots::Figure;
 use rockslide_core::trace::Trace;
 use rockslide_verify::suite::CaseResult;
@@ -83,17 +83,7 @@ fn extent(r: &CaseResult, orbits: &[Orbit]) -> f64 {
 
 /// The reference and every run that has `slide` and `slide_y`, in the report's colours.
 fn orbits(r: &CaseResult) -> Vec<Orbit> {
-    let mut lines: Vec<(String, &Trace, RGBColor)> = Vec::new();
-    if let Ok(x) = &r.reference {
-        lines.push((
-            format!("reference ({})", x.solution.name()),
-            &x.output,
-            REFERENCE,
-        ));
-    }
-    for (i, run) in r.runs.iter().enumerate() {
-        lines.push((run.label(), &run.trace, palette(i)));
-    }
+    let lines = participants(r);
     lines
         .into_iter()
         .filter_map(|(label, trace, colour)| {

@@ -7,7 +7,7 @@
 
 use plotters::prelude::*;
 
-use super::figure::{GRID, REFERENCE, draw_legend, failed_svg, legend_height, palette};
+use super::figure::{GRID, draw_legend, failed_svg, legend_height, participants};
 use super::plots::Figure;
 use rockslide_core::case::Model;
 use rockslide_core::trace::Trace;
@@ -26,17 +26,7 @@ pub(crate) fn vertical_figure(r: &CaseResult) -> Option<Figure> {
         Model::RockingBody(b) => b.contact.mu,
         Model::RigidBlock(b) => b.mu,
     };
-    let mut lines: Vec<(String, &Trace, RGBColor)> = Vec::new();
-    if let Ok(x) = &r.reference {
-        lines.push((
-            format!("reference ({})", x.solution.name()),
-            &x.output,
-            REFERENCE,
-        ));
-    }
-    for (i, run) in r.runs.iter().enumerate() {
-        lines.push((run.label(), &run.trace, palette(i)));
-    }
+    let mut lines = participants(r);
     lines.retain(|(_, t, _)| t.has("normal") && t.has("resistance"));
     if lines.is_empty() {
         return None;

@@ -152,17 +152,7 @@ pub fn richardson_at_order(fine: f64, mid: f64, r: f64, order: f64) -> Option<Ri
     if !(order.is_finite() && order > 0.0 && r > 1.0) {
         return None;
     }
-    let denom = r.powf(order) - 1.0;
-    let gci = if fine != 0.0 {
-        1.25 * (fine - mid).abs() / fine.abs() / denom
-    } else {
-        f64::NAN
-    };
-    Some(Richardson {
-        order,
-        extrapolated: fine + (fine - mid) / denom,
-        gci,
-    })
+    Some(Richardson::at_order(fine, mid, r, order))
 }
 
 /// Richardson extrapolation from three solutions at a constant refinement ratio.
@@ -187,18 +177,25 @@ pub fn richardson(fine: f64, mid: f64, coarse: f64, r: f64) -> Option<Richardson
         return None;
     }
     let order = (d32 / d21).ln() / r.ln();
-    let denom = r.powf(order) - 1.0;
-    let extrapolated = fine + (fine - mid) / denom;
-    let gci = if fine != 0.0 {
-        1.25 * (fine - mid).abs() / fine.abs() / denom
-    } else {
-        f64::NAN
-    };
-    Some(Richardson {
-        order,
-        extrapolated,
-        gci,
-    })
+    Some(Richardson::at_order(fine, mid, r, order))
+}
+
+impl Richardson {
+    /// The extrapolation and GCI of `fine` and `mid` at ratio `r` for a given order,
+    /// unchecked (the callers check the order and the ratio).
+    fn at_order(fine: f64, mid: f64, r: f64, order: f64) -> Richardson {
+        let denom = r.powf(order) - 1.0;
+        let gci = if fine != 0.0 {
+            1.25 * (fine - mid).abs() / fine.abs() / denom
+        } else {
+            f64::NAN
+        };
+        Richardson {
+            order,
+            extrapolated: fine + (fine - mid) / denom,
+            gci,
+        }
+    }
 }
 
 #[cfg(test)]
