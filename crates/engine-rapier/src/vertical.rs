@@ -190,11 +190,7 @@ pub(crate) fn oscillator_with_supports(
     let share = 1.0 - world::SUPPORT_DAMPING_SHARE;
     let damping = (osc.damping() - share * h * kx, -share * h * kz);
     let normal = m * osc.gravity;
-    let cap = if mu.is_finite() {
-        mu * normal
-    } else {
-        f64::INFINITY
-    };
+    let cap = world::friction_cap(mu, normal);
     let spring = |axis: JointAxis, k: f64, c: f64, max: f64| {
         GenericJointBuilder::new(JointAxesMask::empty())
             .local_anchor1(Vector::new(0.0, world::GROUND_HALF.1, 0.0))

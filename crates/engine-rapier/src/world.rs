@@ -145,11 +145,7 @@ pub(crate) fn add_ground(world: &mut PhysicsWorld, kind: GroundKind, mu: f64) ->
 /// so the joint carries only the horizontal spring: the vertical load path never goes
 /// through a 1000:1 mass ratio. Both bodies have their rotations locked (sliding only).
 pub fn oscillator(osc: &Oscillator, s: &RapierSettings, dt: f64, kind: GroundKind) -> Rig {
-    let mu = if osc.contact.mu.is_finite() {
-        osc.contact.mu
-    } else {
-        MU_INFINITE
-    };
+    let mu = rapier_friction(osc.contact.mu);
     let mut world = new_world(s, dt, osc.gravity);
     let ground = add_ground(&mut world, kind, mu);
     let m = osc.mass;
@@ -233,11 +229,7 @@ pub fn oscillator_joint_limit(
     let h = dt / s.substeps as f64;
     let kx = osc.contact.kx;
     let motor_damping = osc.damping() - (1.0 - MOTOR_DAMPING_MARGIN) * h * kx;
-    let limit = if osc.contact.mu.is_finite() {
-        osc.friction_limit()
-    } else {
-        f64::INFINITY
-    };
+    let limit = friction_cap(osc.contact.mu, osc.normal_force());
     let joint = GenericJointBuilder::new(
         JointAxesMask::LIN_Y | JointAxesMask::LIN_Z | JointAxesMask::ANG_AXES,
     )
@@ -324,11 +316,7 @@ pub fn rocking_inertia(r: &RockingBody) -> f64 {
 /// through the joints: that is the hard part for rapier's solver (FIELD-NOTES).
 /// The springs start compressed by the static preload W/(n·Kz).
 pub fn rocking_body(r: &RockingBody, s: &RapierSettings, dt: f64, kind: GroundKind) -> Rig {
-    let mu = if r.contact.mu.is_finite() {
-        r.contact.mu
-    } else {
-        MU_INFINITE
-    };
+    let mu = rapier_friction(r.contact.mu);
     let mut world = new_world(s, dt, r.gravity);
     let ground = add_ground(&mut world, kind, mu);
     let n = r.supports;
@@ -439,11 +427,7 @@ impl Support {
     pub fn update(&mut self, delta: (f64, f64)) -> (f64, f64) {
         self.delta = delta;
         self.normal = self.kz * (-delta.1).max(0.0);
-        let cap = if self.mu.is_finite() {
-            self.mu * self.normal
-        } else {
-            f64::INFINITY
-        };
+        let cap = friction_cap(self.mu, self.normal);
         let elastic = delta.0 - self.s;
         if self.kx * elastic.abs() > cap {
             self.s = delta.0 - elastic.signum() * cap / self.kx;
@@ -494,11 +478,7 @@ pub fn rocking_body_joint_limit(
     let damping = (-share * h * kx, -share * h * kz);
     let normal = r.weight() / n as f64;
     let mu = r.contact.mu;
-    let cap = if mu.is_finite() {
-        mu * normal
-    } else {
-        f64::INFINITY
-    };
+    let cap = friction_cap(mu, normal);
     let mut supports = Vec::with_capacity(n);
     for x in r.support_positions() {
         // Two joints per support, one motor each: rapier orthogonalizes (Gram–Schmidt, in
@@ -609,4 +589,19 @@ pub fn rocking_body_applied_force(
         applied_supports: true,
         ..Rig::single(world, ground, structure, r.mass)
     }
+}
+
+/// The Coulomb cap μ·N of a support, infinite when μ is (never 0·∞ = NaN when N = 0).
+pub(crate) fn friction_cap(mu: f64, normal: f64) -> f64 {
+    if mu.is_finite() {
+        mu * normal
+    } else {
+        f64::INFINITY
+    }
+}
+
+/// The friction coefficient handed to rapier's contact: μ, or [`MU_INFINITE`] when the
+/// case's μ is infinite (rapier wants a finite coefficient).
+fn rapier_friction(mu: f64) -> f64 {
+    if mu.is_finite() { mu } else { MU_INFINITE }
 }
