@@ -2,6 +2,7 @@
 //! Shared helpers live in `common`.
 
 mod bad_input;
+mod bidirectional_independent;
 mod bidirectional_refs;
 mod bidirectional_scene;
 mod cli;

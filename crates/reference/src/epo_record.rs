@@ -453,7 +453,7 @@ fn first_above(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
     if f(a) > 0.0 {
         return a;
     }
-    for _ in 0..2200 {
+    for _ in 0..crate::root::BISECTION_LIMIT {
         let m = 0.5 * (a + b);
         if m <= a || m >= b {
             break;

@@ -6,17 +6,24 @@
 //!   which d − a_f·ṡ/|ṡ| can start a motion from rest);
 //! - sliding: s̈ = d(t) − a_f(t)·ṡ/|ṡ|;
 //! - stop when |ṡ| reaches 0, which it does in finite time with nonzero slope (d|ṡ|/dt =
-//!   d·ŝ − a_f < 0 near a stop): the event function is ṡ·u₀, u₀ the sliding direction at
-//!   the start of the step, and for the stages of a step that would pass the stop the
-//!   friction keeps opposing u₀ (the smooth continuation of the motion into the stop), so
-//!   the event function is smooth through its root. At the stop the block sticks if
-//!   |d| ≤ a_f, else it slides on along the new d̂.
+//!   d·ŝ − a_f < 0 near a stop). At the stop the block sticks if |d| ≤ a_f, else it slides
+//!   on along the new d̂.
+//!
+//! Sliding is integrated by the three-stage Radau IIA method with the stage velocities in
+//! polar form, speed ρ and direction θ ([`super::radau`]): the direction relaxes toward d̂
+//! at the rate a_f/|ṡ|, stiff near rest, which the L-stable implicit stages damp as the
+//! exact flow does; ρ < 0 continues the motion past a stop with the friction still along
+//! θ, so the stop is the smooth root of the stage speeds, located by bisection on the
+//! step's length. The one limit on the order: at a stop the direction turns toward d̂ as
+//! (t_stop − t)^α, α = |d|/(a_f − |d|), so the slide has a term (t_stop − t)^(2+α) that no
+//! polynomial step resolves (docs/bidirectional.md, "Measured").
 //!
 //! With a vertical component the cone's radius follows μ·(g + a_v); the reference stops
 //! with an error if g + a_v ≤ 0 (the block would lift off, not modelled here).
 
 use super::drive::PlanDrive;
-use super::integrate::{Sample, dot, grid, hermite, locate, norm, rk4};
+use super::integrate::{Sample, bracket, grid, hermite, locate, march, norm};
+use super::radau;
 use crate::ExactSolution;
 use rockslide_core::trace::{Quantity, q};
 
@@ -51,9 +58,6 @@ struct BlockLaw {
     mu: f64,
     gravity: f64,
 }
-
-/// Most events in one grid step before the integrator declares it is not progressing.
-const EVENTS_PER_STEP: usize = 64;
 
 impl PlanBlock {
     /// Integrate the block with friction coefficient `mu` and gravity `gravity` under
@@ -101,22 +105,12 @@ impl PlanBlock {
     fn integrate(&mut self, duration: f64) -> Result<(), String> {
         let nodes = grid(&self.law.drive.kinks(duration), duration, self.step);
         let mut y = [0.0; 4];
-        let mut t = 0.0;
         let mut phase = PlanBlockPhase::Stick;
         Self::push(&mut self.samples, 0.0, &y, [0.0; 2]);
-        for &t1 in &nodes[1..] {
-            let mut events = 0;
-            while t < t1 {
-                events += 1;
-                if events > EVENTS_PER_STEP {
-                    return Err(format!("no progress at t = {t:.9} s"));
-                }
-                phase = match phase {
-                    PlanBlockPhase::Stick => self.stick_until(&mut t, t1, &y)?,
-                    PlanBlockPhase::Slide => self.slide_until(&mut t, t1, &mut y)?,
-                };
-            }
-        }
+        march(&nodes, &mut y, &mut phase, |t, t1, y, phase| match phase {
+            PlanBlockPhase::Stick => self.stick_until(t, t1, y),
+            PlanBlockPhase::Slide => self.slide_until(t, t1, y),
+        })?;
         if phase == PlanBlockPhase::Slide
             && let Some(last) = self.slides.last_mut()
             && last.1.is_nan()
@@ -131,7 +125,7 @@ impl PlanBlock {
         &mut self,
         t: &mut f64,
         t1: f64,
-        y: &[f64; 4],
+        y: &mut [f64; 4],
     ) -> Result<PlanBlockPhase, String> {
         let t0 = *t;
         let margin = |s: f64| -> f64 {
@@ -155,7 +149,11 @@ impl PlanBlock {
         Ok(PlanBlockPhase::Slide)
     }
 
-    /// Sliding from `t`: to the stop if it comes before `t1`, else to `t1`.
+    /// Sliding from `t`: one Radau IIA step to `t1`, or to the stop if it comes first.
+    ///
+    /// The stop is the root of the stage speeds ρ (smooth through it: past it the friction
+    /// keeps opposing the direction of the motion, [`radau`]), located by bisection on the
+    /// step's length; the block is put at rest at the last length with every ρ > 0.
     fn slide_until(
         &mut self,
         t: &mut f64,
@@ -164,49 +162,58 @@ impl PlanBlock {
     ) -> Result<PlanBlockPhase, String> {
         let t0 = *t;
         self.law.limit(t0)?;
-        let v0 = [y[2], y[3]];
-        let u0 = if norm(v0) > 0.0 {
-            [v0[0] / norm(v0), v0[1] / norm(v0)]
+        self.law.limit(t1)?;
+        let (s0, v0) = ([y[0], y[1]], [y[2], y[3]]);
+        let d0 = self.law.drive.at(t0);
+        let angle = if norm(v0) > 0.0 {
+            v0[1].atan2(v0[0])
+        } else if norm(d0) > 0.0 {
+            d0[1].atan2(d0[0])
         } else {
-            let d = self.law.drive.at(t0);
-            let n = norm(d);
-            if n == 0.0 {
-                // no drive and at rest: nothing to slide
-                return Ok(PlanBlockPhase::Stick);
-            }
-            [d[0] / n, d[1] / n]
+            // no drive and at rest: nothing to slide
+            return Ok(PlanBlockPhase::Stick);
+        };
+        let law = |t: f64| (self.law.drive.at(t), self.law.friction(t));
+        let solve = |tau: f64| radau::step(&law, t0, s0, norm(v0), angle, tau);
+        // the least stage speed (−1 when the step cannot be solved)
+        let ahead = |st: &Option<radau::Step>| {
+            st.map_or(-1.0, |st| {
+                st.speed.into_iter().fold(f64::INFINITY, f64::min)
+            })
         };
         let h = t1 - t0;
-        // The direction of sliding relaxes toward d̂ at the rate a_f/|ṡ|: stiff near rest,
-        // where an explicit stage is stable only for h·a_f/|ṡ| < 2. Below |ṡ| = 2·a_f·h
-        // the direction is taken slaved, ±d̂(t) on the side of the motion (its limit at
-        // rest: the motion starts along d̂ and stops along ±d̂); above, ṡ/|ṡ|.
-        let slaved = 2.0 * self.law.limit(t0)? * self.step;
-        let f = self.law.sliding_rhs(u0, slaved);
-        let end = rk4(&f, t0, y, h);
-        let along = |z: &[f64; 4]| z[2] * u0[0] + z[3] * u0[1];
-        if along(&end) > 0.0 {
+        let full = solve(h);
+        if let Some(st) = full
+            && ahead(&full) > 0.0
+        {
             *t = t1;
-            *y = end;
-            let a = f(t1, y);
-            Self::push(&mut self.samples, t1, y, [a[2], a[3]]);
+            let v = st.velocity();
+            *y = [st.pos[0], st.pos[1], v[0], v[1]];
+            let d = self.law.drive.at(t1);
+            let af = self.law.friction(t1);
+            let (sn, cs) = st.angle[2].sin_cos();
+            Self::push(&mut self.samples, t1, y, [d[0] - af * cs, d[1] - af * sn]);
             return Ok(PlanBlockPhase::Slide);
         }
-        let tau = locate(h, |tau| along(&rk4(&f, t0, y, tau)));
-        let mut z = rk4(&f, t0, y, tau);
-        z[2] = 0.0;
-        z[3] = 0.0;
-        *t = t0 + tau;
-        *y = z;
+        let (a, _) = bracket(h, |tau| ahead(&solve(tau)));
+        let st = match solve(a) {
+            Some(st) if a > 0.0 => st,
+            _ => {
+                return Err(format!(
+                    "the sliding block cannot be advanced from t = {t0:.9} s (the stage equations have no solution)"
+                ));
+            }
+        };
+        *t = t0 + a;
+        *y = [st.pos[0], st.pos[1], 0.0, 0.0];
         if let Some(last) = self.slides.last_mut() {
             last.1 = *t;
         }
+        Self::push(&mut self.samples, *t, y, [0.0; 2]);
         let d = self.law.drive.at(*t);
         if norm(d) <= self.law.limit(*t)? {
-            Self::push(&mut self.samples, *t, y, [0.0; 2]);
             Ok(PlanBlockPhase::Stick)
         } else {
-            Self::push(&mut self.samples, *t, y, [0.0; 2]);
             self.slides.push((*t, f64::NAN));
             Ok(PlanBlockPhase::Slide)
         }
@@ -242,32 +249,9 @@ impl BlockLaw {
         Ok(self.mu * ge)
     }
 
-    /// The friction direction for velocity `v` at drive `d` in a step that started
-    /// sliding along `u0`: below |v| = `slaved`, the slaved direction ±d̂ on u₀'s side (u₀
-    /// if d = 0);
-    /// above it v̂ while the motion stays within 60° of u₀, else u₀ (the continuation of
-    /// the motion past a stop, for the event function).
-    fn direction(v: [f64; 2], d: [f64; 2], u0: [f64; 2], slaved: f64) -> [f64; 2] {
-        let n = norm(v);
-        if n < slaved {
-            // ±d̂, on the side of the motion (at a stop the drive usually opposes it)
-            let m = norm(d).copysign(dot(d, u0));
-            return if m != 0.0 { [d[0] / m, d[1] / m] } else { u0 };
-        }
-        if dot(v, u0) > 0.5 * n {
-            [v[0] / n, v[1] / n]
-        } else {
-            u0
-        }
-    }
-
-    fn sliding_rhs(&self, u0: [f64; 2], slaved: f64) -> impl Fn(f64, &[f64; 4]) -> [f64; 4] + '_ {
-        move |t, y| {
-            let d = self.drive.at(t);
-            let af = self.mu * (self.gravity + self.drive.vertical(t));
-            let e = BlockLaw::direction([y[2], y[3]], d, u0, slaved);
-            [y[2], y[3], d[0] - af * e[0], d[1] - af * e[1]]
-        }
+    /// a_f(t) = μ·(g + a_v(t)), unchecked (for the stages inside a checked step).
+    fn friction(&self, t: f64) -> f64 {
+        self.mu * (self.gravity + self.drive.vertical(t))
     }
 }
 
@@ -285,12 +269,12 @@ pub(crate) fn peak_resultant(points: impl Iterator<Item = [f64; 2]>) -> (f64, f6
 
 impl ExactSolution for PlanBlock {
     fn name(&self) -> &'static str {
-        "plan block (RK4, events)"
+        "plan block (Radau IIA, events)"
     }
 
     fn method(&self) -> String {
         format!(
-            "rigid-plastic block on an isotropic friction cone (s̈ = d − μ·g·ṡ/|ṡ| while sliding, stick while |d| ≤ μ·g): classical RK4, steps ≤ {} s with a node at every kink of the drive, slip onsets and stops located by bisection; {} slides",
+            "rigid-plastic block on an isotropic friction cone (s̈ = d − μ·g·ṡ/|ṡ| while sliding, stick while |d| ≤ μ·g): three-stage Radau IIA (order 5, L-stable) with Newton on the stage equations, steps ≤ {} s with a node at every kink of the drive, slip onsets and stops located by bisection; {} slides",
             self.step,
             self.slides.len()
         )

@@ -13,7 +13,7 @@
 
 use super::block::{peak_resultant, plan_channels, write_plan};
 use super::drive::PlanDrive;
-use super::integrate::{Sample, dot, grid, hermite, locate, norm, rk4};
+use super::integrate::{Sample, dot, grid, hermite, locate, march, norm, rk4};
 use crate::ExactSolution;
 use rockslide_core::case::Oscillator;
 use rockslide_core::trace::Quantity;
@@ -48,9 +48,6 @@ struct EpoLaw {
     c: f64,
     r: f64,
 }
-
-/// Most events in one grid step before the integrator declares it is not progressing.
-const EVENTS_PER_STEP: usize = 64;
 
 impl PlanEpo {
     /// Integrate `osc` (isotropic: kx in every horizontal direction, μ·M·g the cone)
@@ -95,22 +92,11 @@ impl PlanEpo {
     fn integrate(&mut self, duration: f64) -> Result<(), String> {
         let nodes = grid(&self.law.drive.kinks(duration), duration, self.step);
         let mut y = [0.0; 6];
-        let mut t = 0.0;
         let mut phase = PlanEpoPhase::Elastic;
         Self::push(&mut self.samples, &self.law, 0.0, &y, phase);
-        for &t1 in &nodes[1..] {
-            let mut events = 0;
-            while t < t1 {
-                events += 1;
-                if events > EVENTS_PER_STEP {
-                    return Err(format!("no progress at t = {t:.9} s"));
-                }
-                phase = self.advance(&mut t, t1, &mut y, phase);
-                if !y.iter().all(|x| x.is_finite()) {
-                    return Err(format!("the state is not finite at t = {t:.6} s"));
-                }
-            }
-        }
+        march(&nodes, &mut y, &mut phase, |t, t1, y, phase| {
+            Ok(self.advance(t, t1, y, phase))
+        })?;
         if phase == PlanEpoPhase::Plastic
             && let Some(last) = self.slips.last_mut()
         {

@@ -1,7 +1,8 @@
-//! The integrator shared by the plan-motion references: classical RK4 steps on a grid with
-//! a node at every kink of the drive, an event located inside a step by bisection on the
-//! event function of the step's length (the RK4 step of length τ is a smooth function of
-//! τ), so that the state is advanced exactly to the event and the phase changed there.
+//! The integrator shared by the plan-motion references: one event loop ([`march`]) over a
+//! grid with a node at every kink of the drive, an event located inside a step by
+//! bisection on the event function of the step's length (a Runge–Kutta step of length τ
+//! is a smooth function of τ), so that the state is advanced exactly to the event and the
+//! phase changed there; classical RK4 steps ([`rk4`]) for the oscillator.
 
 /// The integrated state at one instant: time, slide (or displacement) and velocity.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,11 +52,18 @@ pub fn rk4<const N: usize>(
     r
 }
 
-/// The first τ in (0, h] where `g(τ)` becomes ≤ 0, given g(0) > 0 and g(h) ≤ 0, by
-/// bisection until the bracket cannot shrink (the smallest τ known past the event).
+/// The first τ in (0, h] where `g(τ)` becomes ≤ 0, given g(0) > 0 and g(h) ≤ 0: the
+/// upper end of [`bracket`].
 pub fn locate(h: f64, g: impl Fn(f64) -> f64) -> f64 {
+    bracket(h, g).1
+}
+
+/// The event of `g` in (0, h] as two adjacent floats (a, b): g(a) > 0 (or a = 0), g(b) ≤ 0,
+/// given g(h) ≤ 0; bisection until the bracket cannot shrink, the one rule of every event
+/// locator of the references ([`crate::root::BISECTION_LIMIT`]).
+pub fn bracket(h: f64, g: impl Fn(f64) -> f64) -> (f64, f64) {
     let (mut a, mut b) = (0.0_f64, h);
-    for _ in 0..200 {
+    for _ in 0..crate::root::BISECTION_LIMIT {
         let m = 0.5 * (a + b);
         if m <= a || m >= b {
             break;
@@ -66,7 +74,37 @@ pub fn locate(h: f64, g: impl Fn(f64) -> f64) -> f64 {
             b = m;
         }
     }
-    b
+    (a, b)
+}
+
+/// Most events in one grid step before a reference declares it is not progressing.
+const EVENTS_PER_STEP: usize = 64;
+
+/// The event loop of the references: from (0, `y`) in `phase`, for each grid node call
+/// `advance(t, node, y, phase)` — which moves `t` to the node or to the first event before
+/// it and returns the phase after — until the node is reached; an error when a step
+/// needs more than [`EVENTS_PER_STEP`] calls or the state stops being finite.
+pub fn march<const N: usize, P: Copy>(
+    nodes: &[f64],
+    y: &mut [f64; N],
+    phase: &mut P,
+    mut advance: impl FnMut(&mut f64, f64, &mut [f64; N], P) -> Result<P, String>,
+) -> Result<(), String> {
+    let mut t = nodes.first().copied().unwrap_or(0.0);
+    for &node in nodes.iter().skip(1) {
+        let mut events = 0;
+        while t < node {
+            events += 1;
+            if events > EVENTS_PER_STEP {
+                return Err(format!("no progress at t = {t:.9} s"));
+            }
+            *phase = advance(&mut t, node, y, *phase)?;
+            if !y.iter().all(|x| x.is_finite()) {
+                return Err(format!("the state is not finite at t = {t:.6} s"));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The grid nodes over [0, end]: every kink, and pieces between them cut into equal steps

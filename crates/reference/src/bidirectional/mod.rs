@@ -1,12 +1,14 @@
 //! Bidirectional (plan-motion) references: the rigid-plastic block sliding on an isotropic
 //! friction cone ([`PlanBlock`]) and the elastic-perfectly-plastic oscillator with a
 //! circular yield surface ([`PlanEpo`]), under the horizontal drive of a 3D scene
-//! ([`PlanDrive`]). Neither has a closed form in general: both are integrated by the
-//! classical fourth-order Runge–Kutta method on a grid that has a node at every kink of the
-//! drive (record samples, pulse ends), with every phase change (slip onset, stop, yield,
-//! unloading) located by bisection on the event function of a step of variable length
-//! ([`integrate`]), so that no step straddles an event. Convergence is measured by
-//! halving the step (docs/bidirectional.md).
+//! ([`PlanDrive`]). Neither has a closed form in general: both are integrated on a grid
+//! that has a node at every kink of the drive (record samples, pulse ends), with every
+//! phase change (slip onset, stop, yield, unloading) located by bisection on the event
+//! function of a step of variable length, so that no step straddles an event
+//! ([`integrate`], one event loop for both) — the oscillator by the classical fourth-order
+//! Runge–Kutta method, the block by the three-stage Radau IIA method (order 5, L-stable)
+//! in speed and direction, because its sliding direction is stiff near rest ([`radau`]).
+//! Convergence is measured by halving the step (docs/bidirectional.md).
 //!
 //! Coordinates: relative to the ground; the drive d(t) is the force per unit mass on the
 //! body, a(t) for a mass acceleration, −a_g(t) for a ground acceleration, a 2-vector.
@@ -15,6 +17,7 @@ mod block;
 mod drive;
 mod epo;
 mod integrate;
+mod radau;
 
 pub use block::{PlanBlock, PlanBlockPhase};
 pub use drive::PlanDrive;
