@@ -132,10 +132,11 @@ fn solve6(mut m: [[f64; 6]; 6], mut r: [f64; 6]) -> Option<[f64; 6]> {
         }
         m.swap(col, pivot);
         r.swap(col, pivot);
+        let pivot_row = m[col];
         for row in col + 1..6 {
-            let factor = m[row][col] / m[col][col];
-            for k in col..6 {
-                m[row][k] -= factor * m[col][k];
+            let factor = m[row][col] / pivot_row[col];
+            for (x, p) in m[row][col..].iter_mut().zip(&pivot_row[col..]) {
+                *x -= factor * p;
             }
             r[row] -= factor * r[col];
         }
