@@ -199,7 +199,7 @@ fn rotating_both_components_rotates_the_answer() {
     println!(
         "pair: peak {peak:.6e} m at {dir:.3}°, turned {peak2:.6e} m at {dir2:.3}°, gap {gap:.3e} m"
     );
-    // measured 1.8e-16 m of a 32 mm peak (5.6e-15 of it)
+    // measured 1.7e-16 m of a 32 mm peak (5.2e-15 of it)
     assert!(gap < 1e-14 * peak, "{gap}");
     assert!((dir2 - dir - 40.0).abs() < 1e-6, "{dir} {dir2}");
 }
@@ -237,7 +237,7 @@ fn the_block_reference_converges_under_a_record_pair() {
         },
         &steps,
     );
-    // measured 2.09e-9, 5.78e-11, 4.93e-12, 4.01e-13 m (of a 32 mm slide): orders 5.18,
+    // measured 2.41e-9, 5.78e-11, 4.93e-12, 4.01e-13 m (of a 32 mm slide): orders 5.38,
     // 3.55, 3.62 — fifth order between events, held near 3.6 by the stops, where the
     // sliding direction turns as (t_stop − t)^α (docs/bidirectional.md)
     for w in errs.windows(2) {

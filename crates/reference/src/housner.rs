@@ -121,7 +121,7 @@ impl HousnerRocking {
             if s * phi1 < 0.0 {
                 // Impact inside the step: bisect on the step length.
                 let (mut lo, mut hi) = (0.0, h);
-                for _ in 0..200 {
+                for _ in 0..crate::root::BISECTION_LIMIT {
                     let mid = 0.5 * (lo + hi);
                     if mid <= lo || mid >= hi {
                         break;

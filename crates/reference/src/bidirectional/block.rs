@@ -27,6 +27,11 @@ use super::radau;
 use crate::ExactSolution;
 use rockslide_core::trace::{Quantity, q};
 
+/// The speed below which a step cut where a stage speed reaches zero ends in a stop, as
+/// a fraction of h·(a_f + |d|), the largest change of speed in the step (at a stop the
+/// bisection leaves a speed of a few ε of it).
+const STOP_SPEED: f64 = 1e-9;
+
 /// Stick or slide.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum PlanBlockPhase {
@@ -153,7 +158,8 @@ impl PlanBlock {
     ///
     /// The stop is the root of the stage speeds ρ (smooth through it: past it the friction
     /// keeps opposing the direction of the motion, [`radau`]), located by bisection on the
-    /// step's length; the block is put at rest at the last length with every ρ > 0.
+    /// step's length; the block is put at rest at the last length with every ρ > 0 when
+    /// its speed there is nil ([`STOP_SPEED`]).
     fn slide_until(
         &mut self,
         t: &mut f64,
@@ -183,28 +189,35 @@ impl PlanBlock {
         };
         let h = t1 - t0;
         let full = solve(h);
-        if let Some(st) = full
-            && ahead(&full) > 0.0
-        {
-            *t = t1;
-            let v = st.velocity();
-            *y = [st.pos[0], st.pos[1], v[0], v[1]];
-            let d = self.law.drive.at(t1);
-            let af = self.law.friction(t1);
-            let (sn, cs) = st.angle[2].sin_cos();
-            Self::push(&mut self.samples, t1, y, [d[0] - af * cs, d[1] - af * sn]);
-            return Ok(PlanBlockPhase::Slide);
-        }
-        let (a, _) = bracket(h, |tau| ahead(&solve(tau)));
-        let st = match solve(a) {
-            Some(st) if a > 0.0 => st,
+        let (tau, st) = match full {
+            Some(st) if ahead(&full) > 0.0 => (h, st),
             _ => {
-                return Err(format!(
-                    "the sliding block cannot be advanced from t = {t0:.9} s (the stage equations have no solution)"
-                ));
+                let (cut, _) = bracket(h, |tau| ahead(&solve(tau)));
+                match solve(cut) {
+                    Some(st) if cut > 0.0 => (cut, st),
+                    _ => {
+                        return Err(format!(
+                            "the sliding block cannot be advanced from t = {t0:.9} s (the stage equations have no solution)"
+                        ));
+                    }
+                }
             }
         };
-        *t = t0 + a;
+        *t = t0 + tau;
+        // a stop: the speed falls linearly into it and the bisection ends within a float
+        // of it, so it is nil there to round-off; anything else (a stage equation without
+        // a solution, a speed that dips to zero inside the step and rises again) goes on
+        // sliding from the last solvable length
+        let stopped = STOP_SPEED * h * (self.law.friction(t0) + norm(d0));
+        if tau == h || st.speed[2] > stopped {
+            let v = st.velocity();
+            *y = [st.pos[0], st.pos[1], v[0], v[1]];
+            let d = self.law.drive.at(*t);
+            let af = self.law.friction(*t);
+            let (sn, cs) = st.angle[2].sin_cos();
+            Self::push(&mut self.samples, *t, y, [d[0] - af * cs, d[1] - af * sn]);
+            return Ok(PlanBlockPhase::Slide);
+        }
         *y = [st.pos[0], st.pos[1], 0.0, 0.0];
         if let Some(last) = self.slides.last_mut() {
             last.1 = *t;
