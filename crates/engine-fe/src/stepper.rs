@@ -60,10 +60,11 @@ impl<'a> Drive<'a> {
         }
     }
     /// The horizontal force on the mass in relative coordinates (output channel `force`).
-    pub fn equivalent_force(&self, t: f64) -> f64 {
+    /// `force` is `self.force(t)`, as a snapshot holds it (no second evaluation).
+    pub fn equivalent_force(&self, t: f64, force: f64) -> f64 {
         match self.excitation {
             Excitation::GroundDisplacement(s) => -self.mass * s.second_derivative(t),
-            _ => self.force(t),
+            _ => force,
         }
     }
 }
@@ -85,6 +86,12 @@ pub struct Snapshot<'a> {
     pub ground: (f64, f64, f64),
     /// Body displacement at static equilibrium.
     pub q_static: Vector3<f64>,
+    /// Applied horizontal force at `t` (`Drive::force`), N.
+    pub force: f64,
+    /// Vertical load at `t` beyond the preload (`Drive::vertical_force`), N.
+    pub vertical_force: f64,
+    /// (cos θ, sin θ) of `q` as the model's kinematics use them (`Assembly::rotation`).
+    pub rotation: (f64, f64),
 }
 
 /// Deterministic counters of a run.
@@ -120,6 +127,9 @@ pub(crate) struct Newmark {
     pub c1: f64,
     /// Step, s.
     pub h: f64,
+    /// 1/(2β) − 1 and 1 − γ, the weights of aₙ in `kinematics` (computed once).
+    a_weight: f64,
+    v_weight: f64,
 }
 
 impl Newmark {
@@ -133,6 +143,8 @@ impl Newmark {
             c0: 1.0 / (beta * h * h),
             c1: gamma / (beta * h),
             h,
+            a_weight: 0.5 / beta - 1.0,
+            v_weight: 1.0 - gamma,
         }
     }
 
@@ -145,8 +157,8 @@ impl Newmark {
         vn: &SVector<f64, D>,
         an: &SVector<f64, D>,
     ) -> (SVector<f64, D>, SVector<f64, D>) {
-        let a = (dq - vn * self.h) * self.c0 - an * (0.5 / self.beta - 1.0);
-        let v = vn + (an * (1.0 - self.gamma) + a * self.gamma) * self.h;
+        let a = (dq - vn * self.h) * self.c0 - an * self.a_weight;
+        let v = vn + (an * self.v_weight + a * self.gamma) * self.h;
         (a, v)
     }
 }
@@ -261,6 +273,7 @@ pub fn integrate(
         v: Vector3::zeros(),
         a: Vector3::zeros(),
         f: Vector3::new(drive.force(0.0), -weight + drive.vertical_force(0.0), 0.0),
+        fz: drive.vertical_force(0.0),
         pb: Vector3::zeros(),
         damp: c * (0.0 - g0.1),
         g: g0,
@@ -285,11 +298,16 @@ pub fn integrate(
             un: &w.un_n,
             ground: g0,
             q_static,
+            force: n.f.x,
+            vertical_force: n.fz,
+            rotation: w.asm.rotation(),
         },
     );
 
     let max_depth = opts.newton.max_step_cuts;
     let units = 1u32 << max_depth;
+    // The coefficients of the step size in use (recomputed when a step is cut).
+    let mut nm = Newmark::new(opts, dt);
     for step in 1..=steps {
         let t_start = (step - 1) as f64 * dt;
         // Step cutting: a step whose Newton iteration fails is retried as two halves,
@@ -304,7 +322,10 @@ pub fn integrate(
                 t_start + dt * f64::from(end) / f64::from(units)
             };
             let h = dt / f64::from(1u32 << level);
-            match newton_step(model, drive, opts, &mut w, &n, t, h, &mut counters) {
+            if nm.h != h {
+                nm = Newmark::new(opts, h);
+            }
+            match newton_step(model, drive, opts, &nm, &mut w, &n, t, &mut counters) {
                 Ok(next) => {
                     model.commit_step(&w.asm, &mut w.un);
                     n = next;
@@ -347,6 +368,9 @@ pub fn integrate(
                 un: &w.un_n,
                 ground: n.g,
                 q_static,
+                force: n.f.x,
+                vertical_force: n.fz,
+                rotation: w.asm.rotation(),
             },
         );
     }
@@ -362,6 +386,8 @@ struct StepState {
     a: Vector3<f64>,
     /// External force.
     f: Vector3<f64>,
+    /// Vertical load beyond the preload (`Drive::vertical_force`), N.
+    fz: f64,
     /// Base reaction on the body.
     pb: Vector3<f64>,
     /// Damping force.
@@ -414,26 +440,30 @@ struct StepFailure {
     diverged: bool,
 }
 
-/// One step of length `h` from `n` to time `t`: Newton–Raphson with a backtracking line
-/// search on the consistent tangent. On success the elements' trial states and `w.un`,
-/// `w.asm` hold the new state (not yet committed).
+/// One step of length `nm.h` from `n` to time `t`: Newton–Raphson with a backtracking
+/// line search on the consistent tangent. On success the elements' trial states and
+/// `w.un`, `w.asm` hold the new state (not yet committed).
 #[allow(clippy::too_many_arguments)]
 fn newton_step(
     model: &mut Model,
     drive: &Drive,
     opts: &FeOptions,
+    nm: &Newmark,
     w: &mut Workspace,
     n: &StepState,
     t: f64,
-    h: f64,
     counters: &mut Counters,
 ) -> Result<StepState, StepFailure> {
     let m = model.mass_diag();
     let c = model.body.damping;
-    let nm = Newmark::new(opts, h);
     let Newmark {
-        alpha, s, c0, c1, ..
-    } = nm;
+        alpha,
+        s,
+        c0,
+        c1,
+        h,
+        ..
+    } = *nm;
     let sys = System {
         c0,
         s,
@@ -441,11 +471,9 @@ fn newton_step(
     };
     let newton = opts.newton;
     let g = drive.ground(t);
-    let f = Vector3::new(
-        drive.force(t),
-        -model.weight() + drive.vertical_force(t),
-        0.0,
-    );
+    let fz = drive.vertical_force(t);
+    let f = Vector3::new(drive.force(t), -model.weight() + fz, 0.0);
+    let f_norm = f.norm();
     let mut dq = Vector3::zeros();
     // Predictor: constant acceleration over the step.
     let mut q = n.q + n.v * h + n.a * (0.5 * h * h);
@@ -491,7 +519,7 @@ fn newton_step(
             w.rn[k] = -w.asm.pn[k] * s + w.pn_n[k] * alpha;
             r2 += w.rn[k].norm_squared();
         }
-        let fref = f.norm() + w.asm.pb.norm() + m.component_mul(&a).norm();
+        let fref = f_norm + w.asm.pb.norm() + m.component_mul(&a).norm();
         if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
             lambda *= 0.5;
             q = q_prev + dq_prev * lambda;
@@ -519,6 +547,7 @@ fn newton_step(
                 v,
                 a,
                 f,
+                fz,
                 pb: w.asm.pb,
                 damp,
                 g,
@@ -557,6 +586,7 @@ fn newton_step(
                 v,
                 a,
                 f,
+                fz,
                 pb: w.asm.pb,
                 damp,
                 g,
@@ -574,6 +604,7 @@ fn newton_step(
                 v,
                 a,
                 f,
+                fz,
                 pb: w.asm.pb,
                 damp,
                 g,
