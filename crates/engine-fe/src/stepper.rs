@@ -117,8 +117,7 @@ pub struct Counters {
 pub(crate) struct Newmark {
     /// HHT's α (0 for Newmark).
     pub alpha: f64,
-    /// Newmark's β and γ.
-    pub beta: f64,
+    /// Newmark's γ (β enters through `c0`, `c1` and the weight of aₙ).
     pub gamma: f64,
     /// 1 + α, the weight of the end-of-step forces.
     pub s: f64,
@@ -137,7 +136,6 @@ impl Newmark {
         let (alpha, beta, gamma) = opts.integrator.parameters();
         Self {
             alpha,
-            beta,
             gamma,
             s: 1.0 + alpha,
             c0: 1.0 / (beta * h * h),
@@ -402,11 +400,10 @@ enum FailureReason {
     NotFinite,
     /// Singular tangent at this iteration.
     Singular(usize),
-    /// Iterations used; last relative residual, correction and step increment; the
-    /// tolerances.
+    /// Iterations used; the last iteration's norms; the tolerances.
     NotConverged {
         iterations: usize,
-        last: (f64, f64, f64),
+        last: LastIteration,
         force_tol: f64,
         displacement_tol: f64,
     },
@@ -425,10 +422,27 @@ impl std::fmt::Display for FailureReason {
             } => write!(
                 f,
                 "{} iterations: relative residual {:.3e} (limit {:.1e}), last correction {:.3e} m against a step increment of {:.3e} m (limit {:.1e})",
-                iterations, last.0, force_tol, last.1, last.2, displacement_tol
+                iterations,
+                last.residual / last.force_scale.max(f64::MIN_POSITIVE),
+                force_tol,
+                last.correction_squared.sqrt(),
+                last.increment_squared.sqrt(),
+                displacement_tol
             ),
         }
     }
+}
+
+/// The norms of a Newton iteration, kept for the message of a step that fails to
+/// converge (the square roots and the ratio are taken only then).
+#[derive(Debug, Clone, Copy, Default)]
+struct LastIteration {
+    /// Residual norm and the force scale it is measured against, N.
+    residual: f64,
+    force_scale: f64,
+    /// Squared norms of the correction and of the step's increment with it, m².
+    correction_squared: f64,
+    increment_squared: f64,
 }
 
 /// Why a step failed.
@@ -490,7 +504,7 @@ fn newton_step(
         }
     }
     let (mut a, mut v);
-    let mut last = (0.0, 0.0, 0.0);
+    let mut last = LastIteration::default();
     let mut it = 0;
     // Backtracking line search (Dennis & Schnabel 1983, §6.3): the friction law is
     // piecewise linear, and a full Newton step can jump between stick and slip of
@@ -570,15 +584,23 @@ fn newton_step(
             inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
             u2 += w.un[k].norm_squared();
         }
-        let (rn, dn, incn) = (r2.sqrt(), d2.sqrt(), inc2.sqrt());
-        last = (rn / fref.max(f64::MIN_POSITIVE), dn, incn);
+        let rn = r2.sqrt();
+        last = LastIteration {
+            residual: rn,
+            force_scale: fref,
+            correction_squared: d2,
+            increment_squared: inc2,
+        };
         // Converged at the current iterate: its residual is small and the correction
         // Newton would still make is small against the step's increment.
-        // A correction below 1e-12 of the displacement, or a residual below 1e-11 of
-        // the force scale, is round-off of the absolute positions: nothing to correct.
+        // A correction below 1e-12 of the displacement is round-off of the absolute
+        // positions: nothing to correct. (A residual below 1e-11 of the force scale was
+        // accepted before the solve.) The correction's norms matter only to a residual
+        // within the tolerance: their square roots are taken only then.
         let force_ok = rn <= newton.force_tol * fref;
-        let disp_ok = dn <= (newton.displacement_tol * incn).max(1e-12 * u2.sqrt());
-        if (force_ok && disp_ok) || rn <= 1e-11 * fref {
+        let disp_ok =
+            || d2.sqrt() <= (newton.displacement_tol * inc2.sqrt()).max(1e-12 * u2.sqrt());
+        if force_ok && disp_ok() {
             done(it, counters);
             return Ok(StepState {
                 t,
