@@ -188,6 +188,15 @@ impl Workspace {
             dun_prev: z,
         }
     }
+
+    /// Keep the nodes' converged displacements and forces as the next step's start
+    /// (nothing to copy without nodes: no call for an empty copy every step).
+    fn keep_nodes(&mut self) {
+        if !self.un.is_empty() {
+            self.un_n.copy_from_slice(&self.un);
+            self.pn_n.copy_from_slice(&self.asm.pn);
+        }
+    }
 }
 
 /// Static equilibrium under gravity from the unloaded, just-touching state (Newton,
@@ -278,8 +287,7 @@ pub fn integrate(
     };
     model.assemble(&n.q, &mut w.un, g0.0, &mut w.asm);
     n.pb = w.asm.pb;
-    w.un_n.copy_from_slice(&w.un);
-    w.pn_n.copy_from_slice(&w.asm.pn);
+    w.keep_nodes();
     n.a = (n.f - n.pb - Vector3::new(n.damp, 0.0, 0.0))
         .component_div(&m.map(|x| if x > 0.0 { x } else { f64::INFINITY }));
     if !model.body.rotation {
@@ -327,8 +335,7 @@ pub fn integrate(
                 Ok(next) => {
                     model.commit_step(&w.asm, &mut w.un);
                     n = next;
-                    w.un_n.copy_from_slice(&w.un);
-                    w.pn_n.copy_from_slice(&w.asm.pn);
+                    w.keep_nodes();
                     pos = end;
                     if level > 0 && pos % (2 * size) == 0 {
                         level -= 1;
@@ -492,7 +499,9 @@ fn newton_step(
     // Predictor: constant acceleration over the step.
     let mut q = n.q + n.v * h + n.a * (0.5 * h * h);
     let nodes = model.loop_nodes();
-    w.un.copy_from_slice(&w.un_n);
+    if model.nodes > 0 {
+        w.un.copy_from_slice(&w.un_n);
+    }
     // Predictor: nodes on the ground move with it (element 1 is the stiff one); a
     // node left behind would put element 1 far into slip and let Newton cycle.
     // (Condensed supports have no node unknowns: `relax_nodes` places them.)
