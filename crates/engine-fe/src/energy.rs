@@ -92,11 +92,13 @@ impl EnergyBook {
             let st = e.state();
             let (t, n) = (e.tangential(), e.normal());
             let open = st.status == super::element::Status::Open;
+            // A zero force stores nothing: the term would be +0 (skipped, the same bits;
+            // no division for an open element).
             let mut u = 0.0;
-            if e.kx.is_finite() && e.kx > 0.0 {
+            if t != 0.0 && e.kx.is_finite() && e.kx > 0.0 {
                 u += 0.5 * t * t / e.kx;
             }
-            if e.kz.is_finite() && e.kz > 0.0 {
+            if n != 0.0 && e.kz.is_finite() && e.kz > 0.0 {
                 u += 0.5 * n * n / e.kz;
             }
             strain += u;

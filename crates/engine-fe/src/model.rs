@@ -125,6 +125,9 @@ pub struct Assembly {
     factors: Option<Factors>,
     /// The ground point (displacement) of the last assembly.
     ground: Vector2<f64>,
+    /// (cos θ, sin θ) of the last assembly ((1, 0) with small-rotation kinematics, which
+    /// do not use them).
+    cs: (f64, f64),
 }
 
 /// A condensed Newton matrix and its LU factors (fixed size, on the stack).
@@ -205,6 +208,12 @@ impl Lu3 {
 }
 
 impl Assembly {
+    /// (cos θ, sin θ) of the last assembly's body position, as its kinematics use them
+    /// ((1, 0) with small rotations, whose kinematics ignore them).
+    pub fn rotation(&self) -> (f64, f64) {
+        self.cs
+    }
+
     /// Room for a model's nodes and attachment points.
     pub fn new(model: &Model) -> Self {
         let nodes = model.nodes;
@@ -219,6 +228,7 @@ impl Assembly {
             knn_inv: vec![Matrix2::zeros(); nodes],
             factors: None,
             ground: Vector2::zeros(),
+            cs: (1.0, 0.0),
         }
     }
 }
@@ -388,19 +398,48 @@ impl Model {
         } else {
             (1.0, 0.0)
         };
+        a.cs = cs;
+        if self.condensed {
+            (a.pb, a.kbb) = self.assemble_condensed(q, cs, ground);
+            return;
+        }
         for (p, d) in a.points.iter_mut().zip(&self.body.attachments) {
             *p = point_kin(self.kinematics, self.p_delta, q, cs, d);
         }
-        if self.condensed {
-            (a.pb, a.kbb) = if self.nodes == 0 {
-                let elements = self.links.iter_mut().map(|l| &mut l.element);
-                assemble_direct(elements, &a.points, ground)
-            } else {
-                assemble_direct(self.equivalents.iter_mut(), &a.points, ground)
-            };
-            return;
-        }
         self.assemble_with_nodes(un, a);
+    }
+
+    /// The condensed assembly (`assemble_direct`) with the attachment kinematics fixed per
+    /// call, so the loop over elements carries no kinematics dispatch and no array of
+    /// point kinematics.
+    fn assemble_condensed(
+        &mut self,
+        q: &Vector3<f64>,
+        cs: (f64, f64),
+        ground: Vector2<f64>,
+    ) -> (Vector3<f64>, Matrix3<f64>) {
+        let attachments = &self.body.attachments;
+        macro_rules! with_kinematics {
+            ($kin:expr, $pd:expr) => {
+                if self.nodes == 0 {
+                    let elements = self.links.iter_mut().map(|l| &mut l.element);
+                    assemble_direct(elements, attachments, ground, |d| {
+                        point_kin($kin, $pd, q, cs, d)
+                    })
+                } else {
+                    assemble_direct(self.equivalents.iter_mut(), attachments, ground, |d| {
+                        point_kin($kin, $pd, q, cs, d)
+                    })
+                }
+            };
+        }
+        match (self.kinematics, self.p_delta) {
+            (Kinematics::Exact, _) => with_kinematics!(Kinematics::Exact, false),
+            (Kinematics::SmallRotation, false) => {
+                with_kinematics!(Kinematics::SmallRotation, false)
+            }
+            (Kinematics::SmallRotation, true) => with_kinematics!(Kinematics::SmallRotation, true),
+        }
     }
 
     /// The uncondensed assembly: every element, the massless nodes as unknowns.
@@ -494,6 +533,12 @@ impl Model {
                     un[k] = split_equivalent(eq, &mut l1.element, &mut l2.element) + a.ground;
                 }
             }
+            // Every link is a condensed support's element 1 or 2, set (committed and
+            // trial) by `split_equivalent`: only the equivalents are left to commit.
+            for e in &mut self.equivalents {
+                e.commit();
+            }
+            return;
         }
         self.commit();
     }
@@ -597,14 +642,17 @@ fn split_equivalent(
 /// attachment `i` (the `i`-th element): Gᵀf and GᵀDG + f·∂²u/∂θ² with G = [I₂ | g].
 /// Plain scalars in the loop (no matrix temporaries); the same sums in the same order as
 /// the general assembly, so a single arrangement gives the same bits.
+#[inline(always)]
 fn assemble_direct<'e>(
     elements: impl Iterator<Item = &'e mut Contact178>,
-    points: &[PointKin],
+    attachments: &[Vector2<f64>],
     ground: Vector2<f64>,
+    kinematics: impl Fn(&Vector2<f64>) -> PointKin,
 ) -> (Vector3<f64>, Matrix3<f64>) {
     let (mut p0, mut p1, mut p2) = (0.0, 0.0, 0.0);
     let mut k = [[0.0_f64; 3]; 3];
-    for (e, pk) in elements.zip(points) {
+    for (e, d) in elements.zip(attachments) {
+        let pk = kinematics(d);
         let (f, d) = e.trial(pk.u - ground);
         let (gx, gz) = (pk.g.x, pk.g.y);
         let (d00, d01, d10, d11) = (d[(0, 0)], d[(0, 1)], d[(1, 0)], d[(1, 1)]);
@@ -762,6 +810,17 @@ impl Model {
     /// Displacement of any body-frame point `d` (e.g. the base centre O).
     pub fn displacement_of(&self, q: &Vector3<f64>, d: &Vector2<f64>) -> Vector2<f64> {
         let cs = (q.z.cos(), q.z.sin());
+        point_kin(self.kinematics, self.p_delta, q, cs, d).u
+    }
+
+    /// `displacement_of` with (cos θ, sin θ) of `q` given (`Assembly::rotation`): the
+    /// same bits without a second sine and cosine.
+    pub fn displacement_at(
+        &self,
+        q: &Vector3<f64>,
+        cs: (f64, f64),
+        d: &Vector2<f64>,
+    ) -> Vector2<f64> {
         point_kin(self.kinematics, self.p_delta, q, cs, d).u
     }
 }

@@ -131,10 +131,10 @@ pub(crate) fn run_model(
             row[i] = v;
             i += 1;
         };
-        put(drive.equivalent_force(s.t));
+        put(drive.equivalent_force(s.t, s.force));
         put(shear);
         if rocking {
-            put(m.displacement_of(&s.q, &o_offset).x - xg);
+            put(m.displacement_at(&s.q, s.rotation, &o_offset).x - xg);
         } else {
             put(s.q.x - xg);
         }
@@ -160,7 +160,7 @@ pub(crate) fn run_model(
             put(node_sum / m.supports.len() as f64);
         }
         if rocking {
-            for v in book.record(m, s, (drive.force(s.t), drive.vertical_force(s.t))) {
+            for v in book.record(m, s, (s.force, s.vertical_force)) {
                 put(v);
             }
         }

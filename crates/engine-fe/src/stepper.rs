@@ -60,10 +60,11 @@ impl<'a> Drive<'a> {
         }
     }
     /// The horizontal force on the mass in relative coordinates (output channel `force`).
-    pub fn equivalent_force(&self, t: f64) -> f64 {
+    /// `force` is `self.force(t)`, as a snapshot holds it (no second evaluation).
+    pub fn equivalent_force(&self, t: f64, force: f64) -> f64 {
         match self.excitation {
             Excitation::GroundDisplacement(s) => -self.mass * s.second_derivative(t),
-            _ => self.force(t),
+            _ => force,
         }
     }
 }
@@ -85,6 +86,12 @@ pub struct Snapshot<'a> {
     pub ground: (f64, f64, f64),
     /// Body displacement at static equilibrium.
     pub q_static: Vector3<f64>,
+    /// Applied horizontal force at `t` (`Drive::force`), N.
+    pub force: f64,
+    /// Vertical load at `t` beyond the preload (`Drive::vertical_force`), N.
+    pub vertical_force: f64,
+    /// (cos θ, sin θ) of `q` as the model's kinematics use them (`Assembly::rotation`).
+    pub rotation: (f64, f64),
 }
 
 /// Deterministic counters of a run.
@@ -110,8 +117,7 @@ pub struct Counters {
 pub(crate) struct Newmark {
     /// HHT's α (0 for Newmark).
     pub alpha: f64,
-    /// Newmark's β and γ.
-    pub beta: f64,
+    /// Newmark's γ (β enters through `c0`, `c1` and the weight of aₙ).
     pub gamma: f64,
     /// 1 + α, the weight of the end-of-step forces.
     pub s: f64,
@@ -120,6 +126,9 @@ pub(crate) struct Newmark {
     pub c1: f64,
     /// Step, s.
     pub h: f64,
+    /// 1/(2β) − 1 and 1 − γ, the weights of aₙ in `kinematics` (computed once).
+    a_weight: f64,
+    v_weight: f64,
 }
 
 impl Newmark {
@@ -127,12 +136,13 @@ impl Newmark {
         let (alpha, beta, gamma) = opts.integrator.parameters();
         Self {
             alpha,
-            beta,
             gamma,
             s: 1.0 + alpha,
             c0: 1.0 / (beta * h * h),
             c1: gamma / (beta * h),
             h,
+            a_weight: 0.5 / beta - 1.0,
+            v_weight: 1.0 - gamma,
         }
     }
 
@@ -145,8 +155,8 @@ impl Newmark {
         vn: &SVector<f64, D>,
         an: &SVector<f64, D>,
     ) -> (SVector<f64, D>, SVector<f64, D>) {
-        let a = (dq - vn * self.h) * self.c0 - an * (0.5 / self.beta - 1.0);
-        let v = vn + (an * (1.0 - self.gamma) + a * self.gamma) * self.h;
+        let a = (dq - vn * self.h) * self.c0 - an * self.a_weight;
+        let v = vn + (an * self.v_weight + a * self.gamma) * self.h;
         (a, v)
     }
 }
@@ -176,6 +186,15 @@ impl Workspace {
             dun: z.clone(),
             un_prev: z.clone(),
             dun_prev: z,
+        }
+    }
+
+    /// Keep the nodes' converged displacements and forces as the next step's start
+    /// (nothing to copy without nodes: no call for an empty copy every step).
+    fn keep_nodes(&mut self) {
+        if !self.un.is_empty() {
+            self.un_n.copy_from_slice(&self.un);
+            self.pn_n.copy_from_slice(&self.asm.pn);
         }
     }
 }
@@ -261,14 +280,14 @@ pub fn integrate(
         v: Vector3::zeros(),
         a: Vector3::zeros(),
         f: Vector3::new(drive.force(0.0), -weight + drive.vertical_force(0.0), 0.0),
+        fz: drive.vertical_force(0.0),
         pb: Vector3::zeros(),
         damp: c * (0.0 - g0.1),
         g: g0,
     };
     model.assemble(&n.q, &mut w.un, g0.0, &mut w.asm);
     n.pb = w.asm.pb;
-    w.un_n.copy_from_slice(&w.un);
-    w.pn_n.copy_from_slice(&w.asm.pn);
+    w.keep_nodes();
     n.a = (n.f - n.pb - Vector3::new(n.damp, 0.0, 0.0))
         .component_div(&m.map(|x| if x > 0.0 { x } else { f64::INFINITY }));
     if !model.body.rotation {
@@ -285,11 +304,16 @@ pub fn integrate(
             un: &w.un_n,
             ground: g0,
             q_static,
+            force: n.f.x,
+            vertical_force: n.fz,
+            rotation: w.asm.rotation(),
         },
     );
 
     let max_depth = opts.newton.max_step_cuts;
     let units = 1u32 << max_depth;
+    // The coefficients of the step size in use (recomputed when a step is cut).
+    let mut nm = Newmark::new(opts, dt);
     for step in 1..=steps {
         let t_start = (step - 1) as f64 * dt;
         // Step cutting: a step whose Newton iteration fails is retried as two halves,
@@ -304,12 +328,14 @@ pub fn integrate(
                 t_start + dt * f64::from(end) / f64::from(units)
             };
             let h = dt / f64::from(1u32 << level);
-            match newton_step(model, drive, opts, &mut w, &n, t, h, &mut counters) {
+            if nm.h != h {
+                nm = Newmark::new(opts, h);
+            }
+            match newton_step(model, drive, opts, &nm, &mut w, &n, t, &mut counters) {
                 Ok(next) => {
                     model.commit_step(&w.asm, &mut w.un);
                     n = next;
-                    w.un_n.copy_from_slice(&w.un);
-                    w.pn_n.copy_from_slice(&w.asm.pn);
+                    w.keep_nodes();
                     pos = end;
                     if level > 0 && pos % (2 * size) == 0 {
                         level -= 1;
@@ -347,6 +373,9 @@ pub fn integrate(
                 un: &w.un_n,
                 ground: n.g,
                 q_static,
+                force: n.f.x,
+                vertical_force: n.fz,
+                rotation: w.asm.rotation(),
             },
         );
     }
@@ -362,6 +391,8 @@ struct StepState {
     a: Vector3<f64>,
     /// External force.
     f: Vector3<f64>,
+    /// Vertical load beyond the preload (`Drive::vertical_force`), N.
+    fz: f64,
     /// Base reaction on the body.
     pb: Vector3<f64>,
     /// Damping force.
@@ -376,11 +407,10 @@ enum FailureReason {
     NotFinite,
     /// Singular tangent at this iteration.
     Singular(usize),
-    /// Iterations used; last relative residual, correction and step increment; the
-    /// tolerances.
+    /// Iterations used; the last iteration's norms; the tolerances.
     NotConverged {
         iterations: usize,
-        last: (f64, f64, f64),
+        last: LastIteration,
         force_tol: f64,
         displacement_tol: f64,
     },
@@ -399,10 +429,27 @@ impl std::fmt::Display for FailureReason {
             } => write!(
                 f,
                 "{} iterations: relative residual {:.3e} (limit {:.1e}), last correction {:.3e} m against a step increment of {:.3e} m (limit {:.1e})",
-                iterations, last.0, force_tol, last.1, last.2, displacement_tol
+                iterations,
+                last.residual / last.force_scale.max(f64::MIN_POSITIVE),
+                force_tol,
+                last.correction_squared.sqrt(),
+                last.increment_squared.sqrt(),
+                displacement_tol
             ),
         }
     }
+}
+
+/// The norms of a Newton iteration, kept for the message of a step that fails to
+/// converge (the square roots and the ratio are taken only then).
+#[derive(Debug, Clone, Copy, Default)]
+struct LastIteration {
+    /// Residual norm and the force scale it is measured against, N.
+    residual: f64,
+    force_scale: f64,
+    /// Squared norms of the correction and of the step's increment with it, m².
+    correction_squared: f64,
+    increment_squared: f64,
 }
 
 /// Why a step failed.
@@ -414,26 +461,30 @@ struct StepFailure {
     diverged: bool,
 }
 
-/// One step of length `h` from `n` to time `t`: Newton–Raphson with a backtracking line
-/// search on the consistent tangent. On success the elements' trial states and `w.un`,
-/// `w.asm` hold the new state (not yet committed).
+/// One step of length `nm.h` from `n` to time `t`: Newton–Raphson with a backtracking
+/// line search on the consistent tangent. On success the elements' trial states and
+/// `w.un`, `w.asm` hold the new state (not yet committed).
 #[allow(clippy::too_many_arguments)]
 fn newton_step(
     model: &mut Model,
     drive: &Drive,
     opts: &FeOptions,
+    nm: &Newmark,
     w: &mut Workspace,
     n: &StepState,
     t: f64,
-    h: f64,
     counters: &mut Counters,
 ) -> Result<StepState, StepFailure> {
     let m = model.mass_diag();
     let c = model.body.damping;
-    let nm = Newmark::new(opts, h);
     let Newmark {
-        alpha, s, c0, c1, ..
-    } = nm;
+        alpha,
+        s,
+        c0,
+        c1,
+        h,
+        ..
+    } = *nm;
     let sys = System {
         c0,
         s,
@@ -441,16 +492,16 @@ fn newton_step(
     };
     let newton = opts.newton;
     let g = drive.ground(t);
-    let f = Vector3::new(
-        drive.force(t),
-        -model.weight() + drive.vertical_force(t),
-        0.0,
-    );
+    let fz = drive.vertical_force(t);
+    let f = Vector3::new(drive.force(t), -model.weight() + fz, 0.0);
+    let f_norm = f.norm();
     let mut dq = Vector3::zeros();
     // Predictor: constant acceleration over the step.
     let mut q = n.q + n.v * h + n.a * (0.5 * h * h);
     let nodes = model.loop_nodes();
-    w.un.copy_from_slice(&w.un_n);
+    if model.nodes > 0 {
+        w.un.copy_from_slice(&w.un_n);
+    }
     // Predictor: nodes on the ground move with it (element 1 is the stiff one); a
     // node left behind would put element 1 far into slip and let Newton cycle.
     // (Condensed supports have no node unknowns: `relax_nodes` places them.)
@@ -462,7 +513,7 @@ fn newton_step(
         }
     }
     let (mut a, mut v);
-    let mut last = (0.0, 0.0, 0.0);
+    let mut last = LastIteration::default();
     let mut it = 0;
     // Backtracking line search (Dennis & Schnabel 1983, §6.3): the friction law is
     // piecewise linear, and a full Newton step can jump between stick and slip of
@@ -491,7 +542,7 @@ fn newton_step(
             w.rn[k] = -w.asm.pn[k] * s + w.pn_n[k] * alpha;
             r2 += w.rn[k].norm_squared();
         }
-        let fref = f.norm() + w.asm.pb.norm() + m.component_mul(&a).norm();
+        let fref = f_norm + w.asm.pb.norm() + m.component_mul(&a).norm();
         if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
             lambda *= 0.5;
             q = q_prev + dq_prev * lambda;
@@ -519,6 +570,7 @@ fn newton_step(
                 v,
                 a,
                 f,
+                fz,
                 pb: w.asm.pb,
                 damp,
                 g,
@@ -541,15 +593,23 @@ fn newton_step(
             inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
             u2 += w.un[k].norm_squared();
         }
-        let (rn, dn, incn) = (r2.sqrt(), d2.sqrt(), inc2.sqrt());
-        last = (rn / fref.max(f64::MIN_POSITIVE), dn, incn);
+        let rn = r2.sqrt();
+        last = LastIteration {
+            residual: rn,
+            force_scale: fref,
+            correction_squared: d2,
+            increment_squared: inc2,
+        };
         // Converged at the current iterate: its residual is small and the correction
         // Newton would still make is small against the step's increment.
-        // A correction below 1e-12 of the displacement, or a residual below 1e-11 of
-        // the force scale, is round-off of the absolute positions: nothing to correct.
+        // A correction below 1e-12 of the displacement is round-off of the absolute
+        // positions: nothing to correct. (A residual below 1e-11 of the force scale was
+        // accepted before the solve.) The correction's norms matter only to a residual
+        // within the tolerance: their square roots are taken only then.
         let force_ok = rn <= newton.force_tol * fref;
-        let disp_ok = dn <= (newton.displacement_tol * incn).max(1e-12 * u2.sqrt());
-        if (force_ok && disp_ok) || rn <= 1e-11 * fref {
+        let disp_ok =
+            || d2.sqrt() <= (newton.displacement_tol * inc2.sqrt()).max(1e-12 * u2.sqrt());
+        if force_ok && disp_ok() {
             done(it, counters);
             return Ok(StepState {
                 t,
@@ -557,6 +617,7 @@ fn newton_step(
                 v,
                 a,
                 f,
+                fz,
                 pb: w.asm.pb,
                 damp,
                 g,
@@ -574,6 +635,7 @@ fn newton_step(
                 v,
                 a,
                 f,
+                fz,
                 pb: w.asm.pb,
                 damp,
                 g,
