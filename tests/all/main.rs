@@ -17,6 +17,7 @@ mod gate_check;
 mod golden;
 mod guarded_run;
 mod mcap_cli;
+mod mcap_space;
 mod mcap_traces;
 mod opensees;
 mod orbit_plot;
