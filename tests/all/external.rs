@@ -13,14 +13,13 @@
 //! - the worked example under `examples/external/` passes its gate.
 
 use std::path::Path;
-use std::process::Command;
 
 use rockslide::case::parse_case;
 use rockslide::external::{ACCEPTABLE_PERCENT, is_external};
 use rockslide::report::write_case_outputs;
 use rockslide::suite::{CaseResult, run_case};
 
-use crate::common::repo;
+use crate::common::{repo, rockslide};
 
 /// The paper's PEPO (half-sine mass acceleration) with the fe engine, single contact, and
 /// one engine-less tolerance (which must not apply to external runs).
@@ -220,14 +219,6 @@ fn bad_external_files_and_labels_are_located_input_errors() {
         e.contains("external[0].file: cannot read the results file"),
         "{e}"
     );
-}
-
-fn rockslide(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_rockslide"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args(args)
-        .output()
-        .unwrap()
 }
 
 #[test]

@@ -63,10 +63,10 @@ fn a_run_of_1e8_steps_is_refused_before_any_work() {
     // 10⁸ steps (1e5 s / 1e-3 s) + the initial row; time and the catalogue's quantities
     let rows: u64 = 100_000_001;
     let values = 1 + q::ALL.len() as u64;
-    assert_eq!(values, 30);
+    assert_eq!(values, 37);
     let bytes = rows * values * 8 * 3;
     let shown = format!("{:.1} GB", bytes as f64 / 1e9);
-    assert_eq!(shown, "72.0 GB");
+    assert_eq!(shown, "88.8 GB");
     let expected_start = format!("{}:{line}:{column}: run.duration: ", case.display());
     assert!(stderr.contains(&expected_start), "{stderr}");
     for part in [

@@ -317,20 +317,23 @@ fn invariant_failure(r: &CaseResult, i: &InvariantCheck) -> Failure {
 pub const WARN_PERCENT: f64 = 10.0;
 
 /// What must not hide under a green PASS, one line each starting `WARN`: informative
-/// (ungated) checks whose discrepancy is at least [`WARN_PERCENT`], and declared invariant
-/// violations with their measured size.
+/// (ungated) checks whose discrepancy is at least [`WARN_PERCENT`], with their verdict in
+/// the report table's words (`info: PASS` / `info: FAIL` against the informative limit),
+/// and declared invariant violations with their measured size.
 pub fn warnings(results: &[CaseResult]) -> Vec<String> {
     let mut out = Vec::new();
     for r in results {
         for c in r.checks.iter().filter(|c| !c.gated) {
             if let Some(p) = c.percent.filter(|p| p.abs() >= WARN_PERCENT) {
                 out.push(format!(
-                    "WARN {}: {}: {} vs {}: disagree by {} (not gated) [{}: {}]",
+                    "WARN {}: {}: {} vs {}: disagree by {} (not gated; info: {} against {}) [{}: {}]",
                     r.case.name,
                     c.quantity,
                     c.run,
                     c.basis,
                     disagreement(c, p),
+                    c.verdict.label(),
+                    c.limit,
                     r.case.path.display(),
                     c.field
                 ));
@@ -578,5 +581,16 @@ dt = 0.1
             "{w:?}"
         );
         assert!(w[1].contains("disagree by +20.0 %"), "{w:?}");
+        // the same words as the report table's result cell for an ungated check
+        assert!(
+            w[1].contains("(not gated; info: FAIL against ≤ 1 %)"),
+            "{w:?}"
+        );
+        r.checks[1].verdict = Verdict::Pass;
+        let w = warnings(std::slice::from_ref(&r));
+        assert!(
+            w[1].contains("(not gated; info: PASS against ≤ 1 %)"),
+            "{w:?}"
+        );
     }
 }

@@ -299,6 +299,70 @@ pub mod q {
         "Azimuth of the slip vector (slide, slide_y), degrees from +x toward +y (0 where it is zero)."
     );
 
+    quantity!(
+        FORCE_Y,
+        "force_y",
+        "Applied force F, y",
+        "N",
+        "kN",
+        1e-3,
+        "Force on the mass along y: M·a_y(t), or −M·ag_y(t) in relative coordinates (3D scenes)."
+    );
+    quantity!(
+        RESISTANCE_Y,
+        "resistance_y",
+        "Resistance R, y",
+        "N",
+        "kN",
+        1e-3,
+        "Base reaction on the structure along y (sum over supports), positive resisting positive displacement (3D scenes)."
+    );
+    quantity!(
+        GROUND_DISP_Y,
+        "ground_disp_y",
+        "Ground displacement yg",
+        "m",
+        "mm",
+        1e3,
+        "Displacement of the ground along y (3D scenes; `ground_disp` is the x component)."
+    );
+    quantity!(
+        ACC_Y,
+        "acc_y",
+        "Relative acceleration, y",
+        "m/s²",
+        "m/s²",
+        1.0,
+        "Acceleration of the mass (centre of mass) along y relative to the ground (3D scenes)."
+    );
+    quantity!(
+        CM_Y,
+        "cm_y",
+        "Centre of mass, y",
+        "m",
+        "mm",
+        1e3,
+        "Displacement of the centre of mass along y relative to the ground (3D scenes)."
+    );
+    quantity!(
+        ROTATION_X,
+        "rotation_x",
+        "Rotation about x",
+        "rad",
+        "mrad",
+        1e3,
+        "x component of the body's rotation vector, right-handed about +x (3D scenes: the tilt that lifts the +y side)."
+    );
+    quantity!(
+        ROTATION_Z,
+        "rotation_z",
+        "Rotation about z (twist)",
+        "rad",
+        "mrad",
+        1e3,
+        "z component of the body's rotation vector, right-handed about +z (3D scenes: the twist in plan)."
+    );
+
     /// The channels every sliding-oscillator trace has, in this order (engines and
     /// references alike), with `GROUND_DISP` after them when the ground moves.
     pub fn sliding(moving_ground: bool) -> Vec<&'static Quantity> {
@@ -340,6 +404,13 @@ pub mod q {
         &VEL_Y,
         &SLIDE_RESULTANT,
         &SLIDE_AZIMUTH,
+        &FORCE_Y,
+        &RESISTANCE_Y,
+        &ACC_Y,
+        &GROUND_DISP_Y,
+        &CM_Y,
+        &ROTATION_X,
+        &ROTATION_Z,
     ];
 
     /// The quantity with this key.

@@ -1,16 +1,22 @@
-//! The 3D view of a trace for Foxglove's 3D panel: the scene's geometry (ground, block,
-//! supports), the block's pose rebuilt from the trace's `cm_x`/`cm_z`/`rotation` channels,
-//! and the total support forces as arrows — encoded as the well-known Foxglove schemas
-//! `foxglove.SceneUpdate`, `foxglove.FrameTransform` and `foxglove.Log` in JSON.
+//! The 3D view of a trace for Foxglove's 3D panel: the scene's geometry (ground, body,
+//! supports), the body's pose rebuilt from the trace's channels, and the total support
+//! forces as arrows — encoded as the well-known Foxglove schemas `foxglove.SceneUpdate`,
+//! `foxglove.FrameTransform` and `foxglove.Log` in JSON.
 //!
-//! Conventions (Foxglove's: x right, y into the screen, z up). The motion is in the x–z
-//! plane; a counter-clockwise rotation θ as seen with x right and z up (the trace's sign
-//! convention) is a rotation by −θ about +y. Each run gets its own lane along y so that
-//! engines can be compared side by side. Frames, per run label `L`:
+//! Conventions (Foxglove's: x right, y into the screen, z up). A planar scene moves in the
+//! x–z plane; a counter-clockwise rotation θ as seen with x right and z up (the trace's
+//! sign convention) is a rotation by −θ about +y. A bidirectional (3D) scene moves in x
+//! and y: the centre of mass from `cm_x`/`cm_y` (else the base point's `rel_disp`/
+//! `rel_disp_y`), the orientation from the rotation vector (`rotation_x`, −`rotation`,
+//! `rotation_z`), the ground from `ground_disp`/`ground_disp_y`, its supports on the
+//! `supports` × `support_rows` grid; the oscillator, which has no geometry, is drawn as a
+//! cube on its one contact, sized from the largest displacement of the runs so that the
+//! motion shows. Each run gets its own lane along y so that engines can be compared side
+//! by side; the reference is drawn as a translucent ghost. Frames, per run label `L`:
 //!
 //! ```text
-//! world ─▶ L/ground   translation (ground_disp, lane y, 0): the moving ground
-//!          └▶ L/body  translation (x_cm, 0, z_cm0 + cm_z), rotation θ: origin at the centre of mass
+//! world ─▶ L/ground   translation (ground_disp, lane y + ground_disp_y, 0): the moving ground
+//!          └▶ L/body  translation (x_cm, y_cm, z_cm0 + cm_z), rotation: origin at the centre of mass
 //! ```
 //!
 //! The JSON schemas below are written here from the field lists of Foxglove's message
@@ -21,34 +27,44 @@
 
 use serde_json::{Value, json};
 
-use crate::case::Model;
+use crate::case::{Model, Scene};
 
 use super::Trace;
+
+/// The label of the reference's run, drawn as a ghost.
+const REFERENCE_LABEL: &str = "reference";
 
 /// The geometry of a scene that has one, in metres, with the static pose of its body.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Geometry {
-    /// `rocking-body` or `rigid-block`.
+    /// `rocking-body`, `rigid-block` or `oscillator` (a 3D scene's mass, drawn as a cube).
     pub kind: &'static str,
     /// Height of the centre of mass above the base when the body rests on the ground, m.
     pub cm_height: f64,
-    /// Half-width of the base, m.
+    /// Half-width of the base along x, m.
     pub half_width: f64,
     /// Half of the drawn body's height, m (the body is drawn centred on its centre of mass).
     pub half_height: f64,
-    /// Support abscissae relative to the base centre O, m (empty: a rigid base).
-    pub supports: Vec<f64>,
+    /// Half-depth of the base along y in a 3D scene, m (`None`: a planar scene, drawn
+    /// `half_width` deep).
+    pub half_depth: Option<f64>,
+    /// Support positions (x, y) relative to the base centre O, m (empty: a rigid base).
+    pub supports: Vec<[f64; 2]>,
     /// Weight M·g (or M where g = 0), N: sets the force-arrow scale.
     pub weight: f64,
 }
 
+fn weight(m: f64, g: f64) -> f64 {
+    if g > 0.0 { m * g } else { m }
+}
+
 impl Geometry {
-    /// The geometry of a model, or `None` for a scene without one (`Model::has_geometry`).
+    /// The geometry of a planar model, or `None` for a scene without one
+    /// (`Model::has_geometry`).
     pub fn of(model: &Model) -> Option<Self> {
         if !model.has_geometry() {
             return None;
         }
-        let weight = |m: f64, g: f64| if g > 0.0 { m * g } else { m };
         match model {
             Model::Oscillator(_) => None,
             Model::RockingBody(r) => Some(Self {
@@ -56,7 +72,8 @@ impl Geometry {
                 cm_height: r.cm_height,
                 half_width: r.half_width,
                 half_height: r.cm_height,
-                supports: r.support_positions(),
+                half_depth: None,
+                supports: r.support_positions().iter().map(|&x| [x, 0.0]).collect(),
                 weight: weight(r.mass, r.gravity),
             }),
             Model::RigidBlock(b) => Some(Self {
@@ -64,15 +81,55 @@ impl Geometry {
                 cm_height: b.half_height,
                 half_width: b.half_width,
                 half_height: b.half_height,
+                half_depth: None,
                 supports: Vec::new(),
                 weight: weight(b.mass, b.gravity),
             }),
         }
     }
 
+    /// The geometry of a scene: [`Geometry::of`] for a planar one; for a 3D one the body
+    /// with its depth and its grid of supports (`supports` × `support_rows`, rows from −d
+    /// to +d), and the oscillator as a cube of half-size 5 × the largest resultant
+    /// displacement of `traces` (`rel_disp`, `rel_disp_y`; 1 m when none moves), resting
+    /// on its one contact.
+    pub fn of_scene(scene: &Scene, traces: &[&Trace]) -> Option<Self> {
+        let Some(spatial) = scene.spatial() else {
+            return Self::of(&scene.model);
+        };
+        let half_depth = spatial.depth.map(|d| d.half_depth);
+        let rows = spatial.depth.map_or(1, |d| d.support_rows.max(1));
+        match &scene.model {
+            Model::Oscillator(o) => {
+                let s = oscillator_half_size(traces);
+                Some(Self {
+                    kind: "oscillator",
+                    cm_height: s,
+                    half_width: s,
+                    half_height: s,
+                    half_depth: Some(s),
+                    supports: vec![[0.0, 0.0]],
+                    weight: weight(o.mass, o.gravity),
+                })
+            }
+            Model::RockingBody(_) | Model::RigidBlock(_) => {
+                let mut g = Self::of(&scene.model)?;
+                let d = half_depth.unwrap_or(g.half_width);
+                g.half_depth = Some(d);
+                g.supports = grid(&g.supports, d, rows);
+                Some(g)
+            }
+        }
+    }
+
+    /// Whether the scene is bidirectional (drawn with its depth, moving in y too).
+    pub fn is_spatial(&self) -> bool {
+        self.half_depth.is_some()
+    }
+
     /// Depth of the drawn body along y, m.
     pub fn depth(&self) -> f64 {
-        self.half_width
+        self.half_depth.map_or(self.half_width, |d| 2.0 * d)
     }
 
     /// Distance between the lanes of successive runs along y, m.
@@ -87,49 +144,149 @@ impl Geometry {
     }
 }
 
+/// The planar supports `row` (x, 0) repeated on `rows` rows from y = −d to +d (one row: y = 0).
+fn grid(row: &[[f64; 2]], d: f64, rows: usize) -> Vec<[f64; 2]> {
+    let ys: Vec<f64> = if rows <= 1 {
+        vec![0.0]
+    } else {
+        (0..rows)
+            .map(|j| -d + 2.0 * d * j as f64 / (rows - 1) as f64)
+            .collect()
+    };
+    ys.iter()
+        .flat_map(|&y| row.iter().map(move |p| [p[0], y]))
+        .collect()
+}
+
+/// Half-size of the cube drawn for a 3D oscillator: 5 × the largest finite resultant
+/// relative displacement of the traces, 1 m when none moves.
+fn oscillator_half_size(traces: &[&Trace]) -> f64 {
+    let peak = traces
+        .iter()
+        .filter_map(|t| {
+            let x = t.column("rel_disp")?;
+            let y = t.column("rel_disp_y");
+            Some(
+                (0..x.len())
+                    .map(|i| x[i].hypot(y.map_or(0.0, |y| y[i])))
+                    .filter(|r| r.is_finite())
+                    .fold(0.0, f64::max),
+            )
+        })
+        .fold(0.0, f64::max);
+    if peak > 0.0 { 5.0 * peak } else { 1.0 }
+}
+
 /// The pose of a body in its ground frame at one row of a trace.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Pose {
-    /// Horizontal position of the centre of mass relative to the ground, m.
+    /// Position of the centre of mass along x relative to the ground, m.
     pub x: f64,
+    /// Position of the centre of mass along y relative to the ground, m (0 in a planar scene).
+    pub y: f64,
     /// Height of the centre of mass above the ground surface, m.
     pub z: f64,
-    /// Rotation, rad, counter-clockwise positive (x right, z up).
-    pub theta: f64,
+    /// Rotation vector (axis × angle, rad) about x, y, z; a planar rotation θ
+    /// (counter-clockwise with x right and z up) is (0, −θ, 0).
+    pub rotation: [f64; 3],
 }
 
 impl Pose {
-    /// Rebuild the pose at row `i` from the channels the trace has: `cm_x` (else the base
-    /// point's `rel_disp` moved to the centre of mass through the rotation), `cm_z`
-    /// (else 0) and `rotation` (else 0). `None` when the trace has no horizontal position
-    /// or a value is not finite (a diverged run's last rows).
+    /// Rebuild the pose at row `i` from the channels the trace has: `cm_x`, `cm_y` (else
+    /// the base point's `rel_disp`, `rel_disp_y` moved to the centre of mass through the
+    /// rotation; y 0 when the trace has neither), `cm_z` (else 0) and the rotation vector
+    /// (`rotation_x`, −`rotation`, `rotation_z`, each 0 when absent). `None` when the trace
+    /// has no horizontal position or a value is not finite (a diverged run's last rows).
     pub fn at(trace: &Trace, i: usize, g: &Geometry) -> Option<Self> {
         let get = |key: &str| trace.column(key).map(|c| c[i]);
-        let theta = get("rotation").unwrap_or(0.0);
-        let x = match (get("cm_x"), get("rel_disp")) {
+        let rotation = [
+            get("rotation_x").unwrap_or(0.0),
+            -get("rotation").unwrap_or(0.0),
+            get("rotation_z").unwrap_or(0.0),
+        ];
+        let mut p = Self {
+            x: 0.0,
+            y: 0.0,
+            z: g.cm_height + get("cm_z").unwrap_or(0.0),
+            rotation,
+        };
+        // O = CM + R·(0, 0, −h), so CM = O + R·(0, 0, h)
+        let up = p.apply([0.0, 0.0, g.cm_height]);
+        p.x = match (get("cm_x"), get("rel_disp")) {
             (Some(x), _) => x,
-            // O = CM + R(θ)·(0, −h): x_O = x_cm + h·sin θ
-            (None, Some(x_o)) => x_o - g.cm_height * theta.sin(),
+            (None, Some(x_o)) => x_o + up[0],
             (None, None) => return None,
         };
-        let z = g.cm_height + get("cm_z").unwrap_or(0.0);
-        let p = Self { x, z, theta };
-        [x, z, theta].iter().all(|v| v.is_finite()).then_some(p)
+        p.y = match (get("cm_y"), get("rel_disp_y")) {
+            (Some(y), _) => y,
+            (None, Some(y_o)) => y_o + up[1],
+            (None, None) => 0.0,
+        };
+        let finite = [p.x, p.y, p.z]
+            .iter()
+            .chain(&p.rotation)
+            .all(|v| v.is_finite());
+        finite.then_some(p)
     }
 
-    /// Base centre O in the ground frame: CM + R(θ)·(0, −h) = (x + h sin θ, z − h cos θ).
-    pub fn base_point(&self, g: &Geometry) -> (f64, f64) {
-        (
-            self.x + g.cm_height * self.theta.sin(),
-            self.z - g.cm_height * self.theta.cos(),
-        )
+    /// The planar rotation θ when the rotation vector is (0, −θ, 0).
+    fn planar_theta(&self) -> Option<f64> {
+        (self.rotation[0] == 0.0 && self.rotation[2] == 0.0).then_some(-self.rotation[1])
     }
 
-    /// Orientation as a quaternion (x, y, z, w): rotation −θ about +y.
+    /// Base centre O in the ground frame: CM + R·(0, 0, −h) (planar: (x + h sin θ, z − h cos θ)).
+    pub fn base_point(&self, g: &Geometry) -> [f64; 3] {
+        let d = self.apply([0.0, 0.0, -g.cm_height]);
+        [self.x + d[0], self.y + d[1], self.z + d[2]]
+    }
+
+    /// A body-frame vector turned by the body's rotation R (not moved).
+    pub fn apply(&self, v: [f64; 3]) -> [f64; 3] {
+        if let Some(th) = self.planar_theta() {
+            // rotation −θ about +y
+            let (s, c) = th.sin_cos();
+            return [c * v[0] - s * v[2], v[1], s * v[0] + c * v[2]];
+        }
+        rotate(self.quaternion(), v)
+    }
+
+    /// Orientation as a quaternion (x, y, z, w) of the rotation vector (planar: rotation
+    /// −θ about +y).
     pub fn quaternion(&self) -> [f64; 4] {
-        let h = 0.5 * self.theta;
-        [0.0, -h.sin(), 0.0, h.cos()]
+        if let Some(th) = self.planar_theta() {
+            let h = 0.5 * th;
+            return [0.0, -h.sin(), 0.0, h.cos()];
+        }
+        let [a, b, c] = self.rotation;
+        let angle = (a * a + b * b + c * c).sqrt();
+        let half = 0.5 * angle;
+        // sin(|ψ|/2)/|ψ|, its series below 1e-4 rad (error < 1e-18)
+        let k = if angle < 1e-4 {
+            0.5 - angle * angle / 48.0
+        } else {
+            half.sin() / angle
+        };
+        [k * a, k * b, k * c, half.cos()]
     }
+}
+
+/// v turned by the unit quaternion q = (x, y, z, w): v + 2w(q⃗ × v) + 2 q⃗ × (q⃗ × v).
+pub fn rotate(q: [f64; 4], v: [f64; 3]) -> [f64; 3] {
+    let cross = |a: [f64; 3], b: [f64; 3]| {
+        [
+            a[1] * b[2] - a[2] * b[1],
+            a[2] * b[0] - a[0] * b[2],
+            a[0] * b[1] - a[1] * b[0],
+        ]
+    };
+    let u = [q[0], q[1], q[2]];
+    let t = cross(u, v);
+    let tt = cross(u, t);
+    [
+        v[0] + 2.0 * (q[3] * t[0] + tt[0]),
+        v[1] + 2.0 * (q[3] * t[1] + tt[1]),
+        v[2] + 2.0 * (q[3] * t[2] + tt[2]),
+    ]
 }
 
 /// Whether a trace carries enough to draw its body (a horizontal position).
@@ -168,6 +325,13 @@ const UP: [f64; 4] = [
 ];
 /// Arrow pointing −x (180° about +z).
 const LEFT: [f64; 4] = [0.0, 0.0, 1.0, 0.0];
+/// Arrow pointing +y (90° about +z): the ground's ticks along y.
+const ALONG_Y: [f64; 4] = [
+    0.0,
+    0.0,
+    std::f64::consts::FRAC_1_SQRT_2,
+    std::f64::consts::FRAC_1_SQRT_2,
+];
 
 /// Lane colours, one per run (colour-blind-safe Okabe–Ito palette).
 const PALETTE: [[f64; 3]; 7] = [
@@ -184,6 +348,15 @@ const PALETTE: [[f64; 3]; 7] = [
 pub fn lane_color(i: usize, a: f64) -> [f64; 4] {
     let c = PALETTE[i % PALETTE.len()];
     [c[0], c[1], c[2], a]
+}
+
+/// The body's colour: its lane's, translucent (a ghost) for the reference.
+fn body_color(lane: usize, label: &str) -> [f64; 4] {
+    if label == REFERENCE_LABEL {
+        [0.3, 0.3, 0.3, 0.25]
+    } else {
+        lane_color(lane, 0.55)
+    }
 }
 
 /// One scene entity with every primitive list present (empty where unused), as the
@@ -212,38 +385,51 @@ pub fn frames(label: &str) -> (String, String) {
     (format!("{label}/ground"), format!("{label}/body"))
 }
 
+/// The ground's tick marks every `tick` from −8 to 8 ticks: across x (a planar scene),
+/// and across y too in a 3D scene (a grid, so that the ground's motion shows both ways).
+fn ground_ticks(g: &Geometry, tick: f64, lane_w: f64) -> Vec<Value> {
+    let mark = |p: (f64, f64, f64), q: [f64; 4], len: f64| {
+        json!({
+            "pose": pose(p, q),
+            "size": vec3(0.02 * g.half_width, len, 0.001),
+            "color": color([0.15, 0.15, 0.15, 1.0])
+        })
+    };
+    let mut ticks: Vec<Value> = (-8..=8)
+        .map(|k| mark((k as f64 * tick, 0.0, 0.0005), IDENTITY, lane_w))
+        .collect();
+    if g.is_spatial() {
+        let n = (0.5 * lane_w / tick).floor() as i32;
+        let len = 16.0 * tick;
+        ticks.extend((-n..=n).map(|k| mark((0.0, k as f64 * tick, 0.0005), ALONG_Y, len)));
+    }
+    ticks
+}
+
 /// The static scene of one run (published once at t = 0, on its own topic so that a
 /// viewer seeking anywhere still has it): ground slab with ticks every max(b, h) (so the
-/// ground's motion shows), the body, its centre of mass, its supports, a label.
+/// ground's motion shows; a grid in a 3D scene), the body, its centre of mass, its
+/// supports (every support of a 3D grid), a label.
 pub fn static_scene(g: &Geometry, lane: usize, label: &str) -> Value {
     let (ground, body) = frames(label);
-    let c = lane_color(lane, 0.55);
+    let c = body_color(lane, label);
     let h_body = 2.0 * g.half_height;
     let slab_len = 16.0 * g.half_width.max(g.half_height) + g.half_width;
     let slab_t = 0.04 * h_body;
     let lane_w = 0.8 * g.lane_spacing();
     let tick = g.half_width.max(g.half_height);
-    let ticks: Vec<Value> = (-8..=8)
-        .map(|k| {
-            json!({
-                "pose": pose((k as f64 * tick, 0.0, 0.0005), IDENTITY),
-                "size": vec3(0.02 * g.half_width, lane_w, 0.001),
-                "color": color([0.15, 0.15, 0.15, 1.0])
-            })
-        })
-        .collect();
     let mut ground_cubes = vec![json!({
         "pose": pose((0.0, 0.0, -0.5 * slab_t), IDENTITY),
         "size": vec3(slab_len, lane_w, slab_t),
         "color": color([0.62, 0.62, 0.62, 1.0])
     })];
-    ground_cubes.extend(ticks);
+    ground_cubes.extend(ground_ticks(g, tick, lane_w));
     let supports: Vec<Value> = g
         .supports
         .iter()
-        .map(|&x| {
+        .map(|&[x, y]| {
             json!({
-                "pose": pose((x, 0.0, -g.cm_height), IDENTITY),
+                "pose": pose((x, y, -g.cm_height), IDENTITY),
                 "size": vec3(0.08 * g.half_width, 0.08 * g.half_width, 0.08 * g.half_width),
                 "color": color([0.1, 0.1, 0.1, 1.0])
             })
@@ -302,18 +488,30 @@ pub fn datum(g: &Geometry) -> Value {
     )
 }
 
+/// The total tangential force on the body at row `i`, (x, y) N: `base_shear` (else
+/// −`resistance`) along x and −`resistance_y` along y (`None` in a planar trace).
+fn tangential_force(trace: &Trace, i: usize) -> (Option<f64>, Option<f64>) {
+    let fx = trace
+        .column("base_shear")
+        .map(|c| c[i])
+        .or_else(|| trace.column("resistance").map(|c| -c[i]));
+    let fy = trace.column("resistance_y").map(|c| -c[i]);
+    (fx, fy)
+}
+
 /// The support-force arrows at one row, in the ground frame, drawn ending at the base
 /// centre O: the total normal force (`normal`) upward and the total tangential force
-/// on the body (`base_shear`, else −`resistance`) along x, length |F|·`arrow_scale`.
+/// on the body (`base_shear`, else −`resistance`, along x; −`resistance_y` along y in a
+/// 3D scene: one arrow along the horizontal resultant), length |F|·`arrow_scale`.
 pub fn forces(trace: &Trace, i: usize, ns: u64, g: &Geometry, p: &Pose, label: &str) -> Value {
     let (ground, _) = frames(label);
-    let (ox, oz) = p.base_point(g);
+    let [ox, oy, oz] = p.base_point(g);
     let s = g.arrow_scale();
     let mut arrows = Vec::new();
-    let mut arrow = |tail: (f64, f64), q: [f64; 4], len: f64, c: [f64; 4]| {
+    let mut arrow = |tail: (f64, f64, f64), q: [f64; 4], len: f64, c: [f64; 4]| {
         if len.is_finite() && len > 1e-9 * g.cm_height {
             arrows.push(json!({
-                "pose": pose((tail.0, 0.0, tail.1), q),
+                "pose": pose(tail, q),
                 "shaft_length": 0.8 * len,
                 "shaft_diameter": 0.04 * g.half_width,
                 "head_length": 0.2 * len,
@@ -324,25 +522,34 @@ pub fn forces(trace: &Trace, i: usize, ns: u64, g: &Geometry, p: &Pose, label: &
     };
     if let Some(n) = trace.column("normal").map(|c| c[i]) {
         let len = n.abs() * s;
-        let (tail, q) = if n >= 0.0 {
-            ((ox, oz - len), UP)
+        let tail = if n >= 0.0 {
+            (ox, oy, oz - len)
         } else {
-            ((ox, oz), UP) // a tensile total cannot happen on compression-only supports
+            (ox, oy, oz) // a tensile total cannot happen on compression-only supports
         };
-        arrow(tail, q, len, [0.2, 0.6, 0.2, 1.0]);
+        arrow(tail, UP, len, [0.2, 0.6, 0.2, 1.0]);
     }
-    let shear = trace
-        .column("base_shear")
-        .map(|c| c[i])
-        .or_else(|| trace.column("resistance").map(|c| -c[i]));
-    if let Some(f) = shear {
-        let len = f.abs() * s;
-        let (tail, q) = if f >= 0.0 {
-            ((ox - len, oz), IDENTITY)
-        } else {
-            ((ox + len, oz), LEFT)
-        };
-        arrow(tail, q, len, [0.85, 0.1, 0.1, 1.0]);
+    let red = [0.85, 0.1, 0.1, 1.0];
+    match tangential_force(trace, i) {
+        (Some(f), None) => {
+            let len = f.abs() * s;
+            let (tail, q) = if f >= 0.0 {
+                ((ox - len, oy, oz), IDENTITY)
+            } else {
+                ((ox + len, oy, oz), LEFT)
+            };
+            arrow(tail, q, len, red);
+        }
+        (fx, Some(fy)) => {
+            let fx = fx.unwrap_or(0.0);
+            let len = fx.hypot(fy) * s;
+            let phi = fy.atan2(fx);
+            let (sin, cos) = phi.sin_cos();
+            let half = 0.5 * phi;
+            let q = [0.0, 0.0, half.sin(), half.cos()];
+            arrow((ox - len * cos, oy - len * sin, oz), q, len, red);
+        }
+        (None, None) => {}
     }
     json!({
         "deletions": [],
@@ -364,18 +571,22 @@ pub fn transform(ns: u64, parent: &str, child: &str, t: (f64, f64, f64), q: [f64
 /// The body's transform from its pose.
 pub fn body_transform(ns: u64, p: &Pose, label: &str) -> Value {
     let (ground, body) = frames(label);
-    transform(ns, &ground, &body, (p.x, 0.0, p.z), p.quaternion())
+    transform(ns, &ground, &body, (p.x, p.y, p.z), p.quaternion())
 }
 
-/// The ground's transform: its displacement (0 when the trace has none) and the lane.
+/// The ground's transform: its displacement (`ground_disp`, `ground_disp_y`; 0 where
+/// the trace has none) and the lane.
 pub fn ground_transform(ns: u64, trace: &Trace, i: usize, lane_y: f64, label: &str) -> Value {
     let (ground, _) = frames(label);
-    let xg = trace
-        .column("ground_disp")
-        .map(|c| c[i])
-        .filter(|x| x.is_finite())
-        .unwrap_or(0.0);
-    transform(ns, "world", &ground, (xg, lane_y, 0.0), IDENTITY)
+    let disp = |key: &str| {
+        trace
+            .column(key)
+            .map(|c| c[i])
+            .filter(|x| x.is_finite())
+            .unwrap_or(0.0)
+    };
+    let (xg, yg) = (disp("ground_disp"), disp("ground_disp_y"));
+    transform(ns, "world", &ground, (xg, lane_y + yg, 0.0), IDENTITY)
 }
 
 /// A `foxglove.Log` message (levels: 2 info, 3 warning, 4 error).

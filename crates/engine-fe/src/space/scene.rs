@@ -17,107 +17,6 @@ use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{NotApplicable, Run, SolverStats, step_count};
 
-/// The y-direction channels of a 3D run that the catalogue does not have yet (the x ones
-/// keep the 2D keys; `rel_disp_y`, `slide_y`, `vel_y`, `slide_resultant`, `slide_azimuth`
-/// are the catalogue's).
-pub mod qy {
-    use rockslide_core::trace::Quantity;
-
-    macro_rules! quantity {
-        ($name:ident, $key:literal, $label:literal, $unit:literal, $dunit:literal, $f:expr, $doc:literal) => {
-            #[doc = $doc]
-            pub static $name: Quantity = Quantity {
-                key: $key,
-                label: $label,
-                unit: $unit,
-                display: ($dunit, $f),
-                doc: $doc,
-            };
-        };
-    }
-    quantity!(
-        FORCE_Y,
-        "force_y",
-        "Applied force F, y",
-        "N",
-        "kN",
-        1e-3,
-        "Force on the mass along y (relative coordinates)."
-    );
-    quantity!(
-        RESISTANCE_Y,
-        "resistance_y",
-        "Resistance R, y",
-        "N",
-        "kN",
-        1e-3,
-        "Base reaction along y (sum over supports)."
-    );
-    quantity!(
-        REL_DISP_Y,
-        "rel_disp_y",
-        "Relative displacement y",
-        "m",
-        "mm",
-        1e3,
-        "Displacement along y of the mass (or of base point O) relative to the ground."
-    );
-    quantity!(
-        SLIDE_Y,
-        "slide_y",
-        "Sliding, y",
-        "m",
-        "mm",
-        1e3,
-        "Accumulated slip along y (mean over supports)."
-    );
-    quantity!(
-        VEL_Y,
-        "vel_y",
-        "Relative velocity, y",
-        "m/s",
-        "mm/s",
-        1e3,
-        "Velocity of the centre of mass along y relative to the ground."
-    );
-    quantity!(
-        ACC_Y,
-        "acc_y",
-        "Relative acceleration, y",
-        "m/s²",
-        "m/s²",
-        1.0,
-        "Acceleration of the centre of mass along y relative to the ground."
-    );
-    quantity!(
-        CM_Y,
-        "cm_y",
-        "CM displacement, y",
-        "m",
-        "mm",
-        1e3,
-        "Centre of mass along y relative to the ground."
-    );
-    quantity!(
-        ROTATION_X,
-        "rotation_x",
-        "Rotation about x",
-        "rad",
-        "mrad",
-        1e3,
-        "x component of the body's rotation vector."
-    );
-    quantity!(
-        ROTATION_Z,
-        "rotation_z",
-        "Rotation about z (twist)",
-        "rad",
-        "mrad",
-        1e3,
-        "z component of the body's rotation vector."
-    );
-}
-
 /// The variants of a 3D scene, or why fe does not run it.
 pub fn variants(scene: &Scene, spatial: &Spatial) -> Result<Vec<&'static str>, NotApplicable> {
     let double = match &scene.model {
@@ -198,9 +97,9 @@ fn body(case: &Case, spatial: &Spatial, double: bool) -> Result<(SpaceBody, Stri
 fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Quantity> {
     let mut c = vec![
         &q::FORCE,
-        &qy::FORCE_Y,
+        &q::FORCE_Y,
         &q::RESISTANCE,
-        &qy::RESISTANCE_Y,
+        &q::RESISTANCE_Y,
         &q::REL_DISP,
         &q::REL_DISP_Y,
         &q::SLIDE,
@@ -208,21 +107,21 @@ fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Qua
         &q::VEL,
         &q::VEL_Y,
         &q::ACC,
-        &qy::ACC_Y,
+        &q::ACC_Y,
         &q::SLIDE_RESULTANT,
         &q::SLIDE_AZIMUTH,
     ];
     if moves_ground {
-        c.push(&q::GROUND_DISP);
+        c.extend([&q::GROUND_DISP, &q::GROUND_DISP_Y]);
     }
     if rocking {
         c.extend([
             &q::CM_X,
-            &qy::CM_Y,
+            &q::CM_Y,
             &q::CM_Z,
             &q::ROTATION,
-            &qy::ROTATION_X,
-            &qy::ROTATION_Z,
+            &q::ROTATION_X,
+            &q::ROTATION_Z,
             &q::UPLIFT,
             &q::CONTACTS,
         ]);
@@ -299,6 +198,7 @@ pub fn simulate_space(
         });
         if moves_ground {
             put(s.ground[0].x);
+            put(s.ground[0].y);
         }
         if rocking {
             put(r.cm.x);

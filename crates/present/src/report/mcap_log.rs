@@ -37,7 +37,9 @@ pub fn case_trace_log_of<'a>(
     reference_trace: Option<&'a Trace>,
 ) -> TraceLog<'a> {
     let c = &result.case;
-    let geometry = Geometry::of(&c.scene.model);
+    let reference_shown = reference_trace.or(result.reference.as_ref().ok().map(|r| &r.output));
+    let all_traces: Vec<&Trace> = runs_traces.iter().copied().chain(reference_shown).collect();
+    let geometry = Geometry::of_scene(&c.scene, &all_traces);
     let mut head = map([
         ("tool", "rockslide".to_string()),
         ("version", env!("CARGO_PKG_VERSION").to_string()),
@@ -138,14 +140,22 @@ pub fn case_trace_log_of<'a>(
                 ("model", g.kind.to_string()),
                 (
                     "frames",
-                    "world → <run>/ground (ground_disp, lane y) → <run>/body (centre of mass, rotation)"
-                        .to_string(),
+                    if g.is_spatial() {
+                        "world → <run>/ground (ground_disp, lane y + ground_disp_y) → <run>/body (centre of mass x, y, z; rotation vector rotation_x, −rotation, rotation_z)"
+                    } else {
+                        "world → <run>/ground (ground_disp, lane y) → <run>/body (centre of mass, rotation)"
+                    }
+                    .to_string(),
                 ),
                 ("lane_spacing_m", format!("{:?}", g.lane_spacing())),
                 ("arrow_scale_m_per_N", format!("{:e}", g.arrow_scale())),
                 (
                     "arrows",
-                    "green: total normal force, red: total tangential force on the body, drawn ending at base centre O".to_string(),
+                    "green: total normal force, red: total tangential force on the body (its horizontal resultant in a 3D scene), drawn ending at base centre O".to_string(),
+                ),
+                (
+                    "reference",
+                    "drawn as a translucent grey ghost in its own lane".to_string(),
                 ),
                 ("period_ns", SCENE_PERIOD_NS.to_string()),
             ]),
