@@ -51,7 +51,7 @@ fn cone_excess(r: &Run, mu: f64) -> f64 {
 }
 
 const PEPO: &str = "cases/spatial/pepo-pulse-azimuth30.toml";
-const PAIR: &str = "cases/spatial/reference-only/block-record-pair.toml";
+const PAIR: &str = "cases/spatial/block-record-pair.toml";
 const KEYS: &[&str] = &[
     "peak_relative_displacement",
     "residual_sliding",

@@ -17,7 +17,9 @@
 //! The ground moves by either route of the planar engine (`Drive`): a kinematic ground
 //! moved to x_g(t_{n+1}) in plan each step, or a fixed ground with the inertial force
 //! −m·(v_g(n+1) − v_g(n))/Δt on the body. Traces keep the planar keys for x and add the
-//! catalogue's y channels, the resultant sliding and its azimuth. A rocking body and
+//! catalogue's y channels, the resultant sliding and its azimuth; the contact block gives
+//! |T|, N and the slip accumulated along the friction force (Σ T̂·Δs, so that |T|·Δslip
+//! is the friction work T·Δs the dissipation invariant judges). A rocking body and
 //! vertical motion in a 3D scene are not modelled here ("not applicable", with why).
 
 use rapier3d_f64::prelude::*;
@@ -49,6 +51,18 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 
 fn norm(a: [f64; 2]) -> f64 {
     a[0].hypot(a[1])
+}
+
+/// The slip increment `ds` projected on the friction force's direction `t` (zero without
+/// a force): summed, the contact's slip along its force, so that |T|·Δslip is the friction
+/// work T·Δs, as the trace's contact block wants it (the dissipation invariant).
+fn slip_along(t: [f64; 2], ds: [f64; 2]) -> f64 {
+    let size = norm(t);
+    if size > 0.0 {
+        (t[0] * ds[0] + t[1] * ds[1]) / size
+    } else {
+        0.0
+    }
 }
 
 /// Azimuth of a plan vector, degrees from +x toward +y (0 for the zero vector).
@@ -356,6 +370,7 @@ pub fn run_oscillator(
     };
     let mut spring = [0.0, 0.0];
     let mut v_prev = 0.0;
+    let (mut p_prev, mut path) = ([0.0, 0.0], 0.0);
     let mut record = |trace: &mut Trace, world: &PhysicsWorld, k: usize, spring: [f64; 2], p: [f64; 2]| {
         let t = (k / stride) as f64 * dt;
         let (u, v) = relative(world, k);
@@ -373,10 +388,12 @@ pub fn run_oscillator(
         }
         .write(&mut row);
         trace.push(t, &row);
+        path += slip_along(spring, sub(p, p_prev));
+        p_prev = p;
         let state = ContactState {
             normal: weight,
             tangential: norm(spring),
-            slip: norm(p),
+            slip: path,
             gap: 0.0,
         };
         trace.contacts.push(t, &[state]);
@@ -447,6 +464,7 @@ pub fn run_block(
     let m = b.mass;
     let start = plan(world.bodies[block].translation());
     let mut v_prev = [0.0, 0.0];
+    let (mut u_prev, mut path) = ([0.0, 0.0], 0.0);
     let mut record = |trace: &mut Trace, world: &PhysicsWorld, k: usize| {
         let t = (k / stride) as f64 * dt;
         let (xg, vg) = pd.frame(k);
@@ -471,10 +489,14 @@ pub fn run_block(
         }
         .write(&mut row);
         trace.push(t, &row);
+        // T resists the block's motion relative to the ground: minus the ground's force.
+        let t_plan = [-gf.x, gf.z];
+        path += slip_along(t_plan, sub(u, u_prev));
+        u_prev = u;
         let state = ContactState {
             normal: gf.y,
-            tangential: gf.x.hypot(gf.z),
-            slip: norm(u),
+            tangential: norm(t_plan),
+            slip: path,
             gap: gf.dist.unwrap_or(0.0),
         };
         trace.contacts.push(t, &[state]);
