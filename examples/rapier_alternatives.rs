@@ -9,7 +9,7 @@
 //! ```
 //! An option set is TOML lines inserted under `[engines.rapier]` (`;` separates lines);
 //! an empty set runs the case as it is. CPU time is the process's user + system time
-//! (`rockslide::timings::process_cpu_seconds`; the runs are single-threaded).
+//! (`rockslide_verify::timings::process_cpu_seconds`; the runs are single-threaded).
 
 use std::path::Path;
 
@@ -17,8 +17,8 @@ use rockslide::analysis::responses;
 use rockslide::case::parse_case;
 use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
-use rockslide::timings::process_cpu_seconds;
 use rockslide::suite::solve_reference;
+use rockslide_verify::timings::process_cpu_seconds;
 
 /// The case text with the option set's lines under `[engines.rapier]`, replacing the
 /// section's own lines for the same keys.

@@ -1,6 +1,6 @@
 //! The rapier engine's share of the default command: every shipped case the command runs
 //! (`cases/`, `cases/records/`, `cases/vertical/`) that asks for rapier (or names no
-//! engine), each variant at the case's own step, with the CPU time per run (user + system, `rockslide::timings::process_cpu_seconds`;
+//! engine), each variant at the case's own step, with the CPU time per run (user + system, `rockslide_verify::timings::process_cpu_seconds`;
 //! the runs are single-threaded) and in all. The numbers behind the cost table of docs/rapier-engine.md.
 //!
 //! ```text
@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use rockslide::case::load_case;
 use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
-use rockslide::timings::process_cpu_seconds;
+use rockslide_verify::timings::process_cpu_seconds;
 
 /// The case files named, or in the folders named, sorted.
 fn case_files(args: &[String]) -> Vec<PathBuf> {

@@ -16,8 +16,8 @@ use rockslide::analysis::responses;
 use rockslide::case::{Model, parse_case};
 use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
-use rockslide::timings::process_cpu_seconds;
 use rockslide::suite::solve_reference;
+use rockslide_verify::timings::process_cpu_seconds;
 
 /// The PEPO case text with μ, polarity and extra rapier options replaced.
 fn pepo_text(text: &str, mu: f64, polarity: i32, extra: &str) -> String {

@@ -15,8 +15,8 @@ use rockslide::case::parse_case;
 use rockslide::engine::Engine;
 use rockslide::engine::fe::Fe;
 use rockslide::engine::rigid_body::Rapier;
-use rockslide::timings::process_cpu_seconds;
 use rockslide::trace::Trace;
+use rockslide_verify::timings::process_cpu_seconds;
 
 /// The trace up to time `t_end`.
 fn until(trace: &Trace, t_end: f64) -> Trace {

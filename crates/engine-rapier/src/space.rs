@@ -24,15 +24,17 @@
 
 use rapier3d_f64::prelude::*;
 
+use super::MAX_BLOCK_STEPS;
 use super::contact_forces::ground_force;
 use super::ground::GroundTable;
 use super::settings::{OscillatorSteps, RapierSettings, StepRule};
 use super::simulate::{Drive, force_at, mean_over_step};
-use super::MAX_BLOCK_STEPS;
 use super::world::{GroundKind, add_ground, new_world, rapier_friction};
-use rockslide_core::case::{Case, Excitation, Model, Oscillator, RigidBlock, Scene, Signal, Spatial};
-use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
+use rockslide_core::case::{
+    Case, Excitation, Model, Oscillator, RigidBlock, Scene, Signal, Spatial,
+};
 use rockslide_core::error::InputError;
+use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{NotApplicable, Run, RunStatus, SolverStats, step_count};
 
 /// A plan vector (x, y) as a rapier vector at height `up`.
@@ -371,33 +373,34 @@ pub fn run_oscillator(
     let mut spring = [0.0, 0.0];
     let mut v_prev = 0.0;
     let (mut p_prev, mut path) = ([0.0, 0.0], 0.0);
-    let mut record = |trace: &mut Trace, world: &PhysicsWorld, k: usize, spring: [f64; 2], p: [f64; 2]| {
-        let t = (k / stride) as f64 * dt;
-        let (u, v) = relative(world, k);
-        let acc = if k == 0 { 0.0 } else { (v[0] - v_prev) / dt };
-        v_prev = v[0];
-        PlanRow {
-            force: pd.force(m, t),
-            resistance: spring[0],
-            rel_disp: u,
-            slide: p,
-            vel: v,
-            acc,
-            normal: weight,
-            ground: pd.disp[k][0],
-        }
-        .write(&mut row);
-        trace.push(t, &row);
-        path += slip_along(spring, sub(p, p_prev));
-        p_prev = p;
-        let state = ContactState {
-            normal: weight,
-            tangential: norm(spring),
-            slip: path,
-            gap: 0.0,
+    let mut record =
+        |trace: &mut Trace, world: &PhysicsWorld, k: usize, spring: [f64; 2], p: [f64; 2]| {
+            let t = (k / stride) as f64 * dt;
+            let (u, v) = relative(world, k);
+            let acc = if k == 0 { 0.0 } else { (v[0] - v_prev) / dt };
+            v_prev = v[0];
+            PlanRow {
+                force: pd.force(m, t),
+                resistance: spring[0],
+                rel_disp: u,
+                slide: p,
+                vel: v,
+                acc,
+                normal: weight,
+                ground: pd.disp[k][0],
+            }
+            .write(&mut row);
+            trace.push(t, &row);
+            path += slip_along(spring, sub(p, p_prev));
+            p_prev = p;
+            let state = ContactState {
+                normal: weight,
+                tangential: norm(spring),
+                slip: path,
+                gap: 0.0,
+            };
+            trace.contacts.push(t, &[state]);
         };
-        trace.contacts.push(t, &[state]);
-    };
     record(&mut trace, &world, 0, spring, slider.p);
     let mut status = RunStatus::Completed;
     let mut steps = 0;
@@ -600,9 +603,8 @@ pub fn run(
         Model::Oscillator(osc) => {
             let steps = oscillator_steps(osc, ex, &settings, dt);
             let pd = PlanDrive::new(drive, ex, spatial, steps.dt_inner, n * steps.stride);
-            described.retain(|(k, _)| {
-                !k.starts_with("contact softness") && !k.starts_with("friction")
-            });
+            described
+                .retain(|(k, _)| !k.starts_with("contact softness") && !k.starts_with("friction"));
             described.push((
                 "contact model".into(),
                 "applied force in plan: one body free in x and y (no collider, rotations and the vertical locked); the engine computes Kx·(u − p) − C·u̇ after every rapier step, the slider p returned radially onto |F| ≤ μ·M·g (circular cone), and applies it over the next step".into(),
