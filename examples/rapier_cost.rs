@@ -1,7 +1,9 @@
 //! The rapier engine's share of the default command: every shipped case the command runs
-//! (`cases/`, `cases/records/`, `cases/vertical/`) that asks for rapier (or names no
-//! engine), each variant at the case's own step, with the CPU time per run (user + system, `rockslide_verify::timings::process_cpu_seconds`;
-//! the runs are single-threaded) and in all. The numbers behind the cost table of docs/rapier-engine.md.
+//! (`cases/`, `cases/records/`, `cases/vertical/`, `cases/spatial/`) that asks for rapier
+//! (or names no engine), each variant at the case's own step, with the CPU time per run
+//! (user + system, `rockslide_verify::timings::process_cpu_seconds`; the runs are
+//! single-threaded) and in all. The numbers behind the cost table of
+//! docs/rapier-engine.md.
 //!
 //! ```text
 //! cargo run --release --example rapier_cost [-- <case files or folders>]
@@ -39,7 +41,7 @@ fn case_files(args: &[String]) -> Vec<PathBuf> {
 fn main() {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     if args.is_empty() {
-        args = ["cases", "cases/records", "cases/vertical"]
+        args = ["cases", "cases/records", "cases/vertical", "cases/spatial"]
             .map(String::from)
             .to_vec();
     }

@@ -329,7 +329,8 @@ impl PlanSlider {
     }
 }
 
-/// Run the oscillator (PEPO) in plan. Returns the outcome and the steps' rule.
+/// Run the oscillator (PEPO) in plan: `n` output steps of `dt`, each `stride` rapier
+/// steps, the drive's tables at the rapier step.
 pub fn run_oscillator(
     osc: &Oscillator,
     settings: &RapierSettings,
@@ -537,12 +538,12 @@ pub fn run_block(
 /// [`MAX_BLOCK_STEPS`] steps. Returns (stride, S, ∫|a_g|dt, Δt bound).
 pub fn block_kinematic_stride(
     case: &Case,
+    spatial: &Spatial,
     b: &RigidBlock,
     half_depth: f64,
     settings: &RapierSettings,
     dt: f64,
 ) -> (usize, f64, f64, f64) {
-    let spatial = case.scene.spatial().expect("a 3D scene");
     let ex = &case.scene.excitation;
     let n = step_count(case.run.duration, dt);
     let pilot_drive = PlanDrive::new(Drive::InertialForce, ex, spatial, dt, n);
@@ -584,6 +585,12 @@ pub fn oscillator_steps(
     }
 }
 
+/// What a run states besides its trace: settings and findings, as (name, value) and text.
+struct Statement {
+    described: Vec<(String, String)>,
+    findings: Vec<String>,
+}
+
 /// Run `drive` on the 3D scene of `case` at output step `dt`: the block or the
 /// oscillator in plan, with the settings and findings the run states.
 pub fn run(
@@ -595,101 +602,23 @@ pub fn run(
     mut settings: RapierSettings,
 ) -> Result<Run, InputError> {
     check(&case.scene).map_err(|e| case.field_error("model.kind", e.0))?;
-    let ex = &case.scene.excitation;
-    let n = step_count(case.run.duration, dt);
-    let mut described = settings.describe(dt);
-    let mut findings = Vec::new();
+    let mut said = Statement {
+        described: settings.describe(dt),
+        findings: Vec::new(),
+    };
     let outcome = match &case.scene.model {
         Model::Oscillator(osc) => {
-            let steps = oscillator_steps(osc, ex, &settings, dt);
-            let pd = PlanDrive::new(drive, ex, spatial, steps.dt_inner, n * steps.stride);
-            described
-                .retain(|(k, _)| !k.starts_with("contact softness") && !k.starts_with("friction"));
-            described.push((
-                "contact model".into(),
-                "applied force in plan: one body free in x and y (no collider, rotations and the vertical locked); the engine computes Kx·(u − p) − C·u̇ after every rapier step, the slider p returned radially onto |F| ≤ μ·M·g (circular cone), and applies it over the next step".into(),
-            ));
-            described.push((
-                "rapier step [s] (output step / stride)".into(),
-                format!("{} (stride {})", steps.dt_inner, steps.stride),
-            ));
-            findings.push(format!(
-                "within the engine's validity when the planar oscillator's step rule is met (rapier step {:.3e} s, bound {:.3e} s for accuracy {}): |F| ≤ μ·N by construction; measured on pepo-pulse-azimuth30 against the plan-motion reference: {OSCILLATOR_MEASURED}",
-                steps.dt_inner, steps.dt_max, settings.accuracy
-            ));
-            run_oscillator(osc, &settings, &pd, (dt, steps.stride), n)
+            oscillator_case(case, spatial, osc, drive, dt, &settings, &mut said)
         }
-        Model::RigidBlock(b) => {
-            let depth = spatial.depth.map(|d| d.half_depth).ok_or_else(|| {
-                case.field_error(
-                    "model.half_depth",
-                    "is required for a rigid block in a 3D scene",
-                )
-            })?;
-            let stride = if drive == Drive::KinematicGround
-                && settings.step_rule == StepRule::Scene
-                && matches!(ex, Excitation::GroundAcceleration(Signal::Record { .. }))
-            {
-                let (stride, slid, abs_ag, dt_max) =
-                    block_kinematic_stride(case, b, depth, &settings, dt);
-                let dt_in = dt / stride as f64;
-                let estimate = 0.5 * dt_in * abs_ag;
-                described.push((
-                    "step rule".into(),
-                    format!(
-                        "Δt ≤ 2·accuracy·S/∫|a_g|dt = {dt_max:.4e} s (S = {slid:.4e} m slid along the path in a pilot run on the inertial-force route at the output step, ∫|a_g|dt = {abs_ag:.4} m/s of the plan ground acceleration); at most {MAX_BLOCK_STEPS} rapier steps"
-                    ),
-                ));
-                findings.push(format!(
-                    "{} the engine's validity for the distance slid: the kinematic ground's slip estimate ½·Δt·∫|a_g|dt = {estimate:.3e} m is {:.2} % of S (target {} %)",
-                    if dt_in <= dt_max * (1.0 + 1e-12) {
-                        "within"
-                    } else {
-                        "outside"
-                    },
-                    100.0 * estimate / slid,
-                    100.0 * settings.accuracy
-                ));
-                if stride > 1 {
-                    settings.substeps = super::block_substeps(settings.substeps, stride);
-                }
-                stride
-            } else {
-                1
-            };
-            let dt_in = dt / stride as f64;
-            let pd = PlanDrive::new(drive, ex, spatial, dt_in, n * stride);
-            described.push((
-                "block".into(),
-                format!(
-                    "uniform cuboid 2b × 2h × 2d = {} × {} × {} m (x, z, y), mass {} kg, free in six degrees of freedom on the ground slab",
-                    2.0 * b.half_width,
-                    2.0 * b.half_height,
-                    2.0 * depth,
-                    b.mass
-                ),
+        Model::RigidBlock(b) => block_case(case, spatial, b, drive, dt, &mut settings, &mut said)?,
+        Model::RockingBody(_) => {
+            return Err(case.field_error(
+                "model.kind",
+                "a rocking body in a bidirectional (3D) scene is not yet modelled in rapier",
             ));
-            described.push((
-                "rapier step [s] (output step / stride)".into(),
-                format!("{dt_in} (stride {stride}, {} substeps)", settings.substeps),
-            ));
-            described.push((
-                "friction cone".into(),
-                "circular: rapier 0.36 solves each friction constraint's two tangential impulses together and caps their magnitude at μ·N".into(),
-            ));
-            findings.push(format!(
-                "measured against the plan-motion block reference with the Simplified friction model (docs/rapier-engine.md, \"Plan motion\"): {BLOCK_MEASURED}{}",
-                if settings.friction == FrictionModel::Coulomb {
-                    "; outside the engine's validity with friction_model = \"coulomb\": one record along x slid 56 % too far (+14 % at 30°, exact within 0.2 % at 45° and 135°)"
-                } else {
-                    ""
-                }
-            ));
-            run_block(b, depth, &settings, &pd, (dt, stride), n)
         }
-        Model::RockingBody(_) => unreachable!("refused by check"),
     };
-    described.push((
+    said.described.push((
         "ground motion".into(),
         match drive {
             Drive::AppliedForce => "fixed ground; mass acceleration pair as force M·a (Simpson mean over the step), in plan",
@@ -698,7 +627,7 @@ pub fn run(
         }
         .into(),
     ));
-    described.push((
+    said.described.push((
         "excitation".into(),
         format!(
             "azimuth {}°{}; scene (x, y, z up) is rapier's (X, −Z, Y)",
@@ -714,16 +643,145 @@ pub fn run(
         engine: "rapier",
         variant: variant.to_string(),
         dt,
-        settings: described,
+        settings: said.described,
         stats: SolverStats {
             substeps_per_step: Some(settings.substeps as u64),
             ..SolverStats::steps(outcome.steps)
         },
-        findings,
+        findings: said.findings,
         trace: outcome.trace,
         status: outcome.status,
         wall_seconds: 0.0,
     })
+}
+
+/// The oscillator in plan at the planar step rule, with what it states.
+fn oscillator_case(
+    case: &Case,
+    spatial: &Spatial,
+    osc: &Oscillator,
+    drive: Drive,
+    dt: f64,
+    settings: &RapierSettings,
+    said: &mut Statement,
+) -> Outcome {
+    let ex = &case.scene.excitation;
+    let n = step_count(case.run.duration, dt);
+    let steps = oscillator_steps(osc, ex, settings, dt);
+    let pd = PlanDrive::new(drive, ex, spatial, steps.dt_inner, n * steps.stride);
+    said.described
+        .retain(|(k, _)| !k.starts_with("contact softness") && !k.starts_with("friction"));
+    said.described.push((
+        "contact model".into(),
+        "applied force in plan: one body free in x and y (no collider, rotations and the vertical locked); the engine computes Kx·(u − p) − C·u̇ after every rapier step, the slider p returned radially onto |F| ≤ μ·M·g (circular cone), and applies it over the next step (the only model in plan: contact_model is not read)".into(),
+    ));
+    said.described.push((
+        "rapier step [s] (output step / stride)".into(),
+        format!("{} (stride {})", steps.dt_inner, steps.stride),
+    ));
+    said.findings.push(format!(
+        "{} the engine's validity: rapier step {:.3e} s, the planar oscillator's step rule asks ≤ {:.3e} s for accuracy {}; |F| ≤ μ·N by construction; measured against the plan-motion reference (docs/rapier-engine.md, \"Plan motion\"): {OSCILLATOR_MEASURED}",
+        if steps.within_target() { "within" } else { "outside" },
+        steps.dt_inner,
+        steps.dt_max,
+        settings.accuracy
+    ));
+    run_oscillator(osc, settings, &pd, (dt, steps.stride), n)
+}
+
+/// The block on the ground slab (the kinematic ground at its step rule under a record),
+/// with what it states.
+fn block_case(
+    case: &Case,
+    spatial: &Spatial,
+    b: &RigidBlock,
+    drive: Drive,
+    dt: f64,
+    settings: &mut RapierSettings,
+    said: &mut Statement,
+) -> Result<Outcome, InputError> {
+    let ex = &case.scene.excitation;
+    let n = step_count(case.run.duration, dt);
+    let depth = spatial.depth.map(|d| d.half_depth).ok_or_else(|| {
+        case.field_error(
+            "model.half_depth",
+            "is required for a rigid block in a 3D scene",
+        )
+    })?;
+    let ruled = drive == Drive::KinematicGround
+        && settings.step_rule == StepRule::Scene
+        && matches!(ex, Excitation::GroundAcceleration(Signal::Record { .. }));
+    let stride = if ruled {
+        kinematic_rule(case, spatial, b, depth, dt, settings, said)
+    } else {
+        1
+    };
+    let dt_in = dt / stride as f64;
+    let pd = PlanDrive::new(drive, ex, spatial, dt_in, n * stride);
+    said.described.push((
+        "block".into(),
+        format!(
+            "uniform cuboid 2b × 2h × 2d = {} × {} × {} m (x, z, y), mass {} kg, free in six degrees of freedom on the ground slab",
+            2.0 * b.half_width,
+            2.0 * b.half_height,
+            2.0 * depth,
+            b.mass
+        ),
+    ));
+    said.described.push((
+        "rapier step [s] (output step / stride)".into(),
+        format!("{dt_in} (stride {stride}, {} substeps)", settings.substeps),
+    ));
+    said.described.push((
+        "friction cone".into(),
+        "circular: rapier 0.36 solves each friction constraint's two tangential impulses together and caps their magnitude at μ·N".into(),
+    ));
+    said.findings.push(format!(
+        "measured against the plan-motion block reference with the Simplified friction model (docs/rapier-engine.md, \"Plan motion\"): {BLOCK_MEASURED}{}",
+        if settings.friction == FrictionModel::Coulomb {
+            "; outside the engine's validity with friction_model = \"coulomb\": one record along x slid 56 % too far (+14 % at 30°, exact within 0.2 % at 45° and 135°)"
+        } else {
+            ""
+        }
+    ));
+    Ok(run_block(b, depth, settings, &pd, (dt, stride), n))
+}
+
+/// The block's kinematic-ground step rule ([`block_kinematic_stride`]) with what it
+/// states; the output step's substeps shared among its rapier steps. Returns the stride.
+fn kinematic_rule(
+    case: &Case,
+    spatial: &Spatial,
+    b: &RigidBlock,
+    depth: f64,
+    dt: f64,
+    settings: &mut RapierSettings,
+    said: &mut Statement,
+) -> usize {
+    let (stride, slid, abs_ag, dt_max) =
+        block_kinematic_stride(case, spatial, b, depth, settings, dt);
+    let dt_in = dt / stride as f64;
+    let estimate = 0.5 * dt_in * abs_ag;
+    said.described.push((
+        "step rule".into(),
+        format!(
+            "Δt ≤ 2·accuracy·S/∫|a_g|dt = {dt_max:.4e} s (S = {slid:.4e} m slid along the path in a pilot run on the inertial-force route at the output step, ∫|a_g|dt = {abs_ag:.4} m/s of the plan ground acceleration); at most {MAX_BLOCK_STEPS} rapier steps"
+        ),
+    ));
+    said.findings.push(format!(
+        "{} the engine's validity for the distance slid: the kinematic ground's slip estimate ½·Δt·∫|a_g|dt = {estimate:.3e} m is {:.2} % of S (target {} %)",
+        if dt_in <= dt_max * (1.0 + 1e-12) {
+            "within"
+        } else {
+            "outside"
+        },
+        100.0 * estimate / slid,
+        100.0 * settings.accuracy
+    ));
+    if stride > 1 {
+        settings.substeps = super::block_substeps(settings.substeps, stride);
+    }
+    stride
 }
 
 /// The oscillator's measured agreement, stated in its runs' findings
