@@ -156,8 +156,8 @@ fn pepo_in_plan_rotates_with_the_excitation() {
 fn block_under_the_record_pair_against_the_plan_reference() {
     let c = case(PAIR);
     let reference = solve_reference(&c).unwrap();
-    // measured (peak, residual resultant, residual along x, history max of slide and
-    // slide_y relative to the peak):
+    // measured (peak, residual resultant, residual along x as (a − b)/|b| of a negative
+    // residual, history max of slide and slide_y relative to the peak):
     // inertial force −9.87e-4, −4.09e-4, −4.93e-4, 1.44e-3, 1.12e-3;
     // kinematic ground (4 steps of 0.25 ms per ms) −6.84e-4, +6.16e-4, −3.14e-3, 4.03e-3, 1.12e-3
     for (variant, bounds) in [
