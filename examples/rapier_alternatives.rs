@@ -8,25 +8,17 @@
 //! cargo run --release --example rapier_alternatives -- CASE.toml... -- 'substeps = 4' 'contact_model = "foot"'
 //! ```
 //! An option set is TOML lines inserted under `[engines.rapier]` (`;` separates lines);
-//! an empty set runs the case as it is. CPU time is the thread's own (Linux
-//! `/proc/thread-self/schedstat`), wall time elsewhere.
+//! an empty set runs the case as it is. CPU time is the process's user + system time
+//! (`rockslide_verify::timings::process_cpu_seconds`; the runs are single-threaded).
 
 use std::path::Path;
-use std::time::Instant;
 
 use rockslide::analysis::responses;
 use rockslide::case::parse_case;
 use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
 use rockslide::suite::solve_reference;
-
-/// The thread's CPU time in seconds, or the wall clock where the kernel does not say.
-fn cpu_seconds(start: Instant) -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map_or_else(|| start.elapsed().as_secs_f64(), |ns| ns * 1e-9)
-}
+use rockslide_verify::timings::process_cpu_seconds;
 
 /// The case text with the option set's lines under `[engines.rapier]`, replacing the
 /// section's own lines for the same keys.
@@ -71,7 +63,6 @@ fn main() {
     if sets.is_empty() {
         sets.push(String::new());
     }
-    let origin = Instant::now();
     for path in cases {
         let text = std::fs::read_to_string(path).expect("case file reads");
         let base = parse_case(Path::new(path), &text).expect("case parses");
@@ -85,9 +76,9 @@ fn main() {
             let dt = case.dt_for("rapier");
             let variants = Rapier.variants(&case.scene).expect("rapier applies");
             for variant in variants {
-                let t0 = cpu_seconds(origin);
+                let t0 = process_cpu_seconds();
                 let run = Rapier.run(&case, variant, dt).expect("runs");
-                let cpu = cpu_seconds(origin) - t0;
+                let cpu = process_cpu_seconds() - t0;
                 let r = responses(&run.trace);
                 let limit = match &case.scene.model {
                     rockslide::case::Model::Oscillator(o) => o.friction_limit(),

@@ -1,26 +1,20 @@
 //! The rapier engine's share of the default command: every shipped case the command runs
-//! (`cases/`, `cases/records/`, `cases/vertical/`) that asks for rapier (or names no
-//! engine), each variant at the case's own step, with the thread's CPU time per run and
-//! in all. The numbers behind the cost table of docs/rapier-engine.md.
+//! (`cases/`, `cases/records/`, `cases/vertical/`, `cases/spatial/`) that asks for rapier
+//! (or names no engine), each variant at the case's own step, with the CPU time per run
+//! (user + system, `rockslide_verify::timings::process_cpu_seconds`; the runs are
+//! single-threaded) and in all. The numbers behind the cost table of
+//! docs/rapier-engine.md.
 //!
 //! ```text
 //! cargo run --release --example rapier_cost [-- <case files or folders>]
 //! ```
 
 use std::path::{Path, PathBuf};
-use std::time::Instant;
 
 use rockslide::case::load_case;
 use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
-
-/// The thread's CPU time in seconds, or the wall clock where the kernel does not say.
-fn cpu_seconds(start: Instant) -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map_or_else(|| start.elapsed().as_secs_f64(), |ns| ns * 1e-9)
-}
+use rockslide_verify::timings::process_cpu_seconds;
 
 /// The case files named, or in the folders named, sorted.
 fn case_files(args: &[String]) -> Vec<PathBuf> {
@@ -47,11 +41,10 @@ fn case_files(args: &[String]) -> Vec<PathBuf> {
 fn main() {
     let mut args: Vec<String> = std::env::args().skip(1).collect();
     if args.is_empty() {
-        args = ["cases", "cases/records", "cases/vertical"]
+        args = ["cases", "cases/records", "cases/vertical", "cases/spatial"]
             .map(String::from)
             .to_vec();
     }
-    let origin = Instant::now();
     let mut total = 0.0;
     for file in case_files(&args) {
         let Ok(case) = load_case(&file) else {
@@ -70,9 +63,9 @@ fn main() {
             .unwrap_or_else(|| available.iter().map(|s| s.to_string()).collect());
         let dt = case.dt_for("rapier");
         for variant in &wanted {
-            let t0 = cpu_seconds(origin);
+            let t0 = process_cpu_seconds();
             let run = Rapier.run(&case, variant, dt).expect("runs");
-            let cpu = cpu_seconds(origin) - t0;
+            let cpu = process_cpu_seconds() - t0;
             total += cpu;
             println!(
                 "{:<34} {:<17} {:>8.3} s CPU  {:>6.1} ms per simulated s  {} rapier steps  {:?}",

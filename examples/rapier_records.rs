@@ -11,21 +11,13 @@
 //! ```
 
 use std::path::Path;
-use std::time::Instant;
 
 use rockslide::analysis::responses;
 use rockslide::case::{Model, parse_case};
 use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
 use rockslide::suite::solve_reference;
-
-/// The thread's CPU time in seconds, or the wall clock where the kernel does not say.
-fn cpu_seconds(start: Instant) -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map_or_else(|| start.elapsed().as_secs_f64(), |ns| ns * 1e-9)
-}
+use rockslide_verify::timings::process_cpu_seconds;
 
 /// The PEPO case text with μ, polarity and extra rapier options replaced.
 fn pepo_text(text: &str, mu: f64, polarity: i32, extra: &str) -> String {
@@ -133,7 +125,6 @@ fn main() {
         .split(',')
         .map(|s| s.parse().expect("μ"))
         .collect();
-    let origin = Instant::now();
     for model in &models {
         let mut errors = Vec::new();
         let mut worst_r: f64 = 0.0;
@@ -157,9 +148,9 @@ fn main() {
                     };
                     let dt = case.dt_for("rapier");
                     for variant in Rapier.variants(&case.scene).expect("applies") {
-                        let t0 = cpu_seconds(origin);
+                        let t0 = process_cpu_seconds();
                         let run = Rapier.run(&case, variant, dt).expect("runs");
-                        let cpu = cpu_seconds(origin) - t0;
+                        let cpu = process_cpu_seconds() - t0;
                         let r = responses(&run.trace);
                         let e_res = r["residual_sliding"] / ex_res - 1.0;
                         let e_u = r["peak_relative_displacement"] / ex_u - 1.0;

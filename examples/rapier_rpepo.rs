@@ -9,7 +9,6 @@
 //! ```
 
 use std::path::Path;
-use std::time::Instant;
 
 use rockslide::analysis::responses;
 use rockslide::case::parse_case;
@@ -17,14 +16,7 @@ use rockslide::engine::Engine;
 use rockslide::engine::fe::Fe;
 use rockslide::engine::rigid_body::Rapier;
 use rockslide::trace::Trace;
-
-/// The thread's CPU time in seconds, or the wall clock where the kernel does not say.
-fn cpu_seconds(start: Instant) -> f64 {
-    std::fs::read_to_string("/proc/thread-self/schedstat")
-        .ok()
-        .and_then(|s| s.split_whitespace().next()?.parse::<f64>().ok())
-        .map_or_else(|| start.elapsed().as_secs_f64(), |ns| ns * 1e-9)
-}
+use rockslide_verify::timings::process_cpu_seconds;
 
 /// The trace up to time `t_end`.
 fn until(trace: &Trace, t_end: f64) -> Trace {
@@ -89,7 +81,6 @@ fn main() {
     if sets.is_empty() {
         sets.push(String::new());
     }
-    let origin = Instant::now();
     for path in &args[..split] {
         let text = std::fs::read_to_string(path).expect("case file reads");
         let base = parse_case(Path::new(path), &text).expect("case parses");
@@ -123,9 +114,9 @@ fn main() {
                     vec![Rapier.variants(&case.scene).expect("applies")[0].to_string()]
                 });
             for variant in &variants {
-                let t0 = cpu_seconds(origin);
+                let t0 = process_cpu_seconds();
                 let run = Rapier.run(&case, variant, dt).expect("runs");
-                let cpu = cpu_seconds(origin) - t0;
+                let cpu = process_cpu_seconds() - t0;
                 let r = responses(&run.trace);
                 let r_pre = responses(&until(&run.trace, t_lift));
                 println!(

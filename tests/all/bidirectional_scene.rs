@@ -139,13 +139,14 @@ fn a_body_in_a_3d_scene_needs_its_depth() {
 #[test]
 fn every_2d_engine_refuses_a_3d_scene() {
     let c = pepo_with("azimuth_deg = 30.0", "").unwrap();
-    // fe models plan motion (its 3D model, tests/all/fe_space.rs); the others do not.
+    // fe and rapier model plan motion (tests/all/fe_space.rs, tests/all/rapier_space.rs);
+    // the others do not.
     let planar_only: Vec<_> = rockslide::engine::all()
         .into_iter()
         .filter(|e| !e.models_plan_motion())
         .collect();
     let ids: Vec<_> = planar_only.iter().map(|e| e.id()).collect();
-    assert_eq!(ids, ["predictor-corrector", "rapier"]);
+    assert_eq!(ids, ["predictor-corrector"]);
     for engine in planar_only {
         assert_eq!(
             engine.variants(&c.scene).unwrap_err().0,
@@ -171,28 +172,25 @@ fn every_2d_engine_refuses_a_3d_scene() {
 fn the_spatial_cases_load_and_select_the_plan_references() {
     for (name, method) in [
         ("spatial/pepo-pulse-azimuth30", "circular yield surface"),
-        (
-            "spatial/reference-only/block-record-pair",
-            "isotropic friction cone",
-        ),
+        ("spatial/block-record-pair", "isotropic friction cone"),
     ] {
         let c = case(name);
         assert!(c.scene.spatial.is_some());
         let r = rockslide::reference::for_case(&c).unwrap();
         assert!(r.method().contains(method), "{}", r.method());
-        // fe models plan motion (a rigid block it refuses: no contact stiffness)
+        // fe models plan motion (a rigid block it refuses: no contact stiffness), rapier
+        // runs both
         for engine in rockslide::engine::all() {
-            let fe_runs = engine.models_plan_motion() && name.contains("pepo");
-            assert_eq!(
-                engine.variants(&c.scene).is_ok(),
-                fe_runs,
-                "{}",
-                engine.id()
-            );
+            let runs = match engine.id() {
+                "fe" => name.contains("pepo"),
+                "rapier" => true,
+                _ => false,
+            };
+            assert_eq!(engine.variants(&c.scene).is_ok(), runs, "{}", engine.id());
         }
     }
     // the pair's peak resultant sliding as measured (docs/bidirectional.md)
-    let c = case("spatial/reference-only/block-record-pair");
+    let c = case("spatial/block-record-pair");
     let r = rockslide::reference::for_case(&c).unwrap();
     let peak = r
         .exact_quantities()

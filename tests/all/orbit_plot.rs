@@ -42,7 +42,11 @@ fn largest_peak_resultant(result: &serde_json::Value) -> f64 {
     for run in result["runs"].as_array().unwrap() {
         peaks.extend(from(&run["responses"]));
     }
-    assert_eq!(peaks.len(), 2, "the reference and fe/single");
+    assert_eq!(
+        peaks.len(),
+        3,
+        "the reference, fe/single and rapier/applied-force"
+    );
     peaks.into_iter().fold(0.0, f64::max)
 }
 
@@ -57,10 +61,10 @@ fn a_spatial_case_has_an_orbit_plot_as_wide_as_its_peak_resultant_and_a_planar_o
     let spatial = dir.path().join("pepo-pulse-azimuth30");
     let svg = read(&spatial.join("plot-orbit.svg"));
     assert!(svg.contains("sliding x [mm]") && svg.contains("sliding y [mm]"));
-    // Two paths (reference, fe) and each one's peak marked.
+    // Three paths (reference, fe, rapier) and each one's peak marked.
     assert_eq!(
         svg.matches("<circle").count(),
-        2,
+        3,
         "one peak dot per participant"
     );
 

@@ -17,6 +17,8 @@ pub struct GroundForce {
     pub x: f64,
     /// Vertical force on the body, N (+y, up).
     pub y: f64,
+    /// Horizontal force on the body across the plane of a planar scene, N (rapier's +z).
+    pub z: f64,
     /// Smallest contact distance, m.
     pub dist: Option<f64>,
 }
@@ -32,6 +34,7 @@ pub fn ground_force(
     let none = GroundForce {
         x: 0.0,
         y: 0.0,
+        z: 0.0,
         dist: None,
     };
     let (Some(&of), Some(&on)) = (
@@ -65,6 +68,7 @@ pub fn ground_force(
     GroundForce {
         x: sign * impulse.x / substep,
         y: sign * impulse.y / substep,
+        z: sign * impulse.z / substep,
         dist,
     }
 }

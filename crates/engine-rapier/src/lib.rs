@@ -17,6 +17,7 @@ mod contact_forces;
 mod ground;
 mod settings;
 mod simulate;
+mod space;
 mod vertical;
 mod world;
 
@@ -56,7 +57,11 @@ impl Engine for Rapier {
     }
 
     fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
-        vertical::check(scene)?;
+        if scene.spatial().is_some() {
+            space::check(scene)?;
+        } else {
+            vertical::check(scene)?;
+        }
         match &scene.model {
             Model::Oscillator(o) => {
                 if o.double.is_some() {
@@ -79,15 +84,22 @@ impl Engine for Rapier {
         RapierSettings::from_case(case).err().unwrap_or_default()
     }
 
+    fn models_plan_motion(&self) -> bool {
+        true
+    }
+
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
         let mut settings = RapierSettings::from_case(case).map_err(|mut e| e.remove(0))?;
-        vertical::check_settings(case, &settings)?;
-        let vert = case.scene.vertical();
         let drive = match variant {
             variant::KINEMATIC_GROUND => Drive::KinematicGround,
             variant::INERTIAL_FORCE => Drive::InertialForce,
             _ => Drive::AppliedForce,
         };
+        if let Some(spatial) = case.scene.spatial() {
+            return space::run(case, spatial, drive, variant, dt, settings);
+        }
+        vertical::check_settings(case, &settings)?;
+        let vert = case.scene.vertical();
         let ex = &case.scene.excitation;
         let duration = case.run.duration;
         let mut described = settings.describe(dt);

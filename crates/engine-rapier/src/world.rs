@@ -602,6 +602,6 @@ pub(crate) fn friction_cap(mu: f64, normal: f64) -> f64 {
 
 /// The friction coefficient handed to rapier's contact: μ, or [`MU_INFINITE`] when the
 /// case's μ is infinite (rapier wants a finite coefficient).
-fn rapier_friction(mu: f64) -> f64 {
+pub(crate) fn rapier_friction(mu: f64) -> f64 {
     if mu.is_finite() { mu } else { MU_INFINITE }
 }

@@ -1,0 +1,309 @@
+//! The rapier engine on bidirectional (3D) scenes (issue 16): the PEPO as an oscillator in
+//! plan (applied force on a circular cone) and the rigid block on the ground slab, against
+//! the plan-motion references (crates/reference/src/bidirectional); the block under one
+//! record at several azimuths (rotation invariance, rapier's anisotropy); the friction
+//! cone |T| ≤ μ·N in 3D on every step. Tolerances are the measured errors (2026-11-24),
+//! stated at each assert, with a small margin.
+
+use std::path::Path;
+
+use rockslide::analysis::{history_difference, responses};
+use rockslide::case::{Case, Model, load_case, parse_case};
+use rockslide::engine::rigid_body::Rapier;
+use rockslide::engine::{Engine, Run};
+use rockslide::reference;
+use rockslide::suite::solve_reference;
+
+fn case(path: &str) -> Case {
+    load_case(Path::new(path)).expect("case loads")
+}
+
+/// The case at `path` with texts replaced, in order.
+fn case_with(path: &str, edits: &[(&str, &str)]) -> Case {
+    let mut text = std::fs::read_to_string(path).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from}");
+        text = text.replacen(from, to, 1);
+    }
+    parse_case(Path::new(path), &text).expect("parses")
+}
+
+fn rel(a: f64, b: f64) -> f64 {
+    (a - b) / b.abs()
+}
+
+fn run(c: &Case, variant: &str) -> Run {
+    let r = Rapier.run(c, variant, c.dt_for("rapier")).unwrap();
+    assert!(r.status.completed(), "{}", r.status);
+    r
+}
+
+/// Largest |T|/(μ·N) − 1 over every recorded step with N > 0 (the one contact's rows of
+/// the contact block: [normal, tangential, slip, gap]), and the number of such rows.
+fn cone_excess(r: &Run, mu: f64) -> (f64, usize) {
+    let rows: Vec<&[f64]> = r
+        .trace
+        .contacts
+        .values
+        .chunks(4)
+        .filter(|f| f[0] > 0.0)
+        .collect();
+    let worst = rows
+        .iter()
+        .map(|f| f[1] / (mu * f[0]) - 1.0)
+        .fold(f64::NEG_INFINITY, f64::max);
+    (worst, rows.len())
+}
+
+/// A plan channel pair (x, y) rotated by −θ: (along e₁, across).
+fn along_across(r: &Run, key: &str, deg: f64) -> (Vec<f64>, Vec<f64>) {
+    let x = r.trace.column(key).unwrap();
+    let y = r.trace.column(&format!("{key}_y")).unwrap();
+    let (s, c) = deg.to_radians().sin_cos();
+    x.iter()
+        .zip(y)
+        .map(|(x, y)| (x * c + y * s, -x * s + y * c))
+        .unzip()
+}
+
+const PEPO: &str = "cases/spatial/pepo-pulse-azimuth30.toml";
+const PAIR: &str = "cases/spatial/block-record-pair.toml";
+
+/// rockslide shall reproduce the 2D exact solution rotated for a one-directional motion
+/// at any azimuth: rapier's PEPO in plan against the plan-motion reference.
+#[test]
+fn pepo_at_30_degrees_against_the_plan_reference() {
+    let c = case(PEPO);
+    let reference = solve_reference(&c).unwrap();
+    let r = run(&c, "applied-force");
+    let got = responses(&r.trace);
+    let e = |k: &str| {
+        let e = rel(got[k], reference.responses[k]);
+        println!(
+            "{k}: rapier {} reference {} ({e:+.3e})",
+            got[k], reference.responses[k]
+        );
+        e
+    };
+    // measured +2.77e-5, +2.93e-5 (×3): symplectic Euler at the planar rule's 1 ms step
+    assert!(e("peak_relative_displacement").abs() < 3.5e-5);
+    for k in [
+        "residual_sliding",
+        "peak_resultant_sliding",
+        "residual_resultant_sliding",
+    ] {
+        assert!(e(k).abs() < 3.5e-5, "{k}");
+    }
+    // measured −0.80 ms and −0.27 ms: the events at the 1 ms output step's resolution
+    let start = got["slip_start"] - reference.responses["slip_start"];
+    let end = got["slip_end"] - reference.responses["slip_end"];
+    println!("slip start {start:+.2e} s, end {end:+.2e} s");
+    assert!((-1e-3..=0.0).contains(&start) && (-3e-4..=0.0).contains(&end));
+    assert_eq!(got["slip_episodes"], reference.responses["slip_episodes"]);
+    let sampled = reference::sample(reference.solution.as_ref(), &r.trace.time);
+    for key in ["slide", "slide_y", "rel_disp", "rel_disp_y"] {
+        let (max, rms) = history_difference(&r.trace, &sampled, key).unwrap();
+        println!("{key}: history max {max:.3e} rms {rms:.3e}");
+        // measured: slip 3.35e-3 / 1.13e-3, displacement 3.16e-3 / 1.20e-3 of the peak,
+        // as the planar oscillator (its step's phase lag ω·h/2)
+        assert!(max < 3.6e-3 && rms < 1.3e-3, "{key}: {max} / {rms}");
+    }
+    let Model::Oscillator(o) = &c.scene.model else {
+        unreachable!()
+    };
+    // |F| ≤ μ·N by the radial return: measured 2.2e-16 above on the worst step
+    let (excess, rows) = cone_excess(&r, o.contact.mu);
+    println!("cone: worst |T|/(μN) − 1 = {excess:e} over {rows} rows");
+    assert!(excess < 1e-15 && rows == r.trace.len());
+}
+
+/// rapier's oscillator in plan is rotation-equivariant: at 30° it is its own 0° answer
+/// rotated by 30°, to round-off.
+#[test]
+fn pepo_in_plan_rotates_with_the_excitation() {
+    let turned = run(&case(PEPO), "applied-force");
+    let straight = run(
+        &case_with(PEPO, &[("azimuth_deg = 30.0", "azimuth_deg = 0.0")]),
+        "applied-force",
+    );
+    let mut worst: f64 = 0.0;
+    for key in ["slide", "rel_disp", "vel"] {
+        let (along, across) = along_across(&turned, key, 30.0);
+        let x = straight.trace.column(key).unwrap();
+        let y = straight.trace.column(&format!("{key}_y")).unwrap();
+        for i in 0..x.len() {
+            worst = worst
+                .max((along[i] - x[i]).abs())
+                .max((across[i] - y[i]).abs());
+        }
+    }
+    let peak = straight
+        .trace
+        .column("rel_disp")
+        .unwrap()
+        .iter()
+        .fold(0.0_f64, |m, v| m.max(v.abs()));
+    println!("largest difference {worst:.3e} (peak {peak:.3e} m)");
+    assert!(peak > 9e-3);
+    // measured 5.1e-16 (m and m/s, over slip, displacement and velocity) against a 9.3 mm
+    // peak: round-off of the rotation
+    assert!(worst < 1e-15, "{worst}");
+}
+
+/// rockslide shall compute the resultant sliding of a block under two horizontal
+/// components on an isotropic friction cone: rapier's block on both routes.
+#[test]
+fn block_under_the_record_pair_against_the_plan_reference() {
+    let c = case(PAIR);
+    let reference = solve_reference(&c).unwrap();
+    // measured (peak, residual resultant, residual along x as (a − b)/|b| of a negative
+    // residual, history max of slide and slide_y relative to the peak):
+    // inertial force −9.87e-4, −4.09e-4, −4.93e-4, 1.44e-3, 1.12e-3;
+    // kinematic ground (4 steps of 0.25 ms per ms) −6.84e-4, +6.16e-4, −3.14e-3, 4.03e-3, 1.12e-3
+    for (variant, bounds) in [
+        ("inertial-force", [1.1e-3, 5e-4, 6e-4, 1.6e-3, 1.3e-3]),
+        ("kinematic-ground", [8e-4, 7e-4, 3.5e-3, 4.5e-3, 1.3e-3]),
+    ] {
+        let r = run(&c, variant);
+        let got = responses(&r.trace);
+        println!("{variant}: {} rapier steps", r.stats.steps);
+        let keys = [
+            "peak_resultant_sliding",
+            "residual_resultant_sliding",
+            "residual_sliding",
+        ];
+        for (k, bound) in keys.iter().zip(bounds) {
+            let e = rel(got[*k], reference.responses[*k]);
+            println!(
+                "  {k}: rapier {} reference {} ({e:+.3e})",
+                got[*k], reference.responses[*k]
+            );
+            assert!(e.abs() < bound, "{variant} {k}: {e}");
+        }
+        let sampled = reference::sample(reference.solution.as_ref(), &r.trace.time);
+        for (key, bound) in ["slide", "slide_y"].into_iter().zip(&bounds[3..]) {
+            let (max, rms) = history_difference(&r.trace, &sampled, key).unwrap();
+            println!("  {key}: history max {max:.3e} rms {rms:.3e}");
+            assert!(max < *bound, "{variant} {key}: {max}");
+        }
+        // rapier's friction is a circular cone: |T| ≤ μ·N on every recorded step, from
+        // its contact impulses (measured ≤ 6.7e-16 above: round-off), on every row but the
+        // first (no impulse before the first step)
+        let (excess, rows) = cone_excess(&r, 0.05);
+        println!("  cone: worst |T|/(μN) − 1 = {excess:e} over {rows} rows");
+        assert!(excess < 2e-15 && rows + 1 == r.trace.len(), "{excess}");
+    }
+}
+
+/// The pair's oscillator (T = 0.5 s, μ = 0.05, ζ = 0, the finding of docs/bidirectional.md)
+/// as a case: the pair case with its block replaced and without rapier's gates.
+fn oscillator_under_the_pair() -> Case {
+    let text = std::fs::read_to_string(PAIR).unwrap();
+    let (head, rest) = text.split_at(text.find("[model]").unwrap());
+    let excitation = &rest[rest.find("[excitation]").unwrap()..];
+    let excitation = excitation.split("[engines.rapier]").next().unwrap();
+    let model = "[model]\nkind = \"oscillator\"\nmass = 1000.0\ngravity = 9.81\n[model.contact]\nkx = 157913.67\nkz = 1.0e9\nmu = 0.05\n\n";
+    parse_case(Path::new(PAIR), &format!("{head}{model}{excitation}")).expect("parses")
+}
+
+/// The oscillator in plan under the record pair: the force turns on the yield circle.
+/// The radial return after each step moves the slider along the step's last direction,
+/// so the answer is first order in the step (measured at rapier steps of 1, 0.25 and
+/// 0.1 ms: peak relative displacement +0.82, +0.20, +0.082 %), within the 1 % accuracy
+/// target at the planar rule's 1 ms.
+#[test]
+fn oscillator_under_the_record_pair_against_the_plan_reference() {
+    let c = oscillator_under_the_pair();
+    let reference = solve_reference(&c).unwrap();
+    for variant in ["inertial-force", "kinematic-ground"] {
+        let r = run(&c, variant);
+        let got = responses(&r.trace);
+        // measured, inertial / kinematic: −9.93e-4 / −1.01e-3, +6.58e-3 / +6.54e-3,
+        // +8.17e-3 / +8.18e-3
+        for (k, bound) in [
+            ("peak_resultant_sliding", 1.1e-3),
+            ("residual_resultant_sliding", 7e-3),
+            ("peak_relative_displacement", 8.5e-3),
+        ] {
+            let e = rel(got[k], reference.responses[k]);
+            println!(
+                "{variant} {k}: rapier {} reference {} ({e:+.3e})",
+                got[k], reference.responses[k]
+            );
+            assert!(e.abs() < bound, "{variant} {k}: {e}");
+        }
+        let (excess, rows) = cone_excess(&r, 0.05);
+        assert!(excess < 1e-15 && rows == r.trace.len(), "{excess}");
+    }
+}
+
+/// The shipped Northridge block, one component, as a 3D scene at azimuth `deg`.
+fn northridge_at(deg: f64) -> Case {
+    case_with(
+        "cases/records/block-northridge.toml",
+        &[
+            ("mu = 0.185", "mu = 0.185\nhalf_depth = 1.0"),
+            (
+                "polarity = 1",
+                &format!("polarity = 1\nazimuth_deg = {deg}"),
+            ),
+        ],
+    )
+}
+
+/// The block under one record at several azimuths (inertial force): the answer turns with
+/// the excitation, and how far it does not is rapier's anisotropy.
+#[test]
+fn block_under_one_record_at_several_azimuths() {
+    let planar = solve_reference(&case("cases/records/block-northridge.toml")).unwrap();
+    let exact = planar.responses["residual_sliding"];
+    let mut residuals = Vec::new();
+    for deg in [0.0, 30.0, 45.0, 135.0, -72.5] {
+        let r = run(&northridge_at(deg), "inertial-force");
+        let (along, across) = along_across(&r, "slide", deg);
+        let across = across.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let residual = *along.last().unwrap();
+        let (excess, _) = cone_excess(&r, 0.185);
+        println!(
+            "θ = {deg}: residual along e₁ {residual:.6e} m ({:+.3e} against the exact 2D), largest across {across:.3e} m, cone excess {excess:e}",
+            rel(residual, exact)
+        );
+        // measured: across 0 at θ = 0, 5.1–9.7 µm at the other azimuths (≤ 0.18 % of the
+        // 5.4 mm slide); against the exact residual −0.21 % to +0.13 %
+        assert!(across < 1.0e-5, "θ = {deg}: {across}");
+        assert!(rel(residual, exact).abs() < 2.5e-3, "θ = {deg}");
+        assert!(excess < 1e-15);
+        residuals.push(residual);
+    }
+    let (lo, hi) = residuals
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &r| {
+            (a.min(r), b.max(r))
+        });
+    let spread = (hi - lo) / exact;
+    println!("anisotropy: residual spread over the azimuths {spread:.3e} of the residual");
+    // measured 3.42e-3: rapier's block is not exactly isotropic (its cuboid's contact
+    // manifold and solver, not its cone: the cone is circular)
+    assert!(spread < 3.6e-3, "{spread}");
+}
+
+/// The same on the kinematic ground (its step rule: 13 rapier steps per ms): the moving
+/// ground's slip of the stuck block depends on the direction, −0.77 % at 0°, +0.52 % at
+/// 135° against the exact residual (measured 2026-11-24; 30° −0.66 %, 45° −0.54 %).
+#[test]
+fn block_on_the_kinematic_ground_at_two_azimuths() {
+    let planar = solve_reference(&case("cases/records/block-northridge.toml")).unwrap();
+    let exact = planar.responses["residual_sliding"];
+    for (deg, measured) in [(0.0, -7.653e-3), (135.0, 5.220e-3)] {
+        let r = run(&northridge_at(deg), "kinematic-ground");
+        let (along, across) = along_across(&r, "slide", deg);
+        let across = across.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+        let e = rel(*along.last().unwrap(), exact);
+        println!("θ = {deg}: residual {e:+.3e} against the exact 2D, across {across:.3e} m");
+        // measured across 0 / 28.7 µm
+        assert!(
+            (e - measured).abs() < 2e-4 && across < 3e-5,
+            "θ = {deg}: {e}"
+        );
+    }
+}
