@@ -71,6 +71,18 @@ impl ConeContact {
         &self.committed
     }
 
+    /// The state of the last trial (what `commit` would accept).
+    pub fn trial_state(&self) -> &ConeState {
+        &self.trial
+    }
+
+    /// Start from `state` (committed and trial): a series equivalent taking over the state
+    /// of the element whose slip it carries, or an element set from its equivalent.
+    pub fn set_committed(&mut self, state: ConeState) {
+        self.committed = state;
+        self.trial = state;
+    }
+
     /// Normal compression N of the committed state (negative: tension of a bonded one), N.
     pub fn normal(&self) -> f64 {
         -self.committed.force.z

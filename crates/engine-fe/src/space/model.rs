@@ -14,11 +14,21 @@
 //!
 //! A node links only to the ground and the body, so each node's 3×3 block is condensed
 //! out exactly, leaving a 6×6 body system (fixed-size arrays, nothing allocated).
+//!
+//! Condensed supports (as in 2D, `crate::model::series_equivalent`): when element 2 of the
+//! double arrangement is bonded with μ2 = ∞ (every shipped case), the pair in series *is*
+//! one cone contact with the series stiffnesses and element 1's friction and slip
+//! (`series_equivalent`, derived there for the circular cone). The time loop then iterates
+//! on that element alone, ground to body, exactly like the single arrangement
+//! (`assemble_direct`): no node relaxation, no node blocks, no series tangent. The node and
+//! both elements are set from it once per converged step (`commit_step`).
 
 use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
-use super::contact::ConeContact;
+use super::contact::{ConeContact, ConeState};
+use super::lu::Lu6;
 use super::rotation::{right_jacobian, skew};
+use crate::element::Status;
 use rockslide_core::case::{Contact, DoubleContact, Oscillator, RockingBody};
 
 /// A rigid body on supports, as the 3D model is built from it.
@@ -167,6 +177,13 @@ pub struct SpaceModel {
     pub supports: Vec<SpaceSupport>,
     /// Number of massless nodes (0 or the number of supports).
     pub nodes: usize,
+    /// The double arrangement's supports as single series-equivalent cone contacts, ground
+    /// to body (`series_equivalent`); empty for the single arrangement.
+    pub equivalents: Vec<ConeContact>,
+    /// Whether the time loop iterates on the body alone (the single arrangement, or the
+    /// double one with every support condensed into its `equivalents`); `false` carries the
+    /// nodes (element 2 with finite friction).
+    pub condensed: bool,
 }
 
 /// Preallocated results of one assembly.
@@ -189,6 +206,9 @@ pub struct SpaceAssembly {
     jr: Matrix3<f64>,
     /// A node block was singular.
     singular: bool,
+    /// The last Newton matrix and its LU factors, reused while the matrix is bit for bit
+    /// the same (the rotation locked and the contact states unchanged).
+    factors: Option<(Matrix6<f64>, Lu6)>,
 }
 
 impl SpaceAssembly {
@@ -204,6 +224,7 @@ impl SpaceAssembly {
             g: vec![Matrix3::zeros(); n],
             jr: Matrix3::identity(),
             singular: false,
+            factors: None,
         }
     }
 }
@@ -251,7 +272,33 @@ impl SpaceModel {
             body: body.clone(),
             supports,
             nodes,
+            equivalents: Vec::new(),
+            condensed: false,
         }
+        .with_equivalents()
+    }
+
+    /// Condense every double support into its series equivalent where that is exact.
+    fn with_equivalents(mut self) -> Self {
+        if self.nodes == 0 {
+            self.condensed = true;
+            return self;
+        }
+        let pairs = self.supports.iter().map(|sup| {
+            sup.upper
+                .as_ref()
+                .and_then(|upper| series_equivalent(&sup.lower, upper))
+        });
+        if let Some(eq) = pairs.collect::<Option<Vec<_>>>() {
+            self.equivalents = eq;
+            self.condensed = true;
+        }
+        self
+    }
+
+    /// Node unknowns the Newton iteration carries (none when condensed).
+    pub fn loop_nodes(&self) -> usize {
+        if self.condensed { 0 } else { self.nodes }
     }
 
     /// Weight M·g, N.
@@ -266,9 +313,40 @@ impl SpaceModel {
     }
 
     /// Evaluate every element at `pose` (nodes `un`, ground at `ground`) and assemble the
-    /// internal forces and the consistent tangent into `a`. The massless nodes are first
-    /// put at their exact local equilibrium (`relax_node`) and condensed out.
+    /// internal forces and the consistent tangent into `a`. Condensed: the ground-to-body
+    /// elements alone (`assemble_direct`); else the massless nodes are first put at their
+    /// exact local equilibrium (`relax_node`) and condensed out.
     pub fn assemble(
+        &mut self,
+        pose: &Pose,
+        un: &mut [Vector3<f64>],
+        ground: &Vector3<f64>,
+        a: &mut SpaceAssembly,
+    ) {
+        a.singular = false;
+        if self.condensed {
+            let sums = if self.nodes == 0 {
+                let elements = self.supports.iter_mut().map(|s| (s.offset, &mut s.lower));
+                assemble_direct(elements, pose, ground)
+            } else {
+                let offsets = self.supports.iter().map(|s| s.offset);
+                assemble_direct(offsets.zip(self.equivalents.iter_mut()), pose, ground)
+            };
+            (a.pb, a.kbb) = sums.into_matrices();
+        } else {
+            self.assemble_with_nodes(pose, un, ground, a);
+        }
+        // From the body-frame virtual rotation W to the unknown Θ: W = J_r(Θ)·δΘ.
+        a.jr = Matrix3::identity();
+        if self.body.rotation && pose.theta != Vector3::zeros() {
+            a.jr = right_jacobian(&pose.theta);
+            let cols = a.kbb.fixed_columns::<3>(3) * a.jr;
+            a.kbb.fixed_columns_mut::<3>(3).copy_from(&cols);
+        }
+    }
+
+    /// The uncondensed assembly: the nodes relaxed and condensed into series tangents.
+    fn assemble_with_nodes(
         &mut self,
         pose: &Pose,
         un: &mut [Vector3<f64>],
@@ -277,7 +355,6 @@ impl SpaceModel {
     ) {
         a.pb = Vector6::zeros();
         a.kbb = Matrix6::zeros();
-        a.singular = false;
         let rt = pose.r.transpose();
         for (k, sup) in self.supports.iter_mut().enumerate() {
             let d = sup.offset;
@@ -318,13 +395,6 @@ impl SpaceModel {
             // d̂·(Rᵀf)^ = (Rᵀf)·dᵀ − (d·Rᵀf)·I
             k11 += gtd * g + rtf * d.transpose() - Matrix3::identity() * d.dot(&rtf);
         }
-        // From the body-frame virtual rotation W to the unknown Θ: W = J_r(Θ)·δΘ.
-        a.jr = Matrix3::identity();
-        if self.body.rotation && pose.theta != Vector3::zeros() {
-            a.jr = right_jacobian(&pose.theta);
-            let cols = a.kbb.fixed_columns::<3>(3) * a.jr;
-            a.kbb.fixed_columns_mut::<3>(3).copy_from(&cols);
-        }
     }
 
     /// Commit every element's trial state.
@@ -335,6 +405,23 @@ impl SpaceModel {
                 u.commit();
             }
         }
+        for e in &mut self.equivalents {
+            e.commit();
+        }
+    }
+
+    /// Commit the state of the last assembly. With condensed double supports each
+    /// support's node (`un`, ground at `ground`) and two elements are first set from its
+    /// series equivalent (`split_equivalent`), so the outputs see every element.
+    pub fn commit_step(&mut self, un: &mut [Vector3<f64>], ground: &Vector3<f64>) {
+        if self.condensed && self.nodes > 0 {
+            for ((sup, eq), node) in self.supports.iter_mut().zip(&self.equivalents).zip(un) {
+                if let Some(upper) = &mut sup.upper {
+                    *node = split_equivalent(eq, &mut sup.lower, upper) + ground;
+                }
+            }
+        }
+        self.commit();
     }
 
     /// Restore every element's committed state.
@@ -345,7 +432,181 @@ impl SpaceModel {
                 u.restore();
             }
         }
+        for e in &mut self.equivalents {
+            e.restore();
+        }
     }
+}
+
+/// The exact single cone contact of two in series through a massless node: element 1
+/// (ground side, compression-only, friction μ1 on the circular cone) and element 2
+/// (bonded, μ2 = ∞); `None` for any other pair.
+///
+/// Derivation (the 2D one, `crate::model::series_equivalent`, with the tangential pair as
+/// a vector). The node carries no load, so both elements transmit the same force f.
+/// Normal: element 1 closed (δtz ≤ 0) gives N = kzs·(−δtz), kzs = kz1·kz2/(kz1 + kz2);
+/// δtz > 0 opens element 1 and nothing is transmitted. Tangential, with element 1's slip
+/// s1: sticking, T = kt1·(δ1 − s1) = kt2·(δt − δ1) gives T = kts·(δt − s1),
+/// kts = kt1·kt2/(kt1 + kt2), and the pair sticks while |T| ≤ μ1·N — the same test on the
+/// same numbers. Slipping, element 1's radial return puts T = μ1·N·m with m the direction
+/// of its trial δ1 − s1 = (δt − s1) − T/kt2, so m is the direction of δt − s1 (the
+/// equivalent's trial direction), and s1 ← δ1 − T/kt1 = δt − T/kts: the radial return of
+/// one element (kts, kzs, μ1) with slip s1. Open: δ1 = δt and the origin follows the point,
+/// s1 = δt, again the same. The consistent tangent, the derivative of the same function,
+/// is the node's Schur complement D2 − D2·(D1 + D2)⁻¹·D2. Only round-off differs.
+pub fn series_equivalent(lower: &ConeContact, upper: &ConeContact) -> Option<ConeContact> {
+    if lower.bonded || !upper.bonded || upper.mu.is_finite() {
+        return None;
+    }
+    let series = |a: f64, b: f64| a * b / (a + b);
+    let mut eq = ConeContact::new(
+        series(lower.kt, upper.kt),
+        series(lower.kz, upper.kz),
+        lower.mu,
+        false,
+    );
+    eq.set_committed(*lower.state());
+    Some(eq)
+}
+
+/// Set the committed states of a condensed support's element 1 (`lower`) and element 2
+/// (`upper`) from the last trial of their series equivalent `eq`; returns the node's
+/// position relative to the ground, δ1. Both elements carry the equivalent's force f;
+/// element 2 sticks, so its deflection is δ2 = (fx/kt2, fy/kt2, fz/kz2) and δ1 = δt − δ2
+/// (δ1 = δt, δ2 = 0 when element 1 is open); element 1 has the equivalent's slip and
+/// status.
+fn split_equivalent(
+    eq: &ConeContact,
+    lower: &mut ConeContact,
+    upper: &mut ConeContact,
+) -> Vector3<f64> {
+    let st = *eq.trial_state();
+    let d2 = if st.status == Status::Open {
+        Vector3::zeros()
+    } else {
+        Vector3::new(
+            st.force.x / upper.kt,
+            st.force.y / upper.kt,
+            st.force.z / upper.kz,
+        )
+    };
+    let d1 = st.delta - d2;
+    lower.set_committed(ConeState { delta: d1, ..st });
+    upper.set_committed(ConeState {
+        slip: upper.state().slip,
+        delta: d2,
+        force: st.force,
+        status: Status::Stick,
+    });
+    d1
+}
+
+/// The body's internal force (p, ground-frame force and body-frame moment) and its tangent
+/// k with respect to (X, W), summed in plain scalars.
+struct BodySums {
+    p: [f64; 6],
+    k: [[f64; 6]; 6],
+}
+
+impl BodySums {
+    fn into_matrices(self) -> (Vector6<f64>, Matrix6<f64>) {
+        (
+            Vector6::from_column_slice(&self.p),
+            Matrix6::from_fn(|i, j| self.k[i][j]),
+        )
+    }
+}
+
+/// Internal force on the body and its tangent from elements joining the ground to the
+/// body points at the given offsets (the single arrangement, or condensed double
+/// supports): Σ(f, d × Rᵀf) and [[ΣD, ΣD·G], [ΣGᵀD, ΣGᵀDG + (Rᵀf)·dᵀ − (d·Rᵀf)·I]] with
+/// G = −R·d̂ (the module docs), before J_r. Plain scalars in the loop; an open element
+/// adds nothing and a sticking one (D diagonal) scales G's rows instead of full products.
+fn assemble_direct<'e>(
+    elements: impl Iterator<Item = (Vector3<f64>, &'e mut ConeContact)>,
+    pose: &Pose,
+    ground: &Vector3<f64>,
+) -> BodySums {
+    let r = &pose.r;
+    let rm = [
+        [r[(0, 0)], r[(0, 1)], r[(0, 2)]],
+        [r[(1, 0)], r[(1, 1)], r[(1, 2)]],
+        [r[(2, 0)], r[(2, 1)], r[(2, 2)]],
+    ];
+    let mut out = BodySums {
+        p: [0.0; 6],
+        k: [[0.0; 6]; 6],
+    };
+    for (d, e) in elements {
+        let d = [d.x, d.y, d.z];
+        let mut delta = Vector3::zeros();
+        for i in 0..3 {
+            let rd = rm[i][0] * d[0] + rm[i][1] * d[1] + rm[i][2] * d[2];
+            delta[i] = (pose.x[i] + (rd - d[i])) - ground[i];
+        }
+        let (f, dm) = e.trial(delta);
+        let status = e.trial_state().status;
+        if status == Status::Open {
+            continue;
+        }
+        let f = [f.x, f.y, f.z];
+        // Rᵀf, the force in the body frame.
+        let fb: [f64; 3] =
+            std::array::from_fn(|j| rm[0][j] * f[0] + rm[1][j] * f[1] + rm[2][j] * f[2]);
+        let p = &mut out.p;
+        p[0] += f[0];
+        p[1] += f[1];
+        p[2] += f[2];
+        p[3] += d[1] * fb[2] - d[2] * fb[1];
+        p[4] += d[2] * fb[0] - d[0] * fb[2];
+        p[5] += d[0] * fb[1] - d[1] * fb[0];
+        // G = −R·d̂, row by row.
+        let g: [[f64; 3]; 3] = std::array::from_fn(|i| {
+            let ri = &rm[i];
+            [
+                d[1] * ri[2] - d[2] * ri[1],
+                d[2] * ri[0] - d[0] * ri[2],
+                d[0] * ri[1] - d[1] * ri[0],
+            ]
+        });
+        let k = &mut out.k;
+        // D·G and (Gᵀ·D)ᵀ, then the W–W block Gᵀ·(D·G).
+        let (dg, gtd_t) = if status == Status::Stick {
+            // Sticking (or bonded): D = diag(kt, kt, kz), the other entries exact zeros.
+            let dd = [dm[(0, 0)], dm[(1, 1)], dm[(2, 2)]];
+            for i in 0..3 {
+                k[i][i] += dd[i];
+            }
+            let dg: [[f64; 3]; 3] = std::array::from_fn(|i| g[i].map(|x| dd[i] * x));
+            (dg, dg)
+        } else {
+            let m: [[f64; 3]; 3] = std::array::from_fn(|i| [dm[(i, 0)], dm[(i, 1)], dm[(i, 2)]]);
+            for i in 0..3 {
+                for j in 0..3 {
+                    k[i][j] += m[i][j];
+                }
+            }
+            let dg = std::array::from_fn(|i| {
+                std::array::from_fn(|j| m[i][0] * g[0][j] + m[i][1] * g[1][j] + m[i][2] * g[2][j])
+            });
+            // (GᵀD)ᵀ = DᵀG
+            let dtg = std::array::from_fn(|i| {
+                std::array::from_fn(|j| m[0][i] * g[0][j] + m[1][i] * g[1][j] + m[2][i] * g[2][j])
+            });
+            (dg, dtg)
+        };
+        let dfb = d[0] * fb[0] + d[1] * fb[1] + d[2] * fb[2];
+        for i in 0..3 {
+            for j in 0..3 {
+                k[i][3 + j] += dg[i][j];
+                k[3 + i][j] += gtd_t[j][i];
+                let gdg = g[0][i] * dg[0][j] + g[1][i] * dg[1][j] + g[2][i] * dg[2][j];
+                let geo = fb[i] * d[j] - if i == j { dfb } else { 0.0 };
+                k[3 + i][3 + j] += gdg + geo;
+            }
+        }
+    }
+    out
 }
 
 /// The inverse of a node block D1 + D2: reciprocals when it is diagonal (both elements
@@ -457,7 +718,7 @@ pub fn solve(
     let mut rot = s_mat.fixed_view_mut::<3, 3>(3, 3);
     rot += sys.inertial;
     let mut rhs = *rb;
-    for (k, r) in rn.iter().enumerate().take(model.nodes) {
+    for (k, r) in rn.iter().enumerate().take(model.loop_nodes()) {
         let v = a.d2[k] * (a.knn_inv[k] * r);
         let mut rx = rhs.fixed_rows_mut::<3>(0);
         rx += v;
@@ -475,13 +736,23 @@ pub fn solve(
             rhs[i] = 0.0;
         }
     }
-    let Some(x) = s_mat.lu().solve(&rhs) else {
+    // LU with partial pivoting (`Lu6`, nalgebra's algorithm written out), its factors
+    // reused while the matrix is bit for bit the same.
+    let same = |m: &Matrix6<f64>| {
+        m.iter()
+            .zip(s_mat.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+    };
+    if !matches!(&a.factors, Some((m, _)) if same(m)) {
+        a.factors = Some((s_mat, Lu6::new(&s_mat)));
+    }
+    let Some(x) = a.factors.as_ref().and_then(|(_, lu)| lu.solve(&rhs)) else {
         return false;
     };
     *dq = x;
     let dx = x.fixed_rows::<3>(0).into_owned();
     let dw = a.jr * x.fixed_rows::<3>(3);
-    for k in 0..model.nodes {
+    for k in 0..model.loop_nodes() {
         dun[k] = a.knn_inv[k] * (rn[k] / sys.s + a.d2[k] * (dx + a.g[k] * dw));
     }
     true
