@@ -19,14 +19,22 @@ pub struct Lu6 {
 impl Lu6 {
     /// Factor `m`.
     pub fn new(m: &Matrix6<f64>) -> Self {
-        let mut a: [[f64; N]; N] = std::array::from_fn(|i| std::array::from_fn(|j| m[(i, j)]));
-        let mut swaps: [usize; N] = std::array::from_fn(|i| i);
+        let s = m.as_slice(); // column-major
+        let mut a = [[0.0; N]; N];
+        for (i, row) in a.iter_mut().enumerate() {
+            for (j, x) in row.iter_mut().enumerate() {
+                *x = s[j * N + i];
+            }
+        }
+        let mut swaps = [0; N];
         for i in 0..N {
+            swaps[i] = i;
             let mut piv = i;
             let mut max = a[i][i].abs();
             for (j, row) in a.iter().enumerate().skip(i + 1) {
-                if row[i].abs() > max {
-                    max = row[i].abs();
+                let v = row[i].abs();
+                if v > max {
+                    max = v;
                     piv = j;
                 }
             }
@@ -35,12 +43,15 @@ impl Lu6 {
                 continue;
             }
             swaps[i] = piv;
-            a.swap(i, piv);
+            if piv != i {
+                a.swap(i, piv);
+            }
             let inv = 1.0 / diag;
-            let pivot_row = a[i];
-            for row in a.iter_mut().skip(i + 1) {
-                row[i] *= inv;
-                let c = row[i];
+            let (top, rest) = a.split_at_mut(i + 1);
+            let pivot_row = &top[i];
+            for row in rest {
+                let c = row[i] * inv;
+                row[i] = c;
                 for k in i + 1..N {
                     row[k] += -pivot_row[k] * c;
                 }
