@@ -47,13 +47,15 @@ impl Lu6 {
                 a.swap(i, piv);
             }
             let inv = 1.0 / diag;
-            let (top, rest) = a.split_at_mut(i + 1);
-            let pivot_row = &top[i];
-            for row in rest {
+            let pivot_row = a[i];
+            // Constant trip counts (the compiler unrolls them); only k > i changes.
+            for row in a.iter_mut().skip(i + 1) {
                 let c = row[i] * inv;
                 row[i] = c;
-                for k in i + 1..N {
-                    row[k] += -pivot_row[k] * c;
+                for k in 0..N {
+                    if k > i {
+                        row[k] += -pivot_row[k] * c;
+                    }
                 }
             }
         }

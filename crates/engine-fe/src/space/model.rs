@@ -414,14 +414,17 @@ impl SpaceModel {
     /// support's node (`un`, ground at `ground`) and two elements are first set from its
     /// series equivalent (`split_equivalent`), so the outputs see every element.
     pub fn commit_step(&mut self, un: &mut [Vector3<f64>], ground: &Vector3<f64>) {
-        if self.condensed && self.nodes > 0 {
-            for ((sup, eq), node) in self.supports.iter_mut().zip(&self.equivalents).zip(un) {
-                if let Some(upper) = &mut sup.upper {
-                    *node = split_equivalent(eq, &mut sup.lower, upper) + ground;
-                }
-            }
+        if !(self.condensed && self.nodes > 0) {
+            self.commit();
+            return;
         }
-        self.commit();
+        // Split sets both elements' committed (and trial) states.
+        for ((sup, eq), node) in self.supports.iter_mut().zip(&mut self.equivalents).zip(un) {
+            if let Some(upper) = &mut sup.upper {
+                *node = split_equivalent(eq, &mut sup.lower, upper) + ground;
+            }
+            eq.commit();
+        }
     }
 
     /// Restore every element's committed state.
