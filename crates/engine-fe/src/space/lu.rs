@@ -111,7 +111,7 @@ mod tests {
         for case in 0..20_000 {
             // Every pivoting pattern, exact zeros (the locked rotation's rows and columns,
             // sticking contacts' diagonal tangents) and scales from 1 to 1e12.
-            let mut m = Matrix6::from_fn(|_, _| next() * 10f64.powi((case % 13) as i32));
+            let mut m = Matrix6::from_fn(|_, _| next() * 10f64.powi(case % 13));
             if case % 3 == 0 {
                 for i in 3..6 {
                     for j in 0..6 {

@@ -550,10 +550,10 @@ impl GroundSums {
     /// Add the force `f` of the support at body offset `d`, ground offset `c` = R·d.
     #[inline]
     fn add_force(&mut self, f: &[f64; 3], d: &[f64; 3], c: &[f64; 3]) {
-        for i in 0..3 {
-            self.f[i] += f[i];
-            for j in 0..3 {
-                self.f_dt[i][j] += f[i] * d[j];
+        for ((sum, row), fi) in self.f.iter_mut().zip(&mut self.f_dt).zip(f) {
+            *sum += fi;
+            for (x, dj) in row.iter_mut().zip(d) {
+                *x += fi * dj;
             }
         }
         self.c_cross_f[0] += c[1] * f[2] - c[2] * f[1];
@@ -568,9 +568,9 @@ impl GroundSums {
         self.d[0][0] += a;
         self.d[1][1] += a;
         self.d[2][2] += b;
-        for i in 0..3 {
-            self.ac[i] += a * c[i];
-            self.bc[i] += b * c[i];
+        for ((ac, bc), ci) in self.ac.iter_mut().zip(&mut self.bc).zip(c) {
+            *ac += a * ci;
+            *bc += b * ci;
         }
         let (c11, c22, c33) = (c[0] * c[0], c[1] * c[1], c[2] * c[2]);
         let m = &mut self.a_moments;
@@ -602,16 +602,17 @@ impl GroundSums {
             ]
         };
         let (cv, cw) = (cross(&v), cross(&w));
-        for i in 0..2 {
-            for j in 0..3 {
-                self.d[i][j] -= v[i] * w[j];
-                self.d_c[i][j] += v[i] * cw[j];
+        // Rows 0 and 1 only: v = (n, 0).
+        for ((d, d_c), vi) in self.d.iter_mut().zip(&mut self.d_c).zip(&v).take(2) {
+            for ((x, y), (wj, cwj)) in d.iter_mut().zip(d_c).zip(w.iter().zip(&cw)) {
+                *x -= vi * wj;
+                *y += vi * cwj;
             }
         }
-        for i in 0..3 {
-            for j in 0..3 {
-                self.c_d[i][j] -= cv[i] * w[j];
-                self.c_d_c[i][j] += cv[i] * cw[j];
+        for ((c_d, c_d_c), cvi) in self.c_d.iter_mut().zip(&mut self.c_d_c).zip(&cv) {
+            for ((x, y), (wj, cwj)) in c_d.iter_mut().zip(c_d_c).zip(w.iter().zip(&cw)) {
+                *x -= cvi * wj;
+                *y += cvi * cwj;
             }
         }
     }
