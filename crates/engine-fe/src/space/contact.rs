@@ -45,6 +45,8 @@ pub struct ConeContact {
     pub bonded: bool,
     committed: ConeState,
     trial: ConeState,
+    /// The last slipping trial's μN/|T*|·kt and direction n = T*/|T*| (`slip_tangent`).
+    slip_tangent: (f64, Vector2<f64>),
 }
 
 impl ConeContact {
@@ -63,12 +65,25 @@ impl ConeContact {
             bonded,
             committed: s,
             trial: s,
+            slip_tangent: (0.0, Vector2::zeros()),
         }
     }
 
     /// The committed state.
     pub fn state(&self) -> &ConeState {
         &self.committed
+    }
+
+    /// The state of the last trial (what `commit` would accept).
+    pub fn trial_state(&self) -> &ConeState {
+        &self.trial
+    }
+
+    /// Start from `state` (committed and trial): a series equivalent taking over the state
+    /// of the element whose slip it carries, or an element set from its equivalent.
+    pub fn set_committed(&mut self, state: ConeState) {
+        self.committed = state;
+        self.trial = state;
     }
 
     /// Normal compression N of the committed state (negative: tension of a bonded one), N.
@@ -126,6 +141,7 @@ impl ConeContact {
             status: Status::Slip,
         };
         let ratio = cap / size * kt;
+        self.slip_tangent = (ratio, dir);
         let (nx, ny) = (dir.x, dir.y);
         let (zx, zy) = (-self.mu * kz * nx, -self.mu * kz * ny);
         let tangent = Matrix3::new(
@@ -140,6 +156,13 @@ impl ConeContact {
             kz,
         );
         (force, tangent)
+    }
+
+    /// The last trial's tangent when it slipped, as D = diag(ρ, ρ, kz) − (n, 0)·wᵀ with
+    /// ρ = μN/|T*|·kt, n = T*/|T*| and w = (ρ·n, μ·kz): returns (ρ, n). Meaningful only
+    /// after a trial whose status is `Slip`.
+    pub fn slip_tangent(&self) -> (f64, Vector2<f64>) {
+        self.slip_tangent
     }
 
     /// Accept the last trial state.

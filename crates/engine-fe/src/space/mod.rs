@@ -5,12 +5,15 @@
 //!
 //! - `rotation`: exponential map of SO(3), its right Jacobian, the logarithm.
 //! - `contact`: the cone contact (radial return, consistent tangent).
-//! - `model`: the body and supports, assembly, node condensation, the 6×6 Newton solve.
+//! - `model`: the body and supports, assembly, series equivalents of double supports,
+//!   node condensation, the 6×6 Newton solve.
+//! - `lu`: the 6×6 LU factors (nalgebra's algorithm on the stack).
 //! - `stepper`: static preload and the time loop on SO(3) (Simo–Vu Quoc material form).
 //! - `run`: one run, recorded as rows with (x, y) pairs.
 //! - `scene`: the engine on a bidirectional scene (model from `Scene::spatial`, trace).
 
 mod contact;
+mod lu;
 mod model;
 mod rotation;
 mod run;

@@ -186,7 +186,7 @@ fn static_preload(
         model.assemble(&p, &mut w.un, &ground, &mut w.asm);
         let rb = f - w.asm.pb;
         let mut r2 = rb.norm_squared();
-        for k in 0..model.nodes {
+        for k in 0..model.loop_nodes() {
             w.rn[k] = -w.asm.pn[k];
             r2 += w.rn[k].norm_squared();
         }
@@ -194,18 +194,18 @@ fn static_preload(
             return Err("singular stiffness in the static preload".into());
         }
         let mut d2 = dq.norm_squared();
-        for k in 0..model.nodes {
+        for k in 0..model.loop_nodes() {
             d2 += w.dun[k].norm_squared();
         }
         if it > 0
             && r2.sqrt() <= 1e-10 * f.norm().max(1.0)
             && d2.sqrt() <= 1e-12 * q.norm().max(1e-9)
         {
-            model.commit();
+            model.commit_step(&mut w.un, &ground);
             return Ok((p.x, p.r, it as u64 + 1));
         }
         q += dq;
-        for k in 0..model.nodes {
+        for k in 0..model.loop_nodes() {
             w.un[k] += w.dun[k];
         }
     }
@@ -318,7 +318,7 @@ pub fn integrate(
             let h = dt / f64::from(1u32 << level);
             match newton_step(model, drive, opts, &mut w, &n, t, h, &mut counters) {
                 Ok(next) => {
-                    model.commit();
+                    model.commit_step(&mut w.un, &next.g[0]);
                     n = next;
                     w.un_n.copy_from_slice(&w.un);
                     w.pn_n.copy_from_slice(&w.asm.pn);
@@ -404,6 +404,7 @@ fn newton_step(
     let fd = drive.force(t);
     let f = Vector6::new(fd.x, fd.y, -model.weight(), 0.0, 0.0, 0.0);
     let rotation = model.body.rotation;
+    let nodes = model.loop_nodes();
     let j = model.body.inertia;
     let mut dq = Vector6::zeros();
     // Unknowns q = (X, Θ): predictor with constant acceleration over the step.
@@ -420,7 +421,7 @@ fn newton_step(
         v
     };
     w.un.copy_from_slice(&w.un_n);
-    for k in 0..model.nodes {
+    for k in 0..nodes {
         w.un[k] += g[0] - n.g[0];
     }
     let (mut a, mut v);
@@ -457,7 +458,7 @@ fn newton_step(
         let inertial = inertia_force(model, &a, &v);
         let rb = (f - w.asm.pb - damp) * s - (n.f - n.pb - n.damp) * alpha - inertial;
         let mut r2 = rb.norm_squared();
-        for k in 0..model.nodes {
+        for k in 0..nodes {
             w.rn[k] = -w.asm.pn[k] * s + w.pn_n[k] * alpha;
             r2 += w.rn[k].norm_squared();
         }
@@ -465,7 +466,7 @@ fn newton_step(
         if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
             lambda *= 0.5;
             q = q_prev + dq_prev * lambda;
-            for k in 0..model.nodes {
+            for k in 0..nodes {
                 w.un[k] = w.un_prev[k] + w.dun_prev[k] * lambda;
             }
             continue;
@@ -504,7 +505,7 @@ fn newton_step(
             (q + dq - q_n).norm_squared(),
             p.x.norm_squared() + (n.psi + p.theta).norm_squared(),
         );
-        for k in 0..model.nodes {
+        for k in 0..nodes {
             d2 += w.dun[k].norm_squared();
             inc2 += (w.un[k] + w.dun[k] - w.un_n[k]).norm_squared();
             u2 += w.un[k].norm_squared();
@@ -524,7 +525,7 @@ fn newton_step(
         }
         (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
         q += dq;
-        for k in 0..model.nodes {
+        for k in 0..nodes {
             w.un_prev[k] = w.un[k];
             w.dun_prev[k] = w.dun[k];
             w.un[k] += w.dun[k];
