@@ -17,7 +17,7 @@
 //!
 //! Message log time = publish time = simulation time in nanoseconds; messages of all
 //! channels are interleaved in time order so chunks are time-local. The file is written
-//! in zstd chunks at level 1 (measured: see [`ZSTD_LEVEL`]) of the `mcap` crate's 1 MiB,
+//! in zstd chunks at level 1 (measured: see [`CHUNKS`]) of 1 MiB, each compressed whole by our own writer,
 //! with message, chunk, attachment and metadata indexes, statistics, summary and CRCs, in
 //! memory, then atomically renamed.
 //! Non-finite values (a diverged run's last row) are written as JSON `null` and read back
@@ -25,11 +25,9 @@
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::io::{Cursor, Seek, Write};
+use std::io::Write;
 use std::path::Path;
 
-use mcap::records::{MessageHeader, Metadata};
-use mcap::{Attachment, Writer};
 use serde_json::Value;
 
 use super::cdr;
@@ -38,6 +36,9 @@ use super::scene3d::{self, Geometry, Pose};
 use super::{Trace, q};
 use crate::error::{Error, InputError, InputErrors};
 use crate::io::write_atomically_with;
+
+mod writer;
+pub use writer::{ChunkCompression, ChunkOptions, McapWriter};
 
 /// Schema name prefix of the per-run state channels.
 pub const STATE_SCHEMA: &str = "rockslide/State";
@@ -86,14 +87,14 @@ pub struct TraceLog<'a> {
     pub attachments: Vec<(String, String, Vec<u8>)>,
 }
 
-fn mcap_error(e: mcap::McapError) -> Error {
+fn mcap_error(e: std::io::Error) -> Error {
     Error::Other(format!("writing MCAP: {e}"))
 }
 
 /// Write `log` to `path` atomically, streamed: only the open chunk and the indexes are
 /// held in memory, not the file.
 pub fn write_mcap(log: &TraceLog, path: &Path) -> Result<(), Error> {
-    write_atomically_with(path, |file| write_mcap_to(log, file).map(|_| ()))
+    write_atomically_with(path, |file| write_mcap_to(log, file, CHUNKS).map(|_| ()))
 }
 
 /// Log time of a simulation time, ns (non-finite or negative times clamp to `floor`).
@@ -114,27 +115,14 @@ struct RunChannels {
     view: Option<(u16, u16, u16)>,
 }
 
-/// A writer that numbers messages per channel.
-struct Out<W: Write + Seek> {
-    w: Writer<W>,
-    seq: BTreeMap<u16, u32>,
+/// The MCAP writer with the JSON messages' helper.
+struct Out<W: Write> {
+    w: McapWriter<W>,
 }
 
-impl<W: Write + Seek> Out<W> {
+impl<W: Write> Out<W> {
     fn put(&mut self, channel_id: u16, ns: u64, data: &[u8]) -> Result<(), Error> {
-        let seq = self.seq.entry(channel_id).or_insert(0);
-        *seq += 1;
-        self.w
-            .write_to_known_channel(
-                &MessageHeader {
-                    channel_id,
-                    sequence: *seq,
-                    log_time: ns,
-                    publish_time: ns,
-                },
-                data,
-            )
-            .map_err(mcap_error)
+        self.w.message(channel_id, ns, data).map_err(mcap_error)
     }
 
     fn put_json(&mut self, channel_id: u16, ns: u64, v: &Value) -> Result<(), Error> {
@@ -142,53 +130,35 @@ impl<W: Write + Seek> Out<W> {
     }
 }
 
-/// zstd level of the chunks. Measured on a 200,000-step predictor-corrector case (engine
-/// and reference channels, JSON messages of shortest round-trip decimals): level 1 writes
-/// 27.5 MB in 1.48 s of CPU for the whole `run`, the zstd default (3) 29.0 MB in 1.89 s,
-/// lz4 42.0 MB in 1.11 s, none 95.7 MB in 0.80 s. Full-precision decimals barely compress
-/// further at higher levels, so the fastest zstd level wins. Measured again on 10⁶ rows by
-/// `cargo bench --bench writers` (docs/performance.md): level 1 writes a third of the
-/// uncompressed size, lz4 half again as much; level 3 took 1.7× as long for a 5 % larger file.
-const ZSTD_LEVEL: u32 = 1;
+/// Chunks of the file: zstd at level 1 in chunks of 1 MiB, each compressed in one call.
+/// Measured (docs/performance.md §1): full-precision doubles barely compress, what zstd
+/// takes out is the framing, index entries and near-constant fields; higher levels cost
+/// more time for no smaller file, lz4 or none write a much larger one.
+pub const CHUNKS: ChunkOptions = ChunkOptions {
+    chunk_bytes: 1 << 20,
+    compression: ChunkCompression::Zstd(1),
+};
 
-/// How the file is written: zstd chunks at [`ZSTD_LEVEL`] on the calling thread (the
-/// `mcap` crate would start a zstd worker per physical core: measured 8 % less wall time
-/// alone but more CPU, and the traces of a case are already written in parallel), the
-/// crate's 1 MiB chunks (4 MiB measured no faster), indexes, summary and CRCs.
-fn writer_options() -> mcap::WriteOptions {
-    mcap::WriteOptions::new()
-        .compression_level(ZSTD_LEVEL)
-        .compression_threads(0)
-}
 /// The MCAP bytes of `log`.
 pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
-    Ok(write_mcap_to(log, Cursor::new(Vec::new()))?.into_inner())
+    mcap_bytes_with(log, CHUNKS)
+}
+
+/// The MCAP bytes of `log` with other chunk options (benchmarks compare them).
+pub fn mcap_bytes_with(log: &TraceLog, chunks: ChunkOptions) -> Result<Vec<u8>, Error> {
+    write_mcap_to(log, Vec::new(), chunks)
 }
 
 /// Write the MCAP file of `log` into `sink`; returns the sink.
-fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
+fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Result<W, Error> {
     let mut out = Out {
-        w: writer_options().create(sink).map_err(mcap_error)?,
-        seq: BTreeMap::new(),
+        w: McapWriter::new(sink, options).map_err(mcap_error)?,
     };
     for (name, media_type, data) in &log.attachments {
-        out.w
-            .attach(&Attachment {
-                log_time: 0,
-                create_time: 0,
-                name: name.clone(),
-                media_type: media_type.clone(),
-                data: data.as_slice().into(),
-            })
-            .map_err(mcap_error)?;
+        out.w.attach(name, media_type, data).map_err(mcap_error)?;
     }
     for (name, m) in &log.metadata {
-        out.w
-            .write_metadata(&Metadata {
-                name: name.clone(),
-                metadata: m.clone(),
-            })
-            .map_err(mcap_error)?;
+        out.w.metadata(name, m).map_err(mcap_error)?;
     }
     let run_meta = |run: &LoggedRun, topic: &str| {
         let mut m = run.metadata.clone();
@@ -201,14 +171,13 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
             m.insert("stop_time_s".into(), format!("{t:?}"));
             m.insert("stop_reason".into(), reason.clone());
         }
-        Metadata {
-            name: format!("run {}", run.label),
-            metadata: m,
-        }
+        m
     };
     for run in &log.runs {
         let meta = run_meta(run, &format!("/{}/state", run.label));
-        out.w.write_metadata(&meta).map_err(mcap_error)?;
+        out.w
+            .metadata(&format!("run {}", run.label), &meta)
+            .map_err(mcap_error)?;
     }
 
     let json_schema = |out: &mut Out<W>, name: &str, v: &Value| {
@@ -364,16 +333,12 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
         }
         row[r] += 1;
     }
-    out.w.finish().map_err(mcap_error)?;
-    Ok(out.w.into_inner())
+    out.w.finish().map_err(mcap_error)
 }
 
 /// The `/<label>/contacts` channel of a run with a contact block (its schema lists every
 /// contact with the units of its fields; the channel's metadata names them in order).
-fn contact_channel<W: Write + Seek>(
-    out: &mut Out<W>,
-    run: &LoggedRun,
-) -> Result<Option<u16>, Error> {
+fn contact_channel<W: Write>(out: &mut Out<W>, run: &LoggedRun) -> Result<Option<u16>, Error> {
     let block = &run.trace.contacts;
     if block.is_empty() {
         return Ok(None);
