@@ -94,7 +94,9 @@ fn mcap_error(e: std::io::Error) -> Error {
 /// Write `log` to `path` atomically, streamed: only the open chunk and the indexes are
 /// held in memory, not the file.
 pub fn write_mcap(log: &TraceLog, path: &Path) -> Result<(), Error> {
-    write_atomically_with(path, |file| write_mcap_to(log, file, CHUNKS).map(|_| ()))
+    write_atomically_with(path, |file| {
+        write_mcap_to(log, file, experiment_chunks()).map(|_| ())
+    })
 }
 
 /// Log time of a simulation time, ns (non-finite or negative times clamp to `floor`).
@@ -894,5 +896,21 @@ mod tests {
         let e = decompress_at_most(&packed, 999).unwrap_err();
         assert!(e.contains("more than its declared 999"), "{e}");
         assert!(decompress_at_most(b"not zstd", 10).is_err());
+    }
+}
+
+fn experiment_chunks() -> ChunkOptions {
+    let Ok(v) = std::env::var("XCHUNKS") else {
+        return CHUNKS;
+    };
+    let (c, n) = v.split_once(':').unwrap();
+    let n: usize = n.parse().unwrap();
+    ChunkOptions {
+        chunk_bytes: n << 10,
+        compression: if c == "none" {
+            ChunkCompression::None
+        } else {
+            ChunkCompression::Zstd(c.parse().unwrap())
+        },
     }
 }
