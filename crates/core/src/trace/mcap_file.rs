@@ -573,9 +573,8 @@ fn check_string_map(map: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
-/// A chunk's declared size within [`MAX_CHUNK_BYTES`], and the records inside it (after
-/// decompression, itself bounded by the declared size) framed as the file's are: the
-/// `mcap` crate's chunk reader trusts the inner records' lengths.
+/// A chunk's declared size within [`MAX_CHUNK_BYTES`] (checked before anything reads the
+/// file; its records are checked when [`for_each_message`] decompresses it).
 fn check_chunk(body: &[u8]) -> Result<(), String> {
     // layout 8884sb, checked by `check_fields`
     let declared = u64_at(body, 16);
@@ -584,6 +583,15 @@ fn check_chunk(body: &[u8]) -> Result<(), String> {
             "claims {declared} uncompressed bytes, above the limit of {MAX_CHUNK_BYTES}"
         ));
     }
+    Ok(())
+}
+
+/// A chunk's records, decompressed once, checked against the chunk's CRC (when it has
+/// one) and framed as the file's are: every inner record's length fits, and the fields of
+/// each fit in it (the `mcap` crate trusts them).
+fn chunk_records(body: &[u8]) -> Result<std::borrow::Cow<'_, [u8]>, String> {
+    let declared = u64_at(body, 16);
+    let crc = u32::from_le_bytes([body[24], body[25], body[26], body[27]]);
     let name_len = u32::from_le_bytes([body[28], body[29], body[30], body[31]]) as usize;
     let compression = &body[32..32 + name_len];
     let records = &body[32 + name_len + 8..];
@@ -597,6 +605,15 @@ fn check_chunk(body: &[u8]) -> Result<(), String> {
             ));
         }
     };
+    if inner.len() as u64 != declared {
+        return Err(format!(
+            "holds {} uncompressed bytes, declares {declared}",
+            inner.len()
+        ));
+    }
+    if crc != 0 && crc32fast::hash(&inner) != crc {
+        return Err("its records do not match its CRC".into());
+    }
     let mut at = 0usize;
     while at < inner.len() {
         let Some(head) = inner.get(at..at + 9) else {
@@ -612,6 +629,74 @@ fn check_chunk(body: &[u8]) -> Result<(), String> {
         let body = &inner[at + 9..at + 9 + len as usize];
         check_fields(op, body).map_err(|why| format!("inner record 0x{op:02x}: {why}"))?;
         at += 9 + len as usize;
+    }
+    Ok(inner)
+}
+
+/// The records of `bytes` (a data section or a chunk's records), as (offset, opcode,
+/// body); stops at the first that does not fit.
+fn records(bytes: &[u8]) -> impl Iterator<Item = (usize, u8, &[u8])> {
+    let mut at = 0usize;
+    std::iter::from_fn(move || {
+        let head = bytes.get(at..at + 9)?;
+        let (op, len) = (head[0], usize::try_from(u64_at(head, 1)).ok()?);
+        let body = bytes.get(at + 9..(at + 9).checked_add(len)?)?;
+        let here = at;
+        at += 9 + len;
+        Some((here, op, body))
+    })
+}
+
+/// One message as read: channel id, sequence, log time, data.
+struct RawMessage<'a> {
+    channel: u16,
+    sequence: u32,
+    log_time: u64,
+    data: &'a [u8],
+}
+
+/// The message of a message record's body (22 bytes of header, then the data).
+fn raw_message(body: &[u8]) -> Result<RawMessage<'_>, String> {
+    if body.len() < 22 {
+        return Err(format!(
+            "a message record of {} bytes, shorter than its header",
+            body.len()
+        ));
+    }
+    Ok(RawMessage {
+        channel: u16::from_le_bytes([body[0], body[1]]),
+        sequence: u32::from_le_bytes([body[2], body[3], body[4], body[5]]),
+        log_time: u64_at(body, 6),
+        data: &body[22..],
+    })
+}
+
+/// Every message of the data section in file order, each chunk decompressed once (the
+/// file's framing already checked by [`check_framing`]).
+fn for_each_message(
+    bytes: &[u8],
+    mut on: impl FnMut(RawMessage) -> Result<(), InputError>,
+) -> Result<(), Result<String, InputError>> {
+    const MAGIC_LEN: usize = 8;
+    const MESSAGE: u8 = 0x05;
+    const CHUNK: u8 = 0x06;
+    const DATA_END: u8 = 0x0F;
+    const FOOTER: u8 = 0x02;
+    for (at, op, body) in records(&bytes[MAGIC_LEN..]) {
+        match op {
+            MESSAGE => on(raw_message(body).map_err(Ok)?).map_err(Err)?,
+            CHUNK => {
+                let inner = chunk_records(body)
+                    .map_err(|why| Ok(format!("chunk at byte {}: {why}", at + MAGIC_LEN)))?;
+                for (_, op, body) in records(&inner) {
+                    if op == MESSAGE {
+                        on(raw_message(body).map_err(Ok)?).map_err(Err)?;
+                    }
+                }
+            }
+            DATA_END | FOOTER => break,
+            _ => {}
+        }
     }
     Ok(())
 }
@@ -713,17 +798,18 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             messages: 0,
         });
     }
-    let stream =
-        mcap::MessageStream::new_with_options(bytes, mcap::read::Options::ValidateChunkCrcs.into())
-            .map_err(|e| damaged("header", &e))?;
     let mut values = Vec::new();
     let (mut first, mut last) = (u64::MAX, 0u64);
-    for m in stream {
-        let m = m.map_err(|e| damaged("data", &e))?;
-        let id = m.channel.id;
+    let mut topics: BTreeMap<u16, String> = BTreeMap::new();
+    for (id, c) in &summary.channels {
+        topics.insert(*id, c.topic.clone());
+    }
+    for_each_message(bytes, |m| {
+        let id = m.channel;
         let Some(&ci) = index_of.get(&id) else {
-            return Err(damaged("data", &format!("message on unknown channel {id}")).into());
+            return Err(damaged("data", &format!("message on unknown channel {id}")));
         };
+        let topic = &topics[&id];
         contents.channels[ci].messages += 1;
         contents.message_count += 1;
         first = first.min(m.log_time);
@@ -733,8 +819,8 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
                 path,
                 "",
                 format!(
-                    "channel {}, message {}: not valid JSON for its schema: {e}",
-                    m.channel.topic, m.sequence
+                    "channel {topic}, message {}: not valid JSON for its schema: {e}",
+                    m.sequence
                 ),
             )
         };
@@ -742,13 +828,13 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
         if let Some((si, qs)) = builders.get(&id)
             && is_cdr
         {
-            cdr::read_values(&m.data, qs.len() + 1, &mut values).map_err(|e| {
+            cdr::read_values(m.data, qs.len() + 1, &mut values).map_err(|e| {
                 InputError::new(
                     path,
                     "",
                     format!(
                         "channel {}, message {}: not a CDR state message of {} values: {e}",
-                        m.channel.topic,
+                        topic,
                         m.sequence,
                         qs.len() + 1
                     ),
@@ -761,13 +847,13 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
         {
             let block = &mut contents.contacts[bi].1;
             let width = block.count() * contacts::CONTACT_FIELDS.len();
-            cdr::read_values(&m.data, width + 1, &mut values).map_err(|e| {
+            cdr::read_values(m.data, width + 1, &mut values).map_err(|e| {
                 InputError::new(
                     path,
                     "",
                     format!(
                         "channel {}, message {}: not a CDR contact message of {} values: {e}",
-                        m.channel.topic,
+                        topic,
                         m.sequence,
                         width + 1
                     ),
@@ -776,7 +862,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             block.push_values(values[0], &values[1..]);
         } else if let Some((si, qs)) = builders.get(&id) {
             let obj: BTreeMap<String, Option<f64>> =
-                serde_json::from_slice(&m.data).map_err(|e| bad(&e))?;
+                serde_json::from_slice(m.data).map_err(|e| bad(&e))?;
             let field = |k: &str| {
                 obj.get(k)
                     .map(|v| v.unwrap_or(f64::NAN))
@@ -789,11 +875,16 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             }
             contents.states[*si].1.push(t, &values);
         } else if let Some(&bi) = contact_channels.get(&id) {
-            read_contact_message(&mut contents.contacts[bi].1, &m.data).map_err(|e| bad(&e))?;
+            read_contact_message(&mut contents.contacts[bi].1, m.data).map_err(|e| bad(&e))?;
         } else if contents.channels[ci].message_encoding == "json" {
-            serde_json::from_slice::<serde::de::IgnoredAny>(&m.data).map_err(|e| bad(&e))?;
+            serde_json::from_slice::<serde::de::IgnoredAny>(m.data).map_err(|e| bad(&e))?;
         }
-    }
+        Ok(())
+    })
+    .map_err(|e| match e {
+        Ok(why) => damaged("data", &why),
+        Err(e) => e,
+    })?;
     contents.time_range = if first <= last { (first, last) } else { (0, 0) };
     if let Some(stats) = &summary.stats
         && stats.message_count != contents.message_count
