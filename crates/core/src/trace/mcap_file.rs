@@ -17,9 +17,10 @@
 //!
 //! Message log time = publish time = simulation time in nanoseconds; messages of all
 //! channels are interleaved in time order so chunks are time-local. The file is written
-//! in zstd chunks at level 1 (measured: see [`CHUNKS`]) of 1 MiB, each compressed whole by our own writer,
-//! with message, chunk, attachment and metadata indexes, statistics, summary and CRCs, in
-//! memory, then atomically renamed.
+//! in zstd chunks (fast level −1, measured: see [`CHUNKS`]) of 1 MiB, each compressed whole by
+//! our own writer ([`writer`]),
+//! with message, chunk, attachment and metadata indexes, statistics, summary and CRCs, streamed
+//! to a temporary sibling, then atomically renamed.
 //! Non-finite values (a diverged run's last row) are written as JSON `null` and read back
 //! as NaN: JSON has no NaN or infinity.
 
@@ -94,9 +95,7 @@ fn mcap_error(e: std::io::Error) -> Error {
 /// Write `log` to `path` atomically, streamed: only the open chunk and the indexes are
 /// held in memory, not the file.
 pub fn write_mcap(log: &TraceLog, path: &Path) -> Result<(), Error> {
-    write_atomically_with(path, |file| {
-        write_mcap_to(log, file, experiment_chunks()).map(|_| ())
-    })
+    write_atomically_with(path, |file| write_mcap_to(log, file, CHUNKS).map(|_| ()))
 }
 
 /// Log time of a simulation time, ns (non-finite or negative times clamp to `floor`).
@@ -132,13 +131,15 @@ impl<W: Write> Out<W> {
     }
 }
 
-/// Chunks of the file: zstd at level 1 in chunks of 1 MiB, each compressed in one call.
-/// Measured (docs/performance.md §1): full-precision doubles barely compress, what zstd
-/// takes out is the framing, index entries and near-constant fields; higher levels cost
-/// more time for no smaller file, lz4 or none write a much larger one.
+/// Chunks of the file: zstd at its fast level −1 in chunks of 1 MiB, each compressed in
+/// one call. Measured on the 10⁶-step PEPO run (docs/performance.md §1, CPU of the whole
+/// `rockslide run`, MCAP size): level 1 2.00 s, 139.6 MB; −1 1.88 s, 141.4 MB; −3 1.78 s,
+/// 146.1 MB; −7 1.80 s, 176.2 MB; none 1.58 s, 313.1 MB. Full-precision doubles barely
+/// compress: what zstd takes out is the framing, index entries and near-constant fields,
+/// which its fastest levels find as well as level 1 does, until −3.
 pub const CHUNKS: ChunkOptions = ChunkOptions {
     chunk_bytes: 1 << 20,
-    compression: ChunkCompression::Zstd(1),
+    compression: ChunkCompression::Zstd(-1),
 };
 
 /// The MCAP bytes of `log`.
@@ -987,21 +988,5 @@ mod tests {
         let e = decompress_at_most(&packed, 999).unwrap_err();
         assert!(e.contains("more than its declared 999"), "{e}");
         assert!(decompress_at_most(b"not zstd", 10).is_err());
-    }
-}
-
-fn experiment_chunks() -> ChunkOptions {
-    let Ok(v) = std::env::var("XCHUNKS") else {
-        return CHUNKS;
-    };
-    let (c, n) = v.split_once(':').unwrap();
-    let n: usize = n.parse().unwrap();
-    ChunkOptions {
-        chunk_bytes: n << 10,
-        compression: if c == "none" {
-            ChunkCompression::None
-        } else {
-            ChunkCompression::Zstd(c.parse().unwrap())
-        },
     }
 }
