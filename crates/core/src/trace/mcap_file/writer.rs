@@ -475,3 +475,80 @@ impl<W: Write> McapWriter<W> {
         body
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// 300 messages on two channels in chunks of ~1 KiB, compressed or not: the `mcap`
+    /// crate's linear reader (CRCs checked) and its indexed reader (summary, chunk
+    /// indexes, message indexes, each message sought through its index) find every message
+    /// with its sequence, time and bytes.
+    #[test]
+    fn indexed_and_linear_readers_find_every_message() {
+        for compression in [ChunkCompression::Zstd(-1), ChunkCompression::None] {
+            let options = ChunkOptions {
+                chunk_bytes: 1 << 10,
+                compression,
+            };
+            let mut w = McapWriter::new(Vec::new(), options).unwrap();
+            w.attach("case.toml", "application/toml", b"x = 1").unwrap();
+            let meta = BTreeMap::from([("k".to_string(), "v".to_string())]);
+            w.metadata("rockslide", &meta).unwrap();
+            let s = w
+                .add_schema("rockslide/S", "ros2msg", b"float64 x")
+                .unwrap();
+            let a = w.add_channel(s, "/a", "cdr", &meta).unwrap();
+            let b = w.add_channel(s, "/b", "cdr", &BTreeMap::new()).unwrap();
+            let payload = |i: u64| (i as f64 * 0.1).to_le_bytes();
+            for i in 0..300u64 {
+                w.message(if i % 3 == 0 { b } else { a }, 1000 * i, &payload(i))
+                    .unwrap();
+            }
+            let bytes = w.finish().unwrap();
+
+            let options = mcap::read::Options::ValidateChunkCrcs.into();
+            let linear: Vec<_> = mcap::MessageStream::new_with_options(&bytes, options)
+                .unwrap()
+                .map(|m| m.unwrap())
+                .collect();
+            assert_eq!(linear.len(), 300);
+            for (i, m) in linear.iter().enumerate() {
+                let i = i as u64;
+                assert_eq!(m.log_time, 1000 * i);
+                assert_eq!(m.data.as_ref(), &payload(i));
+                let n = if i % 3 == 0 { i / 3 + 1 } else { i - i / 3 };
+                assert_eq!(u64::from(m.sequence), n, "message {i}");
+            }
+
+            let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
+            let stats = summary.stats.as_ref().unwrap();
+            assert_eq!(stats.message_count, 300);
+            assert_eq!(stats.channel_message_counts[&a], 200);
+            assert_eq!(
+                (stats.message_start_time, stats.message_end_time),
+                (0, 299_000)
+            );
+            assert_eq!(summary.attachment_indexes.len(), 1);
+            assert_eq!(summary.metadata_indexes.len(), 1);
+            assert!(summary.chunk_indexes.len() > 10);
+            let mut found = 0;
+            for chunk in &summary.chunk_indexes {
+                for (channel, entries) in summary.read_message_indexes(&bytes, chunk).unwrap() {
+                    for e in &entries {
+                        let m = summary.seek_message(&bytes, chunk, e).unwrap();
+                        assert_eq!(m.channel.topic, channel.topic);
+                        assert_eq!(m.log_time, e.log_time);
+                        assert_eq!(m.data.as_ref(), &payload(e.log_time / 1000));
+                        found += 1;
+                    }
+                }
+            }
+            assert_eq!(found, 300);
+            let meta = mcap::read::metadata(&bytes, &summary.metadata_indexes[0]).unwrap();
+            assert_eq!(meta.metadata["k"], "v");
+            let att = mcap::read::attachment(&bytes, &summary.attachment_indexes[0]).unwrap();
+            assert_eq!(att.data.as_ref(), b"x = 1");
+        }
+    }
+}
