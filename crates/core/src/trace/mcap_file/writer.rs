@@ -276,7 +276,8 @@ impl<W: Write> McapWriter<W> {
     }
 
     /// A message on `channel_id` at `log_time` (= publish time), numbered per channel from
-    /// 1; the chunk is compressed and written once it is full.
+    /// 1; the chunk is compressed and written once it is full. `channel_id` must be one
+    /// [`Self::add_channel`] returned (an id it did not return panics: a programming error).
     pub fn message(&mut self, channel_id: u16, log_time: u64, data: &[u8]) -> io::Result<()> {
         let ch = usize::from(channel_id);
         self.sequence[ch] += 1;
