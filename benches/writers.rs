@@ -2,7 +2,8 @@
 //! (cases/pepo-mass-accel.toml at Δt = 1 ms) run for 1,000 s, 10⁶ rows — the CSV file
 //! (`write_csv`) and the MCAP file (`write_mcap`), streamed to a temporary folder; and the
 //! MCAP chunk compression choices (zstd levels, lz4, none; chunk sizes) on the same
-//! messages, with the file size of each printed beside its time; and the two encodings of
+//! messages, with the file size of each printed beside its time — our chunk writer (what
+//! `write_mcap` uses) beside the `mcap` crate's; and the two encodings of
 //! the state messages compared — JSON of shortest decimals (before) and CDR (now) — each
 //! encoded and written to MCAP with the chosen compression.
 //!
@@ -18,7 +19,8 @@ use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rockslide::case::parse_case;
 use rockslide::engine;
 use rockslide::trace::{
-    CDR_LE_HEADER, LoggedRun, Trace, TraceLog, mcap_bytes, write_csv, write_mcap,
+    CDR_LE_HEADER, CHUNKS, ChunkCompression, ChunkOptions, LoggedRun, McapWriter, Trace, TraceLog,
+    mcap_bytes, write_csv, write_mcap,
 };
 
 /// The shipped PEPO case at `duration`, predictor-corrector only, Δt = 1 ms.
@@ -134,7 +136,22 @@ fn rewrite(messages: &[(u64, Vec<u8>)], options: mcap::WriteOptions) -> Vec<u8> 
     w.into_inner().into_inner()
 }
 
-/// The chunks `write_mcap` writes: zstd level 1 on the calling thread, 1 MiB.
+/// Rewrite `messages` on one channel with our writer (`write_mcap`'s) and `chunks`.
+fn rewrite_ours(messages: &[(u64, Vec<u8>)], chunks: ChunkOptions) -> Vec<u8> {
+    let mut w = McapWriter::new(Vec::new(), chunks).expect("writer");
+    let schema = w
+        .add_schema("rockslide.State", "jsonschema", b"{}")
+        .expect("schema");
+    let channel = w
+        .add_channel(schema, "/state", "json", &BTreeMap::new())
+        .expect("channel");
+    for (ns, data) in messages {
+        w.message(channel, *ns, data).expect("message");
+    }
+    w.finish().expect("finish")
+}
+
+/// The chunks `write_mcap` wrote with the `mcap` crate's writer: zstd level 1 on the calling thread, 1 MiB.
 fn writer_choice() -> mcap::WriteOptions {
     mcap::WriteOptions::new()
         .compression_threads(0)
@@ -222,6 +239,39 @@ fn writers(c: &mut Criterion) {
     let messages = payloads(&mcap_bytes(&log).expect("bytes"));
     let raw: usize = messages.iter().map(|(_, d)| d.len()).sum();
     eprintln!("mcap message payloads: {raw} B");
+    // our writer (each chunk compressed in one call) at several levels, beside the
+    // `mcap` crate's streaming writer
+    let zstd = |level| ChunkOptions {
+        compression: ChunkCompression::Zstd(level),
+        ..CHUNKS
+    };
+    let ours: [(&str, ChunkOptions); 6] = [
+        ("ours-zstd1-1MiB", zstd(1)),
+        ("ours-zstd-1-1MiB", zstd(-1)),
+        ("ours-zstd-3-1MiB", zstd(-3)),
+        (
+            "ours-zstd-1-4MiB",
+            ChunkOptions {
+                chunk_bytes: 4 << 20,
+                ..zstd(-1)
+            },
+        ),
+        (
+            "ours-none-1MiB",
+            ChunkOptions {
+                compression: ChunkCompression::None,
+                ..CHUNKS
+            },
+        ),
+        ("ours-chosen", CHUNKS),
+    ];
+    for (label, chunks) in ours {
+        let size = rewrite_ours(&messages, chunks).len();
+        eprintln!("compression {label}: {size} B");
+        group.bench_function(format!("compression/{label}"), |b| {
+            b.iter(|| black_box(rewrite_ours(&messages, chunks)))
+        });
+    }
     let single = || mcap::WriteOptions::new().compression_threads(0);
     let choices: [(&str, mcap::WriteOptions); 7] = [
         ("zstd1-1MiB", single().compression_level(1)),

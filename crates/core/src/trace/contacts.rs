@@ -20,7 +20,7 @@
 use std::io::Write;
 use std::path::Path;
 
-use super::csv_file::shortest;
+use super::csv_file::DecimalRows;
 use crate::error::{Error, InputError, InputErrors};
 use crate::io::write_atomically_with;
 
@@ -202,16 +202,15 @@ fn write_contacts_csv_to(block: &ContactBlock, w: &mut impl Write) -> std::io::R
         header.flush()?;
     }
     let width = block.count() * CONTACT_FIELDS.len();
-    let mut number = zmij::Buffer::new();
+    let mut rows = DecimalRows::new(1 + width);
     for (i, t) in block.time.iter().enumerate() {
-        w.write_all(shortest(&mut number, *t).as_bytes())?;
-        for v in &block.values[i * width..(i + 1) * width] {
-            w.write_all(b",")?;
-            w.write_all(shortest(&mut number, *v).as_bytes())?;
+        rows.value(0, *t);
+        for (j, v) in block.values[i * width..(i + 1) * width].iter().enumerate() {
+            rows.value(j + 1, *v);
         }
-        w.write_all(b"\n")?;
+        rows.end_row(w)?;
     }
-    Ok(())
+    rows.flush(w)
 }
 
 /// Read a contact CSV written by [`write_contacts_csv`] (compliances are not in the CSV:

@@ -28,16 +28,93 @@ pub fn write_csv_to(trace: &Trace, w: &mut impl Write) -> std::io::Result<()> {
         header.write_record(None::<&[u8]>)?;
         header.flush()?;
     }
-    let mut number = zmij::Buffer::new();
+    let mut rows = DecimalRows::new(1 + trace.columns.len());
     for i in 0..trace.len() {
-        w.write_all(shortest(&mut number, trace.time[i]).as_bytes())?;
-        for c in &trace.columns {
-            w.write_all(b",")?;
-            w.write_all(shortest(&mut number, c[i]).as_bytes())?;
+        rows.value(0, trace.time[i]);
+        for (j, c) in trace.columns.iter().enumerate() {
+            rows.value(j + 1, c[i]);
         }
-        w.write_all(b"\n")?;
+        rows.end_row(w)?;
     }
-    Ok(())
+    rows.flush(w)
+}
+
+/// Longest shortest-decimal spelling of an f64 (`-2.2250738585072014e-308` is 24 bytes).
+const MAX_DECIMAL: usize = 32;
+
+/// Rows of comma-separated shortest decimals, built in a block of memory written out in
+/// large pieces (one write per [`DecimalRows::BLOCK`] bytes, not one per value). Each
+/// column remembers its last value and its spelling: a value equal bit for bit to the
+/// previous one in its column (a constant normal force, a slide that stays put while
+/// sticking, zero forces after a pulse) is copied instead of formatted again. Spellings
+/// move as whole [`MAX_DECIMAL`]-byte blocks (the block has that much slack past its
+/// cursor), so a copy is a few fixed moves rather than a `memcpy` call per value. The bytes
+/// are exactly those of formatting every value.
+pub(crate) struct DecimalRows {
+    block: Box<[u8]>,
+    /// Bytes of `block` filled.
+    at: usize,
+    /// Per column: last value's bits, its spelling and the spelling's length.
+    last: Vec<(u64, [u8; MAX_DECIMAL], usize)>,
+    number: zmij::Buffer,
+}
+
+impl DecimalRows {
+    /// Bytes gathered before a write.
+    pub(crate) const BLOCK: usize = 64 << 10;
+
+    /// Rows of `columns` values.
+    pub(crate) fn new(columns: usize) -> Self {
+        // length 0: no spelling yet, the first value of a column is always formatted
+        let unset = (0, [0u8; MAX_DECIMAL], 0);
+        // room for a whole row past BLOCK: every value and its comma, and the newline
+        let slack = (columns + 1) * (MAX_DECIMAL + 1) + 1;
+        Self {
+            block: vec![0u8; Self::BLOCK + slack].into_boxed_slice(),
+            at: 0,
+            last: vec![unset; columns],
+            number: zmij::Buffer::new(),
+        }
+    }
+
+    /// Value of column `col` of the current row (columns in order, from 0).
+    #[inline]
+    pub(crate) fn value(&mut self, col: usize, x: f64) {
+        if col > 0 {
+            self.block[self.at] = b',';
+            self.at += 1;
+        }
+        let at = self.at;
+        let (bits, spelled, len) = &mut self.last[col];
+        if *bits != x.to_bits() || *len == 0 {
+            let s = shortest(&mut self.number, x).as_bytes();
+            self.block[at..at + s.len()].copy_from_slice(s);
+            spelled.copy_from_slice(&self.block[at..at + MAX_DECIMAL]);
+            *len = s.len();
+            *bits = x.to_bits();
+        } else {
+            self.block[at..at + MAX_DECIMAL].copy_from_slice(spelled);
+        }
+        self.at += *len;
+    }
+
+    /// End the current row; writes the block out once it is full.
+    #[inline]
+    pub(crate) fn end_row(&mut self, w: &mut impl Write) -> std::io::Result<()> {
+        self.block[self.at] = b'\n';
+        self.at += 1;
+        if self.at >= Self::BLOCK {
+            self.flush(w)?;
+        }
+        Ok(())
+    }
+
+    /// Write out what is gathered.
+    pub(crate) fn flush(&mut self, w: &mut impl Write) -> std::io::Result<()> {
+        w.write_all(&self.block[..self.at])?;
+        self.at = 0;
+        Ok(())
+    }
 }
 
 /// Shortest decimal that reads back to the same f64 (zmij, spelled as Ryū would), without

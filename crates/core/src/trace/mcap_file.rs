@@ -17,19 +17,18 @@
 //!
 //! Message log time = publish time = simulation time in nanoseconds; messages of all
 //! channels are interleaved in time order so chunks are time-local. The file is written
-//! in zstd chunks at level 1 (measured: see [`ZSTD_LEVEL`]) of the `mcap` crate's 1 MiB,
-//! with message, chunk, attachment and metadata indexes, statistics, summary and CRCs, in
-//! memory, then atomically renamed.
+//! in zstd chunks (fast level −1, measured: see [`CHUNKS`]) of 1 MiB, each compressed whole by
+//! our own writer ([`writer`]),
+//! with message, chunk, attachment and metadata indexes, statistics, summary and CRCs, streamed
+//! to a temporary sibling, then atomically renamed.
 //! Non-finite values (a diverged run's last row) are written as JSON `null` and read back
 //! as NaN: JSON has no NaN or infinity.
 
 use std::collections::BTreeMap;
 use std::fmt::Write as _;
-use std::io::{Cursor, Seek, Write};
+use std::io::Write;
 use std::path::Path;
 
-use mcap::records::{MessageHeader, Metadata};
-use mcap::{Attachment, Writer};
 use serde_json::Value;
 
 use super::cdr;
@@ -38,6 +37,9 @@ use super::scene3d::{self, Geometry, Pose};
 use super::{Trace, q};
 use crate::error::{Error, InputError, InputErrors};
 use crate::io::write_atomically_with;
+
+mod writer;
+pub use writer::{ChunkCompression, ChunkOptions, McapWriter};
 
 /// Schema name prefix of the per-run state channels.
 pub const STATE_SCHEMA: &str = "rockslide/State";
@@ -86,14 +88,14 @@ pub struct TraceLog<'a> {
     pub attachments: Vec<(String, String, Vec<u8>)>,
 }
 
-fn mcap_error(e: mcap::McapError) -> Error {
+fn mcap_error(e: std::io::Error) -> Error {
     Error::Other(format!("writing MCAP: {e}"))
 }
 
 /// Write `log` to `path` atomically, streamed: only the open chunk and the indexes are
 /// held in memory, not the file.
 pub fn write_mcap(log: &TraceLog, path: &Path) -> Result<(), Error> {
-    write_atomically_with(path, |file| write_mcap_to(log, file).map(|_| ()))
+    write_atomically_with(path, |file| write_mcap_to(log, file, CHUNKS).map(|_| ()))
 }
 
 /// Log time of a simulation time, ns (non-finite or negative times clamp to `floor`).
@@ -114,27 +116,14 @@ struct RunChannels {
     view: Option<(u16, u16, u16)>,
 }
 
-/// A writer that numbers messages per channel.
-struct Out<W: Write + Seek> {
-    w: Writer<W>,
-    seq: BTreeMap<u16, u32>,
+/// The MCAP writer with the JSON messages' helper.
+struct Out<W: Write> {
+    w: McapWriter<W>,
 }
 
-impl<W: Write + Seek> Out<W> {
+impl<W: Write> Out<W> {
     fn put(&mut self, channel_id: u16, ns: u64, data: &[u8]) -> Result<(), Error> {
-        let seq = self.seq.entry(channel_id).or_insert(0);
-        *seq += 1;
-        self.w
-            .write_to_known_channel(
-                &MessageHeader {
-                    channel_id,
-                    sequence: *seq,
-                    log_time: ns,
-                    publish_time: ns,
-                },
-                data,
-            )
-            .map_err(mcap_error)
+        self.w.message(channel_id, ns, data).map_err(mcap_error)
     }
 
     fn put_json(&mut self, channel_id: u16, ns: u64, v: &Value) -> Result<(), Error> {
@@ -142,53 +131,37 @@ impl<W: Write + Seek> Out<W> {
     }
 }
 
-/// zstd level of the chunks. Measured on a 200,000-step predictor-corrector case (engine
-/// and reference channels, JSON messages of shortest round-trip decimals): level 1 writes
-/// 27.5 MB in 1.48 s of CPU for the whole `run`, the zstd default (3) 29.0 MB in 1.89 s,
-/// lz4 42.0 MB in 1.11 s, none 95.7 MB in 0.80 s. Full-precision decimals barely compress
-/// further at higher levels, so the fastest zstd level wins. Measured again on 10⁶ rows by
-/// `cargo bench --bench writers` (docs/performance.md): level 1 writes a third of the
-/// uncompressed size, lz4 half again as much; level 3 took 1.7× as long for a 5 % larger file.
-const ZSTD_LEVEL: u32 = 1;
+/// Chunks of the file: zstd at its fast level −1 in chunks of 1 MiB, each compressed in
+/// one call. Measured on the 10⁶-step PEPO run (docs/performance.md §1, CPU of the whole
+/// `rockslide run`, MCAP size): level 1 2.00 s, 139.6 MB; −1 1.88 s, 141.4 MB; −3 1.78 s,
+/// 146.1 MB; −7 1.80 s, 176.2 MB; none 1.58 s, 313.1 MB. Full-precision doubles barely
+/// compress: what zstd takes out is the framing, index entries and near-constant fields,
+/// which its fastest levels find as well as level 1 does, until −3.
+pub const CHUNKS: ChunkOptions = ChunkOptions {
+    chunk_bytes: 1 << 20,
+    compression: ChunkCompression::Zstd(-1),
+};
 
-/// How the file is written: zstd chunks at [`ZSTD_LEVEL`] on the calling thread (the
-/// `mcap` crate would start a zstd worker per physical core: measured 8 % less wall time
-/// alone but more CPU, and the traces of a case are already written in parallel), the
-/// crate's 1 MiB chunks (4 MiB measured no faster), indexes, summary and CRCs.
-fn writer_options() -> mcap::WriteOptions {
-    mcap::WriteOptions::new()
-        .compression_level(ZSTD_LEVEL)
-        .compression_threads(0)
-}
 /// The MCAP bytes of `log`.
 pub fn mcap_bytes(log: &TraceLog) -> Result<Vec<u8>, Error> {
-    Ok(write_mcap_to(log, Cursor::new(Vec::new()))?.into_inner())
+    mcap_bytes_with(log, CHUNKS)
+}
+
+/// The MCAP bytes of `log` with other chunk options (benchmarks compare them).
+pub fn mcap_bytes_with(log: &TraceLog, chunks: ChunkOptions) -> Result<Vec<u8>, Error> {
+    write_mcap_to(log, Vec::new(), chunks)
 }
 
 /// Write the MCAP file of `log` into `sink`; returns the sink.
-fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
+fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Result<W, Error> {
     let mut out = Out {
-        w: writer_options().create(sink).map_err(mcap_error)?,
-        seq: BTreeMap::new(),
+        w: McapWriter::new(sink, options).map_err(mcap_error)?,
     };
     for (name, media_type, data) in &log.attachments {
-        out.w
-            .attach(&Attachment {
-                log_time: 0,
-                create_time: 0,
-                name: name.clone(),
-                media_type: media_type.clone(),
-                data: data.as_slice().into(),
-            })
-            .map_err(mcap_error)?;
+        out.w.attach(name, media_type, data).map_err(mcap_error)?;
     }
     for (name, m) in &log.metadata {
-        out.w
-            .write_metadata(&Metadata {
-                name: name.clone(),
-                metadata: m.clone(),
-            })
-            .map_err(mcap_error)?;
+        out.w.metadata(name, m).map_err(mcap_error)?;
     }
     let run_meta = |run: &LoggedRun, topic: &str| {
         let mut m = run.metadata.clone();
@@ -201,14 +174,13 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
             m.insert("stop_time_s".into(), format!("{t:?}"));
             m.insert("stop_reason".into(), reason.clone());
         }
-        Metadata {
-            name: format!("run {}", run.label),
-            metadata: m,
-        }
+        m
     };
     for run in &log.runs {
         let meta = run_meta(run, &format!("/{}/state", run.label));
-        out.w.write_metadata(&meta).map_err(mcap_error)?;
+        out.w
+            .metadata(&format!("run {}", run.label), &meta)
+            .map_err(mcap_error)?;
     }
 
     let json_schema = |out: &mut Out<W>, name: &str, v: &Value| {
@@ -364,16 +336,12 @@ fn write_mcap_to<W: Write + Seek>(log: &TraceLog, sink: W) -> Result<W, Error> {
         }
         row[r] += 1;
     }
-    out.w.finish().map_err(mcap_error)?;
-    Ok(out.w.into_inner())
+    out.w.finish().map_err(mcap_error)
 }
 
 /// The `/<label>/contacts` channel of a run with a contact block (its schema lists every
 /// contact with the units of its fields; the channel's metadata names them in order).
-fn contact_channel<W: Write + Seek>(
-    out: &mut Out<W>,
-    run: &LoggedRun,
-) -> Result<Option<u16>, Error> {
+fn contact_channel<W: Write>(out: &mut Out<W>, run: &LoggedRun) -> Result<Option<u16>, Error> {
     let block = &run.trace.contacts;
     if block.is_empty() {
         return Ok(None);
@@ -606,9 +574,8 @@ fn check_string_map(map: &[u8]) -> Result<(), String> {
     Ok(())
 }
 
-/// A chunk's declared size within [`MAX_CHUNK_BYTES`], and the records inside it (after
-/// decompression, itself bounded by the declared size) framed as the file's are: the
-/// `mcap` crate's chunk reader trusts the inner records' lengths.
+/// A chunk's declared size within [`MAX_CHUNK_BYTES`] (checked before anything reads the
+/// file; its records are checked when [`for_each_message`] decompresses it).
 fn check_chunk(body: &[u8]) -> Result<(), String> {
     // layout 8884sb, checked by `check_fields`
     let declared = u64_at(body, 16);
@@ -617,6 +584,15 @@ fn check_chunk(body: &[u8]) -> Result<(), String> {
             "claims {declared} uncompressed bytes, above the limit of {MAX_CHUNK_BYTES}"
         ));
     }
+    Ok(())
+}
+
+/// A chunk's records, decompressed once, checked against the chunk's CRC (when it has
+/// one) and framed as the file's are: every inner record's length fits, and the fields of
+/// each fit in it (the `mcap` crate trusts them).
+fn chunk_records(body: &[u8]) -> Result<std::borrow::Cow<'_, [u8]>, String> {
+    let declared = u64_at(body, 16);
+    let crc = u32::from_le_bytes([body[24], body[25], body[26], body[27]]);
     let name_len = u32::from_le_bytes([body[28], body[29], body[30], body[31]]) as usize;
     let compression = &body[32..32 + name_len];
     let records = &body[32 + name_len + 8..];
@@ -630,6 +606,15 @@ fn check_chunk(body: &[u8]) -> Result<(), String> {
             ));
         }
     };
+    if inner.len() as u64 != declared {
+        return Err(format!(
+            "holds {} uncompressed bytes, declares {declared}",
+            inner.len()
+        ));
+    }
+    if crc != 0 && crc32fast::hash(&inner) != crc {
+        return Err("its records do not match its CRC".into());
+    }
     let mut at = 0usize;
     while at < inner.len() {
         let Some(head) = inner.get(at..at + 9) else {
@@ -645,6 +630,74 @@ fn check_chunk(body: &[u8]) -> Result<(), String> {
         let body = &inner[at + 9..at + 9 + len as usize];
         check_fields(op, body).map_err(|why| format!("inner record 0x{op:02x}: {why}"))?;
         at += 9 + len as usize;
+    }
+    Ok(inner)
+}
+
+/// The records of `bytes` (a data section or a chunk's records), as (offset, opcode,
+/// body); stops at the first that does not fit.
+fn records(bytes: &[u8]) -> impl Iterator<Item = (usize, u8, &[u8])> {
+    let mut at = 0usize;
+    std::iter::from_fn(move || {
+        let head = bytes.get(at..at + 9)?;
+        let (op, len) = (head[0], usize::try_from(u64_at(head, 1)).ok()?);
+        let body = bytes.get(at + 9..(at + 9).checked_add(len)?)?;
+        let here = at;
+        at += 9 + len;
+        Some((here, op, body))
+    })
+}
+
+/// One message as read: channel id, sequence, log time, data.
+struct RawMessage<'a> {
+    channel: u16,
+    sequence: u32,
+    log_time: u64,
+    data: &'a [u8],
+}
+
+/// The message of a message record's body (22 bytes of header, then the data).
+fn raw_message(body: &[u8]) -> Result<RawMessage<'_>, String> {
+    if body.len() < 22 {
+        return Err(format!(
+            "a message record of {} bytes, shorter than its header",
+            body.len()
+        ));
+    }
+    Ok(RawMessage {
+        channel: u16::from_le_bytes([body[0], body[1]]),
+        sequence: u32::from_le_bytes([body[2], body[3], body[4], body[5]]),
+        log_time: u64_at(body, 6),
+        data: &body[22..],
+    })
+}
+
+/// Every message of the data section in file order, each chunk decompressed once (the
+/// file's framing already checked by [`check_framing`]).
+fn for_each_message(
+    bytes: &[u8],
+    mut on: impl FnMut(RawMessage) -> Result<(), InputError>,
+) -> Result<(), Result<String, InputError>> {
+    const MAGIC_LEN: usize = 8;
+    const MESSAGE: u8 = 0x05;
+    const CHUNK: u8 = 0x06;
+    const DATA_END: u8 = 0x0F;
+    const FOOTER: u8 = 0x02;
+    for (at, op, body) in records(&bytes[MAGIC_LEN..]) {
+        match op {
+            MESSAGE => on(raw_message(body).map_err(Ok)?).map_err(Err)?,
+            CHUNK => {
+                let inner = chunk_records(body)
+                    .map_err(|why| Ok(format!("chunk at byte {}: {why}", at + MAGIC_LEN)))?;
+                for (_, op, body) in records(&inner) {
+                    if op == MESSAGE {
+                        on(raw_message(body).map_err(Ok)?).map_err(Err)?;
+                    }
+                }
+            }
+            DATA_END | FOOTER => break,
+            _ => {}
+        }
     }
     Ok(())
 }
@@ -746,17 +799,18 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             messages: 0,
         });
     }
-    let stream =
-        mcap::MessageStream::new_with_options(bytes, mcap::read::Options::ValidateChunkCrcs.into())
-            .map_err(|e| damaged("header", &e))?;
     let mut values = Vec::new();
     let (mut first, mut last) = (u64::MAX, 0u64);
-    for m in stream {
-        let m = m.map_err(|e| damaged("data", &e))?;
-        let id = m.channel.id;
+    let mut topics: BTreeMap<u16, String> = BTreeMap::new();
+    for (id, c) in &summary.channels {
+        topics.insert(*id, c.topic.clone());
+    }
+    for_each_message(bytes, |m| {
+        let id = m.channel;
         let Some(&ci) = index_of.get(&id) else {
-            return Err(damaged("data", &format!("message on unknown channel {id}")).into());
+            return Err(damaged("data", &format!("message on unknown channel {id}")));
         };
+        let topic = &topics[&id];
         contents.channels[ci].messages += 1;
         contents.message_count += 1;
         first = first.min(m.log_time);
@@ -766,8 +820,8 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
                 path,
                 "",
                 format!(
-                    "channel {}, message {}: not valid JSON for its schema: {e}",
-                    m.channel.topic, m.sequence
+                    "channel {topic}, message {}: not valid JSON for its schema: {e}",
+                    m.sequence
                 ),
             )
         };
@@ -775,13 +829,13 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
         if let Some((si, qs)) = builders.get(&id)
             && is_cdr
         {
-            cdr::read_values(&m.data, qs.len() + 1, &mut values).map_err(|e| {
+            cdr::read_values(m.data, qs.len() + 1, &mut values).map_err(|e| {
                 InputError::new(
                     path,
                     "",
                     format!(
                         "channel {}, message {}: not a CDR state message of {} values: {e}",
-                        m.channel.topic,
+                        topic,
                         m.sequence,
                         qs.len() + 1
                     ),
@@ -794,13 +848,13 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
         {
             let block = &mut contents.contacts[bi].1;
             let width = block.count() * contacts::CONTACT_FIELDS.len();
-            cdr::read_values(&m.data, width + 1, &mut values).map_err(|e| {
+            cdr::read_values(m.data, width + 1, &mut values).map_err(|e| {
                 InputError::new(
                     path,
                     "",
                     format!(
                         "channel {}, message {}: not a CDR contact message of {} values: {e}",
-                        m.channel.topic,
+                        topic,
                         m.sequence,
                         width + 1
                     ),
@@ -809,7 +863,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             block.push_values(values[0], &values[1..]);
         } else if let Some((si, qs)) = builders.get(&id) {
             let obj: BTreeMap<String, Option<f64>> =
-                serde_json::from_slice(&m.data).map_err(|e| bad(&e))?;
+                serde_json::from_slice(m.data).map_err(|e| bad(&e))?;
             let field = |k: &str| {
                 obj.get(k)
                     .map(|v| v.unwrap_or(f64::NAN))
@@ -822,11 +876,16 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             }
             contents.states[*si].1.push(t, &values);
         } else if let Some(&bi) = contact_channels.get(&id) {
-            read_contact_message(&mut contents.contacts[bi].1, &m.data).map_err(|e| bad(&e))?;
+            read_contact_message(&mut contents.contacts[bi].1, m.data).map_err(|e| bad(&e))?;
         } else if contents.channels[ci].message_encoding == "json" {
-            serde_json::from_slice::<serde::de::IgnoredAny>(&m.data).map_err(|e| bad(&e))?;
+            serde_json::from_slice::<serde::de::IgnoredAny>(m.data).map_err(|e| bad(&e))?;
         }
-    }
+        Ok(())
+    })
+    .map_err(|e| match e {
+        Ok(why) => damaged("data", &why),
+        Err(e) => e,
+    })?;
     contents.time_range = if first <= last { (first, last) } else { (0, 0) };
     if let Some(stats) = &summary.stats
         && stats.message_count != contents.message_count
