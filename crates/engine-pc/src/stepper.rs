@@ -4,7 +4,7 @@ use super::resistance::resistance;
 use crate::vertical::NormalStepper;
 use rockslide_core::case::{Excitation, Jump, Oscillator, Vertical};
 use rockslide_core::trace::{ContactBlock, ContactState, Trace, q};
-use rockslide_engine_api::{Run, RunStatus, SolverStats, step_count};
+use rockslide_engine_api::{Run, RunStatus, SolverStats, StepSink, step_count};
 
 /// How support motion enters the equation of motion (paper Eqs 10–12).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,6 +47,96 @@ pub fn simulate_with_vertical(
     s: &PcSettings,
     variant: &str,
 ) -> Run {
+    let mut sink = TraceSink {
+        trace: Trace::default(),
+        rows: step_count(s.duration, s.dt) + 1,
+    };
+    let mut run = integrate(osc, excitation, vertical, s, variant, &mut sink);
+    run.trace = sink.trace;
+    run
+}
+
+/// [`simulate_with_vertical`] handing each row to `sink` as it is computed: no trace is
+/// held, whatever the number of steps; the returned run's trace is the layout only.
+pub fn simulate_streaming(
+    osc: &Oscillator,
+    excitation: &Excitation,
+    vertical: Option<&Vertical>,
+    s: &PcSettings,
+    variant: &str,
+    sink: &mut dyn StepSink,
+) -> Run {
+    integrate(osc, excitation, vertical, s, variant, sink)
+}
+
+/// Records the rows into a trace sized for the run up front (no reallocation).
+struct TraceSink {
+    trace: Trace,
+    rows: usize,
+}
+
+impl StepSink for TraceSink {
+    fn begin(&mut self, layout: &Trace) {
+        self.trace = Trace::with_channels(&layout.channels, self.rows);
+        let names: Vec<&str> = layout.contacts.names.iter().map(String::as_str).collect();
+        self.trace.contacts =
+            ContactBlock::with_contacts(&names, &layout.contacts.compliance, self.rows);
+    }
+
+    fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
+        self.trace.push(t, values);
+        self.trace.contacts.push(t, contacts);
+    }
+}
+
+/// The largest Eq 9 change over the rows whose |x| is at least 1 % of the run's peak |x|,
+/// kept step by step: only the rows that can still decide it are held — those with |x|
+/// at least 1 % of the peak so far, and of them only the ones no other row beats in both
+/// |x| and |change| (a handful; the same answer as reading the whole columns).
+struct Eq9Change {
+    peak: f64,
+    front: Vec<(f64, f64)>,
+}
+
+impl Eq9Change {
+    fn new() -> Self {
+        Self {
+            peak: 0.0,
+            front: Vec::with_capacity(64),
+        }
+    }
+
+    fn observe(&mut self, x: f64, change: f64) {
+        let (ax, ac) = (x.abs(), change.abs());
+        self.peak = self.peak.max(ax);
+        let floor = 0.01 * self.peak;
+        if ax < floor {
+            return;
+        }
+        if self.front.iter().any(|&(fx, fc)| fx >= ax && fc >= ac) {
+            return;
+        }
+        self.front
+            .retain(|&(fx, fc)| fx >= floor && !(ax >= fx && ac >= fc));
+        self.front.push((ax, ac));
+    }
+
+    fn largest(&self) -> f64 {
+        self.front
+            .iter()
+            .filter(|&&(fx, _)| fx >= 0.01 * self.peak)
+            .fold(0.0_f64, |m, &(_, fc)| m.max(fc))
+    }
+}
+
+fn integrate<S: StepSink + ?Sized>(
+    osc: &Oscillator,
+    excitation: &Excitation,
+    vertical: Option<&Vertical>,
+    s: &PcSettings,
+    variant: &str,
+    sink: &mut S,
+) -> Run {
     let (m, k, c, ru) = (
         osc.mass,
         osc.contact.kx,
@@ -63,7 +153,7 @@ pub fn simulate_with_vertical(
     if normal_stepper.is_some() {
         channels.push(&q::NORMAL);
     }
-    let mut trace = Trace::with_channels(&channels, n + 1);
+    let mut layout = Trace::with_channels(&channels, 0);
     // The one contact: the normal force is the weight (no vertical motion), its static
     // penalty compression N/Kz the gap; T is the resistance R, the slip xp.
     let kz = osc.contact.kz;
@@ -73,7 +163,10 @@ pub fn simulate_with_vertical(
         (normal, gap) = (ns.normal(), ns.gap());
         ru = osc.contact.mu * normal;
     }
-    trace.contacts = ContactBlock::with_contacts(&["base"], &[1.0 / kz], n + 1);
+    layout.contacts = ContactBlock::with_contacts(&["base"], &[1.0 / kz], 0);
+    sink.begin(&layout);
+    let mut eq9 = Eq9Change::new();
+    let mut rows: u64 = 0;
     let mut row = vec![0.0; channels.len()];
 
     let mut forcing = Forcing::new(excitation, s.route, m, dt);
@@ -83,8 +176,7 @@ pub fn simulate_with_vertical(
     let f0 = forcing.force(0, 0.0, xp);
     let mut r = 0.0;
     let mut a = (f0 - r - c * v) / m;
-    let mut record = |trace: &mut Trace,
-                      t: f64,
+    let mut record = |t: f64,
                       normal: f64,
                       gap: f64,
                       f: f64,
@@ -105,18 +197,18 @@ pub fn simulate_with_vertical(
         }
         let n = row.len();
         row.copy_from_slice(&vals[..n]);
-        trace.push(t, &row);
         let base = ContactState {
             normal,
             tangential: r,
             slip: xp,
             gap,
         };
-        trace.contacts.push(t, &[base]);
+        sink.row(t, &row, &[base]);
+        eq9.observe(x, change);
+        rows += 1;
     };
-    record(&mut trace, 0.0, normal, gap, f0, r, x, xp, v, a, 0.0);
+    record(0.0, normal, gap, f0, r, x, xp, v, a, 0.0);
 
-    let mut max_change: f64 = 0.0;
     let mut status = RunStatus::Completed;
     for i in 1..=n {
         let t = i as f64 * dt; // step 2
@@ -176,20 +268,13 @@ pub fn simulate_with_vertical(
         if let Some(ns) = &normal_stepper {
             (normal, gap) = (ns.normal(), ns.gap());
         }
-        record(&mut trace, t, normal, gap, f, r, x_rel, xp, v, a, change);
+        record(t, normal, gap, f, r, x_rel, xp, v, a, change);
     }
 
     // Eq 9 is a ratio: report its largest value over the steps where |x| is at least 1 %
     // of the run's peak (near x = 0 it is meaningless: the first step's prediction is 0).
-    let xs = trace.column("rel_disp").unwrap_or(&[]);
-    let peak = xs.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    if let Some(changes) = trace.column("pc_change") {
-        for (x, c) in xs.iter().zip(changes) {
-            if x.abs() >= 0.01 * peak {
-                max_change = max_change.max(c.abs());
-            }
-        }
-    }
+    drop(record);
+    let max_change = eq9.largest();
     let route = match (moves_ground, s.route) {
         (false, _) => "mass force M·a(t)",
         (true, GroundRoute::Eq12SlipOnce) => {
@@ -220,12 +305,12 @@ pub fn simulate_with_vertical(
         variant: variant.to_string(),
         dt,
         settings,
-        stats: SolverStats::steps(trace.len() as u64 - 1),
+        stats: SolverStats::steps(rows - 1),
         findings: vec![format!(
             "largest Eq 9 change |x_correct − x_predict|/|x_correct| = {:.3e} (steps with |x| ≥ 1 % of peak)",
             max_change
         )],
-        trace,
+        trace: layout,
         status,
         wall_seconds: 0.0,
     }
