@@ -85,3 +85,98 @@ fn the_disk_estimate_counts_the_rows_kept_at_output_dt() {
     assert!(stderr.contains("or set run.output_dt"), "{stderr}");
     assert!(!out.join("long-pepo").exists(), "nothing written");
 }
+
+/// Streamed and whole analyses of the same case (issue 18 item 3): a streamed run reads
+/// its summaries at every step, as the whole run reads its columns.
+mod streamed_equals_whole {
+    use rockslide::case::Case;
+    use rockslide::engine::Run;
+    use rockslide::suite::{CaseResult, run_case_streaming_above};
+
+    fn both(case: Case) -> (CaseResult, CaseResult) {
+        let engines = rockslide::engine::all();
+        let whole = run_case_streaming_above(case.clone(), &engines, u64::MAX).unwrap();
+        let streamed = run_case_streaming_above(case, &engines, 0).unwrap();
+        (whole, streamed)
+    }
+
+    fn bits(t: &rockslide::trace::Trace) -> Vec<u64> {
+        t.time
+            .iter()
+            .chain(t.columns.iter().flatten())
+            .chain(&t.contacts.values)
+            .map(|x| x.to_bits())
+            .collect()
+    }
+
+    /// Responses, history errors, invariants and checks, bit for bit; `kept` the rows the
+    /// streamed run keeps of the whole run's trace.
+    fn assert_same(whole: &CaseResult, streamed: &CaseResult, kept: impl Fn(&Run) -> Vec<u64>) {
+        assert_eq!(whole.runs.len(), streamed.runs.len());
+        for (i, (w, s)) in whole.runs.iter().zip(&streamed.runs).enumerate() {
+            let label = w.label();
+            assert_eq!(label, s.label());
+            assert_eq!(w.status, s.status, "{label}");
+            assert_eq!(w.stats, s.stats, "{label}");
+            assert_eq!(w.findings, s.findings, "{label}");
+            let (rw, rs) = (&whole.run_responses[i], &streamed.run_responses[i]);
+            assert_eq!(
+                rw.iter().map(|(k, v)| (*k, v.to_bits())).collect::<Vec<_>>(),
+                rs.iter().map(|(k, v)| (*k, v.to_bits())).collect::<Vec<_>>(),
+                "{label}: {rw:?} / {rs:?}"
+            );
+            let h = |r: &CaseResult| r.history_errors[i].map(|e| (e.max.to_bits(), e.rms.to_bits()));
+            assert_eq!(h(whole), h(streamed), "{label}");
+            let (kw, ks) = (kept(w), bits(&s.trace));
+            let first = kw.iter().zip(&ks).position(|(a, b)| a != b);
+            assert!(
+                kw.len() == ks.len() && first.is_none(),
+                "{label}: kept rows: {} and {} values, first difference at {first:?} ({} whole rows)",
+                kw.len(),
+                ks.len(),
+                w.trace.len()
+            );
+        }
+        let inv = |r: &CaseResult| {
+            r.invariants
+                .iter()
+                .map(|c| (c.invariant, c.run.clone(), c.worst.to_bits(), c.at.map(f64::to_bits)))
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(inv(whole), inv(streamed));
+        assert!(!whole.invariants.is_empty());
+        let checks = |r: &CaseResult| format!("{:?}", r.checks);
+        assert_eq!(checks(whole), checks(streamed));
+        assert_eq!(whole.gate_passed(), streamed.gate_passed());
+    }
+
+    #[test]
+    fn every_engine_on_the_pepo_cases_and_a_record() {
+        for name in ["pepo-mass-accel", "pepo-ground-disp", "records/pepo-northridge"] {
+            let case = crate::common::case(name);
+            let output_dt = case.run.output_dt;
+            let (whole, streamed) = both(case);
+            assert!(whole.runs.len() >= 2, "{name}");
+            // every row, or the rows of the files at the case's output step
+            assert_same(&whole, &streamed, |w| match output_dt {
+                Some(o) => bits(&w.trace.at_output_step(o)),
+                None => bits(&w.trace),
+            });
+        }
+    }
+
+    #[test]
+    fn a_run_kept_at_an_output_step_keeps_the_rows_of_the_files() {
+        let case = crate::common::case_with(
+            "pepo-mass-accel",
+            "duration = 1.0\ndt = 0.001\n",
+            "duration = 1.0\ndt = 0.001\noutput_dt = 0.0125\n",
+        );
+        let (whole, streamed) = both(case);
+        // the first row, one per 12.5 ms (80), the last: what the files of the whole run keep
+        for r in &streamed.runs {
+            assert!(r.trace.len() < 90, "{}: {} rows", r.label(), r.trace.len());
+        }
+        assert_same(&whole, &streamed, |w| bits(&w.trace.at_output_step(0.0125)));
+    }
+}
