@@ -244,7 +244,10 @@ pub fn forward_rows(trace: &Trace, sink: &mut dyn StepSink) {
 
 /// The channels a layout names, for sinks that look columns up by key.
 pub fn channel_index(layout: &Trace, key: &str) -> Option<usize> {
-    layout.channels.iter().position(|c: &&'static Quantity| c.key == key)
+    layout
+        .channels
+        .iter()
+        .position(|c: &&'static Quantity| c.key == key)
 }
 
 /// Number of steps covering `duration` at `dt` (the last step may end past it by < dt/2).

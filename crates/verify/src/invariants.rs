@@ -558,10 +558,18 @@ impl StreamedInvariants {
             (f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
         for (c, s) in states.iter().enumerate() {
             let e = (s.tangential.abs() - mu * s.normal) / (mu * weight);
-            excess = if e.is_nan() { f64::INFINITY } else { excess.max(e) };
+            excess = if e.is_nan() {
+                f64::INFINITY
+            } else {
+                excess.max(e)
+            };
             compression = compression.max(-s.normal / weight);
             let d = -s.gap - self.compliance[c] * s.normal.max(0.0);
-            depth = if d.is_nan() { f64::INFINITY } else { depth.max(d) };
+            depth = if d.is_nan() {
+                f64::INFINITY
+            } else {
+                depth.max(d)
+            };
             if self.block_rows > 0 {
                 let s0 = self.previous[c];
                 if closed_over(&s0, s) {
@@ -598,13 +606,21 @@ impl StreamedInvariants {
         let mut found: Vec<(&'static str, Measure)> = Vec::new();
         let at = |m: (f64, f64)| Some((m.0, Some(m.1)));
         if self.frictional {
-            let from_contacts = if per_contact { at(self.block_friction) } else { None };
+            let from_contacts = if per_contact {
+                at(self.block_friction)
+            } else {
+                None
+            };
             let from_sums = if sums { at(self.sum_friction) } else { None };
             if let Some(m) = worse(from_contacts, from_sums) {
                 found.push(("friction_bound", m));
             }
         }
-        let from_contacts = if per_contact { at(self.block_compression) } else { None };
+        let from_contacts = if per_contact {
+            at(self.block_compression)
+        } else {
+            None
+        };
         let from_sums = if sums && self.normal.is_some() {
             at(self.sum_compression)
         } else {
@@ -628,7 +644,10 @@ impl StreamedInvariants {
             }
         }
         if per_contact {
-            found.push(("penetration", (self.penetration.0, Some(self.penetration.1))));
+            found.push((
+                "penetration",
+                (self.penetration.0, Some(self.penetration.1)),
+            ));
         }
         let no_energy_scale = self.energy_scale <= 0.0; // NaN: measured, as check_run does
         if self.energy_error.is_some() && !no_energy_scale {

@@ -225,8 +225,10 @@ pub fn execute(
 /// Steps above which a run is streamed ([`crate::analysis::streamed`]): its rows go to
 /// the analysis as they are computed and only those at the case's output step are kept,
 /// so its memory follows its output rows, not its steps. Every shipped case runs below
-/// it (the longest: 10⁶ steps), so their results are those of a whole run.
-pub const STREAMING_STEPS: u64 = 2_000_000;
+/// it (the longest: 2·10⁵ steps), so their figures keep every step; a streamed run's
+/// responses, invariants and history errors are those of a whole run bit for bit
+/// (tests/all/streaming.rs), its figures show the kept rows.
+pub const STREAMING_STEPS: u64 = 500_000;
 
 /// Whether planned run `p` of `case` is streamed: more than [`STREAMING_STEPS`] steps.
 pub fn streams(case: &Case, p: &PlannedRun) -> bool {
@@ -355,7 +357,12 @@ pub fn run_case_streaming_above(
         (both, reference)
     } else {
         rayon::join(
-            || rayon::join(|| run_all(None), || crate::opensees::live(&case, opensees.as_ref())),
+            || {
+                rayon::join(
+                    || run_all(None),
+                    || crate::opensees::live(&case, opensees.as_ref()),
+                )
+            },
             || timings::time("reference", &name, || solve_reference(&case)),
         )
     };

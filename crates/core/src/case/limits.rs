@@ -65,7 +65,8 @@ pub fn check_kept_steps(duration: f64, dt: f64, output_dt: Option<f64>) -> Resul
     let Some(out) = output_dt else {
         return check_steps(duration, dt);
     };
-    check_steps(duration, out).map_err(|why| format!("{why} (rows kept at run.output_dt = {out} s)"))?;
+    check_steps(duration, out)
+        .map_err(|why| format!("{why} (rows kept at run.output_dt = {out} s)"))?;
     let n = estimated_steps(duration, dt);
     let limit = max_steps().saturating_mul(STREAMED_STEPS_FACTOR);
     if n > limit as f64 {
@@ -118,7 +119,10 @@ mod tests {
         let e = check_kept_steps(limit * 2.0, 1e-3, Some(1e-3 * 1.0001)).unwrap_err();
         assert!(e.contains("rows kept at run.output_dt"), "{e}");
         let e = check_kept_steps(1e6 + 1.0, 1e-3, Some(1.0)).unwrap_err();
-        assert!(e.contains("1.000e9 steps") && e.contains("100 × ROCKSLIDE_MAX_STEPS"), "{e}");
+        assert!(
+            e.contains("1.000e9 steps") && e.contains("100 × ROCKSLIDE_MAX_STEPS"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -337,7 +337,6 @@ impl<'a> Summaries<'a> {
             kept_rows: run.trace.len(),
         }
     }
-
 }
 
 /// Keep one row (and its contacts, when the run has them).
