@@ -51,9 +51,35 @@ pub fn simulate_with_vertical(
         trace: Trace::default(),
         rows: step_count(s.duration, s.dt) + 1,
     };
-    let mut run = integrate(osc, excitation, vertical, s, variant, &mut sink);
+    let mut run = integrate(osc, excitation, vertical, s, variant, &mut sink, None);
     run.trace = sink.trace;
+    // Eq 9 read off the whole columns (the streamed run keeps a front of them instead)
+    let largest = largest_eq9_change(&run.trace);
+    run.findings = vec![eq9_finding(largest)];
     run
+}
+
+/// The largest Eq 9 change over the rows whose |x| is at least 1 % of the run's peak (Eq 9
+/// is a ratio: near x = 0 it is meaningless, the first step's prediction being 0).
+fn largest_eq9_change(trace: &Trace) -> f64 {
+    let xs = trace.column("rel_disp").unwrap_or(&[]);
+    let peak = xs.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let mut max_change: f64 = 0.0;
+    if let Some(changes) = trace.column("pc_change") {
+        for (x, c) in xs.iter().zip(changes) {
+            if x.abs() >= 0.01 * peak {
+                max_change = max_change.max(c.abs());
+            }
+        }
+    }
+    max_change
+}
+
+/// The run's finding on Eq 9.
+fn eq9_finding(max_change: f64) -> String {
+    format!(
+        "largest Eq 9 change |x_correct − x_predict|/|x_correct| = {max_change:.3e} (steps with |x| ≥ 1 % of peak)"
+    )
 }
 
 /// [`simulate_with_vertical`] handing each row to `sink` as it is computed: no trace is
@@ -66,8 +92,33 @@ pub fn simulate_streaming(
     variant: &str,
     sink: &mut dyn StepSink,
 ) -> Run {
-    integrate(osc, excitation, vertical, s, variant, sink)
+    // Eq 9 over the rows with |x| ≥ 1 % of the run's peak: a first pass (the time loop
+    // alone) finds the peak, the second hands the rows on and keeps the largest change
+    let mut peak = PeakDisplacement(0.0);
+    integrate(osc, excitation, vertical, s, variant, &mut peak, None);
+    let mut eq9 = Eq9Change {
+        floor: 0.01 * peak.0,
+        largest: 0.0,
+    };
+    let mut run = integrate(osc, excitation, vertical, s, variant, sink, Some(&mut eq9));
+    run.findings = vec![eq9_finding(eq9.largest)];
+    run
 }
+
+/// The peak |x| of a run (the first pass of a streamed run).
+struct PeakDisplacement(f64);
+
+impl StepSink for PeakDisplacement {
+    fn begin(&mut self, _layout: &Trace) {}
+
+    fn row(&mut self, _t: f64, values: &[f64], _contacts: &[ContactState]) {
+        // rel_disp is the third sliding channel (force, resistance, rel_disp, …)
+        self.0 = self.0.max(values[REL_DISP_COLUMN].abs());
+    }
+}
+
+/// Column of `rel_disp` in the predictor-corrector's rows ([`q::sliding`]).
+const REL_DISP_COLUMN: usize = 2;
 
 /// Records the rows into a trace sized for the run up front (no reallocation).
 struct TraceSink {
@@ -89,46 +140,23 @@ impl StepSink for TraceSink {
     }
 }
 
-/// The largest Eq 9 change over the rows whose |x| is at least 1 % of the run's peak |x|,
-/// kept step by step: only the rows that can still decide it are held — those with |x|
-/// at least 1 % of the peak so far, and of them only the ones no other row beats in both
-/// |x| and |change| (a handful; the same answer as reading the whole columns).
+/// The largest Eq 9 change over the rows whose |x| is at least `floor` (1 % of the run's
+/// peak |x|, known from a first pass), kept step by step.
 struct Eq9Change {
-    peak: f64,
-    front: Vec<(f64, f64)>,
+    floor: f64,
+    largest: f64,
 }
 
 impl Eq9Change {
-    fn new() -> Self {
-        Self {
-            peak: 0.0,
-            front: Vec::with_capacity(64),
-        }
-    }
-
     fn observe(&mut self, x: f64, change: f64) {
-        let (ax, ac) = (x.abs(), change.abs());
-        self.peak = self.peak.max(ax);
-        let floor = 0.01 * self.peak;
-        if ax < floor {
-            return;
+        if x.abs() >= self.floor {
+            self.largest = self.largest.max(change.abs());
         }
-        if self.front.iter().any(|&(fx, fc)| fx >= ax && fc >= ac) {
-            return;
-        }
-        self.front
-            .retain(|&(fx, fc)| fx >= floor && !(ax >= fx && ac >= fc));
-        self.front.push((ax, ac));
-    }
-
-    fn largest(&self) -> f64 {
-        self.front
-            .iter()
-            .filter(|&&(fx, _)| fx >= 0.01 * self.peak)
-            .fold(0.0_f64, |m, &(_, fc)| m.max(fc))
     }
 }
 
+/// The time loop: every row to `sink`, and to `eq9` when given; the run's findings are
+/// the caller's.
 fn integrate<S: StepSink + ?Sized>(
     osc: &Oscillator,
     excitation: &Excitation,
@@ -136,6 +164,7 @@ fn integrate<S: StepSink + ?Sized>(
     s: &PcSettings,
     variant: &str,
     sink: &mut S,
+    mut eq9: Option<&mut Eq9Change>,
 ) -> Run {
     let (m, k, c, ru) = (
         osc.mass,
@@ -147,6 +176,7 @@ fn integrate<S: StepSink + ?Sized>(
     let n = step_count(s.duration, dt);
     let moves_ground = excitation.moves_ground();
     let mut channels = q::sliding(moves_ground);
+    debug_assert_eq!(channels[REL_DISP_COLUMN].key, q::REL_DISP.key);
     channels.push(&q::PC_CHANGE);
     // N(t) is a channel only when it varies (horizontal-only traces stay as they were).
     let mut normal_stepper = vertical.map(|v| NormalStepper::new(osc, v));
@@ -165,7 +195,6 @@ fn integrate<S: StepSink + ?Sized>(
     }
     layout.contacts = ContactBlock::with_contacts(&["base"], &[1.0 / kz], 0);
     sink.begin(&layout);
-    let mut eq9 = Eq9Change::new();
     let mut rows: u64 = 0;
     let mut row = vec![0.0; channels.len()];
 
@@ -204,7 +233,9 @@ fn integrate<S: StepSink + ?Sized>(
             gap,
         };
         sink.row(t, &row, &[base]);
-        eq9.observe(x, change);
+        if let Some(e) = eq9.as_deref_mut() {
+            e.observe(x, change);
+        }
         rows += 1;
     };
     record(0.0, normal, gap, f0, r, x, xp, v, a, 0.0);
@@ -271,10 +302,7 @@ fn integrate<S: StepSink + ?Sized>(
         record(t, normal, gap, f, r, x_rel, xp, v, a, change);
     }
 
-    // Eq 9 is a ratio: report its largest value over the steps where |x| is at least 1 %
-    // of the run's peak (near x = 0 it is meaningless: the first step's prediction is 0).
     drop(record);
-    let max_change = eq9.largest();
     let route = match (moves_ground, s.route) {
         (false, _) => "mass force M·a(t)",
         (true, GroundRoute::Eq12SlipOnce) => {
@@ -306,10 +334,7 @@ fn integrate<S: StepSink + ?Sized>(
         dt,
         settings,
         stats: SolverStats::steps(rows - 1),
-        findings: vec![format!(
-            "largest Eq 9 change |x_correct − x_predict|/|x_correct| = {:.3e} (steps with |x| ≥ 1 % of peak)",
-            max_change
-        )],
+        findings: Vec::new(),
         trace: layout,
         status,
         wall_seconds: 0.0,
