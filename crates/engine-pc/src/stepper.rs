@@ -302,7 +302,6 @@ fn integrate<S: StepSink + ?Sized>(
         record(t, normal, gap, f, r, x_rel, xp, v, a, change);
     }
 
-    drop(record);
     let route = match (moves_ground, s.route) {
         (false, _) => "mass force M·a(t)",
         (true, GroundRoute::Eq12SlipOnce) => {
