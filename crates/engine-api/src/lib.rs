@@ -9,7 +9,7 @@
 
 use rockslide_core::case::{Case, Scene};
 use rockslide_core::error::InputError;
-use rockslide_core::trace::{ContactState, Quantity, Trace};
+use rockslide_core::trace::{ContactState, Trace};
 use serde::{Deserialize, Serialize};
 
 /// Why an engine cannot represent a scene.
@@ -240,14 +240,6 @@ pub fn forward_rows(trace: &Trace, sink: &mut dyn StepSink) {
         }
         sink.row(t, &values, &states);
     }
-}
-
-/// The channels a layout names, for sinks that look columns up by key.
-pub fn channel_index(layout: &Trace, key: &str) -> Option<usize> {
-    layout
-        .channels
-        .iter()
-        .position(|c: &&'static Quantity| c.key == key)
 }
 
 /// Number of steps covering `duration` at `dt` (the last step may end past it by < dt/2).
