@@ -172,3 +172,50 @@ fn rapier_allocates_inside_its_pipeline() {
         );
     }
 }
+
+/// A streamed predictor-corrector run holds nothing per step (issue 18 item 3): the
+/// engine and the analysis's sinks — the first pass's run-wide scales, the second's
+/// summaries at every step, the history error against the reference evaluated at every
+/// step and the rows kept at the output step — allocate the same for T at output step
+/// T/100 as for 10·T at 10·T/100 (as many rows kept, ten times the steps).
+#[test]
+fn a_streamed_predictor_corrector_run_allocates_the_same_for_ten_times_the_steps() {
+    use rockslide::analysis::streamed::{Peaks, Summaries};
+    let engines = engine::all();
+    let pc = engines
+        .iter()
+        .find(|e| e.id() == "predictor-corrector")
+        .expect("registered");
+    let base = case("pepo-mass-accel.toml");
+    let count = |duration: f64| -> (u64, u64, usize) {
+        let mut case = base.clone();
+        case.run.duration = duration;
+        case.run.output_dt = Some(duration / 100.0);
+        let solution = rockslide::reference::for_case(&case).expect("the PEPO's reference");
+        let before = ALLOCATIONS.with(Cell::get);
+        let mut peaks = Peaks::default();
+        pc.run_streaming(&case, "paper", DT, &mut peaks).unwrap();
+        let mut sink = Summaries::new(
+            &case,
+            &peaks,
+            Some(solution.as_ref()),
+            case.run.output_dt,
+            102,
+        );
+        let mut run = pc.run_streaming(&case, "paper", DT, &mut sink).unwrap();
+        let summary = sink.finish(&mut run);
+        let after = ALLOCATIONS.with(Cell::get);
+        assert!(summary.history.is_some());
+        (after - before, run.stats.steps, summary.kept_rows)
+    };
+    count(1.0);
+    let (short, steps, kept) = count(1.0);
+    let (long, steps_long, kept_long) = count(10.0);
+    eprintln!(
+        "streamed: {short} allocations in {steps} steps ({kept} rows kept), {long} in {steps_long} ({kept_long})"
+    );
+    assert_eq!(steps, 1000);
+    assert_eq!(steps_long, 10 * steps);
+    assert_eq!((kept, kept_long), (101, 101));
+    assert_eq!(long, short);
+}

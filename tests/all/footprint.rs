@@ -3,16 +3,21 @@
 //!
 //! Requirements checked:
 //! - a 10⁸-step predictor-corrector run is refused at once (exit 2): by the step limit
-//!   of case loading, and with that limit raised, by the estimate computed here from its
-//!   plan: 10⁸ + 1 rows × 25 values (time and every quantity of the catalogue) × 8 bytes
-//!   × 3 copies = 60.0 GB, over the 8 GiB default limit;
+//!   of case loading (it keeps every step), and with that limit raised, by the estimate
+//!   computed here from its plan: 10⁸ + 1 rows × 12 values (time, the 7 channels and the
+//!   contact's 4 fields the predictor-corrector records: counted in the files of a short
+//!   run) × 8 bytes × 3 copies = 28.8 GB, over the 8 GiB default limit;
+//! - the same run kept at `output_dt = 1` is streamed: it passes the step limit (10⁵ rows
+//!   kept, 10⁸ steps ≤ 100 × the limit) and is priced by the rows it holds, 10⁵ + 2;
 //! - the limits are overridden by the environment (a 1-byte limit refuses a 1,000-step
 //!   run, a value that is not a number of bytes is an error naming the variable).
 
 use std::path::Path;
 use std::process::Command;
 
-use rockslide::trace::q;
+/// Values a row of the PEPO's predictor-corrector run records: time, force, resistance,
+/// rel_disp, slide, vel, acc, pc_change, and the contact's N, T, slip, gap.
+const VALUES_PER_ROW: u64 = 12;
 
 /// The PEPO case, predictor-corrector only at Δt = 1 ms, for `duration` seconds, written
 /// to `dir`; returns its path and the 1-based line and column of the duration's value.
@@ -60,17 +65,19 @@ fn a_run_of_1e8_steps_is_refused_before_any_work() {
     let o = run(&case, &out, &[("ROCKSLIDE_MAX_STEPS", "1000000000")]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_eq!(o.status.code(), Some(2), "{stderr}");
-    // 10⁸ steps (1e5 s / 1e-3 s) + the initial row; time and the catalogue's quantities
+    // 10⁸ steps (1e5 s / 1e-3 s) + the initial row; the values a row records
     let rows: u64 = 100_000_001;
-    let values = 1 + q::ALL.len() as u64;
-    assert_eq!(values, 37);
+    let values = VALUES_PER_ROW;
     let bytes = rows * values * 8 * 3;
     let shown = format!("{:.1} GB", bytes as f64 / 1e9);
-    assert_eq!(shown, "88.8 GB");
+    assert_eq!(shown, "28.8 GB");
     let expected_start = format!("{}:{line}:{column}: run.duration: ", case.display());
     assert!(stderr.contains(&expected_start), "{stderr}");
     for part in [
-        format!("{rows} rows"),
+        format!(
+            "{rows} rows in all (duration / dt each; {} values)",
+            rows * values
+        ),
         format!("about {shown} of memory"),
         "over the limit of 8.6 GB".to_string(),
         "ROCKSLIDE_MAX_MEMORY_BYTES=<bytes>".to_string(),
@@ -109,4 +116,37 @@ fn the_limits_are_overridden_by_the_environment() {
     );
     assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
     assert!(out.join("long-pepo").join("long-pepo.mcap").is_file());
+    // the values a row records, as the files show them (the contacts file repeats time)
+    let columns = |f: &str| {
+        let text = std::fs::read_to_string(out.join("long-pepo").join(f)).unwrap();
+        text.lines().next().unwrap().split(',').count() as u64
+    };
+    let run_columns = columns("predictor-corrector-paper.csv");
+    let contact_columns = columns("predictor-corrector-paper-contacts.csv");
+    assert_eq!(run_columns + contact_columns - 1, VALUES_PER_ROW);
+}
+
+#[test]
+fn a_run_of_1e8_steps_kept_at_an_output_step_is_priced_by_the_rows_it_holds() {
+    let dir = tempfile::tempdir().unwrap();
+    let (case, _) = pepo_case(dir.path(), "100000.0\noutput_dt = 1.0");
+    let out = dir.path().join("out");
+    // a 1-byte memory limit shows the estimate without running the 10⁸ steps
+    let o = run(&case, &out, &[("ROCKSLIDE_MAX_MEMORY_BYTES", "1")]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{stderr}");
+    assert!(!stderr.contains("ROCKSLIDE_MAX_STEPS"), "{stderr}");
+    // the first row, one per second (10⁵), the last
+    let held: u64 = 100_002;
+    let bytes = held * VALUES_PER_ROW * 8 * 3;
+    assert_eq!(format!("{:.1} GB", bytes as f64 / 1e9), "0.0 GB");
+    for part in [
+        format!(
+            "record 100000001 rows in all and hold {held} (streamed runs keep one per run.output_dt; {} values)",
+            held * VALUES_PER_ROW
+        ),
+        "about 0.0 GB of memory".to_string(),
+    ] {
+        assert!(stderr.contains(&part), "{part:?} not in {stderr}");
+    }
 }

@@ -4,19 +4,29 @@
 //! Requirements checked:
 //! - a 10⁷-step predictor-corrector run (the PEPO for 10⁴ s at Δt = 1 ms) with
 //!   `output_dt = 0.01` writes 10⁶ + 2 rows (the first row, one per 10 ms, and the
-//!   last), priced at 2 copies (run and reference) × (25 CSV + 15 MCAP bytes) per value ×
-//!   25 values per row = 2.0 GB; without `output_dt` every one of the 10⁷ + 1 rows is
-//!   written: 20.0 GB. Both computed here from those counts, and both refused under a
-//!   1 GB limit before any step runs.
+//!   last), priced at the 12 values a row of the predictor-corrector records (time, 7
+//!   channels, 4 contact fields) × 40 bytes per value (measured: 39.4, see
+//!   `footprint.rs`) = 0.5 GB; without `output_dt` every one of the 10⁷ + 1 rows is
+//!   written: 4.8 GB. Both computed here from those counts, and both refused under a
+//!   100 MB limit before any step runs;
+//! - a streamed run and a whole run of the same case give the same response quantities,
+//!   history errors, invariants and checks bit for bit, every engine (those that do not
+//!   stream natively run whole and forward their rows), and the streamed run keeps
+//!   exactly the rows the whole run's files keep;
+//! - the bytes per value of the estimate against the files a run writes.
 
 use std::path::Path;
 use std::process::Command;
 
-use rockslide::trace::q;
-
 /// The PEPO case, predictor-corrector only at Δt = 1 ms, for 10⁴ s, with `run_extra`
 /// appended to its `[run]` table; written to `dir`.
 fn long_pepo(dir: &Path, run_extra: &str) -> std::path::PathBuf {
+    pepo(dir, 10_000.0, run_extra)
+}
+
+/// The PEPO case, predictor-corrector only at Δt = 1 ms, for `duration` s, with
+/// `run_extra` appended to its `[run]` table; written to `dir`.
+fn pepo(dir: &Path, duration: f64, run_extra: &str) -> std::path::PathBuf {
     let text = std::fs::read_to_string(crate::common::repo("cases/pepo-mass-accel.toml")).unwrap();
     let head = &text[..text.find("[engines.").unwrap()];
     assert!(head.contains("duration = 1.0\ndt = 0.001\n"));
@@ -24,7 +34,7 @@ fn long_pepo(dir: &Path, run_extra: &str) -> std::path::PathBuf {
         "{}\n[engines.predictor-corrector]\ndt = 0.001\n",
         head.replace(
             "duration = 1.0\ndt = 0.001\n",
-            &format!("duration = 10000.0\ndt = 0.001\n{run_extra}")
+            &format!("duration = {duration:?}\ndt = 0.001\n{run_extra}")
         )
     );
     let path = dir.join("long-pepo.toml");
@@ -32,8 +42,8 @@ fn long_pepo(dir: &Path, run_extra: &str) -> std::path::PathBuf {
     path
 }
 
-/// `rockslide run` of `case` under a disk limit of 1 GB; its exit code and standard error.
-fn run_under_1gb(case: &Path, out: &Path) -> (Option<i32>, String) {
+/// `rockslide run` of `case` under a disk limit of 100 MB; its exit code and standard error.
+fn run_under_100mb(case: &Path, out: &Path) -> (Option<i32>, String) {
     let o = Command::new(env!("CARGO_BIN_EXE_rockslide"))
         .args(["run", "--quiet", "--out"])
         .arg(out)
@@ -42,7 +52,7 @@ fn run_under_1gb(case: &Path, out: &Path) -> (Option<i32>, String) {
         // rows × the catalogue's 37 values × 24 bytes is 8.9 GB, over the 8 GiB default)
         .env("ROCKSLIDE_MAX_MEMORY_BYTES", "17179869184")
         .env_remove("ROCKSLIDE_MAX_STEPS")
-        .env("ROCKSLIDE_MAX_DISK_BYTES", "1000000000")
+        .env("ROCKSLIDE_MAX_DISK_BYTES", "100000000")
         .output()
         .unwrap();
     (
@@ -53,19 +63,20 @@ fn run_under_1gb(case: &Path, out: &Path) -> (Option<i32>, String) {
 
 #[test]
 fn the_disk_estimate_counts_the_rows_kept_at_output_dt() {
-    let values_per_row = 1.0 + q::ALL.len() as f64;
-    let bytes_per_value = 2.0 * (25.0 + 15.0);
+    // time, force, resistance, rel_disp, slide, vel, acc, pc_change; N, T, slip, gap
+    let values_per_row = 12.0;
+    let bytes_per_value = 40.0;
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
 
     let decimated = long_pepo(dir.path(), "output_dt = 0.01\n");
-    let (code, stderr) = run_under_1gb(&decimated, &out);
+    let (code, stderr) = run_under_100mb(&decimated, &out);
     assert_eq!(code, Some(2), "{stderr}");
     let rows = 1e6 + 2.0;
     let gb = rows * values_per_row * bytes_per_value / 1e9;
     assert!(
         stderr.contains(&format!(
-            "write 1000002 rows in all (one per run.output_dt), whose traces need about {gb:.1} GB of disk, over the limit of 1.0 GB"
+            "write 1000002 rows in all (one per run.output_dt), whose traces need about {gb:.1} GB of disk, over the limit of 0.1 GB"
         )),
         "{stderr}"
     );
@@ -75,7 +86,7 @@ fn the_disk_estimate_counts_the_rows_kept_at_output_dt() {
     );
 
     let every_step = long_pepo(dir.path(), "");
-    let (code, stderr) = run_under_1gb(&every_step, &out);
+    let (code, stderr) = run_under_100mb(&every_step, &out);
     assert_eq!(code, Some(2), "{stderr}");
     let gb = (1e7 + 1.0) * values_per_row * bytes_per_value / 1e9;
     assert!(
@@ -86,4 +97,147 @@ fn the_disk_estimate_counts_the_rows_kept_at_output_dt() {
     );
     assert!(stderr.contains("or set run.output_dt"), "{stderr}");
     assert!(!out.join("long-pepo").exists(), "nothing written");
+}
+
+/// The trace files of a 10⁴-step PEPO run (10 s, every step): 10⁴ + 1 rows of the 12
+/// values the predictor-corrector records, against the estimate's 40 bytes per value.
+#[test]
+fn the_bytes_per_value_of_the_estimate_are_those_of_the_files() {
+    let dir = tempfile::tempdir().unwrap();
+    let case = pepo(dir.path(), 10.0, "");
+    let out = dir.path().join("out");
+    let o = Command::new(env!("CARGO_BIN_EXE_rockslide"))
+        .args(["run", "--quiet", "--out"])
+        .arg(&out)
+        .arg(&case)
+        .output()
+        .unwrap();
+    assert!(out.join("long-pepo").join("result.json").is_file(), "{o:?}");
+    let mut bytes = 0;
+    for entry in std::fs::read_dir(out.join("long-pepo")).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        let trace = name.ends_with(".mcap") || (name.ends_with(".csv") && name != "summary.csv");
+        if trace {
+            bytes += std::fs::metadata(&path).unwrap().len();
+        }
+    }
+    let values = 10_001.0 * 12.0;
+    let per_value = bytes as f64 / values;
+    eprintln!("{bytes} bytes of trace files: {per_value:.2} bytes per value");
+    assert!((37.0..=40.0).contains(&per_value), "{per_value}");
+}
+
+/// Streamed and whole analyses of the same case (issue 18 item 3): a streamed run reads
+/// its summaries at every step, as the whole run reads its columns.
+mod streamed_equals_whole {
+    use rockslide::case::Case;
+    use rockslide::engine::Run;
+    use rockslide::suite::{CaseResult, run_case_streaming_above};
+
+    fn both(case: Case) -> (CaseResult, CaseResult) {
+        let engines = rockslide::engine::all();
+        // the predictor-corrector streams natively (no trace held), the others forward
+        let native: Vec<bool> = engines.iter().map(|e| e.streams_natively()).collect();
+        assert_eq!(native, [true, false, false]);
+        let whole = run_case_streaming_above(case.clone(), &engines, u64::MAX).unwrap();
+        let streamed = run_case_streaming_above(case, &engines, 0).unwrap();
+        (whole, streamed)
+    }
+
+    fn bits(t: &rockslide::trace::Trace) -> Vec<u64> {
+        t.time
+            .iter()
+            .chain(t.columns.iter().flatten())
+            .chain(&t.contacts.values)
+            .map(|x| x.to_bits())
+            .collect()
+    }
+
+    /// Responses, history errors, invariants and checks, bit for bit; `kept` the rows the
+    /// streamed run keeps of the whole run's trace.
+    fn assert_same(whole: &CaseResult, streamed: &CaseResult, kept: impl Fn(&Run) -> Vec<u64>) {
+        assert_eq!(whole.runs.len(), streamed.runs.len());
+        for (i, (w, s)) in whole.runs.iter().zip(&streamed.runs).enumerate() {
+            let label = w.label();
+            assert_eq!(label, s.label());
+            assert_eq!(w.status, s.status, "{label}");
+            assert_eq!(w.stats, s.stats, "{label}");
+            assert_eq!(w.findings, s.findings, "{label}");
+            let (rw, rs) = (&whole.run_responses[i], &streamed.run_responses[i]);
+            assert_eq!(
+                rw.iter()
+                    .map(|(k, v)| (*k, v.to_bits()))
+                    .collect::<Vec<_>>(),
+                rs.iter()
+                    .map(|(k, v)| (*k, v.to_bits()))
+                    .collect::<Vec<_>>(),
+                "{label}: {rw:?} / {rs:?}"
+            );
+            let h =
+                |r: &CaseResult| r.history_errors[i].map(|e| (e.max.to_bits(), e.rms.to_bits()));
+            assert_eq!(h(whole), h(streamed), "{label}");
+            let (kw, ks) = (kept(w), bits(&s.trace));
+            let first = kw.iter().zip(&ks).position(|(a, b)| a != b);
+            assert!(
+                kw.len() == ks.len() && first.is_none(),
+                "{label}: kept rows: {} and {} values, first difference at {first:?} ({} whole rows)",
+                kw.len(),
+                ks.len(),
+                w.trace.len()
+            );
+        }
+        let inv = |r: &CaseResult| {
+            r.invariants
+                .iter()
+                .map(|c| {
+                    (
+                        c.invariant,
+                        c.run.clone(),
+                        c.worst.to_bits(),
+                        c.at.map(f64::to_bits),
+                    )
+                })
+                .collect::<Vec<_>>()
+        };
+        assert_eq!(inv(whole), inv(streamed));
+        assert!(!whole.invariants.is_empty());
+        let checks = |r: &CaseResult| format!("{:?}", r.checks);
+        assert_eq!(checks(whole), checks(streamed));
+        assert_eq!(whole.gate_passed(), streamed.gate_passed());
+    }
+
+    #[test]
+    fn every_engine_on_the_pepo_cases_and_a_record() {
+        for name in [
+            "pepo-mass-accel",
+            "pepo-ground-disp",
+            "records/pepo-northridge",
+        ] {
+            let case = crate::common::case(name);
+            let output_dt = case.run.output_dt;
+            let (whole, streamed) = both(case);
+            assert!(whole.runs.len() >= 2, "{name}");
+            // every row, or the rows of the files at the case's output step
+            assert_same(&whole, &streamed, |w| match output_dt {
+                Some(o) => bits(&w.trace.at_output_step(o)),
+                None => bits(&w.trace),
+            });
+        }
+    }
+
+    #[test]
+    fn a_run_kept_at_an_output_step_keeps_the_rows_of_the_files() {
+        let case = crate::common::case_with(
+            "pepo-mass-accel",
+            "duration = 1.0\ndt = 0.001\n",
+            "duration = 1.0\ndt = 0.001\noutput_dt = 0.0125\n",
+        );
+        let (whole, streamed) = both(case);
+        // the first row, one per 12.5 ms (80), the last: what the files of the whole run keep
+        for r in &streamed.runs {
+            assert!(r.trace.len() < 90, "{}: {} rows", r.label(), r.trace.len());
+        }
+        assert_same(&whole, &streamed, |w| bits(&w.trace.at_output_step(0.0125)));
+    }
 }

@@ -9,7 +9,7 @@
 
 use rockslide_core::case::{Case, Scene};
 use rockslide_core::error::InputError;
-use rockslide_core::trace::Trace;
+use rockslide_core::trace::{ContactState, Trace};
 use serde::{Deserialize, Serialize};
 
 /// Why an engine cannot represent a scene.
@@ -169,6 +169,77 @@ pub trait Engine: Send + Sync {
     }
     /// Run one variant at time step `dt`. Divergence is a [`RunStatus`], never a panic.
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError>;
+    /// Run one variant at time step `dt`, handing every row to `sink` as it is computed
+    /// instead of keeping it: the returned run's trace holds the layout (channels, contact
+    /// names and compliances) and no rows. By default the engine runs whole and its rows
+    /// are forwarded ([`forward_rows`]), so an engine that does not stream natively still
+    /// can be streamed (its memory then grows with the run as before); an engine that
+    /// streams natively holds no trace.
+    fn run_streaming(
+        &self,
+        case: &Case,
+        variant: &str,
+        dt: f64,
+        sink: &mut dyn StepSink,
+    ) -> Result<Run, InputError> {
+        let mut run = self.run(case, variant, dt)?;
+        forward_rows(&run.trace, sink);
+        run.trace = layout_of(&run.trace);
+        Ok(run)
+    }
+    /// Whether [`Engine::run_streaming`] is native: the engine holds no trace while it
+    /// streams (by default it runs whole and forwards the rows).
+    fn streams_natively(&self) -> bool {
+        false
+    }
+    /// Values one row of this variant records (time, channels and the contact block's
+    /// fields), when the engine knows it before running; `None`: not declared (the
+    /// memory and disk estimates then count every quantity of the catalogue).
+    fn recorded_values(&self, case: &Case, variant: &str) -> Option<usize> {
+        let _ = (case, variant);
+        None
+    }
+}
+
+/// Where a streamed run sends its rows ([`Engine::run_streaming`]), one step at a time.
+pub trait StepSink {
+    /// Before the first row: the run's layout, a trace with its channels and its contact
+    /// block's names and compliances, and no rows.
+    fn begin(&mut self, layout: &Trace);
+    /// One row: time, s; values in channel order; each contact's state in contact order
+    /// (empty when the run has no per-contact block).
+    fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]);
+}
+
+/// The layout of a trace: its channels and its contact block's names and compliances,
+/// without rows (a contact block whose rows are not the trace's rows is kept whole).
+pub fn layout_of(trace: &Trace) -> Trace {
+    let mut layout = Trace::with_channels(&trace.channels, 0);
+    layout.contacts = trace.contacts.clone();
+    if trace.contacts.len() == trace.len() {
+        layout.contacts.time = Vec::new();
+        layout.contacts.values = Vec::new();
+    }
+    layout
+}
+
+/// Hand every row of a whole trace to `sink`, as a streaming engine would have: the
+/// contact states with each row when the block has the trace's rows, else none.
+pub fn forward_rows(trace: &Trace, sink: &mut dyn StepSink) {
+    sink.begin(&layout_of(trace));
+    let per_row = trace.contacts.len() == trace.len();
+    let mut values = vec![0.0; trace.channels.len()];
+    let mut states: Vec<ContactState> = Vec::with_capacity(trace.contacts.count());
+    for (i, &t) in trace.time.iter().enumerate() {
+        for (v, column) in values.iter_mut().zip(&trace.columns) {
+            *v = column[i];
+        }
+        states.clear();
+        if per_row {
+            states.extend((0..trace.contacts.count()).map(|c| trace.contacts.at(i, c)));
+        }
+        sink.row(t, &values, &states);
+    }
 }
 
 /// Number of steps covering `duration` at `dt` (the last step may end past it by < dt/2).

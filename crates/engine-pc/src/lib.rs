@@ -12,12 +12,12 @@ mod stepper;
 mod vertical;
 
 pub use resistance::resistance;
-pub use stepper::{GroundRoute, PcSettings, simulate, simulate_with_vertical};
+pub use stepper::{GroundRoute, PcSettings, simulate, simulate_streaming, simulate_with_vertical};
 pub use vertical::NormalStepper;
 
 use rockslide_core::case::{Case, Excitation, Model, Scene};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Engine, NotApplicable, Run};
+use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink};
 
 /// The paper's spreadsheet method.
 pub struct PredictorCorrector;
@@ -72,24 +72,7 @@ impl Engine for PredictorCorrector {
     }
 
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
-        if let Some(e) = options::check(case).into_iter().next() {
-            return Err(e);
-        }
-        let Model::Oscillator(osc) = &case.scene.model else {
-            return Err(
-                case.field_error("model.kind", "the predictor-corrector needs an oscillator")
-            );
-        };
-        let route = match variant {
-            variant::EQ12 => GroundRoute::Eq12,
-            variant::EQ12_SLIP_ONCE => GroundRoute::Eq12SlipOnce,
-            _ => GroundRoute::GroundAcceleration,
-        };
-        let settings = PcSettings {
-            dt,
-            duration: case.run.duration,
-            route,
-        };
+        let (osc, settings) = prepare(case, variant, dt)?;
         Ok(simulate_with_vertical(
             osc,
             &case.scene.excitation,
@@ -98,4 +81,61 @@ impl Engine for PredictorCorrector {
             variant,
         ))
     }
+
+    fn run_streaming(
+        &self,
+        case: &Case,
+        variant: &str,
+        dt: f64,
+        sink: &mut dyn StepSink,
+    ) -> Result<Run, InputError> {
+        let (osc, settings) = prepare(case, variant, dt)?;
+        Ok(simulate_streaming(
+            osc,
+            &case.scene.excitation,
+            case.scene.vertical(),
+            &settings,
+            variant,
+            sink,
+        ))
+    }
+
+    fn streams_natively(&self) -> bool {
+        true
+    }
+
+    fn recorded_values(&self, case: &Case, _variant: &str) -> Option<usize> {
+        // time, the sliding channels (ground displacement when the ground moves), the
+        // Eq 9 change, N(t) under vertical motion; one contact's four fields
+        let channels = 6
+            + usize::from(case.scene.excitation.moves_ground())
+            + 1
+            + usize::from(case.scene.vertical().is_some());
+        Some(1 + channels + 4)
+    }
+}
+
+/// The oscillator and the settings of one run, or the located reason it cannot run.
+fn prepare<'a>(
+    case: &'a Case,
+    variant: &str,
+    dt: f64,
+) -> Result<(&'a rockslide_core::case::Oscillator, PcSettings), InputError> {
+    if let Some(e) = options::check(case).into_iter().next() {
+        return Err(e);
+    }
+    let Model::Oscillator(osc) = &case.scene.model else {
+        return Err(case.field_error("model.kind", "the predictor-corrector needs an oscillator"));
+    };
+    let route = match variant {
+        variant::EQ12 => GroundRoute::Eq12,
+        variant::EQ12_SLIP_ONCE => GroundRoute::Eq12SlipOnce,
+        _ => GroundRoute::GroundAcceleration,
+    };
+    let settings = PcSettings {
+        dt,
+        duration: case.run.duration,
+        route,
+    };
+    Ok((osc, settings))
 }

@@ -4,7 +4,7 @@ use super::resistance::resistance;
 use crate::vertical::NormalStepper;
 use rockslide_core::case::{Excitation, Jump, Oscillator, Vertical};
 use rockslide_core::trace::{ContactBlock, ContactState, Trace, q};
-use rockslide_engine_api::{Run, RunStatus, SolverStats, step_count};
+use rockslide_engine_api::{Run, RunStatus, SolverStats, StepSink, step_count};
 
 /// How support motion enters the equation of motion (paper Eqs 10–12).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,6 +47,125 @@ pub fn simulate_with_vertical(
     s: &PcSettings,
     variant: &str,
 ) -> Run {
+    let mut sink = TraceSink {
+        trace: Trace::default(),
+        rows: step_count(s.duration, s.dt) + 1,
+    };
+    let mut run = integrate(osc, excitation, vertical, s, variant, &mut sink, None);
+    run.trace = sink.trace;
+    // Eq 9 read off the whole columns (the streamed run keeps a front of them instead)
+    let largest = largest_eq9_change(&run.trace);
+    run.findings = vec![eq9_finding(largest)];
+    run
+}
+
+/// The largest Eq 9 change over the rows whose |x| is at least 1 % of the run's peak (Eq 9
+/// is a ratio: near x = 0 it is meaningless, the first step's prediction being 0).
+fn largest_eq9_change(trace: &Trace) -> f64 {
+    let xs = trace.column("rel_disp").unwrap_or(&[]);
+    let peak = xs.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    let mut max_change: f64 = 0.0;
+    if let Some(changes) = trace.column("pc_change") {
+        for (x, c) in xs.iter().zip(changes) {
+            if x.abs() >= 0.01 * peak {
+                max_change = max_change.max(c.abs());
+            }
+        }
+    }
+    max_change
+}
+
+/// The run's finding on Eq 9.
+fn eq9_finding(max_change: f64) -> String {
+    format!(
+        "largest Eq 9 change |x_correct − x_predict|/|x_correct| = {max_change:.3e} (steps with |x| ≥ 1 % of peak)"
+    )
+}
+
+/// [`simulate_with_vertical`] handing each row to `sink` as it is computed: no trace is
+/// held, whatever the number of steps; the returned run's trace is the layout only.
+pub fn simulate_streaming(
+    osc: &Oscillator,
+    excitation: &Excitation,
+    vertical: Option<&Vertical>,
+    s: &PcSettings,
+    variant: &str,
+    sink: &mut dyn StepSink,
+) -> Run {
+    // Eq 9 over the rows with |x| ≥ 1 % of the run's peak: a first pass (the time loop
+    // alone) finds the peak, the second hands the rows on and keeps the largest change
+    let mut peak = PeakDisplacement(0.0);
+    integrate(osc, excitation, vertical, s, variant, &mut peak, None);
+    let mut eq9 = Eq9Change {
+        floor: 0.01 * peak.0,
+        largest: 0.0,
+    };
+    let mut run = integrate(osc, excitation, vertical, s, variant, sink, Some(&mut eq9));
+    run.findings = vec![eq9_finding(eq9.largest)];
+    run
+}
+
+/// The peak |x| of a run (the first pass of a streamed run).
+struct PeakDisplacement(f64);
+
+impl StepSink for PeakDisplacement {
+    fn begin(&mut self, _layout: &Trace) {}
+
+    fn row(&mut self, _t: f64, values: &[f64], _contacts: &[ContactState]) {
+        // rel_disp is the third sliding channel (force, resistance, rel_disp, …)
+        self.0 = self.0.max(values[REL_DISP_COLUMN].abs());
+    }
+}
+
+/// Column of `rel_disp` in the predictor-corrector's rows ([`q::sliding`]).
+const REL_DISP_COLUMN: usize = 2;
+
+/// Records the rows into a trace sized for the run up front (no reallocation).
+struct TraceSink {
+    trace: Trace,
+    rows: usize,
+}
+
+impl StepSink for TraceSink {
+    fn begin(&mut self, layout: &Trace) {
+        self.trace = Trace::with_channels(&layout.channels, self.rows);
+        let names: Vec<&str> = layout.contacts.names.iter().map(String::as_str).collect();
+        self.trace.contacts =
+            ContactBlock::with_contacts(&names, &layout.contacts.compliance, self.rows);
+    }
+
+    fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
+        self.trace.push(t, values);
+        self.trace.contacts.push(t, contacts);
+    }
+}
+
+/// The largest Eq 9 change over the rows whose |x| is at least `floor` (1 % of the run's
+/// peak |x|, known from a first pass), kept step by step.
+struct Eq9Change {
+    floor: f64,
+    largest: f64,
+}
+
+impl Eq9Change {
+    fn observe(&mut self, x: f64, change: f64) {
+        if x.abs() >= self.floor {
+            self.largest = self.largest.max(change.abs());
+        }
+    }
+}
+
+/// The time loop: every row to `sink`, and to `eq9` when given; the run's findings are
+/// the caller's.
+fn integrate<S: StepSink + ?Sized>(
+    osc: &Oscillator,
+    excitation: &Excitation,
+    vertical: Option<&Vertical>,
+    s: &PcSettings,
+    variant: &str,
+    sink: &mut S,
+    mut eq9: Option<&mut Eq9Change>,
+) -> Run {
     let (m, k, c, ru) = (
         osc.mass,
         osc.contact.kx,
@@ -57,13 +176,14 @@ pub fn simulate_with_vertical(
     let n = step_count(s.duration, dt);
     let moves_ground = excitation.moves_ground();
     let mut channels = q::sliding(moves_ground);
+    debug_assert_eq!(channels[REL_DISP_COLUMN].key, q::REL_DISP.key);
     channels.push(&q::PC_CHANGE);
     // N(t) is a channel only when it varies (horizontal-only traces stay as they were).
     let mut normal_stepper = vertical.map(|v| NormalStepper::new(osc, v));
     if normal_stepper.is_some() {
         channels.push(&q::NORMAL);
     }
-    let mut trace = Trace::with_channels(&channels, n + 1);
+    let mut layout = Trace::with_channels(&channels, 0);
     // The one contact: the normal force is the weight (no vertical motion), its static
     // penalty compression N/Kz the gap; T is the resistance R, the slip xp.
     let kz = osc.contact.kz;
@@ -73,7 +193,9 @@ pub fn simulate_with_vertical(
         (normal, gap) = (ns.normal(), ns.gap());
         ru = osc.contact.mu * normal;
     }
-    trace.contacts = ContactBlock::with_contacts(&["base"], &[1.0 / kz], n + 1);
+    layout.contacts = ContactBlock::with_contacts(&["base"], &[1.0 / kz], 0);
+    sink.begin(&layout);
+    let mut rows: u64 = 0;
     let mut row = vec![0.0; channels.len()];
 
     let mut forcing = Forcing::new(excitation, s.route, m, dt);
@@ -83,8 +205,7 @@ pub fn simulate_with_vertical(
     let f0 = forcing.force(0, 0.0, xp);
     let mut r = 0.0;
     let mut a = (f0 - r - c * v) / m;
-    let mut record = |trace: &mut Trace,
-                      t: f64,
+    let mut record = |t: f64,
                       normal: f64,
                       gap: f64,
                       f: f64,
@@ -105,18 +226,20 @@ pub fn simulate_with_vertical(
         }
         let n = row.len();
         row.copy_from_slice(&vals[..n]);
-        trace.push(t, &row);
         let base = ContactState {
             normal,
             tangential: r,
             slip: xp,
             gap,
         };
-        trace.contacts.push(t, &[base]);
+        sink.row(t, &row, &[base]);
+        if let Some(e) = eq9.as_deref_mut() {
+            e.observe(x, change);
+        }
+        rows += 1;
     };
-    record(&mut trace, 0.0, normal, gap, f0, r, x, xp, v, a, 0.0);
+    record(0.0, normal, gap, f0, r, x, xp, v, a, 0.0);
 
-    let mut max_change: f64 = 0.0;
     let mut status = RunStatus::Completed;
     for i in 1..=n {
         let t = i as f64 * dt; // step 2
@@ -176,20 +299,9 @@ pub fn simulate_with_vertical(
         if let Some(ns) = &normal_stepper {
             (normal, gap) = (ns.normal(), ns.gap());
         }
-        record(&mut trace, t, normal, gap, f, r, x_rel, xp, v, a, change);
+        record(t, normal, gap, f, r, x_rel, xp, v, a, change);
     }
 
-    // Eq 9 is a ratio: report its largest value over the steps where |x| is at least 1 %
-    // of the run's peak (near x = 0 it is meaningless: the first step's prediction is 0).
-    let xs = trace.column("rel_disp").unwrap_or(&[]);
-    let peak = xs.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-    if let Some(changes) = trace.column("pc_change") {
-        for (x, c) in xs.iter().zip(changes) {
-            if x.abs() >= 0.01 * peak {
-                max_change = max_change.max(c.abs());
-            }
-        }
-    }
     let route = match (moves_ground, s.route) {
         (false, _) => "mass force M·a(t)",
         (true, GroundRoute::Eq12SlipOnce) => {
@@ -220,12 +332,9 @@ pub fn simulate_with_vertical(
         variant: variant.to_string(),
         dt,
         settings,
-        stats: SolverStats::steps(trace.len() as u64 - 1),
-        findings: vec![format!(
-            "largest Eq 9 change |x_correct − x_predict|/|x_correct| = {:.3e} (steps with |x| ≥ 1 % of peak)",
-            max_change
-        )],
-        trace,
+        stats: SolverStats::steps(rows - 1),
+        findings: Vec::new(),
+        trace: layout,
         status,
         wall_seconds: 0.0,
     }

@@ -1,10 +1,14 @@
 //! The memory and disk a case's runs will need, estimated before any work from the plan
 //! (rows = duration / Δt of each run), and refused with a clear error when over a limit.
 //!
-//! Every run records one row per step and keeps its trace in memory for the analysis; the
-//! reference is sampled at every run's output times, once for the files and once per run
-//! for its history error. A 10⁸-step run would need tens of gigabytes: it is refused here,
-//! naming the case file and the field, instead of exhausting the machine part-way through.
+//! A whole run keeps one row per step in memory for the analysis; a run streamed by an
+//! engine that streams natively (`crate::suite::streams`, the predictor-corrector) keeps
+//! only the rows at the case's output step, its analysis reading every step as it comes
+//! (`crate::analysis::streamed`). Each row is counted with the values its engine declares
+//! (`Engine::recorded_values`; every quantity of the catalogue when it declares none); the
+//! reference is sampled at every run's kept times, once for the files and once per run
+//! for its history error. A plan over a limit is refused here, naming the case file and
+//! the field, instead of exhausting the machine part-way through.
 //! The limits are overridden by the environment variables [`MEMORY_LIMIT_VAR`] and
 //! [`DISK_LIMIT_VAR`] (bytes).
 
@@ -12,7 +16,7 @@ use rockslide_core::case::Case;
 use rockslide_core::error::InputError;
 use rockslide_core::trace::q;
 
-use crate::suite::Plan;
+use crate::suite::{Plan, PlannedRun};
 
 /// Default limit of the estimated memory of one case's traces: 8 GiB (a third of the
 /// machines this runs on). The estimate is about three times the measured peak (a
@@ -28,29 +32,36 @@ pub const DISK_LIMIT_VAR: &str = "ROCKSLIDE_MAX_DISK_BYTES";
 /// Copies of each run row held in memory: the run's trace, the reference sampled at its
 /// times for the history error, and its share of the reference output trace.
 const COPIES_IN_MEMORY: u64 = 3;
-/// Bytes per value on disk, at most: a shortest round-trip decimal and its separator in
-/// the CSV file (≤ 25) and in the MCAP file (a CDR `float64`, 8, and its share of the
-/// message's record framing and index entry, ≤ 7 for the shortest rows, before
-/// compression); twice for the run and its sampled reference.
-const DISK_BYTES_PER_VALUE: u64 = 2 * (25 + 15);
+/// Bytes on disk per value a run records (time, channels, contact fields) and writes,
+/// with its share of the reference: measured 39.4 on the PEPO predictor-corrector run
+/// every step for 100 s (10⁵ rows of 12 values: its CSV 17.1 bytes a value, its contacts
+/// CSV 16.5, the reference CSV 16.4 a value of its 7, the MCAP file 7.0 a value of all
+/// three, zstd-compressed), 38.9 the same run for 1,000 s kept every 10 ms; rounded up.
+pub const DISK_BYTES_PER_VALUE: u64 = 40;
 
 /// Estimated needs of a planned case.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Footprint {
     /// Rows over all runs (steps + 1 each).
     pub rows: u64,
+    /// Rows held in memory over all runs: every row of a whole run, the kept rows (one per
+    /// `[run] output_dt`) of a run streamed by an engine that streams natively.
+    pub held_rows: u64,
     /// Rows the trace files keep over all runs: every step, or one per `[run] output_dt`
     /// (plus the first and the last) when the case sets it.
     pub written_rows: u64,
-    /// Memory of the traces and their reference samples, bytes (an upper estimate: every
-    /// run counted with every quantity of the catalogue).
+    /// Values (time, channels, contact fields) summed over the rows held.
+    pub held_values: u64,
+    /// Memory of the traces and their reference samples, bytes (an upper estimate: each
+    /// run counted with the values its engine declares, else every quantity of the
+    /// catalogue).
     pub memory: u64,
-    /// Disk of the CSV and MCAP traces, bytes (upper estimate, before compression).
+    /// Disk of the CSV and MCAP traces, bytes (upper estimate).
     pub disk: u64,
 }
 
 /// Rows a run of `duration` at `dt` records (one per step, plus the initial state).
-fn rows_of(duration: f64, dt: f64) -> u64 {
+pub(crate) fn rows_of(duration: f64, dt: f64) -> u64 {
     let steps = (duration / dt).ceil();
     if steps.is_finite() && steps >= 0.0 {
         (steps as u64).saturating_add(1)
@@ -59,31 +70,46 @@ fn rows_of(duration: f64, dt: f64) -> u64 {
     }
 }
 
+/// Values a row of planned run `p` records: the engine's declaration, else time and
+/// every quantity of the catalogue.
+fn values_per_row(p: &PlannedRun) -> u64 {
+    p.values.map_or(1 + q::ALL.len() as u64, |v| v as u64)
+}
+
+/// Rows a run of `case` at `dt` keeps in its files: the first, one per output step, the last.
+fn kept_rows(case: &Case, dt: f64) -> u64 {
+    let kept = case.run.output_dt.map_or(dt, |o| o.max(dt));
+    rows_of(case.run.duration, kept).saturating_add(u64::from(kept > dt))
+}
+
 /// The estimate for `plan` on `case`.
 pub fn estimate(case: &Case, plan: &Plan) -> Footprint {
-    let values_per_row = 1 + q::ALL.len() as u64;
-    let rows = plan
-        .runs
-        .iter()
-        .map(|p| rows_of(case.run.duration, p.dt))
-        .fold(0u64, u64::saturating_add);
-    let written_rows = plan
-        .runs
-        .iter()
-        .map(|p| {
-            let kept = case.run.output_dt.map_or(p.dt, |o| o.max(p.dt));
-            // the first row, one per output step, and the last row
-            rows_of(case.run.duration, kept).saturating_add(u64::from(kept > p.dt))
-        })
-        .fold(0u64, u64::saturating_add);
-    let values = rows.saturating_mul(values_per_row);
+    let (mut rows, mut held_rows, mut written_rows) = (0u64, 0u64, 0u64);
+    let (mut held_values, mut written_values) = (0u64, 0u64);
+    for p in &plan.runs {
+        let all = rows_of(case.run.duration, p.dt);
+        let written = kept_rows(case, p.dt);
+        let held = if p.native_streaming && crate::suite::streams(case, p) {
+            written
+        } else {
+            all
+        };
+        let values = values_per_row(p);
+        rows = rows.saturating_add(all);
+        held_rows = held_rows.saturating_add(held);
+        written_rows = written_rows.saturating_add(written);
+        held_values = held_values.saturating_add(held.saturating_mul(values));
+        written_values = written_values.saturating_add(written.saturating_mul(values));
+    }
     Footprint {
         rows,
+        held_rows,
         written_rows,
-        memory: values.saturating_mul(8).saturating_mul(COPIES_IN_MEMORY),
-        disk: written_rows
-            .saturating_mul(values_per_row)
-            .saturating_mul(DISK_BYTES_PER_VALUE),
+        held_values,
+        memory: held_values
+            .saturating_mul(8)
+            .saturating_mul(COPIES_IN_MEMORY),
+        disk: written_values.saturating_mul(DISK_BYTES_PER_VALUE),
     }
 }
 
@@ -101,6 +127,21 @@ fn limit(var: &str, default: u64) -> Result<u64, String> {
 /// Gigabytes, for messages.
 fn gb(bytes: u64) -> String {
     format!("{:.1} GB", bytes as f64 / 1e9)
+}
+
+/// What the memory estimate counted, in words.
+fn held_rows_text(need: &Footprint) -> String {
+    if need.held_rows == need.rows {
+        format!(
+            "record {} rows in all (duration / dt each; {} values)",
+            need.rows, need.held_values
+        )
+    } else {
+        format!(
+            "record {} rows in all and hold {} (streamed runs keep one per run.output_dt; {} values)",
+            need.rows, need.held_rows, need.held_values
+        )
+    }
 }
 
 /// Refuse a plan whose estimated memory or disk exceeds its limit: one error on the
@@ -137,7 +178,7 @@ pub fn check(case: &Case, plan: &Plan) -> Result<(), InputError> {
         MEMORY_LIMIT_VAR,
         DEFAULT_MEMORY_LIMIT,
         need.memory,
-        format!("record {} rows in all (duration / dt each)", need.rows),
+        held_rows_text(&need),
         "",
     )?;
     let written = if case.run.output_dt.is_some() {

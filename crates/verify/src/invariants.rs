@@ -253,6 +253,12 @@ pub fn check_run(case: &Case, run: &Run) -> Vec<InvariantCheck> {
     if let Some(b) = energy_balance(&run.trace) {
         put("energy_balance", Some((b.0, Some(b.1))));
     }
+    checks_of(case, run, found)
+}
+
+/// The checks of the measures `found` on `run`: each with the engine's tolerance and the
+/// case's declared violation.
+fn checks_of(case: &Case, run: &Run, found: Vec<(&'static str, Measure)>) -> Vec<InvariantCheck> {
     found
         .into_iter()
         .map(|(invariant, (worst, at))| InvariantCheck {
@@ -408,4 +414,245 @@ fn energy_balance(trace: &Trace) -> Option<(f64, f64)> {
         return None;
     }
     Some(worst(error.iter().map(|e| e.abs() / scale), &trace.time))
+}
+
+/// The invariants of a run measured step by step as it streams ([`check_run`] on rows it
+/// never holds): the same measures, the same arithmetic in the same order, so a streamed
+/// run of a one-contact scene gives [`check_run`]'s numbers bit for bit (with several
+/// contacts, stick/slip and dissipation sum per contact and then over contacts: the same
+/// terms, another order). `energy_scale` is the run's peak |energy_input|, read by a first
+/// pass.
+pub struct StreamedInvariants {
+    mu: f64,
+    weight: f64,
+    frictional: bool,
+    single_contact: bool,
+    /// Columns of the summed tangential force, slip, recorded normal force, energy error.
+    tangential: Option<usize>,
+    slip: Option<usize>,
+    normal: Option<usize>,
+    constant_normal: Option<f64>,
+    energy_error: Option<usize>,
+    energy_scale: f64,
+    contacts: usize,
+    rows: u64,
+    block_rows: u64,
+    block_friction: (f64, f64),
+    sum_friction: (f64, f64),
+    block_compression: (f64, f64),
+    sum_compression: (f64, f64),
+    penetration: (f64, f64),
+    energy: (f64, f64),
+    /// Per contact: (creep, path, negative work, total work) and the previous state.
+    block_sums: Vec<[f64; 4]>,
+    previous: Vec<ContactState>,
+    /// On the sums: (creep, path, negative work, total work) and the previous (T, N, slip).
+    sums: [f64; 4],
+    previous_sum: Option<(f64, f64, f64)>,
+    compliance: Vec<f64>,
+}
+
+/// The running form of [`worst`]: keep the first strictly greater value (NaN as +∞).
+fn keep_worst(w: &mut (f64, f64), v: f64, t: f64) {
+    let v = if v.is_nan() { f64::INFINITY } else { v };
+    if v > w.0 {
+        *w = (v, t);
+    }
+}
+
+impl StreamedInvariants {
+    /// Ready for the rows of a run of `case` with this layout (channels and contacts).
+    pub fn new(case: &Case, layout: &Trace, energy_scale: f64) -> Self {
+        let (mu, weight) = friction_and_weight(case);
+        let col = |k: &str| layout.channels.iter().position(|c| c.key == k);
+        let tangential = col("base_shear").or_else(|| col("resistance"));
+        let recorded = col("normal");
+        let (normal, constant_normal) = match (recorded, &case.scene.model) {
+            (_, Model::Oscillator(o)) if case.scene.vertical().is_none() => {
+                (None, Some(o.normal_force()))
+            }
+            (Some(n), _) => (Some(n), None),
+            (None, Model::Oscillator(o)) => (None, Some(o.normal_force())),
+            (None, _) => (None, None),
+        };
+        let energy_error = col("energy_input").and(col("energy_error"));
+        let contacts = layout.contacts.names.len();
+        let none = (f64::NEG_INFINITY, 0.0);
+        Self {
+            mu,
+            weight,
+            frictional: mu.is_finite() && mu > 0.0,
+            single_contact: single_contact(case),
+            tangential,
+            slip: col("slide"),
+            normal,
+            constant_normal,
+            energy_error,
+            energy_scale,
+            contacts,
+            rows: 0,
+            block_rows: 0,
+            block_friction: none,
+            sum_friction: none,
+            block_compression: none,
+            sum_compression: none,
+            penetration: none,
+            energy: none,
+            block_sums: vec![[0.0; 4]; contacts],
+            previous: vec![ContactState::default(); contacts],
+            sums: [0.0; 4],
+            previous_sum: None,
+            compliance: layout.contacts.compliance.clone(),
+        }
+    }
+
+    /// Whether the summed series exists (tangential force, slip and a normal force).
+    fn has_sums(&self) -> bool {
+        self.tangential.is_some()
+            && self.slip.is_some()
+            && (self.normal.is_some() || self.constant_normal.is_some())
+    }
+
+    /// One row of the run.
+    pub fn row(&mut self, t: f64, values: &[f64], states: &[ContactState]) {
+        let (mu, weight) = (self.mu, self.weight);
+        if states.len() == self.contacts && self.contacts > 0 {
+            self.block_row(t, states);
+        }
+        if self.has_sums() {
+            let tangential = values[self.tangential.unwrap_or(0)];
+            let slip = values[self.slip.unwrap_or(0)];
+            let normal = match self.normal {
+                Some(n) => values[n],
+                None => self.constant_normal.unwrap_or(0.0),
+            };
+            let excess = (tangential.abs() - mu * normal) / (mu * weight);
+            keep_worst(&mut self.sum_friction, excess, t);
+            if self.normal.is_some() {
+                keep_worst(&mut self.sum_compression, -normal / weight, t);
+            }
+            if let Some((t0, n0, s0)) = self.previous_sum {
+                let stuck = |tt: f64, n: f64| tt.abs() < (1.0 - STUCK_MARGIN) * mu * n;
+                let ds = (slip - s0).abs();
+                self.sums[1] += ds;
+                if stuck(t0, n0) && stuck(tangential, normal) {
+                    self.sums[0] += ds;
+                }
+                let work = 0.5 * (tangential + t0) * (slip - s0);
+                self.sums[3] += work.abs();
+                if work < 0.0 {
+                    self.sums[2] -= work;
+                }
+            }
+            self.previous_sum = Some((tangential, normal, slip));
+        }
+        if let Some(e) = self.energy_error {
+            keep_worst(&mut self.energy, values[e].abs() / self.energy_scale, t);
+        }
+        self.rows += 1;
+    }
+
+    fn block_row(&mut self, t: f64, states: &[ContactState]) {
+        let (mu, weight) = (self.mu, self.weight);
+        let (mut excess, mut compression, mut depth) =
+            (f64::NEG_INFINITY, f64::NEG_INFINITY, f64::NEG_INFINITY);
+        for (c, s) in states.iter().enumerate() {
+            let e = (s.tangential.abs() - mu * s.normal) / (mu * weight);
+            excess = if e.is_nan() {
+                f64::INFINITY
+            } else {
+                excess.max(e)
+            };
+            compression = compression.max(-s.normal / weight);
+            let d = -s.gap - self.compliance[c] * s.normal.max(0.0);
+            depth = if d.is_nan() {
+                f64::INFINITY
+            } else {
+                depth.max(d)
+            };
+            if self.block_rows > 0 {
+                let s0 = self.previous[c];
+                if closed_over(&s0, s) {
+                    let sums = &mut self.block_sums[c];
+                    let ds = (s.slip - s0.slip).abs();
+                    sums[1] += ds;
+                    if stuck_state(&s0, mu) && stuck_state(s, mu) {
+                        sums[0] += ds;
+                    }
+                    let work = s.tangential * (s.slip - s0.slip);
+                    sums[3] += work.abs();
+                    if work < 0.0 {
+                        sums[2] -= work;
+                    }
+                }
+            }
+            self.previous[c] = *s;
+        }
+        keep_worst(&mut self.block_friction, excess, t);
+        keep_worst(&mut self.block_compression, compression, t);
+        keep_worst(&mut self.penetration, depth, t);
+        self.block_rows += 1;
+    }
+
+    /// The checks of the run, as [`check_run`] gives them for a whole trace (none for a
+    /// run that did not complete or recorded no row).
+    pub fn checks(&self, case: &Case, run: &Run) -> Vec<InvariantCheck> {
+        if !run.status.completed() || self.rows == 0 {
+            return Vec::new();
+        }
+        let (mu, weight) = (self.mu, self.weight);
+        let per_contact = self.block_rows > 0;
+        let sums = self.has_sums();
+        let mut found: Vec<(&'static str, Measure)> = Vec::new();
+        let at = |m: (f64, f64)| Some((m.0, Some(m.1)));
+        if self.frictional {
+            let from_contacts = if per_contact {
+                at(self.block_friction)
+            } else {
+                None
+            };
+            let from_sums = if sums { at(self.sum_friction) } else { None };
+            if let Some(m) = worse(from_contacts, from_sums) {
+                found.push(("friction_bound", m));
+            }
+        }
+        let from_contacts = if per_contact {
+            at(self.block_compression)
+        } else {
+            None
+        };
+        let from_sums = if sums && self.normal.is_some() {
+            at(self.sum_compression)
+        } else {
+            None
+        };
+        if let Some(m) = worse(from_contacts, from_sums) {
+            found.push(("compression", m));
+        }
+        if self.frictional {
+            let total = |k: usize| self.block_sums.iter().map(|s| s[k]).fold(0.0, |a, b| a + b);
+            if per_contact {
+                let stick = total(0) / total(1).max(SLIP_FLOOR);
+                let dissipation = total(2) / total(3).max(mu * weight * SLIP_FLOOR);
+                found.push(("stick_slip", (stick, None)));
+                found.push(("dissipation", (dissipation, None)));
+            } else if sums && self.single_contact {
+                let s = &self.sums;
+                found.push(("stick_slip", (s[0] / s[1].max(SLIP_FLOOR), None)));
+                let d = s[2] / s[3].max(mu * weight * SLIP_FLOOR);
+                found.push(("dissipation", (d, None)));
+            }
+        }
+        if per_contact {
+            found.push((
+                "penetration",
+                (self.penetration.0, Some(self.penetration.1)),
+            ));
+        }
+        let no_energy_scale = self.energy_scale <= 0.0; // NaN: measured, as check_run does
+        if self.energy_error.is_some() && !no_energy_scale {
+            found.push(("energy_balance", (self.energy.0, Some(self.energy.1))));
+        }
+        checks_of(case, run, found)
+    }
 }

@@ -8,7 +8,7 @@ use std::path::Path;
 
 use rockslide_core::case::{Case, Scene};
 use rockslide_core::error::{InputError, InputErrors};
-use rockslide_engine_api::{Engine, NotApplicable, Run};
+use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink};
 
 /// Ids of every engine, as written in case files (`[engines.<id>]`), in report column order.
 pub const ENGINE_IDS: &[&str] = &["predictor-corrector", "fe", "rapier"];
@@ -62,6 +62,24 @@ impl<E: Engine> Engine for PlanGate<E> {
             return Err(case.field_error("excitation", plan_motion_refusal(self.0.id()).0));
         }
         self.0.run(case, variant, dt)
+    }
+    fn run_streaming(
+        &self,
+        case: &Case,
+        variant: &str,
+        dt: f64,
+        sink: &mut dyn StepSink,
+    ) -> Result<Run, InputError> {
+        if case.scene.spatial.is_some() && !self.0.models_plan_motion() {
+            return Err(case.field_error("excitation", plan_motion_refusal(self.0.id()).0));
+        }
+        self.0.run_streaming(case, variant, dt, sink)
+    }
+    fn streams_natively(&self) -> bool {
+        self.0.streams_natively()
+    }
+    fn recorded_values(&self, case: &Case, variant: &str) -> Option<usize> {
+        self.0.recorded_values(case, variant)
     }
 }
 

@@ -6,6 +6,7 @@
 
 use rayon::prelude::*;
 
+use crate::analysis::streamed::{Peaks, StreamedSummary, Summaries};
 use crate::analysis::{
     Check, Responses, evaluate_tolerances, history_difference, quantity_def, responses,
 };
@@ -26,6 +27,12 @@ pub struct PlannedRun {
     pub variant: String,
     /// Time step, s.
     pub dt: f64,
+    /// Values one row records (time, channels, contact fields), when the engine declares
+    /// it ([`Engine::recorded_values`]); `None`: priced as every quantity of the catalogue.
+    pub values: Option<usize>,
+    /// Whether the engine streams natively ([`Engine::streams_natively`]): a streamed run
+    /// then holds only its kept rows.
+    pub native_streaming: bool,
 }
 
 /// The runs a case asks for, and the engines that do not apply (with why).
@@ -76,6 +83,8 @@ pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputError
                 engine: e.id(),
                 variant: v.clone(),
                 dt: case.dt_for(e.id()),
+                values: e.recorded_values(case, v),
+                native_streaming: e.streams_natively(),
             });
         }
     }
@@ -213,6 +222,81 @@ pub fn execute(
     Ok(timed.into_run(e.id(), &p.variant, p.dt))
 }
 
+/// Steps above which a run is streamed ([`crate::analysis::streamed`]): its rows go to
+/// the analysis as they are computed and only those at the case's output step are kept,
+/// so its memory follows its output rows, not its steps. Every shipped case runs below
+/// it (the longest: 2·10⁵ steps), so their figures keep every step; a streamed run's
+/// responses, invariants and history errors are those of a whole run bit for bit
+/// (tests/all/streaming.rs), its figures show the kept rows.
+pub const STREAMING_STEPS: u64 = 500_000;
+
+/// Whether planned run `p` of `case` is streamed: more than [`STREAMING_STEPS`] steps.
+pub fn streams(case: &Case, p: &PlannedRun) -> bool {
+    streams_above(case, p, STREAMING_STEPS)
+}
+
+/// Whether planned run `p` of `case` takes more than `steps` steps.
+fn streams_above(case: &Case, p: &PlannedRun, steps: u64) -> bool {
+    crate::footprint::rows_of(case.run.duration, p.dt) > steps.saturating_add(1)
+}
+
+/// Expected rows kept at the case's output step (every row without one), for sizing.
+fn kept_rows(case: &Case, dt: f64) -> usize {
+    let kept = case.run.output_dt.map_or(dt, |o| o.max(dt));
+    crate::footprint::rows_of(case.run.duration, kept).saturating_add(1) as usize
+}
+
+/// Run one planned run streamed, guarded: a first pass reads the run-wide scales, the
+/// second the summaries at every step and the rows at the output step
+/// ([`crate::analysis::streamed`]); the reference's history error is evaluated at every
+/// step when `solution` is given. A panic is a diverged run with its message (no summary);
+/// two passes that disagree (a non-deterministic engine) are refused as an error finding.
+pub fn execute_streamed(
+    case: &Case,
+    engines: &[Box<dyn Engine>],
+    p: &PlannedRun,
+    solution: Option<&dyn ExactSolution>,
+) -> Result<(Run, Option<StreamedSummary>), InputError> {
+    let e = engines
+        .iter()
+        .find(|e| e.id() == p.engine)
+        .expect("planned engines exist");
+    let start = std::time::Instant::now();
+    let outcome = crate::run::guard(|| -> Result<(Run, StreamedSummary), InputError> {
+        let mut peaks = Peaks::default();
+        e.run_streaming(case, &p.variant, p.dt, &mut peaks)?;
+        let capacity = kept_rows(case, p.dt);
+        let mut sink = Summaries::new(case, &peaks, solution, case.run.output_dt, capacity);
+        let mut run = e.run_streaming(case, &p.variant, p.dt, &mut sink)?;
+        let summary = sink.finish(&mut run);
+        let same = summary.rows == peaks.rows
+            && run.trace.end_time().to_bits() == peaks.last_time.to_bits();
+        if !same {
+            run.findings.push(format!(
+                "the two passes of this streamed run differ ({} and {} rows): the engine is not deterministic",
+                peaks.rows, summary.rows
+            ));
+        }
+        Ok((run, summary))
+    });
+    let seconds = start.elapsed().as_secs_f64();
+    match outcome {
+        Ok(Ok((mut run, summary))) => {
+            run.wall_seconds = seconds;
+            Ok((run, Some(summary)))
+        }
+        Ok(Err(e)) => Err(e),
+        Err(message) => {
+            let timed = crate::run::Timed {
+                run: Err(message),
+                seconds: vec![seconds],
+                deterministic: true,
+            };
+            Ok((timed.into_run(e.id(), &p.variant, p.dt), None))
+        }
+    }
+}
+
 /// Solve and sample the reference of a case.
 pub fn solve_reference(case: &Case) -> Result<ReferenceResult, String> {
     let solution = rockslide_reference::for_case(case)?;
@@ -237,25 +321,51 @@ pub fn run_case(case: Case) -> Result<CaseResult, InputErrors> {
 
 /// [`run_case`] with the given engines instead of the registry's.
 pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResult, InputErrors> {
+    run_case_streaming_above(case, engines, STREAMING_STEPS)
+}
+
+/// [`run_case_with`], streaming the runs of more than `streaming_steps` steps (0: every
+/// run; `u64::MAX`: none), for comparing a streamed run with a whole one.
+pub fn run_case_streaming_above(
+    case: Case,
+    engines: &[Box<dyn Engine>],
+    streaming_steps: u64,
+) -> Result<CaseResult, InputErrors> {
+    let streams = |case: &Case, p: &PlannedRun| streams_above(case, p, streaming_steps);
     let plan = plan(&case, engines)?;
     let opensees = crate::opensees::prepare(&case)?;
     let name = case.name.clone();
-    let ((runs, live), reference) = rayon::join(
-        || {
-            rayon::join(
-                || {
-                    timings::time("engines", &name, || {
-                        plan.runs
-                            .par_iter()
-                            .map(|p| execute(&case, engines, p))
-                            .collect::<Vec<_>>()
-                    })
-                },
-                || crate::opensees::live(&case, opensees.as_ref()),
-            )
-        },
-        || timings::time("reference", &name, || solve_reference(&case)),
-    );
+    let run_all = |solution: Option<&dyn ExactSolution>| {
+        timings::time("engines", &name, || {
+            plan.runs
+                .par_iter()
+                .map(|p| match streams(&case, p) {
+                    true => execute_streamed(&case, engines, p, solution),
+                    false => execute(&case, engines, p).map(|r| (r, None)),
+                })
+                .collect::<Vec<_>>()
+        })
+    };
+    let ((runs, live), reference) = if plan.runs.iter().any(|p| streams(&case, p)) {
+        // a streamed run compares with the reference at every step as it runs: solved first
+        let reference = timings::time("reference", &name, || solve_reference(&case));
+        let solution = reference.as_ref().ok().map(|r| r.solution.as_ref());
+        let both = rayon::join(
+            || run_all(solution),
+            || crate::opensees::live(&case, opensees.as_ref()),
+        );
+        (both, reference)
+    } else {
+        rayon::join(
+            || {
+                rayon::join(
+                    || run_all(None),
+                    || crate::opensees::live(&case, opensees.as_ref()),
+                )
+            },
+            || timings::time("reference", &name, || solve_reference(&case)),
+        )
+    };
     timings::time("analysis", &name, || {
         analyse(case, plan.not_applicable, runs, live, reference)
     })
@@ -266,16 +376,18 @@ pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResu
 fn analyse(
     case: Case,
     not_applicable: Vec<(&'static str, String)>,
-    runs: Vec<Result<Run, InputError>>,
+    runs: Vec<Result<(Run, Option<StreamedSummary>), InputError>>,
     live: crate::opensees::Live,
     reference: Result<ReferenceResult, String>,
 ) -> Result<CaseResult, InputErrors> {
     let (mut case, mut not_applicable) = (case, not_applicable);
     let mut reference = reference;
-    let runs: Vec<Run> = runs
+    let (runs, mut streamed): (Vec<Run>, Vec<Option<StreamedSummary>>) = runs
         .into_iter()
-        .collect::<Result<_, _>>()
-        .map_err(InputErrors::from)?;
+        .collect::<Result<Vec<_>, _>>()
+        .map_err(InputErrors::from)?
+        .into_iter()
+        .unzip();
     let mut runs = runs;
     match live {
         crate::opensees::Live::NotAsked => {}
@@ -286,13 +398,25 @@ fn analyse(
         crate::opensees::Live::Failed(run) => runs.push(*run),
     }
     let runs = crate::external::with_external_runs(&case, runs);
+    streamed.resize(runs.len(), None);
     if let Ok(r) = &mut reference {
         r.at_compared_times(&runs);
     }
-    let run_responses: Vec<Responses> = runs.iter().map(|r| responses(&r.trace)).collect();
+    let run_responses: Vec<Responses> = runs
+        .iter()
+        .zip(&streamed)
+        .map(|(r, s)| match s {
+            Some(s) => s.responses.clone(),
+            None => responses(&r.trace),
+        })
+        .collect();
     let history_errors = runs
         .iter()
-        .map(|r| {
+        .zip(&streamed)
+        .map(|(r, s)| {
+            if let Some(s) = s {
+                return s.history.map(|(max, rms)| HistoryError { max, rms });
+            }
             let sampled = reference.as_ref().ok()?.at_times(&r.trace.time);
             history_difference(&r.trace, &sampled, "rel_disp")
                 .map(|(max, rms)| HistoryError { max, rms })
@@ -304,7 +428,11 @@ fn analyse(
         crate::external::adjust_checks(&case, &runs, &run_responses, reference_responses, checks);
     let invariants = runs
         .iter()
-        .flat_map(|r| crate::external::check_invariants(&case, r))
+        .zip(&streamed)
+        .flat_map(|(r, s)| match s {
+            Some(s) => s.invariants.clone(),
+            None => crate::external::check_invariants(&case, r),
+        })
         .collect();
     Ok(CaseResult {
         invariants,

@@ -51,6 +51,34 @@ pub fn check_steps(duration: f64, dt: f64) -> Result<(), String> {
     Ok(())
 }
 
+/// How many times [`max_steps`] a run with an output step coarser than its time step may
+/// take: such a run longer than the analysis's streaming threshold is streamed (its memory
+/// follows the rows it keeps, one per output step), so its rows kept are held to
+/// [`max_steps`] and its steps only to this multiple (10⁹ by default: about a minute of the
+/// predictor-corrector), which still bounds the time a mistyped Δt can cost.
+pub const STREAMED_STEPS_FACTOR: u64 = 100;
+
+/// [`check_steps`] for a run that keeps one row per `output_dt` (when given and coarser
+/// than `dt`): the rows kept within [`max_steps`], the steps within
+/// [`STREAMED_STEPS_FACTOR`] × [`max_steps`]; without an output step, [`check_steps`].
+pub fn check_kept_steps(duration: f64, dt: f64, output_dt: Option<f64>) -> Result<(), String> {
+    let Some(out) = output_dt else {
+        return check_steps(duration, dt);
+    };
+    check_steps(duration, out)
+        .map_err(|why| format!("{why} (rows kept at run.output_dt = {out} s)"))?;
+    let n = estimated_steps(duration, dt);
+    let limit = max_steps().saturating_mul(STREAMED_STEPS_FACTOR);
+    if n > limit as f64 {
+        return Err(format!(
+            "is {dt:e} s, which needs {n:.3e} steps to cover {duration} s; the limit of a \
+             run kept at run.output_dt is {limit} ({STREAMED_STEPS_FACTOR} × {MAX_STEPS_VARIABLE}, \
+             set it to raise the limit)"
+        ));
+    }
+    Ok(())
+}
+
 /// `Err(reason)` when `count` items (samples, runs, rungs) exceed `limit`.
 pub fn check_count(count: f64, limit: u64, what: &str) -> Result<(), String> {
     if count.is_nan() || count > limit as f64 {
@@ -79,6 +107,22 @@ mod tests {
         assert!(e.contains("1.000e12 steps"), "{e}");
         assert!(check_steps(1.0, 1e-320).is_err());
         assert!(check_steps(f64::MAX, 1.0).is_err());
+    }
+
+    #[test]
+    fn a_run_kept_at_an_output_step_may_take_more_steps() {
+        let limit = DEFAULT_MAX_STEPS as f64;
+        // 10⁸ steps kept every 1000: allowed; without the output step: refused
+        assert!(check_kept_steps(1e5, 1e-3, Some(1.0)).is_ok());
+        assert!(check_kept_steps(1e5, 1e-3, None).is_err());
+        // the rows kept are held to the limit, the steps to 100 times it
+        let e = check_kept_steps(limit * 2.0, 1e-3, Some(1e-3 * 1.0001)).unwrap_err();
+        assert!(e.contains("rows kept at run.output_dt"), "{e}");
+        let e = check_kept_steps(1e6 + 1.0, 1e-3, Some(1.0)).unwrap_err();
+        assert!(
+            e.contains("1.000e9 steps") && e.contains("100 × ROCKSLIDE_MAX_STEPS"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -108,7 +108,7 @@ pub fn parse_case(path: &Path, text: &str, engine_ids: &[&str]) -> Result<Case, 
         .and_then(|r| v.vertical(r, &raw.excitation, model.as_ref(), path));
     let spatial = v.spatial(&raw.model, &raw.excitation, model.as_ref(), path);
     let run = v.run(raw.run.duration, raw.run.dt, raw.run.output_dt);
-    let engines = v.engines(&raw.engines, raw.run.duration);
+    let engines = v.engines(&raw.engines, raw.run.duration, raw.run.output_dt);
     let name = v.name(raw.name.as_deref(), path);
     let tolerances = raw
         .tolerance
@@ -709,7 +709,7 @@ impl Validator<'_> {
                 format!("is {dt} s, longer than run.duration ({duration} s)"),
             );
         }
-        self.steps("run.dt", duration, dt);
+        self.steps("run.dt", duration, dt, output_dt);
         if let Some(out) = output_dt {
             self.number("run.output_dt", Some(out), Rule::positive("s"));
             if out < dt || out > duration {
@@ -726,12 +726,15 @@ impl Validator<'_> {
         }
     }
 
-    /// Steps of `dt` covering `duration` within [`limits::max_steps`](super::limits).
-    fn steps(&mut self, field: &str, duration: f64, dt: f64) {
+    /// Steps of `dt` covering `duration` within [`limits::max_steps`](super::limits), or
+    /// with an output step, the rows it keeps within it and the steps within
+    /// [`limits::STREAMED_STEPS_FACTOR`](super::limits) times it (a streamed run).
+    fn steps(&mut self, field: &str, duration: f64, dt: f64, output_dt: Option<f64>) {
         let valid = |x: f64| x > 0.0 && x.is_finite();
+        let output_dt = output_dt.filter(|&o| valid(o) && o > dt);
         if valid(duration)
             && valid(dt)
-            && let Err(why) = super::limits::check_steps(duration, dt)
+            && let Err(why) = super::limits::check_kept_steps(duration, dt, output_dt)
         {
             self.fail(field, why);
         }
@@ -741,6 +744,7 @@ impl Validator<'_> {
         &mut self,
         raw: &BTreeMap<String, RawEngine>,
         duration: f64,
+        output_dt: Option<f64>,
     ) -> BTreeMap<String, EngineRequest> {
         let mut out = BTreeMap::new();
         for (id, e) in raw {
@@ -755,7 +759,7 @@ impl Validator<'_> {
             }
             if let Some(dt) = e.dt {
                 self.number(&format!("{field}.dt"), Some(dt), Rule::positive("s"));
-                self.steps(&format!("{field}.dt"), duration, dt);
+                self.steps(&format!("{field}.dt"), duration, dt, output_dt);
             }
             self.distinct_variants(&field, e.variants.as_deref().unwrap_or_default());
             let mut options = BTreeMap::new();

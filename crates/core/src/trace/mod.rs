@@ -62,18 +62,10 @@ impl Trace {
     /// first row at or after each multiple of `output_dt` (within 1e-9 of a step, so
     /// rounding in the engines' time sums does not skip a row), and the last row.
     pub fn output_rows(&self, output_dt: f64) -> Vec<usize> {
-        let mut rows = Vec::new();
-        let mut next = f64::NEG_INFINITY;
-        let mut k = 0u64;
-        for (i, &t) in self.time.iter().enumerate() {
-            if t >= next - 1e-9 * output_dt {
-                rows.push(i);
-                while next - 1e-9 * output_dt <= t {
-                    k += 1;
-                    next = k as f64 * output_dt;
-                }
-            }
-        }
+        let mut keep = OutputStep::new(output_dt);
+        let mut rows: Vec<usize> = (0..self.time.len())
+            .filter(|&i| keep.keeps(self.time[i]))
+            .collect();
         if let Some(last) = self.time.len().checked_sub(1)
             && rows.last() != Some(&last)
         {
@@ -155,6 +147,42 @@ impl Trace {
     /// Last row's time, s (0 when empty).
     pub fn end_time(&self) -> f64 {
         self.time.last().copied().unwrap_or(0.0)
+    }
+}
+
+/// The row selection of [`Trace::output_rows`], one time at a time, for a run streamed
+/// step by step: [`OutputStep::keeps`] says whether a row at time `t` is kept (the first
+/// row, then the first row at or after each multiple of the step, within 1e-9 of a step);
+/// the last row, which only the end of the run reveals, is the caller's to add.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct OutputStep {
+    step: f64,
+    next: f64,
+    k: u64,
+}
+
+impl OutputStep {
+    /// Selection at output step `step`, s.
+    pub fn new(step: f64) -> Self {
+        Self {
+            step,
+            next: f64::NEG_INFINITY,
+            k: 0,
+        }
+    }
+
+    /// Whether the row at time `t` (times ascending) is kept.
+    pub fn keeps(&mut self, t: f64) -> bool {
+        let slack = 1e-9 * self.step;
+        let due = t >= self.next - slack; // a NaN time is never due
+        if !due {
+            return false;
+        }
+        while self.next - slack <= t {
+            self.k += 1;
+            self.next = self.k as f64 * self.step;
+        }
+        true
     }
 }
 

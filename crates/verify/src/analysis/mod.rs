@@ -7,6 +7,7 @@ mod checks;
 pub mod energy;
 mod metrics;
 pub mod stability;
+pub mod streamed;
 pub mod sweep;
 
 pub use checks::{Check, Verdict, evaluate_tolerances};
