@@ -172,7 +172,10 @@ fn every_2d_engine_refuses_a_3d_scene() {
 fn the_spatial_cases_load_and_select_the_plan_references() {
     for (name, method) in [
         ("spatial/pepo-pulse-azimuth30", "circular yield surface"),
-        ("spatial/block-record-pair", "isotropic friction cone"),
+        (
+            "spatial/two-station/block-record-pair",
+            "isotropic friction cone",
+        ),
     ] {
         let c = case(name);
         assert!(c.scene.spatial.is_some());
@@ -190,7 +193,7 @@ fn the_spatial_cases_load_and_select_the_plan_references() {
         }
     }
     // the pair's peak resultant sliding as measured (docs/bidirectional.md)
-    let c = case("spatial/block-record-pair");
+    let c = case("spatial/two-station/block-record-pair");
     let r = rockslide::reference::for_case(&c).unwrap();
     let peak = r
         .exact_quantities()

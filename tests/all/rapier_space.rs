@@ -67,7 +67,7 @@ fn along_across(r: &Run, key: &str, deg: f64) -> (Vec<f64>, Vec<f64>) {
 }
 
 const PEPO: &str = "cases/spatial/pepo-pulse-azimuth30.toml";
-const PAIR: &str = "cases/spatial/block-record-pair.toml";
+const PAIR: &str = "cases/spatial/two-station/block-record-pair.toml";
 
 /// rockslide shall reproduce the 2D exact solution rotated for a one-directional motion
 /// at any azimuth: rapier's PEPO in plan against the plan-motion reference.

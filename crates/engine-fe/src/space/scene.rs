@@ -2,9 +2,9 @@
 //! the scene (the oscillator on one isotropic contact; the rocking body on its
 //! `supports` × `support_rows` grid), driven by the excitation pair, recorded as a trace
 //! whose x channels keep the 2D keys and whose y channels are added (`*_y`), with the
-//! per-contact block giving |T| and |slip| (the cone's magnitudes) and the gap.
+//! per-contact block giving |T|, the slip accumulated along the friction force (Σ T̂·Δs) and the gap.
 
-use nalgebra::{Matrix3, Vector3};
+use nalgebra::{Matrix3, Vector2, Vector3};
 
 use super::model::{BlockGrid, SpaceBody, SpaceModel};
 use super::run::record;
@@ -166,6 +166,8 @@ pub fn simulate_space(
     let kz = body.double.map_or(body.contact.kz, |d| d.lower.kz);
     trace.contacts = ContactBlock::for_supports(body.supports.len(), 1.0 / kz, steps + 1);
     let mut states = vec![ContactState::default(); body.supports.len()];
+    // each support's last slip vector and its slip accumulated along the friction force
+    let mut slid = vec![(Vector2::zeros(), 0.0_f64); body.supports.len()];
     let drive = SpaceDrive::new(
         excitation,
         spatial.second.as_ref(),
@@ -215,12 +217,15 @@ pub fn simulate_space(
             put(r.node_disp.x);
         }
         trace.push(s.t, &values[..i]);
-        for (c, sup) in states.iter_mut().zip(&m.supports) {
+        for ((c, sup), (last, along)) in states.iter_mut().zip(&m.supports).zip(&mut slid) {
             let st = sup.lower.state();
+            let tangential = sup.lower.tangential();
+            *along += slip_along(tangential, st.slip - *last);
+            *last = st.slip;
             *c = ContactState {
                 normal: sup.lower.normal(),
-                tangential: sup.lower.tangential().norm(),
-                slip: st.slip.norm(),
+                tangential: tangential.norm(),
+                slip: *along,
                 gap: st.delta.z,
             };
         }
@@ -292,4 +297,13 @@ fn settings(
         s.push(("rotational inertia".into(), inertia_note));
     }
     s
+}
+
+/// A slip increment `ds` projected on the friction force `t`'s direction (zero without a
+/// force). Summed, the contact's slip along its force: |T|·Δslip is then the friction work
+/// of the step, ≥ 0 under the radial return (T ∥ Δslip), whichever way the slip turns —
+/// where |slip| of the accumulated vector shrinks when the slip turns back.
+fn slip_along(t: Vector2<f64>, ds: Vector2<f64>) -> f64 {
+    let size = t.norm();
+    if size > 0.0 { t.dot(&ds) / size } else { 0.0 }
 }
