@@ -56,9 +56,24 @@ const JSON_STATE_SCHEMA: &str = "rockslide.State";
 pub fn state_schema_name(label: &str) -> String {
     format!("{STATE_SCHEMA}{}", cdr::camel_case(label))
 }
-/// Interval between 3D messages of a run, ns (1 ms of simulated time): enough for smooth
-/// playback, far fewer messages than steps.
+/// Shortest interval between 3D messages of a run, ns (1 ms of simulated time): enough for
+/// smooth playback, far fewer messages than steps.
 pub const SCENE_PERIOD_NS: u64 = 1_000_000;
+/// Most 3D frames of one run: 1,500 (25 frames per simulated second over a 60-s record).
+/// The 3D view's transforms and force arrows are 90 % of a record case's MCAP bytes before
+/// compression; a minute of record needs no more frames than a video of it.
+pub const MAX_SCENE_FRAMES: u64 = 1_500;
+
+/// Interval between 3D messages of a run lasting `duration_s`, ns: [`SCENE_PERIOD_NS`], or
+/// longer so that the run has at most [`MAX_SCENE_FRAMES`] frames.
+pub fn scene_period_ns(duration_s: f64) -> u64 {
+    let spread = (duration_s.max(0.0) * 1e9 / MAX_SCENE_FRAMES as f64).ceil();
+    if spread.is_finite() {
+        SCENE_PERIOD_NS.max(spread as u64)
+    } else {
+        SCENE_PERIOD_NS
+    }
+}
 
 /// One run to log.
 #[derive(Debug, Clone)]
@@ -293,6 +308,11 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
     let mut row = vec![0usize; log.runs.len()];
     let mut last_ns = vec![0u64; log.runs.len()];
     let mut next_view = vec![0u64; log.runs.len()];
+    let view_period: Vec<u64> = log
+        .runs
+        .iter()
+        .map(|run| scene_period_ns(run.trace.end_time()))
+        .collect();
     let mut buf = Vec::with_capacity(512);
     loop {
         let next = (0..log.runs.len())
@@ -321,7 +341,7 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             out.put_json(tf, ns, &scene3d::body_transform(ns, &p, &run.label))?;
             let f = scene3d::forces(run.trace, i, ns, g, &p, &run.label);
             out.put_json(forces, ns, &f)?;
-            next_view[r] = ns + SCENE_PERIOD_NS;
+            next_view[r] = ns + view_period[r];
         }
         if last_row {
             let (level, text) = match &run.stop {

@@ -28,9 +28,9 @@ pub use external::{
     MAX_EXTERNAL_COLUMNS, UNITS, Unit, parse_header, read_external, read_external_csv,
 };
 pub use mcap_file::{
-    CHUNKS, ChunkCompression, ChunkOptions, LoggedRun, McapChannel, McapContents, McapWriter,
-    SCENE_PERIOD_NS, STATE_SCHEMA, TraceLog, describe, mcap_bytes, mcap_bytes_with, mcap_info,
-    read_mcap, read_mcap_bytes, state_schema_name, write_mcap,
+    CHUNKS, ChunkCompression, ChunkOptions, LoggedRun, MAX_SCENE_FRAMES, McapChannel, McapContents,
+    McapWriter, SCENE_PERIOD_NS, STATE_SCHEMA, TraceLog, describe, mcap_bytes, mcap_bytes_with,
+    mcap_info, read_mcap, read_mcap_bytes, scene_period_ns, state_schema_name, write_mcap,
 };
 pub use quantity::{Quantity, q};
 

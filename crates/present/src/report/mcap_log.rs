@@ -8,7 +8,7 @@ use std::path::Path;
 
 use rockslide_core::error::Error;
 use rockslide_core::trace::scene3d::Geometry;
-use rockslide_core::trace::{LoggedRun, SCENE_PERIOD_NS, Trace, TraceLog, write_mcap};
+use rockslide_core::trace::{LoggedRun, Trace, TraceLog, scene_period_ns, write_mcap};
 use rockslide_engine_api::RunStatus;
 use rockslide_verify::suite::CaseResult;
 
@@ -157,7 +157,10 @@ pub fn case_trace_log_of<'a>(
                     "reference",
                     "drawn as a translucent grey ghost in its own lane".to_string(),
                 ),
-                ("period_ns", SCENE_PERIOD_NS.to_string()),
+                (
+                    "period_ns",
+                    scene_period_ns(c.run.duration).to_string(),
+                ),
             ]),
         ));
     }

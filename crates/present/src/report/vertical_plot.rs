@@ -8,15 +8,15 @@
 use plotters::prelude::*;
 
 use super::figure::{GRID, draw_legend, failed_svg, legend_height, participants};
-use super::plots::Figure;
+use super::plots::{DASH_MARK, Figure, dash_marked};
 use rockslide_core::case::Model;
 use rockslide_core::trace::Trace;
 use rockslide_verify::suite::CaseResult;
 
 /// Figure size in pixels (the time-history figures' width), before the legend.
 const SIZE: (u32, u32) = (1000, 380);
-/// Points drawn per line at most (every k-th sample beyond).
-const MAX_POINTS: usize = 4000;
+/// Points drawn per line at most: a min/max pair per pixel column.
+const MAX_POINTS: usize = 2 * SIZE.0 as usize;
 
 /// The vertical-motion figure of a case, if it has a vertical component.
 pub(crate) fn vertical_figure(r: &CaseResult) -> Option<Figure> {
@@ -75,18 +75,15 @@ fn finding(r: &CaseResult) -> String {
     }
 }
 
-/// Every k-th (time, value·1e-3) point of a channel, at most [`MAX_POINTS`].
+/// A channel's (time, factor·value·1e-3) points reduced to a min/max pair per pixel column
+/// (at most [`MAX_POINTS`]), so that every peak stays drawn.
 fn points(trace: &Trace, key: &str, factor: f64) -> Vec<(f64, f64)> {
     let Some(values) = trace.column(key) else {
         return Vec::new();
     };
-    let k = values.len().div_ceil(MAX_POINTS).max(1);
-    trace
-        .time
-        .iter()
-        .zip(values)
-        .step_by(k)
-        .map(|(t, v)| (*t, factor * v * 1e-3))
+    super::figure::extreme_indices(values.len(), MAX_POINTS, |i| values[i])
+        .into_iter()
+        .map(|i| (trace.time[i], factor * values[i] * 1e-3))
         .collect()
 }
 
@@ -148,11 +145,10 @@ fn draw(lines: &[(String, &Trace, RGBColor)], mu: f64, duration: f64) -> String 
                     c.mix(0.5).stroke_width(1),
                 ))?;
                 for sign in [1.0, -1.0] {
-                    chart.draw_series(DashedLineSeries::new(
+                    // one polyline marked for a dash pattern, not one element per dash
+                    chart.draw_series(LineSeries::new(
                         limit.iter().map(|&(t, v)| (t, sign * v)),
-                        6,
-                        4,
-                        c.stroke_width(1),
+                        c.mix(DASH_MARK).stroke_width(1),
                     ))?;
                 }
                 chart.draw_series(LineSeries::new(r.iter().copied(), c.stroke_width(2)))?;
@@ -166,5 +162,5 @@ fn draw(lines: &[(String, &Trace, RGBColor)], mu: f64, duration: f64) -> String 
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    svg
+    dash_marked(&svg)
 }
