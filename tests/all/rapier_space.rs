@@ -308,3 +308,86 @@ fn block_on_the_kinematic_ground_at_two_azimuths() {
         );
     }
 }
+
+// ── The rocking body on an nx × ny grid of supports (applied force, six degrees of
+// freedom): against rapier's planar applied-force RPEPO in one plane, against fe's 3D
+// model at 30°, rotation equivariance, the circular cone.
+
+const RPEPO: &str = "cases/rpepo-mass-accel.toml";
+
+/// The RPEPO as a 3D scene: `rows` rows of supports at half-depth `d`, each support's
+/// stiffnesses as given, the pulse at `azimuth`°, run to `duration` s.
+fn rpepo_3d(rows: usize, d: f64, stiffness: (&str, &str), azimuth: f64, duration: f64) -> Case {
+    case_with(
+        RPEPO,
+        &[
+            (
+                "[model]\n",
+                &format!("[model]\nhalf_depth = {d}\nsupport_rows = {rows}\n"),
+            ),
+            ("kx = 2.4e9 ", stiffness.0),
+            ("kz = 3.94784e8 ", stiffness.1),
+            (
+                "cycles = 5.0 ",
+                &format!("cycles = 5.0\nazimuth_deg = {azimuth} "),
+            ),
+            ("duration = 2.0 ", &format!("duration = {duration} ")),
+        ],
+    )
+}
+
+/// Largest |a − b| over two equally long columns.
+fn max_gap(a: &[f64], b: &[f64]) -> f64 {
+    assert_eq!(a.len(), b.len());
+    a.iter()
+        .zip(b)
+        .fold(0.0_f64, |m, (x, y)| m.max((x - y).abs()))
+}
+
+fn peak_abs(a: &[f64]) -> f64 {
+    a.iter().fold(0.0_f64, |m, x| m.max(x.abs()))
+}
+
+/// Largest |T|/(μ·N) − 1 over every recorded support state with N > 0, and their number.
+fn grid_cone_excess(r: &Run, mu: f64) -> (f64, usize) {
+    let c = &r.trace.contacts;
+    let mut worst = f64::NEG_INFINITY;
+    let mut rows = 0;
+    for i in 0..c.len() {
+        for k in 0..c.count() {
+            let s = c.at(i, k);
+            if s.normal > 0.0 {
+                worst = worst.max(s.tangential / (mu * s.normal) - 1.0);
+                rows += 1;
+            }
+        }
+    }
+    (worst, rows)
+}
+
+/// In one plane (pulse at 0°, a symmetric two-row grid, each 2D support split into two
+/// at y = ±0.3 m carrying half its stiffnesses) the 3D grid is rapier's planar
+/// applied-force RPEPO: same forces in the plane, same step rule.
+#[test]
+fn rocking_grid_in_plane_is_the_planar_applied_force_rpepo() {
+    let plane = run(&case(RPEPO), "applied-force");
+    let grid = run(
+        &rpepo_3d(2, 0.3, ("kx = 1.2e9 ", "kz = 1.97392e8 "), 0.0, 2.0),
+        "applied-force",
+    );
+    assert_eq!(grid.trace.contacts.count(), 20);
+    assert_eq!(grid.stats.steps, plane.stats.steps);
+    for key in ["cm_x", "rotation", "slide", "uplift", "rel_disp"] {
+        let (a, b) = (
+            grid.trace.column(key).unwrap(),
+            plane.trace.column(key).unwrap(),
+        );
+        let gap = max_gap(a, b);
+        println!("{key}: max |Δ| {gap:.3e} of peak {:.3e}", peak_abs(b));
+    }
+    let out_of_plane = ["cm_y", "slide_y", "rotation_x", "rotation_z"]
+        .iter()
+        .map(|k| peak_abs(grid.trace.column(k).unwrap()))
+        .fold(0.0_f64, f64::max);
+    println!("out of plane: {out_of_plane:.3e}");
+}
