@@ -18,6 +18,7 @@ mod ground;
 mod settings;
 mod simulate;
 mod space;
+mod space_rocking;
 mod vertical;
 mod world;
 
@@ -26,6 +27,7 @@ pub use settings::{
     RapierSettings, StepRule,
 };
 pub use simulate::Drive;
+pub use space_rocking::RockingGrid;
 pub use world::{SUPPORT_DAMPING_SHARE, Support};
 
 use rockslide_core::case::{Case, Excitation, Model, Scene};
@@ -96,7 +98,7 @@ impl Engine for Rapier {
             _ => Drive::AppliedForce,
         };
         if let Some(spatial) = case.scene.spatial() {
-            return space::run(case, spatial, drive, variant, dt, settings);
+            return space::run(case, spatial, drive, variant, dt, settings, None);
         }
         vertical::check_settings(case, &settings)?;
         let vert = case.scene.vertical();
@@ -680,3 +682,24 @@ fn peak_ground_acceleration(ex: &Excitation) -> f64 {
 
 /// Quasi-static settling steps of a rocking body before t = 0 (static preload).
 const SETTLE_STEPS: usize = 400;
+
+/// Run `variant` of a 3D rocking-body scene on `grid` instead of the scene's own
+/// ([`RockingGrid::from_scene`]): e.g. the grid turned about the vertical.
+pub fn run_on_grid(
+    case: &Case,
+    grid: &RockingGrid,
+    variant: &str,
+    dt: f64,
+) -> Result<Run, InputError> {
+    let settings = RapierSettings::from_case(case).map_err(|mut e| e.remove(0))?;
+    let drive = match variant {
+        variant::KINEMATIC_GROUND => Drive::KinematicGround,
+        variant::INERTIAL_FORCE => Drive::InertialForce,
+        _ => Drive::AppliedForce,
+    };
+    let spatial = case
+        .scene
+        .spatial()
+        .ok_or_else(|| case.field_error("model.kind", "is not a 3D scene"))?;
+    space::run(case, spatial, drive, variant, dt, settings, Some(grid))
+}

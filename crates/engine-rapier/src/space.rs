@@ -19,8 +19,9 @@
 //! −m·(v_g(n+1) − v_g(n))/Δt on the body. Traces keep the planar keys for x and add the
 //! catalogue's y channels, the resultant sliding and its azimuth; the contact block gives
 //! |T|, N and the slip accumulated along the friction force (Σ T̂·Δs, so that |T|·Δslip
-//! is the friction work T·Δs the dissipation invariant judges). A rocking body and
-//! vertical motion in a 3D scene are not modelled here ("not applicable", with why).
+//! is the friction work T·Δs the dissipation invariant judges). The rocking body on its
+//! nx × ny grid of supports is [`super::space_rocking`]; vertical motion in a 3D scene is
+//! not modelled here ("not applicable", with why).
 
 use rapier3d_f64::prelude::*;
 
@@ -85,9 +86,6 @@ pub fn check(scene: &Scene) -> Result<(), NotApplicable> {
         ));
     }
     match &scene.model {
-        Model::RockingBody(_) => Err(NotApplicable(
-            "a rocking body in a bidirectional (3D) scene is not yet modelled in rapier (its nx × ny supports as applied forces are not built; docs/rapier-engine.md, \"Plan motion\")".into(),
-        )),
         Model::RigidBlock(b) if b.initial_tilt != 0.0 => Err(NotApplicable(
             "an initially tilted rigid block in a bidirectional (3D) scene is not yet modelled in rapier (3D rocking is not built)".into(),
         )),
@@ -110,13 +108,13 @@ fn same_kind(ex: &Excitation, s: Signal) -> Excitation {
 /// the ground's plan displacement and velocity at the rapier step times, and the
 /// mass-acceleration signals.
 pub(crate) struct PlanDrive<'a> {
-    drive: Drive,
-    first: &'a Excitation,
+    pub(crate) drive: Drive,
+    pub(crate) first: &'a Excitation,
     second: Excitation,
     e1: [f64; 2],
     e2: [f64; 2],
     /// x_g(t_k) in plan, m.
-    disp: Vec<[f64; 2]>,
+    pub(crate) disp: Vec<[f64; 2]>,
     /// v_g(t_k⁺) in plan, m/s.
     vel: Vec<[f64; 2]>,
     /// rapier's step, s.
@@ -194,12 +192,12 @@ impl<'a> PlanDrive<'a> {
 
     /// The force channel at `t` in plan: M·a(t) for a mass acceleration, −M·a_g(t) for
     /// ground motion.
-    fn force(&self, m: f64, t: f64) -> [f64; 2] {
+    pub(crate) fn force(&self, m: f64, t: f64) -> [f64; 2] {
         self.comb(force_at(self.first, m, t), force_at(&self.second, m, t))
     }
 
     /// Before step k → k+1 on the kinematic route: the ground's next plan position.
-    fn move_ground(&self, world: &mut PhysicsWorld, ground: RigidBodyHandle, k: usize) {
+    pub(crate) fn move_ground(&self, world: &mut PhysicsWorld, ground: RigidBodyHandle, k: usize) {
         if self.drive == Drive::KinematicGround {
             let g = &mut world.bodies[ground];
             let up = g.translation().y;
@@ -209,7 +207,7 @@ impl<'a> PlanDrive<'a> {
 
     /// At t = 0 on the inertial route, a ground velocity that jumps gives the body the
     /// relative velocity −v_g(0⁺).
-    fn start(&self, world: &mut PhysicsWorld, body: RigidBodyHandle) {
+    pub(crate) fn start(&self, world: &mut PhysicsWorld, body: RigidBodyHandle) {
         let v0 = self.vel[0];
         if self.drive == Drive::InertialForce && v0 != [0.0, 0.0] {
             world.bodies[body].set_linvel(to_world([-v0[0], -v0[1]], 0.0), false);
@@ -290,7 +288,7 @@ impl PlanRow {
 }
 
 /// After step k → k+1 (`k1` = k + 1): `Diverged` when a body's pose is not finite.
-fn diverged(world: &PhysicsWorld, k1: usize, dt: f64) -> Option<RunStatus> {
+pub(crate) fn diverged(world: &PhysicsWorld, k1: usize, dt: f64) -> Option<RunStatus> {
     let finite = world
         .bodies
         .iter()
@@ -586,9 +584,9 @@ pub fn oscillator_steps(
 }
 
 /// What a run states besides its trace: settings and findings, as (name, value) and text.
-struct Statement {
-    described: Vec<(String, String)>,
-    findings: Vec<String>,
+pub(crate) struct Statement {
+    pub(crate) described: Vec<(String, String)>,
+    pub(crate) findings: Vec<String>,
 }
 
 /// Run `drive` on the 3D scene of `case` at output step `dt`: the block or the
@@ -600,6 +598,7 @@ pub fn run(
     variant: &str,
     dt: f64,
     mut settings: RapierSettings,
+    grid: Option<&super::space_rocking::RockingGrid>,
 ) -> Result<Run, InputError> {
     check(&case.scene).map_err(|e| case.field_error("model.kind", e.0))?;
     let mut said = Statement {
@@ -611,11 +610,21 @@ pub fn run(
             oscillator_case(case, spatial, osc, drive, dt, &settings, &mut said)
         }
         Model::RigidBlock(b) => block_case(case, spatial, b, drive, dt, &mut settings, &mut said)?,
-        Model::RockingBody(_) => {
-            return Err(case.field_error(
-                "model.kind",
-                "a rocking body in a bidirectional (3D) scene is not yet modelled in rapier",
-            ));
+        Model::RockingBody(r) => {
+            let depth = spatial.depth.ok_or_else(|| {
+                case.field_error(
+                    "model.half_depth",
+                    "is required for a rocking body in a 3D scene",
+                )
+            })?;
+            let ex = &case.scene.excitation;
+            let n = step_count(case.run.duration, dt);
+            let pd_for =
+                |dt_in: f64, steps: usize| PlanDrive::new(drive, ex, spatial, dt_in, steps);
+            let grid = grid.cloned().unwrap_or_else(|| {
+                super::space_rocking::RockingGrid::from_scene(r, depth, spatial.inertia)
+            });
+            super::space_rocking::case(&grid, spatial, depth, pd_for, (dt, n), &settings, &mut said)
         }
     };
     said.described.push((

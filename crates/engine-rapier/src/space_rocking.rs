@@ -1,0 +1,453 @@
+//! rapier's rocking body on an nx × ny grid of supports in a bidirectional (3D) scene,
+//! the applied-force model of the planar RPEPO carried into 3D.
+//!
+//! One rapier body (mass M, principal inertias about the scene's x, y, z through the CM,
+//! no collider) is free in six degrees of freedom. Each support is a point of the base,
+//! (x_i, y_j, −h) from the CM in the body frame; after every rapier step the engine maps
+//! it to the world and measures its offset δ from its ground point (the ground's plan
+//! position plus (x_i, y_j), at height 0):
+//!
+//! - normal: N = Kz·max(−δz, 0), compression only;
+//! - tangential: T = Kx·(δt − p), δt the plan offset, in series with a massless slider p
+//!   returned radially onto the circle |T| ≤ μ·N (the circular cone); an open support's
+//!   slider follows its anchor (no force), as the planar model's.
+//!
+//! The supports' forces on the body (−T in plan, +N up, at each anchor) are summed into one
+//! force at the CM and one moment about it, held over the next rapier step (symplectic
+//! Euler on the support springs), at the planar model's step rule ω_r·h ≤ 1.5 with ω_r
+//! the stiffest rocking or torsion mode of the inertia on the grid. The ground moves by
+//! either route of the plan engine ([`PlanDrive`]). Axes: scene (x, y, z up) is rapier's
+//! (X, −Z, Y).
+
+use rapier3d_f64::prelude::*;
+
+use super::APPLIED_FORCE_OMEGA_H;
+use super::settings::{MAX_STRIDE, RapierSettings, StepRule};
+use super::space::{Outcome, PlanDrive, Statement, diverged, plan, to_world};
+use super::world::{friction_cap, new_world, rocking_inertia};
+use rockslide_core::case::{Depth, RockingBody, Spatial};
+use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
+
+/// The grid of supports and the body on it, as the time loop reads them.
+#[derive(Debug, Clone)]
+pub struct RockingGrid {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Gravity, m/s².
+    pub gravity: f64,
+    /// Height of the CM above the base centre O, m.
+    pub cm_height: f64,
+    /// Principal inertias about the scene's x, y, z through the CM, kg·m².
+    pub inertia: [f64; 3],
+    /// Support positions (x, y) on the base from O, m (rows along y outer, x inner).
+    pub points: Vec<[f64; 2]>,
+    /// Each support's tangential stiffness, N/m.
+    pub kx: f64,
+    /// Each support's normal stiffness, N/m.
+    pub kz: f64,
+    /// Friction coefficient.
+    pub mu: f64,
+}
+
+impl RockingGrid {
+    /// The scene's body: `supports` × `support_rows` supports, each with the scene's
+    /// contact (as fe's 3D grid), and the scene's inertias (or the planar one, isotropic).
+    pub fn from_scene(r: &RockingBody, depth: Depth, inertia: Option<[f64; 3]>) -> Self {
+        let xs = r.support_positions();
+        let points = depth
+            .row_positions()
+            .into_iter()
+            .flat_map(|y| xs.iter().map(move |&x| [x, y]))
+            .collect();
+        let i = rocking_inertia(r);
+        Self {
+            mass: r.mass,
+            gravity: r.gravity,
+            cm_height: r.cm_height,
+            inertia: inertia.unwrap_or([i, i, i]),
+            points,
+            kx: r.contact.kx,
+            kz: r.contact.kz,
+            mu: r.contact.mu,
+        }
+    }
+
+    /// The same body with its grid turned by `deg` about the vertical (the inertia as
+    /// given: a turn leaves an isotropic one unchanged).
+    pub fn turned(&self, deg: f64) -> Self {
+        let (sn, cs) = deg.to_radians().sin_cos();
+        Self {
+            points: self
+                .points
+                .iter()
+                .map(|p| [cs * p[0] - sn * p[1], sn * p[0] + cs * p[1]])
+                .collect(),
+            ..self.clone()
+        }
+    }
+
+    /// The static compression of every support, W/(n·Kz), m.
+    fn preload(&self) -> f64 {
+        self.mass * self.gravity / (self.points.len() as f64 * self.kz)
+    }
+
+    /// The stiffest mode of the inertia on the supports, rad/s: rocking about x
+    /// √((n·Kx·h² + Kz·Σy²)/I_x), about y √((n·Kx·h² + Kz·Σx²)/I_y), torsion
+    /// √(Kx·Σ(x² + y²)/I_z). In one plane the first two are the planar ω_r.
+    pub fn stiffest_mode(&self) -> f64 {
+        let n = self.points.len() as f64;
+        let sx: f64 = self.points.iter().map(|p| p[0] * p[0]).sum();
+        let sy: f64 = self.points.iter().map(|p| p[1] * p[1]).sum();
+        let shear = n * self.kx * self.cm_height.powi(2);
+        let [ix, iy, iz] = self.inertia;
+        [
+            (shear + self.kz * sy) / ix,
+            (shear + self.kz * sx) / iy,
+            self.kx * (sx + sy) / iz,
+        ]
+        .into_iter()
+        .fold(0.0_f64, f64::max)
+        .sqrt()
+    }
+}
+
+/// rapier steps per output step: the fewest with ω_r·h ≤ [`APPLIED_FORCE_OMEGA_H`],
+/// h = dt/(stride·substeps), as the planar applied-force model.
+pub fn stride(omega_r: f64, dt: f64, settings: &RapierSettings) -> usize {
+    if settings.step_rule == StepRule::None {
+        return 1;
+    }
+    let h_max = APPLIED_FORCE_OMEGA_H / omega_r;
+    ((dt / (h_max * settings.substeps as f64) * (1.0 - 1e-12)).ceil() as usize).clamp(1, MAX_STRIDE)
+}
+
+/// One support's state: the slider and the last step's offset and forces.
+#[derive(Debug, Clone, Copy, Default)]
+struct GridSupport {
+    /// Slider position relative to the ground point (plan), m.
+    p: [f64; 2],
+    /// Anchor minus ground point after the last step (plan x, plan y, up), m.
+    delta: [f64; 3],
+    /// Normal force, N.
+    normal: f64,
+    /// Tangential force T = Kx·(δt − p) on the ground side (plan), N.
+    t: [f64; 2],
+    /// Slip accumulated along the friction force, Σ T̂·Δp, m.
+    slip_along: f64,
+}
+
+impl GridSupport {
+    /// The elastic-plastic update after a step that left the anchor at offset `delta`:
+    /// N, then the trial T and its radial return onto |T| ≤ μ·N.
+    fn update(&mut self, delta: [f64; 3], kx: f64, kz: f64, mu: f64) {
+        self.delta = delta;
+        self.normal = kz * (-delta[2]).max(0.0);
+        let cap = friction_cap(mu, self.normal);
+        let e = [delta[0] - self.p[0], delta[1] - self.p[1]];
+        let trial = [kx * e[0], kx * e[1]];
+        let size = trial[0].hypot(trial[1]);
+        let p_old = self.p;
+        if size > cap {
+            let scale = if size > 0.0 { cap / size } else { 0.0 };
+            self.p = [delta[0] - e[0] * scale, delta[1] - e[1] * scale];
+            self.t = [trial[0] * scale, trial[1] * scale];
+        } else {
+            self.t = trial;
+        }
+        let size_t = self.t[0].hypot(self.t[1]);
+        if size_t > 0.0 {
+            let ds = [self.p[0] - p_old[0], self.p[1] - p_old[1]];
+            self.slip_along += (self.t[0] * ds[0] + self.t[1] * ds[1]) / size_t;
+        }
+    }
+}
+
+/// The channels of a 3D rocking run (fe's 3D rocking set, without its double node).
+fn channels(moves: bool) -> Vec<&'static Quantity> {
+    let mut c = vec![
+        &q::FORCE,
+        &q::FORCE_Y,
+        &q::RESISTANCE,
+        &q::RESISTANCE_Y,
+        &q::REL_DISP,
+        &q::REL_DISP_Y,
+        &q::SLIDE,
+        &q::SLIDE_Y,
+        &q::VEL,
+        &q::VEL_Y,
+        &q::ACC,
+        &q::ACC_Y,
+        &q::SLIDE_RESULTANT,
+        &q::SLIDE_AZIMUTH,
+    ];
+    if moves {
+        c.extend([&q::GROUND_DISP, &q::GROUND_DISP_Y]);
+    }
+    c.extend([
+        &q::CM_X,
+        &q::CM_Y,
+        &q::CM_Z,
+        &q::ROTATION,
+        &q::ROTATION_X,
+        &q::ROTATION_Z,
+        &q::UPLIFT,
+        &q::CONTACTS,
+        &q::NORMAL,
+    ]);
+    c
+}
+
+/// The body frame → world map of a base point (x, y) at −h below the CM, rapier axes.
+fn anchor(body: &RigidBody, point: [f64; 2], h: f64) -> Vector {
+    body.translation() + *body.rotation() * Vector::new(point[0], -h, -point[1])
+}
+
+/// Update every support from the body's pose after a step, the ground at plan `xg`.
+fn update_supports(body: &RigidBody, grid: &RockingGrid, xg: [f64; 2], sups: &mut [GridSupport]) {
+    for (s, pt) in sups.iter_mut().zip(&grid.points) {
+        let a = anchor(body, *pt, grid.cm_height);
+        let ap = plan(a);
+        let delta = [ap[0] - xg[0] - pt[0], ap[1] - xg[1] - pt[1], a.y];
+        s.update(delta, grid.kx, grid.kz, grid.mu);
+    }
+}
+
+/// The supports' resultant on the body (force at the CM and moment about it, rapier
+/// axes) plus the drive's force `extra` (plan), applied over the next step.
+fn apply_forces(body: &mut RigidBody, grid: &RockingGrid, sups: &[GridSupport], extra: [f64; 2]) {
+    let cm = body.translation();
+    let mut force = to_world(extra, 0.0);
+    let mut moment = Vector::ZERO;
+    for (s, pt) in sups.iter().zip(&grid.points) {
+        let f = to_world([-s.t[0], -s.t[1]], s.normal);
+        force += f;
+        moment += (anchor(body, *pt, grid.cm_height) - cm).cross(f);
+    }
+    body.reset_forces(false);
+    body.reset_torques(false);
+    body.add_force(force, false);
+    body.add_torque(moment, false);
+}
+
+/// Run the rocking body on its grid: `n` output steps of `dt`, each `stride` rapier
+/// steps, the drive's tables at the rapier step. The body starts in static equilibrium
+/// (every support compressed by W/(n·Kz)).
+pub fn run(
+    grid: &RockingGrid,
+    settings: &RapierSettings,
+    pd: &PlanDrive,
+    (dt, stride): (f64, usize),
+    n: usize,
+) -> Outcome {
+    let dt_in = dt / stride as f64;
+    let mut world = new_world(settings, dt_in, grid.gravity);
+    let ground = world.insert_body(match pd.drive.ground_kind() {
+        super::world::GroundKind::Fixed => RigidBodyBuilder::fixed(),
+        super::world::GroundKind::Kinematic => RigidBodyBuilder::kinematic_position_based(),
+    });
+    let preload = grid.preload();
+    let [ix, iy, iz] = grid.inertia;
+    let m = grid.mass;
+    let body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, grid.cm_height - preload, 0.0))
+        .additional_mass_properties(MassProperties::new(
+            Vector::ZERO,
+            m,
+            Vector::new(ix, iz, iy),
+        ))
+        .can_sleep(false);
+    let handle = world.insert_body(body);
+    pd.start(&mut world, handle);
+    let moves = pd.first.moves_ground();
+    let chans = channels(moves);
+    let mut trace = Trace::with_channels(&chans, n + 1);
+    let count = grid.points.len();
+    trace.contacts = ContactBlock::for_supports(count, 1.0 / grid.kz, n + 1);
+    let mut states = vec![ContactState::default(); count];
+    let mut row = vec![0.0; chans.len()];
+    let start = GridSupport {
+        normal: m * grid.gravity / count as f64,
+        delta: [0.0, 0.0, -preload],
+        ..GridSupport::default()
+    };
+    let mut sups = vec![start; count];
+    let cm0 = world.bodies[handle].translation();
+    let o0 = plan(anchor(&world.bodies[handle], [0.0, 0.0], grid.cm_height));
+    let mut v_prev = [0.0, 0.0];
+    let mut record = |trace: &mut Trace, world: &PhysicsWorld, k: usize, sups: &[GridSupport]| {
+        let t = (k / stride) as f64 * dt;
+        let (xg, vg) = pd.frame(k);
+        let b = &world.bodies[handle];
+        let cm = b.translation();
+        let o = plan(anchor(b, [0.0, 0.0], grid.cm_height));
+        let v = plan(b.linvel());
+        let v = [v[0] - vg[0], v[1] - vg[1]];
+        let acc = if k == 0 {
+            [0.0, 0.0]
+        } else {
+            [(v[0] - v_prev[0]) / dt, (v[1] - v_prev[1]) / dt]
+        };
+        v_prev = v;
+        let (mut shear, mut slide, mut normal) = ([0.0, 0.0], [0.0, 0.0], 0.0);
+        let (mut uplift, mut contacts) = (0.0_f64, 0.0);
+        for (state, s) in states.iter_mut().zip(sups) {
+            shear = [shear[0] + s.t[0], shear[1] + s.t[1]];
+            slide = [slide[0] + s.p[0], slide[1] + s.p[1]];
+            normal += s.normal;
+            uplift = uplift.max(s.delta[2]);
+            if s.normal > 0.0 {
+                contacts += 1.0;
+            }
+            *state = ContactState {
+                normal: s.normal,
+                tangential: s.t[0].hypot(s.t[1]),
+                slip: s.slip_along,
+                gap: s.delta[2],
+            };
+        }
+        let slide = [slide[0] / count as f64, slide[1] / count as f64];
+        let force = pd.force(m, t);
+        let rot = b.rotation().to_scaled_axis();
+        let cm_plan = plan(cm - cm0);
+        let mut vals = [0.0; 25];
+        let mut i = 0;
+        let mut put = |x: f64| {
+            vals[i] = x;
+            i += 1;
+        };
+        for pair in [
+            force,
+            shear,
+            [o[0] - o0[0] - xg[0], o[1] - o0[1] - xg[1]],
+            slide,
+            v,
+            acc,
+        ] {
+            put(pair[0]);
+            put(pair[1]);
+        }
+        put(slide[0].hypot(slide[1]));
+        put(if slide == [0.0, 0.0] {
+            0.0
+        } else {
+            slide[1].atan2(slide[0]).to_degrees()
+        });
+        if moves {
+            put(pd.disp[k][0]);
+            put(pd.disp[k][1]);
+        }
+        put(cm_plan[0] - xg[0]);
+        put(cm_plan[1] - xg[1]);
+        put(cm.y - cm0.y);
+        // rotation about the scene's −y (the planar sign), x, z
+        put(rot.z);
+        put(rot.x);
+        put(rot.y);
+        put(uplift.max(0.0));
+        put(contacts);
+        put(normal);
+        row.copy_from_slice(&vals[..i]);
+        trace.push(t, &row);
+        trace.contacts.push(t, &states);
+    };
+    record(&mut trace, &world, 0, &sups);
+    let mut status = rockslide_engine_api::RunStatus::Completed;
+    let mut steps = 0;
+    for k in 0..n * stride {
+        let a = pd.specific_force(k);
+        apply_forces(&mut world.bodies[handle], grid, &sups, [m * a[0], m * a[1]]);
+        pd.move_ground(&mut world, ground, k);
+        world.step();
+        steps += 1;
+        if let Some(d) = diverged(&world, k + 1, dt_in) {
+            status = d;
+            break;
+        }
+        let xg = ground_plan(pd, k + 1);
+        update_supports(&world.bodies[handle], grid, xg, &mut sups);
+        if (k + 1) % stride == 0 {
+            record(&mut trace, &world, k + 1, &sups);
+        }
+    }
+    Outcome {
+        trace,
+        status,
+        steps,
+    }
+}
+
+/// The ground's plan position the supports stand on after step k (rapier's own: the
+/// moved kinematic ground, or the fixed one at the origin).
+fn ground_plan(pd: &PlanDrive, k: usize) -> [f64; 2] {
+    pd.frame(k).0
+}
+
+/// The rocking body of a 3D scene at its step rule, with what it states.
+pub(crate) fn case<'a>(
+    grid: &RockingGrid,
+    spatial: &Spatial,
+    depth: Depth,
+    pd_for: impl FnOnce(f64, usize) -> PlanDrive<'a>,
+    (dt, n): (f64, usize),
+    settings: &RapierSettings,
+    said: &mut Statement,
+) -> Outcome {
+    let omega = grid.stiffest_mode();
+    let stride = stride(omega, dt, settings);
+    let dt_in = dt / stride as f64;
+    let pd = pd_for(dt_in, n * stride);
+    let omega_h = omega * dt_in / settings.substeps as f64;
+    said.described
+        .retain(|(k, _)| !k.starts_with("contact softness") && !k.starts_with("friction"));
+    said.described.push((
+        "contact model".into(),
+        format!(
+            "applied force on a grid of {} × {} supports (x × y, half-depth {} m): each support's Kz (compression only) and Kx·(δt − p), the slider p returned radially onto |T| ≤ μ·N (circular cone), computed by the engine from the body's pose after each rapier step and applied to one rapier body free in six degrees of freedom as one force and moment over the next step; no joints, no colliders (the only model in 3D: contact_model is not read)",
+            grid.points.len() / depth.support_rows.max(1),
+            depth.support_rows,
+            depth.half_depth
+        ),
+    ));
+    said.described.push((
+        "rotational inertia [kg·m²] (x, y, z)".into(),
+        format!(
+            "{}, {}, {}{}",
+            grid.inertia[0],
+            grid.inertia[1],
+            grid.inertia[2],
+            if spatial.inertia.is_some() {
+                " (model.rotational_inertia_x, _y, _z)"
+            } else {
+                " (the planar value, isotropic)"
+            }
+        ),
+    ));
+    said.described.push((
+        "rapier step [s] (output step / stride)".into(),
+        format!("{dt_in} (stride {stride})"),
+    ));
+    said.described.push((
+        "step rule".into(),
+        match settings.step_rule {
+            StepRule::Scene => format!(
+                "ω_r·h ≤ {APPLIED_FORCE_OMEGA_H}, ω_r = {omega:.0} rad/s (the stiffest rocking or torsion mode of the inertia on the supports), h = rapier step / {} substeps",
+                settings.substeps
+            ),
+            StepRule::None => "none (step_rule = \"none\"): one rapier step per output step".into(),
+        },
+    ));
+    said.findings.push(if omega_h <= APPLIED_FORCE_OMEGA_H * (1.0 + 1e-9) {
+        format!(
+            "within the engine's validity for the rocking body before the first full lift-off: ω_r·h = {omega_h:.3} (rule ≤ {APPLIED_FORCE_OMEGA_H}); |T| ≤ μ·N by construction; measured (docs/rapier-engine.md, \"Plan motion\"): {MEASURED}"
+        )
+    } else {
+        format!(
+            "outside the engine's validity: ω_r·h = {omega_h:.3} (rule ≤ {APPLIED_FORCE_OMEGA_H}; symplectic Euler is unstable beyond 2)"
+        )
+    });
+    run(grid, settings, &pd, (dt, stride), n)
+}
+
+/// The rocking grid's measured agreement, stated in its runs' findings
+/// (tests/all/rapier_space.rs).
+const MEASURED: &str = "in one plane (pulse at 0°, two rows at half stiffness) it is the planar applied-force RPEPO to 2.6e-9 m on CM x and 2.1e-7 on rotation over 2 s (airborne phase included), to 6.4e-10 on both ground routes; on 10 × 2 supports at 30° against fe's 3D model (no full lift-off in 2 s): peaks of CM x, CM y, sliding, uplift and rotation within 0.15 %, and at 0.3 g before the first full lift-off (0.589 s, fe 0.590 s) within 2.0 % (uplift; resultant sliding −0.55 %); the grid turned with the pulse rotates the answer to 4e-15; |T| ≤ μ·N to 2.2e-16";
