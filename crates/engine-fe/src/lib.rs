@@ -63,16 +63,10 @@ impl Engine for Fe {
     }
 
     fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+        vertical::check(scene)?;
         if let Some(s) = scene.spatial() {
-            if scene.vertical().is_some() {
-                return Err(NotApplicable(
-                    "vertical excitation in a bidirectional (3D) scene is not yet modelled in fe"
-                        .into(),
-                ));
-            }
             return space::variants(scene, s);
         }
-        vertical::check(scene)?;
         let double = match &scene.model {
             SceneModel::Oscillator(o) => o.double.is_some(),
             SceneModel::RockingBody(r) => r.double.is_some(),

@@ -173,7 +173,8 @@ pub fn simulate_space(
         spatial.second.as_ref(),
         spatial.azimuth(),
         body.mass,
-    );
+    )
+    .with_vertical(case.scene.vertical().map(|v| &v.signal));
     let o_offset = if rocking {
         Vector3::new(0.0, 0.0, body.supports[0].z)
     } else {
@@ -235,7 +236,11 @@ pub fn simulate_space(
         engine: "fe",
         variant: variant.to_string(),
         dt,
-        settings: settings(spatial, dt, opts, &body, inertia_note),
+        settings: {
+            let mut s = settings(spatial, dt, opts, &body, inertia_note);
+            s.extend(crate::vertical::describe(&case.scene));
+            s
+        },
         stats: SolverStats {
             steps: counters.steps,
             substeps_per_step: None,

@@ -35,6 +35,8 @@ use rockslide_engine_api::RunStatus;
 pub struct SpaceDrive<'a> {
     excitation: &'a Excitation,
     second: Option<&'a Signal>,
+    /// The vertical ground acceleration a_v(t), if any (positive upward).
+    vertical: Option<&'a Signal>,
     mass: f64,
     first_direction: Vector3<f64>,
     second_direction: Vector3<f64>,
@@ -52,10 +54,20 @@ impl<'a> SpaceDrive<'a> {
         Self {
             excitation,
             second,
+            vertical: None,
             mass,
             first_direction: Vector3::new(c, s, 0.0),
             second_direction: Vector3::new(-s, c, 0.0),
         }
+    }
+    /// The same drive with a vertical ground acceleration a_v(t) (positive upward).
+    pub fn with_vertical(self, vertical: Option<&'a Signal>) -> Self {
+        Self { vertical, ..self }
+    }
+    /// Vertical force on the body at `t` beyond the preload, N: −M·a_v(t), in relative
+    /// coordinates as in 2D (`crate::vertical`).
+    pub fn vertical_force(&self, t: f64) -> f64 {
+        crate::vertical::load(self.vertical, self.mass, t)
     }
     /// The horizontal vector Σ value(signal)·direction, `value` one of the signal's
     /// derivatives.
@@ -402,7 +414,8 @@ fn newton_step(
     let newton = opts.newton;
     let g = drive.ground(t);
     let fd = drive.force(t);
-    let f = Vector6::new(fd.x, fd.y, -model.weight(), 0.0, 0.0, 0.0);
+    let fz = drive.vertical_force(t) - model.weight();
+    let f = Vector6::new(fd.x, fd.y, fz, 0.0, 0.0, 0.0);
     let rotation = model.body.rotation;
     let nodes = model.loop_nodes();
     let j = model.body.inertia;
