@@ -603,18 +603,8 @@ fn block_kinematic_stride(
     );
     let eps = settings.accuracy;
     let dt_max = 2.0 * eps * slid / abs_ag;
-    let n = rockslide_engine_api::step_count(duration, dt).max(1);
-    let max_stride = (MAX_BLOCK_STEPS / n).max(1);
-    let wanted = if dt_max > 0.0 {
-        (dt / dt_max * (1.0 - 1e-12)).ceil()
-    } else {
-        f64::INFINITY
-    };
-    let stride = if wanted <= max_stride as f64 {
-        (wanted as usize).max(1)
-    } else {
-        max_stride
-    };
+    let n = rockslide_engine_api::step_count(duration, dt);
+    let stride = block_stride(dt, dt_max, n);
     let dt_in = dt / stride as f64;
     let estimate = 0.5 * dt_in * abs_ag;
     described.push(("accuracy target (relative)".into(), format!("{eps}")));
@@ -702,4 +692,21 @@ pub fn run_on_grid(
         .spatial()
         .ok_or_else(|| case.field_error("model.kind", "is not a 3D scene"))?;
     space::run(case, spatial, drive, variant, dt, settings, Some(grid))
+}
+
+/// rapier steps per output step `dt` of the kinematic-ground block so that each is at most
+/// `dt_max` (none needed: one), capped so that a run of `steps` output steps takes at most
+/// [`MAX_BLOCK_STEPS`] rapier steps.
+pub(crate) fn block_stride(dt: f64, dt_max: f64, steps: usize) -> usize {
+    let max_stride = (MAX_BLOCK_STEPS / steps.max(1)).max(1);
+    let wanted = if dt_max > 0.0 {
+        (dt / dt_max * (1.0 - 1e-12)).ceil()
+    } else {
+        f64::INFINITY
+    };
+    if wanted <= max_stride as f64 {
+        (wanted as usize).max(1)
+    } else {
+        max_stride
+    }
 }

@@ -25,17 +25,17 @@
 
 use rapier3d_f64::prelude::*;
 
-use super::MAX_BLOCK_STEPS;
 use super::contact_forces::ground_force;
 use super::ground::GroundTable;
 use super::settings::{OscillatorSteps, RapierSettings, StepRule};
 use super::simulate::{Drive, force_at, mean_over_step};
 use super::world::{GroundKind, add_ground, new_world, rapier_friction};
+use super::{MAX_BLOCK_STEPS, block_stride};
 use rockslide_core::case::{
     Case, Excitation, Model, Oscillator, RigidBlock, Scene, Signal, Spatial,
 };
 use rockslide_core::error::InputError;
-use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
+use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, plan_slip_increment, q};
 use rockslide_engine_api::{NotApplicable, Run, RunStatus, SolverStats, step_count};
 
 /// A plan vector (x, y) as a rapier vector at height `up`.
@@ -54,18 +54,6 @@ fn sub(a: [f64; 2], b: [f64; 2]) -> [f64; 2] {
 
 fn norm(a: [f64; 2]) -> f64 {
     a[0].hypot(a[1])
-}
-
-/// The slip increment `ds` projected on the friction force's direction `t` (zero without
-/// a force): summed, the contact's slip along its force, so that |T|·Δslip is the friction
-/// work T·Δs, as the trace's contact block wants it (the dissipation invariant).
-fn slip_along(t: [f64; 2], ds: [f64; 2]) -> f64 {
-    let size = norm(t);
-    if size > 0.0 {
-        (t[0] * ds[0] + t[1] * ds[1]) / size
-    } else {
-        0.0
-    }
 }
 
 /// Azimuth of a plan vector, degrees from +x toward +y (0 for the zero vector).
@@ -314,16 +302,24 @@ impl PlanSlider {
     /// where Kx·|u − p| > R the slider follows along u − p so that |F| = R. Returns the
     /// spring force on the ground side, F = Kx·(u − p), |F| ≤ R.
     pub(crate) fn update(&mut self, u: [f64; 2]) -> [f64; 2] {
-        let e = sub(u, self.p);
-        let f = [self.kx * e[0], self.kx * e[1]];
-        let size = norm(f);
-        if size > self.limit {
-            let scale = self.limit / size;
-            self.p = [u[0] - e[0] * scale, u[1] - e[1] * scale];
-            [f[0] * scale, f[1] * scale]
-        } else {
-            f
-        }
+        radial_return(self.kx, self.limit, &mut self.p, u)
+    }
+}
+
+/// The radial return of a spring `k` in series with a slider `p` on the circle of radius
+/// `limit` (the circular friction cone), after a step that left the spring's end at `u`:
+/// where k·|u − p| > limit the slider follows along u − p so that |F| = limit. Returns the
+/// spring force on the ground side, F = k·(u − p), |F| ≤ limit.
+pub(crate) fn radial_return(k: f64, limit: f64, p: &mut [f64; 2], u: [f64; 2]) -> [f64; 2] {
+    let e = sub(u, *p);
+    let f = [k * e[0], k * e[1]];
+    let size = norm(f);
+    if size > limit {
+        let scale = limit / size;
+        *p = [u[0] - e[0] * scale, u[1] - e[1] * scale];
+        [f[0] * scale, f[1] * scale]
+    } else {
+        f
     }
 }
 
@@ -390,7 +386,7 @@ pub fn run_oscillator(
             }
             .write(&mut row);
             trace.push(t, &row);
-            path += slip_along(spring, sub(p, p_prev));
+            path += plan_slip_increment(spring, sub(p, p_prev));
             p_prev = p;
             let state = ContactState {
                 normal: weight,
@@ -493,7 +489,7 @@ pub fn run_block(
         trace.push(t, &row);
         // T resists the block's motion relative to the ground: minus the ground's force.
         let t_plan = [-gf.x, gf.z];
-        path += slip_along(t_plan, sub(u, u_prev));
+        path += plan_slip_increment(t_plan, sub(u, u_prev));
         u_prev = u;
         let state = ContactState {
             normal: gf.y,
@@ -553,18 +549,7 @@ pub fn block_kinematic_stride(
         .map(|k| (sx[k] - sx[k - 1]).hypot(sy[k] - sy[k - 1]))
         .sum();
     let dt_max = 2.0 * settings.accuracy * slid / abs_ag;
-    let max_stride = (MAX_BLOCK_STEPS / n.max(1)).max(1);
-    let wanted = if dt_max > 0.0 {
-        (dt / dt_max * (1.0 - 1e-12)).ceil()
-    } else {
-        f64::INFINITY
-    };
-    let stride = if wanted <= max_stride as f64 {
-        (wanted as usize).max(1)
-    } else {
-        max_stride
-    };
-    (stride, slid, abs_ag, dt_max)
+    (block_stride(dt, dt_max, n), slid, abs_ag, dt_max)
 }
 
 /// The oscillator's steps in plan: the planar rule, or one rapier step per output step

@@ -23,10 +23,10 @@ use rapier3d_f64::prelude::*;
 
 use super::APPLIED_FORCE_OMEGA_H;
 use super::settings::{MAX_STRIDE, RapierSettings, StepRule};
-use super::space::{Outcome, PlanDrive, Statement, diverged, plan, to_world};
+use super::space::{Outcome, PlanDrive, Statement, diverged, plan, radial_return, to_world};
 use super::world::{friction_cap, new_world, rocking_inertia};
 use rockslide_core::case::{Depth, RockingBody, Spatial};
-use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
+use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, plan_slip_increment, q};
 
 /// The grid of supports and the body on it, as the time loop reads them.
 #[derive(Debug, Clone)]
@@ -143,22 +143,10 @@ impl GridSupport {
         self.delta = delta;
         self.normal = kz * (-delta[2]).max(0.0);
         let cap = friction_cap(mu, self.normal);
-        let e = [delta[0] - self.p[0], delta[1] - self.p[1]];
-        let trial = [kx * e[0], kx * e[1]];
-        let size = trial[0].hypot(trial[1]);
         let p_old = self.p;
-        if size > cap {
-            let scale = if size > 0.0 { cap / size } else { 0.0 };
-            self.p = [delta[0] - e[0] * scale, delta[1] - e[1] * scale];
-            self.t = [trial[0] * scale, trial[1] * scale];
-        } else {
-            self.t = trial;
-        }
-        let size_t = self.t[0].hypot(self.t[1]);
-        if size_t > 0.0 {
-            let ds = [self.p[0] - p_old[0], self.p[1] - p_old[1]];
-            self.slip_along += (self.t[0] * ds[0] + self.t[1] * ds[1]) / size_t;
-        }
+        self.t = radial_return(kx, cap, &mut self.p, [delta[0], delta[1]]);
+        let ds = [self.p[0] - p_old[0], self.p[1] - p_old[1]];
+        self.slip_along += plan_slip_increment(self.t, ds);
     }
 }
 

@@ -38,6 +38,16 @@ pub fn plan_motion_refusal(engine: &str) -> NotApplicable {
 /// applicable unless the engine models it; everything else is the engine's own answer.
 pub struct PlanGate<E>(pub E);
 
+impl<E: Engine> PlanGate<E> {
+    /// The case's scene refused, located, when it is spatial and the engine is planar.
+    fn admit(&self, case: &Case) -> Result<(), InputError> {
+        if case.scene.spatial.is_some() && !self.0.models_plan_motion() {
+            return Err(case.field_error("excitation", plan_motion_refusal(self.0.id()).0));
+        }
+        Ok(())
+    }
+}
+
 impl<E: Engine> Engine for PlanGate<E> {
     fn id(&self) -> &'static str {
         self.0.id()
@@ -58,9 +68,7 @@ impl<E: Engine> Engine for PlanGate<E> {
         self.0.models_plan_motion()
     }
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
-        if case.scene.spatial.is_some() && !self.0.models_plan_motion() {
-            return Err(case.field_error("excitation", plan_motion_refusal(self.0.id()).0));
-        }
+        self.admit(case)?;
         self.0.run(case, variant, dt)
     }
     fn run_streaming(
@@ -70,9 +78,7 @@ impl<E: Engine> Engine for PlanGate<E> {
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
-        if case.scene.spatial.is_some() && !self.0.models_plan_motion() {
-            return Err(case.field_error("excitation", plan_motion_refusal(self.0.id()).0));
-        }
+        self.admit(case)?;
         self.0.run_streaming(case, variant, dt, sink)
     }
     fn streams_natively(&self) -> bool {

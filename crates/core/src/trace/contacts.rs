@@ -73,6 +73,21 @@ impl ContactState {
     }
 }
 
+/// A plan (3D) contact's slip increment as the contact block records it: the slip `ds`
+/// projected on the direction of the friction force `t` (zero without a force). Summed,
+/// the contact's slip along its force, so that |T|·Δslip is the friction work T·Δs the
+/// dissipation invariant judges — |s| of the accumulated slip vector would shrink when the
+/// slip turns back. The recording convention of the output format, not physics: every
+/// engine with plan contacts records its slip through it.
+pub fn plan_slip_increment(t: [f64; 2], ds: [f64; 2]) -> f64 {
+    let size = t[0].hypot(t[1]);
+    if size > 0.0 {
+        (t[0] * ds[0] + t[1] * ds[1]) / size
+    } else {
+        0.0
+    }
+}
+
 /// The contacts of one run over time.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ContactBlock {

@@ -20,7 +20,7 @@ pub use cdr::{
 };
 pub use contacts::{
     CONTACT_FIELDS, CONTACTS_SCHEMA, ContactBlock, ContactState, contacts_schema_name,
-    read_contacts_csv, write_contacts_csv,
+    plan_slip_increment, read_contacts_csv, write_contacts_csv,
 };
 pub use csv_file::{read_csv, write_csv};
 pub use external::{

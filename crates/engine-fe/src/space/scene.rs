@@ -14,7 +14,7 @@ use crate::options::{FeOptions, Integrator};
 use crate::variant;
 use rockslide_core::case::{Case, Excitation, Model as SceneModel, Scene, Spatial};
 use rockslide_core::error::InputError;
-use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
+use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, plan_slip_increment, q};
 use rockslide_engine_api::{NotApplicable, Run, SolverStats, step_count};
 
 /// The variants of a 3D scene, or why fe does not run it.
@@ -221,7 +221,8 @@ pub fn simulate_space(
         for ((c, sup), (last, along)) in states.iter_mut().zip(&m.supports).zip(&mut slid) {
             let st = sup.lower.state();
             let tangential = sup.lower.tangential();
-            *along += slip_along(tangential, st.slip - *last);
+            let ds = st.slip - *last;
+            *along += plan_slip_increment([tangential.x, tangential.y], [ds.x, ds.y]);
             *last = st.slip;
             *c = ContactState {
                 normal: sup.lower.normal(),
@@ -302,13 +303,4 @@ fn settings(
         s.push(("rotational inertia".into(), inertia_note));
     }
     s
-}
-
-/// A slip increment `ds` projected on the friction force `t`'s direction (zero without a
-/// force). Summed, the contact's slip along its force: |T|·Δslip is then the friction work
-/// of the step, ≥ 0 under the radial return (T ∥ Δslip), whichever way the slip turns —
-/// where |slip| of the accumulated vector shrinks when the slip turns back.
-fn slip_along(t: Vector2<f64>, ds: Vector2<f64>) -> f64 {
-    let size = t.norm();
-    if size > 0.0 { t.dot(&ds) / size } else { 0.0 }
 }
