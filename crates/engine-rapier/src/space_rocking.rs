@@ -150,39 +150,9 @@ impl GridSupport {
     }
 }
 
-/// The channels of a 3D rocking run (fe's 3D rocking set, without its double node).
+/// The channels of a 3D rocking run (the catalogue's plan-motion set for a rocking body).
 fn channels(moves: bool) -> Vec<&'static Quantity> {
-    let mut c = vec![
-        &q::FORCE,
-        &q::FORCE_Y,
-        &q::RESISTANCE,
-        &q::RESISTANCE_Y,
-        &q::REL_DISP,
-        &q::REL_DISP_Y,
-        &q::SLIDE,
-        &q::SLIDE_Y,
-        &q::VEL,
-        &q::VEL_Y,
-        &q::ACC,
-        &q::ACC_Y,
-        &q::SLIDE_RESULTANT,
-        &q::SLIDE_AZIMUTH,
-    ];
-    if moves {
-        c.extend([&q::GROUND_DISP, &q::GROUND_DISP_Y]);
-    }
-    c.extend([
-        &q::CM_X,
-        &q::CM_Y,
-        &q::CM_Z,
-        &q::ROTATION,
-        &q::ROTATION_X,
-        &q::ROTATION_Z,
-        &q::UPLIFT,
-        &q::CONTACTS,
-        &q::NORMAL,
-    ]);
-    c
+    q::plan_motion(moves, true)
 }
 
 /// The body frame → world map of a base point (x, y) at −h below the CM, rapier axes.

@@ -373,6 +373,47 @@ pub mod q {
         c
     }
 
+    /// The channels of a 3D (plan-motion) run of an engine with the full 3D set, in this
+    /// order: each x channel under its planar key with its y channel after it, the
+    /// resultant sliding and its azimuth, both ground displacements when the ground moves,
+    /// the body's position and rotation vector, uplift and contacts for a rocking body,
+    /// then the total normal force.
+    pub fn plan_motion(moving_ground: bool, rocking: bool) -> Vec<&'static Quantity> {
+        let mut c = vec![
+            &FORCE,
+            &FORCE_Y,
+            &RESISTANCE,
+            &RESISTANCE_Y,
+            &REL_DISP,
+            &REL_DISP_Y,
+            &SLIDE,
+            &SLIDE_Y,
+            &VEL,
+            &VEL_Y,
+            &ACC,
+            &ACC_Y,
+            &SLIDE_RESULTANT,
+            &SLIDE_AZIMUTH,
+        ];
+        if moving_ground {
+            c.extend([&GROUND_DISP, &GROUND_DISP_Y]);
+        }
+        if rocking {
+            c.extend([
+                &CM_X,
+                &CM_Y,
+                &CM_Z,
+                &ROTATION,
+                &ROTATION_X,
+                &ROTATION_Z,
+                &UPLIFT,
+                &CONTACTS,
+            ]);
+        }
+        c.push(&NORMAL);
+        c
+    }
+
     /// Every quantity, for lookups by key.
     pub static ALL: &[&Quantity] = &[
         &FORCE,

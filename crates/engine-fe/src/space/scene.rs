@@ -93,40 +93,10 @@ fn body(case: &Case, spatial: &Spatial, double: bool) -> Result<(SpaceBody, Stri
     }
 }
 
-/// The channels of a 3D run.
+/// The channels of a 3D run: the catalogue's plan-motion set, and the double support's
+/// node displacement.
 fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Quantity> {
-    let mut c = vec![
-        &q::FORCE,
-        &q::FORCE_Y,
-        &q::RESISTANCE,
-        &q::RESISTANCE_Y,
-        &q::REL_DISP,
-        &q::REL_DISP_Y,
-        &q::SLIDE,
-        &q::SLIDE_Y,
-        &q::VEL,
-        &q::VEL_Y,
-        &q::ACC,
-        &q::ACC_Y,
-        &q::SLIDE_RESULTANT,
-        &q::SLIDE_AZIMUTH,
-    ];
-    if moves_ground {
-        c.extend([&q::GROUND_DISP, &q::GROUND_DISP_Y]);
-    }
-    if rocking {
-        c.extend([
-            &q::CM_X,
-            &q::CM_Y,
-            &q::CM_Z,
-            &q::ROTATION,
-            &q::ROTATION_X,
-            &q::ROTATION_Z,
-            &q::UPLIFT,
-            &q::CONTACTS,
-        ]);
-    }
-    c.push(&q::NORMAL);
+    let mut c = q::plan_motion(moves_ground, rocking);
     if double {
         c.push(&q::NODE_DISP);
     }
