@@ -438,3 +438,32 @@ fn signed_peaks_keep_their_sign_in_table_csv_and_json() {
     assert_eq!(found.len(), 3, "reference and two runs: {found:?}");
     assert!(found.iter().all(|&p| p < -0.28), "{found:?}");
 }
+
+/// A 3D scene under a record pair names both records in its report's facts: the first
+/// component along e₁ and the second along e₂, each with its PGA as recorded (0.0957 g
+/// and 0.1598 g, the figures of cases/records/SOURCES.md).
+#[test]
+fn a_record_pair_report_names_both_components() {
+    let dir = tempfile::tempdir().unwrap();
+    rockslide(
+        &["run", "cases/spatial/pepo-chino-hills-pair.toml"],
+        dir.path(),
+    );
+    let md = read(&dir.path().join("pepo-chino-hills-pair/report.md"));
+    let line = |start: &str| {
+        md.lines()
+            .find(|l| l.starts_with(start))
+            .unwrap_or_else(|| panic!("no {start} line"))
+            .to_string()
+    };
+    let first = line("- **Record:**");
+    assert!(
+        first.contains("_090.AT2") && first.contains("(0.0957 g)"),
+        "{first}"
+    );
+    let second = line("- **Record, second component (along e₂):**");
+    assert!(
+        second.contains("_360.AT2") && second.contains("(0.1598 g)"),
+        "{second}"
+    );
+}

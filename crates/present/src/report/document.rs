@@ -432,6 +432,15 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     if let Some(rockslide_core::case::Signal::Record { label, .. }) = c.scene.excitation.signal() {
         facts.push(("Record".to_string(), label.clone()));
     }
+    // a 3D scene's second horizontal component, along e₂
+    if let Some(rockslide_core::case::Signal::Record { label, .. }) =
+        c.scene.spatial().and_then(|s| s.second.as_ref())
+    {
+        facts.push((
+            "Record, second component (along e₂)".to_string(),
+            label.clone(),
+        ));
+    }
     facts.push((
         "Scene".into(),
         format!(
