@@ -89,7 +89,7 @@ pub fn estimate(case: &Case, plan: &Plan) -> Footprint {
     for p in &plan.runs {
         let all = rows_of(case.run.duration, p.dt);
         let written = kept_rows(case, p.dt);
-        let held = if p.native_streaming && crate::suite::streams(case, p) {
+        let held = if crate::suite::streams(case, p) {
             written
         } else {
             all

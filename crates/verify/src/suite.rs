@@ -230,9 +230,12 @@ pub fn execute(
 /// (tests/all/streaming.rs), its figures show the kept rows.
 pub const STREAMING_STEPS: u64 = 500_000;
 
-/// Whether planned run `p` of `case` is streamed: more than [`STREAMING_STEPS`] steps.
+/// Whether planned run `p` of `case` is streamed: more than [`STREAMING_STEPS`] steps of
+/// an engine that streams natively. An engine that does not would run whole anyway and
+/// forward its rows — holding its whole trace, and run twice by the two passes — so its
+/// long runs are analysed whole, once.
 pub fn streams(case: &Case, p: &PlannedRun) -> bool {
-    streams_above(case, p, STREAMING_STEPS)
+    p.native_streaming && streams_above(case, p, STREAMING_STEPS)
 }
 
 /// Whether planned run `p` of `case` takes more than `steps` steps.
@@ -321,17 +324,28 @@ pub fn run_case(case: Case) -> Result<CaseResult, InputErrors> {
 
 /// [`run_case`] with the given engines instead of the registry's.
 pub fn run_case_with(case: Case, engines: &[Box<dyn Engine>]) -> Result<CaseResult, InputErrors> {
-    run_case_streaming_above(case, engines, STREAMING_STEPS)
+    run_case_streaming_where(case, engines, streams)
 }
 
-/// [`run_case_with`], streaming the runs of more than `streaming_steps` steps (0: every
-/// run; `u64::MAX`: none), for comparing a streamed run with a whole one.
+/// [`run_case_with`], streaming every run of more than `streaming_steps` steps, whether
+/// its engine streams natively or not (0: every run; `u64::MAX`: none), for comparing a
+/// streamed run with a whole one.
 pub fn run_case_streaming_above(
     case: Case,
     engines: &[Box<dyn Engine>],
     streaming_steps: u64,
 ) -> Result<CaseResult, InputErrors> {
-    let streams = |case: &Case, p: &PlannedRun| streams_above(case, p, streaming_steps);
+    run_case_streaming_where(case, engines, |case: &Case, p: &PlannedRun| {
+        streams_above(case, p, streaming_steps)
+    })
+}
+
+/// [`run_case_with`], streaming the planned runs `streams` selects.
+fn run_case_streaming_where(
+    case: Case,
+    engines: &[Box<dyn Engine>],
+    streams: impl Fn(&Case, &PlannedRun) -> bool + Sync,
+) -> Result<CaseResult, InputErrors> {
     let plan = plan(&case, engines)?;
     let opensees = crate::opensees::prepare(&case)?;
     let name = case.name.clone();
