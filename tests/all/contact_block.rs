@@ -4,8 +4,9 @@
 //! - every engine records, per contact, N, T, slip and gap at every trace row; the
 //!   contact forces sum to the trace's own summed channels (fe: exactly, the same
 //!   elements; rapier: its contact impulses against its springs, to the foot inertia);
-//! - the block is written as `<run>-contacts.csv` and as the MCAP channel
-//!   `/<engine>/<variant>/contacts` (units in the schema), both reading back bit for bit;
+//! - the block is written as `<run>-contacts.csv` and in the run's MCAP state messages
+//!   `/<engine>/<variant>/state` (`.s1.normal` …, units in the schema), both reading back
+//!   bit for bit;
 //! - the invariants read it: a contact that creeps while stuck, does work against
 //!   friction or penetrates beyond its compliance fails; a correct one passes.
 
@@ -41,8 +42,8 @@ fn every_engine_records_its_contacts_and_they_read_back_from_csv_and_mcap() {
         assert_eq!(b.names[0], "s1");
         let csv = read_contacts_csv(&dir.join(format!("{}-{}-contacts.csv", r.engine, r.variant)))
             .unwrap();
-        let topic = format!("/{}/{}/contacts", r.engine, r.variant);
-        let (_, mcap) = m.contacts.iter().find(|(t, _)| *t == topic).unwrap();
+        let topic = format!("/{}/{}/state", r.engine, r.variant);
+        let mcap = m.contact_block(&r.label()).unwrap();
         for back in [&csv, mcap] {
             assert_eq!(back.names, b.names);
             assert!(back.time.iter().zip(&b.time).all(|(x, y)| same(*x, *y)));
@@ -50,7 +51,17 @@ fn every_engine_records_its_contacts_and_they_read_back_from_csv_and_mcap() {
             assert!(back.values.iter().zip(&b.values).all(|(x, y)| same(*x, *y)));
         }
         let channel = m.channels.iter().find(|c| c.topic == topic).unwrap();
-        assert_eq!(channel.metadata["units"], "N,N,m,m");
+        assert_eq!(channel.metadata["contact_units"], "N,N,m,m");
+        assert_eq!(
+            channel.metadata["contact_fields"],
+            "normal,tangential,slip,gap"
+        );
+        let compliance: Vec<f64> = channel.metadata["contact_compliance"]
+            .split(',')
+            .map(|c| c.parse().unwrap())
+            .collect();
+        assert_eq!(compliance, b.compliance);
+        assert_eq!(mcap.compliance, b.compliance);
         assert_eq!(channel.messages as usize, r.trace.len());
         // The contacts' forces against the trace's sums.
         let shear = r.trace.column("base_shear").unwrap();

@@ -5,9 +5,9 @@
 //! - a 10⁷-step predictor-corrector run (the PEPO for 10⁴ s at Δt = 1 ms) with
 //!   `output_dt = 0.01` writes 10⁶ + 2 rows (the first row, one per 10 ms, and the
 //!   last), priced at the 12 values a row of the predictor-corrector records (time, 7
-//!   channels, 4 contact fields) × 40 bytes per value (measured: 39.4, see
-//!   `footprint.rs`) = 0.5 GB; without `output_dt` every one of the 10⁷ + 1 rows is
-//!   written: 4.8 GB. Both computed here from those counts, and both refused under a
+//!   channels, 4 contact fields) × 32 bytes per value (measured: 31.4, see
+//!   `footprint.rs`) = 0.4 GB; without `output_dt` every one of the 10⁷ + 1 rows is
+//!   written: 3.8 GB. Both computed here from those counts, and both refused under a
 //!   100 MB limit before any step runs;
 //! - a streamed run and a whole run of the same case give the same response quantities,
 //!   history errors, invariants and checks bit for bit, every engine (those that do not
@@ -65,7 +65,7 @@ fn run_under_100mb(case: &Path, out: &Path) -> (Option<i32>, String) {
 fn the_disk_estimate_counts_the_rows_kept_at_output_dt() {
     // time, force, resistance, rel_disp, slide, vel, acc, pc_change; N, T, slip, gap
     let values_per_row = 12.0;
-    let bytes_per_value = 40.0;
+    let bytes_per_value = 32.0;
     let dir = tempfile::tempdir().unwrap();
     let out = dir.path().join("out");
 
@@ -100,7 +100,7 @@ fn the_disk_estimate_counts_the_rows_kept_at_output_dt() {
 }
 
 /// The trace files of a 10⁴-step PEPO run (10 s, every step): 10⁴ + 1 rows of the 12
-/// values the predictor-corrector records, against the estimate's 40 bytes per value.
+/// values the predictor-corrector records, against the estimate's 32 bytes per value.
 #[test]
 fn the_bytes_per_value_of_the_estimate_are_those_of_the_files() {
     let dir = tempfile::tempdir().unwrap();
@@ -125,7 +125,7 @@ fn the_bytes_per_value_of_the_estimate_are_those_of_the_files() {
     let values = 10_001.0 * 12.0;
     let per_value = bytes as f64 / values;
     eprintln!("{bytes} bytes of trace files: {per_value:.2} bytes per value");
-    assert!((37.0..=40.0).contains(&per_value), "{per_value}");
+    assert!((30.0..=32.0).contains(&per_value), "{per_value}");
 }
 
 /// Streamed and whole analyses of the same case (issue 18 item 3): a streamed run reads

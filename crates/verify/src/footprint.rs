@@ -33,11 +33,13 @@ pub const DISK_LIMIT_VAR: &str = "ROCKSLIDE_MAX_DISK_BYTES";
 /// times for the history error, and its share of the reference output trace.
 const COPIES_IN_MEMORY: u64 = 3;
 /// Bytes on disk per value a run records (time, channels, contact fields) and writes,
-/// with its share of the reference: measured 39.4 on the PEPO predictor-corrector run
-/// every step for 100 s (10⁵ rows of 12 values: its CSV 17.1 bytes a value, its contacts
-/// CSV 16.5, the reference CSV 16.4 a value of its 7, the MCAP file 7.0 a value of all
-/// three, zstd-compressed), 38.9 the same run for 1,000 s kept every 10 ms; rounded up.
-pub const DISK_BYTES_PER_VALUE: u64 = 40;
+/// with its share of the reference: measured 31.4 on the PEPO predictor-corrector run
+/// every step for 100 s (10⁵ rows of 12 values: its CSV 17.1 bytes a value of its 8, the
+/// reference CSV 16.4 a value of its 7, the MCAP file 10.4 a value of the 12 — state with
+/// its contact, the reference, zstd-compressed; its contacts CSV is not written, it only
+/// repeats the run's columns), 31.3 on 10 s; rounded up. (40 before the contacts joined
+/// the state messages and the repeating contacts CSV was dropped.)
+pub const DISK_BYTES_PER_VALUE: u64 = 32;
 
 /// Estimated needs of a planned case.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

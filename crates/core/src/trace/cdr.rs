@@ -16,7 +16,7 @@
 use std::fmt::Write as _;
 
 use super::Trace;
-use super::contacts::{CONTACT_FIELDS, ContactBlock};
+use super::contacts::CONTACT_FIELDS;
 
 /// Schema encoding of the per-step channels.
 pub const SCHEMA_ENCODING: &str = "ros2msg";
@@ -56,7 +56,11 @@ fn field_line(out: &mut String, name: &str, unit: &str, doc: &str) {
 }
 
 /// The ROS 2 message definition of a trace's state messages: `time` then every field of
-/// the trace, in column order, each `float64` with its SI unit in a comment.
+/// the trace, in column order, each `float64` with its SI unit in a comment; then, when the
+/// run recorded contacts, one `rockslide/Contact` per contact (normal, tangential, slip,
+/// gap), defined below the separator as ROS 2 bundles dependencies. One message per row
+/// carries the state and the contacts (Foxglove paths `/<label>/state.rel_disp`,
+/// `/<label>/state.base.normal`).
 pub fn state_definition(trace: &Trace) -> String {
     let mut s = String::from(
         "# State of one run at one simulation instant, SI units. Log time = simulation time in ns.\n",
@@ -75,26 +79,18 @@ pub fn state_definition(trace: &Trace) -> String {
             &format!("{}: {}{display}", c.label, c.doc),
         );
     }
-    s
-}
-
-/// The ROS 2 message definition of a run's contact messages: `time`, then one
-/// `rockslide/Contact` per contact (normal, tangential, slip, gap), defined below the
-/// separator as ROS 2 bundles dependencies.
-pub fn contacts_definition(block: &ContactBlock) -> String {
-    let mut s = String::from(
-        "# Every contact of one run at one simulation instant, SI units. Log time = simulation time in ns.\n",
-    );
-    field_line(&mut s, "time", "s", "Simulation time.");
-    for (name, compliance) in block.names.iter().zip(&block.compliance) {
-        let _ = writeln!(
-            s,
-            "{CONTACT_TYPE} {name}  # contact {name}, normal compliance {compliance:e} m/N"
-        );
-    }
-    let _ = writeln!(s, "{DEPENDENCY_SEPARATOR}\nMSG: {CONTACT_TYPE}");
-    for (key, unit, doc) in CONTACT_FIELDS {
-        field_line(&mut s, key, unit, doc);
+    let block = &trace.contacts;
+    if block.count() > 0 {
+        for (name, compliance) in block.names.iter().zip(&block.compliance) {
+            let _ = writeln!(
+                s,
+                "{CONTACT_TYPE} {name}  # contact {name}, normal compliance {compliance:e} m/N"
+            );
+        }
+        let _ = writeln!(s, "{DEPENDENCY_SEPARATOR}\nMSG: {CONTACT_TYPE}");
+        for (key, unit, doc) in CONTACT_FIELDS {
+            field_line(&mut s, key, unit, doc);
+        }
     }
     s
 }
@@ -105,7 +101,8 @@ fn put(buf: &mut Vec<u8>, x: f64) {
 }
 
 /// The CDR state message of row `i` of `trace`, into `buf` (no allocation once `buf` has
-/// grown to one message).
+/// grown to one message): `time`, every column, then each contact's four fields when the
+/// run recorded contacts (NaN for a row past the end of its contact block).
 pub fn state_message(buf: &mut Vec<u8>, trace: &Trace, i: usize) {
     buf.clear();
     buf.extend_from_slice(&CDR_LE_HEADER);
@@ -113,17 +110,19 @@ pub fn state_message(buf: &mut Vec<u8>, trace: &Trace, i: usize) {
     for col in &trace.columns {
         put(buf, col[i]);
     }
+    let block = &trace.contacts;
+    let width = block.count() * CONTACT_FIELDS.len();
+    if width > 0 {
+        match block.values.get(i * width..(i + 1) * width) {
+            Some(row) => row.iter().for_each(|&v| put(buf, v)),
+            None => (0..width).for_each(|_| put(buf, f64::NAN)),
+        }
+    }
 }
 
-/// The CDR contact message of row `i` of `block`, into `buf`.
-pub fn contacts_message(buf: &mut Vec<u8>, block: &ContactBlock, i: usize) {
-    let width = block.count() * CONTACT_FIELDS.len();
-    buf.clear();
-    buf.extend_from_slice(&CDR_LE_HEADER);
-    put(buf, block.time[i]);
-    for &v in &block.values[i * width..(i + 1) * width] {
-        put(buf, v);
-    }
+/// Values in one state message of `trace`: `time`, its channels, and four per contact.
+pub fn state_values(trace: &Trace) -> usize {
+    1 + trace.channels.len() + trace.contacts.count() * CONTACT_FIELDS.len()
 }
 
 /// The `float64` values of a CDR message of exactly `count` of them, into `values`;
@@ -156,7 +155,7 @@ pub fn read_values(data: &[u8], count: usize, values: &mut Vec<f64>) -> Result<(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::trace::q;
+    use crate::trace::{ContactBlock, ContactState, q};
 
     #[test]
     fn a_state_message_is_the_header_and_every_value_bit_for_bit() {
@@ -181,6 +180,37 @@ mod tests {
     }
 
     #[test]
+    fn a_state_message_carries_each_contact_after_the_channels() {
+        let mut trace = Trace::with_channels(&[&q::REL_DISP], 2);
+        trace.contacts = ContactBlock::with_contacts(&["base"], &[1e-9], 2);
+        trace.push(0.0, &[1.5]);
+        trace.push(0.5, &[-2.5]);
+        let c = ContactState {
+            normal: 9.81e6,
+            tangential: -0.0,
+            slip: 1e-300,
+            gap: f64::NAN,
+        };
+        trace.contacts.push(0.0, &[c]);
+        assert_eq!(state_values(&trace), 1 + 1 + 4);
+        let mut buf = Vec::new();
+        let mut values = Vec::new();
+        state_message(&mut buf, &trace, 0);
+        assert_eq!(buf.len(), 4 + 6 * 8);
+        read_values(&buf, 6, &mut values).unwrap();
+        assert_eq!(values[..2], [0.0, 1.5]);
+        assert_eq!(values[2], 9.81e6);
+        assert_eq!(values[3].to_bits(), (-0.0f64).to_bits());
+        assert_eq!(values[4].to_bits(), 1e-300f64.to_bits());
+        assert!(values[5].is_nan());
+        // a row past the end of the contact block: the same length, NaN contacts
+        state_message(&mut buf, &trace, 1);
+        read_values(&buf, 6, &mut values).unwrap();
+        assert_eq!(values[..2], [0.5, -2.5]);
+        assert!(values[2..].iter().all(|v| v.is_nan()));
+    }
+
+    #[test]
     fn labels_become_ros2_message_names() {
         assert_eq!(
             camel_case("predictor-corrector/paper"),
@@ -201,8 +231,14 @@ mod tests {
             .collect();
         assert_eq!(fields, ["time", "rel_disp", "slide"]);
         assert!(d.contains("float64 rel_disp  # [m] "));
-        let block = ContactBlock::with_contacts(&["s1", "s2"], &[0.0, 0.0], 0);
-        let d = contacts_definition(&block);
+        assert!(
+            !d.contains("MSG:"),
+            "no contact definition without contacts"
+        );
+        let mut trace = trace;
+        trace.contacts = ContactBlock::with_contacts(&["s1", "s2"], &[0.0, 0.0], 0);
+        let d = state_definition(&trace);
+        assert!(d.contains("\nfloat64 slide  # [m] "));
         assert!(d.contains("\nrockslide/Contact s1  # contact s1, normal compliance 0e0 m/N\n"));
         assert!(d.contains("\nMSG: rockslide/Contact\nfloat64 normal  # [N] "));
     }

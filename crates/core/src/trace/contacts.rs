@@ -3,7 +3,8 @@
 //! recorded row, its normal force N, tangential force T, accumulated slip and normal gap,
 //! in SI units. The physical invariants read it (friction bound, stick/slip, dissipation
 //! and penetration per contact); it is written as `<run>-contacts.csv` beside the run's
-//! CSV and as the MCAP channel `/<engine>/<variant>/contacts`.
+//! CSV and in the run's MCAP state messages, after its fields (`/<engine>/<variant>/state`,
+//! Foxglove paths `.base.normal`, `.s1.slip`, …).
 //!
 //! Sign conventions: N > 0 in compression (a compression-only contact never pulls);
 //! T is the contact's tangential force signed as the trace's `resistance`: positive when
@@ -20,6 +21,7 @@
 use std::io::Write;
 use std::path::Path;
 
+use super::Trace;
 use super::csv_file::DecimalRows;
 use crate::error::{Error, InputError, InputErrors};
 use crate::io::write_atomically_with;
@@ -48,7 +50,8 @@ pub const CONTACT_FIELDS: [(&str, &str, &str); 4] = [
     ),
 ];
 
-/// Schema name prefix of the per-run contact channels.
+/// Schema name prefix of the per-run contact channels of files written before the
+/// contacts joined the state messages (still read).
 pub const CONTACTS_SCHEMA: &str = "rockslide/Contacts";
 
 /// The prefix contact schemas had when their messages were JSON (still read).
@@ -160,6 +163,31 @@ impl ContactBlock {
         debug_assert_eq!(values.len(), self.names.len() * CONTACT_FIELDS.len());
         self.time.push(t);
         self.values.extend_from_slice(values);
+    }
+
+    /// Whether this block only repeats `trace`'s own columns: one contact, a row per trace
+    /// row, its T the trace's `resistance` and its slip its `slide` bit for bit, its N and
+    /// gap constant (the predictor-corrector's one contact: N = M·g, gap = −N/Kz, both
+    /// given by the case). Its CSV file would hold nothing the run's CSV and the case do
+    /// not, so it is not written; the MCAP state messages still carry it.
+    pub fn repeats(&self, trace: &Trace) -> bool {
+        let (Some(resistance), Some(slide)) = (trace.column("resistance"), trace.column("slide"))
+        else {
+            return false;
+        };
+        if self.count() != 1 || self.len() != trace.len() || self.is_empty() {
+            return false;
+        }
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        let first = self.at(0, 0);
+        (0..self.len()).all(|i| {
+            let c = self.at(i, 0);
+            same(self.time[i], trace.time[i])
+                && same(c.tangential, resistance[i])
+                && same(c.slip, slide[i])
+                && same(c.normal, first.normal)
+                && same(c.gap, first.gap)
+        })
     }
 
     /// Number of contacts.
@@ -287,8 +315,9 @@ pub fn read_contacts_csv(path: &Path) -> Result<ContactBlock, InputErrors> {
     Ok(block)
 }
 
-/// The schema name of a run's contact messages: `rockslide/Contacts<Label>`, the label
-/// in CamelCase (a ROS 2 message name, as [`super::state_schema_name`]).
+/// The schema name a run's contact messages had in files written before the contacts
+/// joined the state messages: `rockslide/Contacts<Label>`, the label in CamelCase (a
+/// ROS 2 message name, as [`super::state_schema_name`]). Such files are still read.
 pub fn contacts_schema_name(label: &str) -> String {
     format!("{CONTACTS_SCHEMA}{}", super::cdr::camel_case(label))
 }
@@ -317,6 +346,40 @@ mod tests {
         assert_eq!(b.at(1, 0).normal, 3.0);
         assert_eq!(b.at(0, 1).tangential, -1.0);
         assert!(b.at(1, 1).normal.is_nan());
+    }
+
+    #[test]
+    fn a_block_repeats_a_trace_only_when_every_field_is_its_column_or_constant() {
+        use crate::trace::q;
+        let mut trace = Trace::with_channels(&[&q::RESISTANCE, &q::SLIDE], 3);
+        trace.contacts = ContactBlock::with_contacts(&["base"], &[1e-9], 3);
+        let c = |t: f64, s: f64| ContactState {
+            normal: 9.81,
+            tangential: t,
+            slip: s,
+            gap: -9.81e-9,
+        };
+        for (i, (t, s)) in [(0.0, 0.0), (-0.0, 1e-3), (2.5, 2e-3)]
+            .into_iter()
+            .enumerate()
+        {
+            trace.push(i as f64, &[t, s]);
+            trace.contacts.push(i as f64, &[c(t, s)]);
+        }
+        assert!(trace.contacts.repeats(&trace));
+        // T differs from the resistance in its sign bit alone: a new column, written
+        let mut other = trace.clone();
+        other.columns[0][1] = 0.0;
+        assert!(!other.contacts.repeats(&other));
+        // a normal force that changes: written
+        let mut other = trace.clone();
+        other.contacts.values[2 * 4] = 9.8;
+        assert!(!other.contacts.repeats(&other));
+        // several contacts, or a trace without the columns: written
+        assert!(!block().repeats(&trace));
+        let mut bare = Trace::with_channels(&[&q::SLIDE], 3);
+        bare.contacts = trace.contacts.clone();
+        assert!(!trace.contacts.repeats(&bare));
     }
 
     #[test]

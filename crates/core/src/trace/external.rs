@@ -236,13 +236,14 @@ fn read_external_mcap(path: &Path, topic: Option<&str>) -> Result<ExternalTrace,
         return Err(InputError::new(path, "topic", format!("\"{name}\" has no messages")).into());
     }
     check_times(path, name, &trace.time)?;
-    Ok(ExternalTrace {
-        trace: trace.clone(),
-        notes: vec![format!(
-            "rockslide MCAP topic {name}, {} samples",
-            trace.len()
-        )],
-    })
+    // the state alone, as from a CSV file: the contacts its messages carry stay out
+    let notes = vec![format!(
+        "rockslide MCAP topic {name}, {} samples",
+        trace.len()
+    )];
+    let mut trace = trace.clone();
+    trace.contacts = Default::default();
+    Ok(ExternalTrace { trace, notes })
 }
 
 /// The fields of a line: each one's text (surrounding double quotes removed) and 1-based

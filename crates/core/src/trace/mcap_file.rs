@@ -3,14 +3,15 @@
 //!
 //! Layout of a file (see docs/traces.md):
 //! - one channel per run, `/<label>/state` (`label` = `engine/variant` or `reference`),
-//!   schema `rockslide/State<Label>` (ROS 2 definition, encoding `ros2msg`, each field's SI unit in a comment), messages `cdr` (see [`super::cdr`]) — JSON before, still read —
-//!   its description), messages `json`, one per trace row, with exactly the trace's fields;
+//!   schema `rockslide/State<Label>` (ROS 2 definition, encoding `ros2msg`, each field's
+//!   SI unit in a comment), messages `cdr` (see [`super::cdr`]; JSON before, still read),
+//!   one per trace row, with exactly the trace's fields and then, for a run with a contact
+//!   block, each contact's N, T, slip and gap (see [`super::contacts`]);
 //! - for scenes with geometry: `/<label>/scene` and `/<label>/forces`
 //!   (`foxglove.SceneUpdate`) and `/<label>/transform` (`foxglove.FrameTransform`), see
 //!   [`super::scene3d`]; these are decimated to one message per [`SCENE_PERIOD_NS`];
-//! - `/<label>/contacts` (schema `rockslide/Contacts<Label>`, `ros2msg`/`cdr`) for runs with a contact
-//!   block: one message per trace row, each contact's N, T, slip and gap (see
-//!   [`super::contacts`]);
+//! - files written before the contacts joined the state message have a channel
+//!   `/<label>/contacts` (schema `rockslide/Contacts<Label>`) beside it: still read;
 //! - `/log` (`foxglove.Log`): how each run ended, at the time it stopped;
 //! - metadata records (`rockslide`, `run <label>`, `reference`, `scene3d`) and attachments
 //!   (the case file).
@@ -124,9 +125,8 @@ fn ns_of(t: f64, floor: u64) -> u64 {
 
 /// Channel ids of one run.
 struct RunChannels {
+    /// The state channel: the row's channels and its contacts, one message a row.
     state: u16,
-    /// The per-contact channel, when the run recorded contacts.
-    contacts: Option<u16>,
     /// (scene, forces, transform) when the run is drawn in 3D.
     view: Option<(u16, u16, u16)>,
 }
@@ -250,6 +250,7 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
                 .collect::<Vec<_>>()
                 .join(","),
         );
+        contact_metadata(&mut meta, &run.trace.contacts);
         let state = out
             .w
             .add_channel(
@@ -259,7 +260,6 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
                 &meta,
             )
             .map_err(mcap_error)?;
-        let contacts = contact_channel(&mut out, run)?;
         let view = match scene_schema {
             Some((scene, tf)) if scene3d::drawable(run.trace) => {
                 let none = BTreeMap::new();
@@ -276,11 +276,7 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             }
             _ => None,
         };
-        channels.push(RunChannels {
-            state,
-            contacts,
-            view,
-        });
+        channels.push(RunChannels { state, view });
     }
     let log_channel = out
         .w
@@ -324,12 +320,6 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         last_ns[r] = ns;
         cdr::state_message(&mut buf, run.trace, i);
         out.put(ch.state, ns, &buf)?;
-        if let Some(cc) = ch.contacts
-            && i < run.trace.contacts.len()
-        {
-            cdr::contacts_message(&mut buf, &run.trace.contacts, i);
-            out.put(cc, ns, &buf)?;
-        }
         let last_row = i + 1 == run.trace.len();
         if let (Some((_, forces, tf)), Some(g)) = (ch.view, &log.geometry)
             && (ns >= next_view[r] || last_row)
@@ -359,41 +349,42 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
     out.w.finish().map_err(mcap_error)
 }
 
-/// The `/<label>/contacts` channel of a run with a contact block (its schema lists every
-/// contact with the units of its fields; the channel's metadata names them in order).
-fn contact_channel<W: Write>(out: &mut Out<W>, run: &LoggedRun) -> Result<Option<u16>, Error> {
-    let block = &run.trace.contacts;
-    if block.is_empty() {
-        return Ok(None);
+/// The contacts a state channel carries after its fields, in its metadata: their names
+/// in order (`contacts`), each one's normal compliance in m/N (`contact_compliance`, as
+/// Rust's shortest round-trip decimals), and the fields and units of each
+/// (`contact_fields`, `contact_units`). Nothing for a run without a contact block.
+fn contact_metadata(meta: &mut BTreeMap<String, String>, block: &ContactBlock) {
+    if block.count() == 0 {
+        return;
     }
-    let name = contacts::contacts_schema_name(&run.label);
-    let schema = out
-        .w
-        .add_schema(
-            &name,
-            cdr::SCHEMA_ENCODING,
-            cdr::contacts_definition(block).as_bytes(),
-        )
-        .map_err(mcap_error)?;
-    let mut meta = BTreeMap::new();
-    meta.insert("run".to_string(), run.label.clone());
     meta.insert("contacts".to_string(), block.names.join(","));
+    let compliance: Vec<String> = block.compliance.iter().map(|c| format!("{c:?}")).collect();
+    meta.insert("contact_compliance".to_string(), compliance.join(","));
     let (fields, units): (Vec<&str>, Vec<&str>) = contacts::CONTACT_FIELDS
         .iter()
         .map(|(k, u, _)| (*k, *u))
         .unzip();
-    meta.insert("fields".to_string(), fields.join(","));
-    meta.insert("units".to_string(), units.join(","));
-    let id = out
-        .w
-        .add_channel(
-            schema,
-            &format!("/{}/contacts", run.label),
-            cdr::MESSAGE_ENCODING,
-            &meta,
-        )
-        .map_err(mcap_error)?;
-    Ok(Some(id))
+    meta.insert("contact_fields".to_string(), fields.join(","));
+    meta.insert("contact_units".to_string(), units.join(","));
+}
+
+/// The contact block a state channel's metadata announces (empty, without rows).
+fn contact_block_of(meta: &BTreeMap<String, String>) -> ContactBlock {
+    let list = |key: &str| -> Vec<&str> {
+        meta.get(key)
+            .map_or("", String::as_str)
+            .split(',')
+            .filter(|n| !n.is_empty())
+            .collect()
+    };
+    let names = list("contacts");
+    let compliance: Vec<f64> = list("contact_compliance")
+        .iter()
+        .map(|c| c.parse().unwrap_or(f64::NAN))
+        .chain(std::iter::repeat(f64::NAN))
+        .take(names.len())
+        .collect();
+    ContactBlock::with_contacts(&names, &compliance, 0)
 }
 
 /// One channel of an MCAP file, as read back.
@@ -424,7 +415,9 @@ pub struct McapContents {
     pub channels: Vec<McapChannel>,
     /// The `rockslide/State*` channels as traces, (topic, trace), in channel order.
     pub states: Vec<(String, Trace)>,
-    /// The `rockslide/Contacts*` channels as contact blocks, (topic, block).
+    /// The contact channels of files written before the contacts joined the state
+    /// messages (`/<label>/contacts`, schema `rockslide/Contacts*`), as contact blocks,
+    /// (topic, block); a newer file's contacts are in its state traces' `contacts`.
     pub contacts: Vec<(String, ContactBlock)>,
     /// Metadata records by name.
     pub metadata: BTreeMap<String, BTreeMap<String, String>>,
@@ -436,6 +429,22 @@ impl McapContents {
     /// The trace of a state topic (`/fe/double/state`).
     pub fn state(&self, topic: &str) -> Option<&Trace> {
         self.states.iter().find(|(t, _)| t == topic).map(|(_, t)| t)
+    }
+
+    /// The contact block of a run (`fe/single`): carried by its state messages, or by its
+    /// own `/<label>/contacts` channel in a file written before they were one message.
+    pub fn contact_block(&self, label: &str) -> Option<&ContactBlock> {
+        let in_state = self
+            .state(&format!("/{label}/state"))
+            .map(|t| &t.contacts)
+            .filter(|b| b.count() > 0);
+        let legacy = format!("/{label}/contacts");
+        in_state.or_else(|| {
+            self.contacts
+                .iter()
+                .find(|(t, _)| *t == legacy)
+                .map(|(_, b)| b)
+        })
     }
 }
 
@@ -619,9 +628,10 @@ fn chunk_records(body: &[u8]) -> Result<std::borrow::Cow<'_, [u8]>, String> {
     let inner: std::borrow::Cow<'_, [u8]> = match compression {
         b"" => records.into(),
         b"zstd" => decompress_at_most(records, declared)?.into(),
+        b"lz4" => lz4_at_most(records, declared)?.into(),
         other => {
             return Err(format!(
-                "compression \"{}\" is not read (rockslide writes zstd)",
+                "compression \"{}\" is not read (zstd, lz4 and none are)",
                 String::from_utf8_lossy(other)
             ));
         }
@@ -743,6 +753,25 @@ fn decompress_at_most(records: &[u8], declared: u64) -> Result<Vec<u8>, String> 
     Ok(inner)
 }
 
+/// An lz4 chunk's records (an LZ4 frame), at most `declared` bytes of them, grown as
+/// [`decompress_at_most`] grows a zstd chunk's.
+fn lz4_at_most(records: &[u8], declared: u64) -> Result<Vec<u8>, String> {
+    use std::io::Read;
+    let decoder =
+        lz4::Decoder::new(records).map_err(|e| format!("does not decompress (lz4): {e}"))?;
+    let mut inner = Vec::new();
+    decoder
+        .take(declared + 1)
+        .read_to_end(&mut inner)
+        .map_err(|e| format!("does not decompress (lz4): {e}"))?;
+    if inner.len() as u64 > declared {
+        return Err(format!(
+            "decompresses to more than its declared {declared} uncompressed bytes"
+        ));
+    }
+    Ok(inner)
+}
+
 fn u64_at(b: &[u8], i: usize) -> u64 {
     let mut le = [0u8; 8];
     le.copy_from_slice(&b[i..i + 8]);
@@ -796,9 +825,9 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
                 })?);
             }
             builders.insert(id, (contents.states.len(), qs.clone()));
-            contents
-                .states
-                .push((c.topic.clone(), Trace::with_channels(&qs, 0)));
+            let mut trace = Trace::with_channels(&qs, 0);
+            trace.contacts = contact_block_of(&c.metadata);
+            contents.states.push((c.topic.clone(), trace));
         }
         if schema.starts_with(contacts::CONTACTS_SCHEMA)
             || schema.starts_with(contacts::JSON_CONTACTS_SCHEMA)
@@ -849,20 +878,23 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
         if let Some((si, qs)) = builders.get(&id)
             && is_cdr
         {
-            cdr::read_values(m.data, qs.len() + 1, &mut values).map_err(|e| {
+            let trace = &mut contents.states[*si].1;
+            let count = cdr::state_values(trace);
+            cdr::read_values(m.data, count, &mut values).map_err(|e| {
                 InputError::new(
                     path,
                     "",
                     format!(
-                        "channel {}, message {}: not a CDR state message of {} values: {e}",
-                        topic,
+                        "channel {topic}, message {}: not a CDR state message of {count} values: {e}",
                         m.sequence,
-                        qs.len() + 1
                     ),
                 )
             })?;
-            let trace = &mut contents.states[*si].1;
-            trace.push(values[0], &values[1..]);
+            let (row, contact_values) = values[1..].split_at(qs.len());
+            trace.push(values[0], row);
+            if trace.contacts.count() > 0 {
+                trace.contacts.push_values(values[0], contact_values);
+            }
         } else if let Some(&bi) = contact_channels.get(&id)
             && is_cdr
         {
@@ -974,6 +1006,11 @@ pub fn describe(contents: &McapContents) -> String {
         if let Some(f) = c.metadata.get("fields") {
             let _ = writeln!(s, "  {:<40} fields: time,{f}", "");
         }
+        if let (Some(names), Some(fields)) =
+            (c.metadata.get("contacts"), c.metadata.get("contact_fields"))
+        {
+            let _ = writeln!(s, "  {:<40} contacts: {names} (each {fields})", "");
+        }
     }
     for (name, m) in &contents.metadata {
         let _ = writeln!(s, "metadata \"{name}\":");
@@ -994,7 +1031,61 @@ pub fn mcap_info(path: &Path) -> Result<String, Error> {
 
 #[cfg(test)]
 mod tests {
-    use super::decompress_at_most;
+    use super::*;
+    use crate::trace::{ContactState, q};
+
+    /// A run with one contact, its contacts in its state messages, written with every
+    /// chunk compression and read back: every value and contact field bit for bit.
+    #[test]
+    fn states_and_their_contacts_read_back_from_every_chunk_compression() {
+        let mut trace = Trace::with_channels(&[&q::RESISTANCE, &q::SLIDE], 3);
+        trace.contacts = ContactBlock::with_contacts(&["base"], &[2.5e-10], 3);
+        for (i, x) in [0.0, -0.0, f64::NAN].into_iter().enumerate() {
+            let t = i as f64 * 1e-3;
+            trace.push(t, &[x, 1e-300 * i as f64]);
+            let c = ContactState {
+                normal: 9.81e6,
+                tangential: x,
+                slip: -1.5 * i as f64,
+                gap: f64::INFINITY,
+            };
+            trace.contacts.push(t, &[c]);
+        }
+        let log = TraceLog {
+            runs: vec![LoggedRun {
+                label: "pc/paper".into(),
+                trace: &trace,
+                status: "completed".into(),
+                stop: None,
+                metadata: BTreeMap::new(),
+            }],
+            ..TraceLog::default()
+        };
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        for compression in [
+            ChunkCompression::Zstd(-1),
+            ChunkCompression::Lz4(0),
+            ChunkCompression::None,
+        ] {
+            let chunks = ChunkOptions {
+                chunk_bytes: 64,
+                compression,
+            };
+            let bytes = mcap_bytes_with(&log, chunks).unwrap();
+            let m = read_mcap_bytes(Path::new("t.mcap"), &bytes).unwrap();
+            assert_eq!(m.channels.len(), 2, "{compression:?}: state and log");
+            let back = m.state("/pc/paper/state").unwrap();
+            assert_eq!(bits(&back.time), bits(&trace.time));
+            for (a, b) in back.columns.iter().zip(&trace.columns) {
+                assert_eq!(bits(a), bits(b), "{compression:?}");
+            }
+            let block = m.contact_block("pc/paper").unwrap();
+            assert_eq!(block.names, ["base"]);
+            assert_eq!(block.compliance, [2.5e-10]);
+            assert_eq!(bits(&block.time), bits(&trace.contacts.time));
+            assert_eq!(bits(&block.values), bits(&trace.contacts.values));
+        }
+    }
 
     #[test]
     fn a_chunk_costs_memory_for_what_it_holds_not_for_what_it_claims() {

@@ -16,7 +16,7 @@ pub mod scene3d;
 
 pub use cdr::{
     CDR_LE_HEADER, MESSAGE_ENCODING as STEP_MESSAGE_ENCODING,
-    SCHEMA_ENCODING as STEP_SCHEMA_ENCODING, contacts_definition, state_definition,
+    SCHEMA_ENCODING as STEP_SCHEMA_ENCODING, state_definition,
 };
 pub use contacts::{
     CONTACT_FIELDS, CONTACTS_SCHEMA, ContactBlock, ContactState, contacts_schema_name,

@@ -92,7 +92,8 @@ pub struct WrittenCase {
 }
 
 /// Write a case's outputs under `out/<case>/`: CSV traces (and each run's per-contact
-/// block as `<engine>-<variant>-contacts.csv`), the MCAP log, the typed record
+/// block as `<engine>-<variant>-contacts.csv`, unless it only repeats the run's own
+/// columns: [`rockslide_core::trace::ContactBlock::repeats`]), the MCAP log, the typed record
 /// `result.json`, `report.md`, `report.html`, `summary.csv` and the plots as
 /// `plot-*.svg`; returns the folder. Every file ([`OutputSet::FULL`]).
 pub fn write_case_outputs(result: &CaseResult, out: &Path) -> Result<PathBuf, Error> {
@@ -156,7 +157,11 @@ fn write_case_traces(result: &CaseResult, dir: &Path, set: OutputSet) -> Result<
         .runs
         .iter()
         .zip(&run_traces)
-        .filter(|(_, trace)| set.trace_csv && !trace.contacts.is_empty())
+        // a block that only repeats the run's columns (the predictor-corrector's one
+        // contact) has no file of its own: its MCAP state messages carry it
+        .filter(|(_, trace)| {
+            set.trace_csv && !trace.contacts.is_empty() && !trace.contacts.repeats(trace)
+        })
         .map(|(run, trace)| {
             let file = dir.join(format!("{}-{}-contacts.csv", run.engine, run.variant));
             (&trace.contacts, file)

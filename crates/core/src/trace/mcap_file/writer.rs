@@ -40,6 +40,8 @@ mod op {
 pub enum ChunkCompression {
     /// zstd at this level (negative: zstd's fast levels).
     Zstd(i32),
+    /// LZ4 frames (MCAP's `lz4`), at this acceleration level (0: LZ4's default).
+    Lz4(u32),
     /// Records stored as they are.
     None,
 }
@@ -151,7 +153,7 @@ impl<W: Write> McapWriter<W> {
     pub fn new(w: W, options: ChunkOptions) -> io::Result<Self> {
         let zstd = match options.compression {
             ChunkCompression::Zstd(level) => Some(zstd::bulk::Compressor::new(level)?),
-            ChunkCompression::None => None,
+            ChunkCompression::Lz4(_) | ChunkCompression::None => None,
         };
         let mut me = Self {
             sink: Sink {
@@ -319,7 +321,23 @@ impl<W: Write> McapWriter<W> {
                 z.compress_to_buffer(uncompressed, &mut self.compressed)?;
                 ("zstd", &self.compressed)
             }
-            None => ("", uncompressed),
+            None => match self.options.compression {
+                ChunkCompression::Lz4(level) => {
+                    self.compressed.clear();
+                    let mut e = lz4::EncoderBuilder::new()
+                        .level(level)
+                        .block_size(lz4::BlockSize::Max4MB)
+                        .checksum(lz4::ContentChecksum::NoChecksum)
+                        .block_checksum(lz4::liblz4::BlockChecksum::NoBlockChecksum)
+                        .build(std::mem::take(&mut self.compressed))?;
+                    e.write_all(uncompressed)?;
+                    let (out, done) = e.finish();
+                    done?;
+                    self.compressed = out;
+                    ("lz4", &self.compressed)
+                }
+                _ => ("", uncompressed),
+            },
         };
         let mut head = Vec::with_capacity(64);
         head.push(op::CHUNK);
@@ -481,13 +499,17 @@ impl<W: Write> McapWriter<W> {
 mod tests {
     use super::*;
 
-    /// 300 messages on two channels in chunks of ~1 KiB, compressed or not: the `mcap`
+    /// 300 messages on two channels in chunks of ~1 KiB, zstd, lz4 or none: the `mcap`
     /// crate's linear reader (CRCs checked) and its indexed reader (summary, chunk
     /// indexes, message indexes, each message sought through its index) find every message
     /// with its sequence, time and bytes.
     #[test]
     fn indexed_and_linear_readers_find_every_message() {
-        for compression in [ChunkCompression::Zstd(-1), ChunkCompression::None] {
+        for compression in [
+            ChunkCompression::Zstd(-1),
+            ChunkCompression::Lz4(0),
+            ChunkCompression::None,
+        ] {
             let options = ChunkOptions {
                 chunk_bytes: 1 << 10,
                 compression,
