@@ -475,13 +475,9 @@ fn run_everything(out: &Path, quiet: bool, set: OutputSet) -> Result<ExitCode, E
         .into_iter()
         .filter(|c| matches!(c.scene.model, rockslide_core::case::Model::Oscillator(_)))
         .collect();
-    let mut cases = prepare_cases(&[], out, &[], false)?;
-    if set == OutputSet::LEAN {
-        for case in &mut cases {
-            let step = case.run.output_dt.unwrap_or(0.0).max(LEAN_FILE_STEP);
-            case.run.output_dt = Some(step);
-        }
-    }
+    // the lean set's file step is the output set's (`OutputSet::file_step`): the cases
+    // are analysed as written
+    let cases = prepare_cases(&[], out, &[], false)?;
     let swept: Vec<&str> = oscillators.iter().map(|c| c.name.as_str()).collect();
     let (stability, (sweeps, outcomes)) = rayon::join(
         || {
@@ -533,13 +529,6 @@ fn run_everything(out: &Path, quiet: bool, set: OutputSet) -> Result<ExitCode, E
         .collect();
     finish(written, out, quiet, None)
 }
-
-/// The default command's trace files (the MCAP file) at most every 5 ms unless
-/// `--full-traces`: the case's `[run] output_dt` where it is coarser. 200 rows a simulated
-/// second — the records' own sampling — is 400 points across a 2-s case's Foxglove plot
-/// of 1,000-odd pixels and 200 frames a second in its 3D view; the analysis, the checks
-/// and the figures use every step whatever the files keep.
-const LEAN_FILE_STEP: f64 = 0.005;
 
 /// Timed repeats of each sweep rung in the default command: one. The timing of a run is
 /// reported as measured once; `rockslide sweep` (3 repeats by default) gives medians.

@@ -26,15 +26,17 @@ fn map<const N: usize>(pairs: [(&str, String); N]) -> BTreeMap<String, String> {
 pub fn case_trace_log(result: &CaseResult) -> TraceLog<'_> {
     let runs: Vec<&Trace> = result.runs.iter().map(|r| &r.trace).collect();
     let reference = result.reference.as_ref().ok().map(|r| &r.output);
-    case_trace_log_of(result, &runs, reference)
+    case_trace_log_of(result, &runs, reference, result.case.run.output_dt)
 }
 
 /// [`case_trace_log`] with the traces to log given: `runs[i]` for `result.runs[i]`, and
-/// the reference's (e.g. both at the case's output step).
+/// the reference's (e.g. both at the file step `file_step`, which the `rockslide` record
+/// states as `output_dt_s`).
 pub fn case_trace_log_of<'a>(
     result: &'a CaseResult,
     runs_traces: &[&'a Trace],
     reference_trace: Option<&'a Trace>,
+    file_step: Option<f64>,
 ) -> TraceLog<'a> {
     let c = &result.case;
     let reference_shown = reference_trace.or(result.reference.as_ref().ok().map(|r| &r.output));
@@ -56,9 +58,7 @@ pub fn case_trace_log_of<'a>(
         ("dt_s", format!("{:?}", c.run.dt)),
         (
             "output_dt_s",
-            c.run
-                .output_dt
-                .map_or_else(|| "every step".to_string(), |o| format!("{o:?}")),
+            file_step.map_or_else(|| "every step".to_string(), |o| format!("{o:?}")),
         ),
         (
             "log_time",
@@ -185,12 +185,14 @@ pub fn write_case_mcap(result: &CaseResult, path: &Path) -> Result<(), Error> {
     write_mcap(&case_trace_log(result), path)
 }
 
-/// Write the case's MCAP trace of the given traces (see [`case_trace_log_of`]).
+/// Write the case's MCAP trace of the given traces at file step `file_step` (see
+/// [`case_trace_log_of`]).
 pub fn write_case_mcap_of(
     result: &CaseResult,
     runs: &[&Trace],
     reference: Option<&Trace>,
+    file_step: Option<f64>,
     path: &Path,
 ) -> Result<(), Error> {
-    write_mcap(&case_trace_log_of(result, runs, reference), path)
+    write_mcap(&case_trace_log_of(result, runs, reference, file_step), path)
 }

@@ -57,28 +57,52 @@ pub use rockslide_core::response::show_value;
 /// the default command with `--full-traces`) holds every trace as CSV and self-contained
 /// pages; [`OutputSet::LEAN`] (the default command) leaves the traces to the MCAP file,
 /// which holds every channel of every run (state, per-contact block, 3D view) at the same
-/// rows, and has the pages link the figures written beside them instead of embedding a
-/// second copy. The analysis, the checks, the tables and the figures are the same in both.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// rows, at most one every [`LEAN_FILE_STEP`], and has the pages link the figures written
+/// beside them instead of embedding a second copy. The analysis, the checks, the tables
+/// and the figures are the same in both: the file step is the files' alone, the case the
+/// analysis reads is never changed for it.
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct OutputSet {
     /// A CSV trace per engine run, its per-contact block and the reference's CSV trace.
     pub trace_csv: bool,
     /// HTML pages embed every figure (self-contained, offline); else they link
     /// `plot-*.svg` beside them (`<case>/plot-*.svg` from the summary page).
     pub inline_figures: bool,
+    /// The trace files keep at most one row per this step, s (the first row, the first
+    /// at or after each multiple, the last: [`Trace::output_rows`]); the case's
+    /// `[run] output_dt` where coarser. `None`: the case's own step (every row without).
+    pub file_step: Option<f64>,
 }
+
+/// The lean set's file step: 5 ms, unless the case's `[run] output_dt` is coarser. 200
+/// rows a simulated second — the records' own sampling — is 400 points across a 2-s
+/// case's Foxglove plot of 1,000-odd pixels and 200 frames a second in its 3D view; the
+/// analysis, the checks and the figures use every step whatever the files keep.
+pub const LEAN_FILE_STEP: f64 = 0.005;
 
 impl OutputSet {
     /// Every file: CSV traces beside the MCAP file, self-contained pages.
     pub const FULL: OutputSet = OutputSet {
         trace_csv: true,
         inline_figures: true,
+        file_step: None,
     };
-    /// The MCAP file alone for traces, pages linking their figures.
+    /// The MCAP file alone for traces, at most one row every [`LEAN_FILE_STEP`], pages
+    /// linking their figures.
     pub const LEAN: OutputSet = OutputSet {
         trace_csv: false,
         inline_figures: false,
+        file_step: Some(LEAN_FILE_STEP),
     };
+
+    /// The step of `case`'s trace files: the coarser of its `[run] output_dt` and this
+    /// set's file step (`None`: every row).
+    pub fn file_step_of(&self, case: &rockslide_core::case::Case) -> Option<f64> {
+        match (case.run.output_dt, self.file_step) {
+            (Some(a), Some(b)) => Some(a.max(b)),
+            (a, b) => a.or(b),
+        }
+    }
 }
 
 /// What writing a case left for the suite page.
@@ -118,10 +142,13 @@ pub fn write_case_outputs_with(
     Ok(WrittenCase { dir, section })
 }
 
-/// The traces of a case's files: every row, or the rows at the case's output step
-/// (`[run] output_dt`); the analysis and figures always use every row.
-fn file_traces(result: &CaseResult) -> (Vec<Cow<'_, Trace>>, Option<Cow<'_, Trace>>) {
-    let step = result.case.run.output_dt;
+/// The traces of a case's files: every row, or the rows at the file step of `set`
+/// ([`OutputSet::file_step_of`]); the analysis and figures always use every row.
+fn file_traces<'a>(
+    result: &'a CaseResult,
+    set: OutputSet,
+) -> (Vec<Cow<'a, Trace>>, Option<Cow<'a, Trace>>) {
+    let step = set.file_step_of(&result.case);
     let at_output = |t| match step {
         Some(step) => Cow::Owned(Trace::at_output_step(t, step)),
         None => Cow::Borrowed(t),
@@ -135,7 +162,7 @@ fn file_traces(result: &CaseResult) -> (Vec<Cow<'_, Trace>>, Option<Cow<'_, Trac
 /// MCAP file, written in parallel.
 fn write_case_traces(result: &CaseResult, dir: &Path, set: OutputSet) -> Result<(), Error> {
     use rayon::prelude::*;
-    let (runs, reference) = file_traces(result);
+    let (runs, reference) = file_traces(result, set);
     let run_traces: Vec<&Trace> = runs.iter().map(|t| t.as_ref()).collect();
     let mut csv_files: Vec<(&Trace, PathBuf)> = result
         .runs
@@ -182,7 +209,8 @@ fn write_case_traces(result: &CaseResult, dir: &Path, set: OutputSet) -> Result<
         },
         || {
             let reference = reference.as_ref().map(|t| t.as_ref());
-            mcap_log::write_case_mcap_of(result, &run_traces, reference, &mcap_file)
+            let step = set.file_step_of(&result.case);
+            mcap_log::write_case_mcap_of(result, &run_traces, reference, step, &mcap_file)
         },
     );
     csvs?;
