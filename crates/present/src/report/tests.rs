@@ -204,14 +204,27 @@ fn the_lean_set_leaves_traces_to_the_mcap_file_and_links_each_figure_once() {
     let full_files = names(&full_case.dir);
     assert!(traces.iter().all(|t| full_files.contains(&t.to_string())));
     let lean_files = names(&lean_case.dir);
-    // the same files but the CSV traces; the MCAP file byte for byte the same
+    // the same files but the CSV traces; the MCAP file holds the full one's rows at the
+    // lean file step (the case itself unchanged: every row in memory)
     let without_csv: Vec<&String> = full_files
         .iter()
         .filter(|f| !(f.ends_with(".csv") && *f != "summary.csv"))
         .collect();
     assert_eq!(lean_files.iter().collect::<Vec<_>>(), without_csv);
-    let mcap = |dir: &Path| std::fs::read(dir.join("synthetic-rocking.mcap")).unwrap();
-    assert_eq!(mcap(&full_case.dir), mcap(&lean_case.dir));
+    let mcap =
+        |dir: &Path| rockslide_core::trace::read_mcap(&dir.join("synthetic-rocking.mcap")).unwrap();
+    let (full_mcap, lean_mcap) = (mcap(&full_case.dir), mcap(&lean_case.dir));
+    assert_eq!(full_mcap.states.len(), lean_mcap.states.len());
+    for ((topic, full), (lean_topic, lean)) in full_mcap.states.iter().zip(&lean_mcap.states) {
+        assert_eq!(topic, lean_topic);
+        assert!(lean.len() < full.len(), "{topic}: {} rows", lean.len());
+        assert_eq!(&full.at_output_step(super::LEAN_FILE_STEP), lean, "{topic}");
+    }
+    let step =
+        |m: &rockslide_core::trace::McapContents| m.metadata["rockslide"]["output_dt_s"].clone();
+    assert_eq!(step(&full_mcap), "every step");
+    assert_eq!(step(&lean_mcap), "0.005");
+    assert_eq!(r.case.run.output_dt, None, "the case is not changed");
     // full pages embed the five figures; lean pages link the files beside them
     let page = |dir: &Path| std::fs::read_to_string(dir.join("report.html")).unwrap();
     assert_eq!(page(&full_case.dir).matches("<svg").count(), 5);
