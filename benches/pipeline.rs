@@ -2,8 +2,10 @@
 //! (cases/pepo-mass-accel.toml, Δt = 1 ms, predictor-corrector only) run end to end —
 //! engine, exact reference, responses, checks, CSV traces, the MCAP file and the report —
 //! for a short (1 s, 1,000 steps) and a long (1,000 s, 10⁶ steps) duration. The marginal
-//! cost per step of the output path is (long − short) / (10⁶ − 10³); the engine alone is
-//! benchmarked beside it on the same long case, so the ratio is measured side by side.
+//! cost per step of the whole path is (long − short) / (10⁶ − 10³); beside it, on the same
+//! long case, the run without writing (`run-only`: engine streamed, reference, analysis)
+//! and the engine alone, so that the files' own share and the ratio to the engine are
+//! measured side by side.
 //!
 //! Run: `cargo bench --bench pipeline`. Results are recorded in docs/performance.md.
 
@@ -45,6 +47,9 @@ fn pipeline(c: &mut Criterion) {
         });
     }
     let long = pepo_case(1000.0);
+    group.bench_function("run-only/long-1e6-steps", |b| {
+        b.iter(|| black_box(run_case(long.clone()).expect("runs")))
+    });
     let pc = engine::all()
         .into_iter()
         .find(|e| e.id() == "predictor-corrector")

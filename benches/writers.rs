@@ -245,10 +245,17 @@ fn writers(c: &mut Criterion) {
         compression: ChunkCompression::Zstd(level),
         ..CHUNKS
     };
-    let ours: [(&str, ChunkOptions); 6] = [
+    let ours: [(&str, ChunkOptions); 7] = [
         ("ours-zstd1-1MiB", zstd(1)),
         ("ours-zstd-1-1MiB", zstd(-1)),
         ("ours-zstd-3-1MiB", zstd(-3)),
+        (
+            "ours-lz4-1MiB",
+            ChunkOptions {
+                compression: ChunkCompression::Lz4(0),
+                ..CHUNKS
+            },
+        ),
         (
             "ours-zstd-1-4MiB",
             ChunkOptions {
