@@ -932,7 +932,7 @@ pub fn definition(m: &'static Msg) -> String {
 
 /// Pad `buf` with zeros to a multiple of `n` past the 4-byte encapsulation header.
 fn align(buf: &mut Vec<u8>, n: usize) {
-    while !(buf.len() - 4).is_multiple_of(n) {
+    while (buf.len() - 4) % n != 0 {
         buf.push(0);
     }
 }
