@@ -485,11 +485,11 @@ fn run_everything(out: &Path, quiet: bool, set: OutputSet) -> Result<ExitCode, E
     }
     let swept: Vec<&str> = oscillators.iter().map(|c| c.name.as_str()).collect();
     // One pool, longest first: a task starts in the order it was spawned (FIFO). The
-    // costliest case first (its longest run sets the critical path: it starts at t = 0),
-    // then the stability map (many short runs: while the first case runs it takes the
-    // other core, and its memory is freed before most case results are held — run last it
-    // raised the peak RSS by 200 MB), then the other cases by estimated cost, then the
-    // sweeps (short runs that fill the cores' gaps at the end).
+    // costliest cases first, one per core (their longest runs set the critical path: they
+    // start at t = 0), then the stability map (many short runs; run before most case
+    // results are held, its memory is freed early — run last it raised the peak RSS from
+    // 524 to 735 MB), then the other cases by estimated cost, then the sweeps (short runs
+    // that fill the cores' gaps at the end).
     let order = longest_first(&cases);
     let case_slots: Vec<Slot<(CaseResult, Option<WrittenCase>)>> =
         cases.iter().map(|_| Mutex::new(None)).collect();
@@ -512,8 +512,9 @@ fn run_everything(out: &Path, quiet: bool, set: OutputSet) -> Result<ExitCode, E
                 fill(slot, outcome);
             });
         };
-        if let Some(&first) = order.first() {
-            spawn_case(first, cases[first].take());
+        let first = rayon::current_num_threads().min(order.len());
+        for &i in &order[..first] {
+            spawn_case(i, cases[i].take());
         }
         let slot = &stability_slot;
         s.spawn_fifo(move |_| {
@@ -522,7 +523,7 @@ fn run_everything(out: &Path, quiet: bool, set: OutputSet) -> Result<ExitCode, E
                 .transpose();
             fill(slot, outcome);
         });
-        for &i in order.iter().skip(1) {
+        for &i in &order[first..] {
             spawn_case(i, cases[i].take());
         }
         for (c, slot) in oscillators.iter().zip(&sweep_slots) {
