@@ -5,8 +5,8 @@
 //! - the Plot panel: the message paths `/predictor-corrector/paper/state.rel_disp` and
 //!   `/reference/state.rel_disp` (and `.slide`) of the PEPO mass-acceleration case;
 //! - the 3D panel, seen from the side (−y, orthographic): the ground slab, the body's box,
-//!   supports and centre of mass placed by the `foxglove.FrameTransform` messages, and the
-//!   force arrows of `foxglove.SceneUpdate`, at four instants (a strobe), for a synthetic
+//!   supports and centre of mass placed by the `foxglove_msgs/msg/FrameTransforms` messages, and the
+//!   force arrows of `foxglove_msgs/msg/SceneUpdate`, at four instants (a strobe), for a synthetic
 //!   rocking motion on the RPEPO geometry (no rocking engine is needed for the picture).
 //!
 //! It is an illustration, not a screenshot of Foxglove. Run:
@@ -20,7 +20,7 @@ use rockslide::case::{load_case, parse_case};
 use rockslide::engine::{Run, RunStatus};
 use rockslide::report::{case_trace_log, write_case_outputs};
 use rockslide::suite::{CaseResult, run_case};
-use rockslide::trace::{Trace, mcap_bytes, q, read_mcap};
+use rockslide::trace::{Trace, mcap_bytes, q, read_mcap, scene3d};
 use serde_json::Value;
 
 const RPEPO: &str = r#"
@@ -156,13 +156,17 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut forces: Vec<(u64, Value)> = Vec::new();
     for m in mcap::MessageStream::new(&bytes)? {
         let m = m?;
-        if m.channel.message_encoding != "json" {
-            continue; // the per-step channels are CDR; the 3D channels are JSON
-        }
-        let v: Value = serde_json::from_slice(&m.data)?;
+        let schema = m.channel.schema.as_ref().map_or("", |s| s.name.as_str());
+        let Some(ty) = scene3d::message_type(schema) else {
+            continue; // the state, contacts and log: not drawn here
+        };
+        let v: Value = scene3d::decode(ty, &m.data)?;
         match m.channel.topic.as_str() {
             "/fe/exact/scene" => scene = v,
-            "/fe/exact/transform" => tfs.push((m.log_time, v)),
+            "/fe/exact/transform" => {
+                let each = v["transforms"].as_array().cloned().unwrap_or_default();
+                tfs.extend(each.into_iter().map(|t| (m.log_time, t)));
+            }
             "/fe/exact/forces" => forces.push((m.log_time, v)),
             _ => {}
         }

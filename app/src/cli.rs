@@ -3,6 +3,7 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::sync::Mutex;
 
 use clap::{Parser, Subcommand};
 
@@ -479,36 +480,60 @@ fn run_everything(out: &Path, quiet: bool, set: OutputSet) -> Result<ExitCode, E
     // are analysed as written
     let cases = prepare_cases(&[], out, &[], false)?;
     let swept: Vec<&str> = oscillators.iter().map(|c| c.name.as_str()).collect();
-    let (stability, (sweeps, outcomes)) = rayon::join(
-        || {
-            (!stability_cases.is_empty())
-                .then(|| timings::time("stability", "all", || study(&stability_cases, &options)))
-                .transpose()
-        },
-        || {
-            rayon::join(
-                || {
-                    oscillators
-                        .par_iter()
-                        .map(|c| timings::time("sweep", &c.name, || sweep_case(c, &options)))
-                        .collect::<Result<Vec<_>, _>>()
-                },
-                || {
-                    cases
-                        .into_par_iter()
-                        .map(|case| {
-                            let write_now = !swept.contains(&case.name.as_str());
-                            let result = run_case(case)?;
-                            let written = write_now
-                                .then(|| write_case_outputs_with(&result, out, set))
-                                .transpose()?;
-                            Ok((result, written))
-                        })
-                        .collect::<Vec<Result<_, Error>>>()
-                },
-            )
-        },
-    );
+    // One pool, longest first: a task starts in the order it was spawned (FIFO). The
+    // costliest cases first, one per core (their longest runs set the critical path: they
+    // start at t = 0), then the stability map (many short runs; run before most case
+    // results are held, its memory is freed early — run last it raised the peak RSS from
+    // 524 to 735 MB), then the other cases by estimated cost, then the sweeps (short runs
+    // that fill the cores' gaps at the end).
+    let order = longest_first(&cases);
+    let case_slots: Vec<Slot<(CaseResult, Option<WrittenCase>)>> =
+        cases.iter().map(|_| Mutex::new(None)).collect();
+    let sweep_slots: Vec<Slot<_>> = oscillators.iter().map(|_| Mutex::new(None)).collect();
+    let stability_slot: Slot<Option<_>> = Mutex::new(None);
+    let mut cases: Vec<Option<rockslide_core::case::Case>> = cases.into_iter().map(Some).collect();
+    rayon::scope_fifo(|s| {
+        let (stability_cases, options, swept) = (&stability_cases, &options, &swept);
+        let spawn_case = |i: usize, case: Option<rockslide_core::case::Case>| {
+            let slot = &case_slots[i];
+            s.spawn_fifo(move |_| {
+                let Some(case) = case else { return };
+                let write_now = !swept.contains(&case.name.as_str());
+                let outcome = run_case(case).map_err(Error::from).and_then(|result| {
+                    let written = write_now
+                        .then(|| write_case_outputs_with(&result, out, set))
+                        .transpose()?;
+                    Ok((result, written))
+                });
+                fill(slot, outcome);
+            });
+        };
+        let first = rayon::current_num_threads().min(order.len());
+        for &i in &order[..first] {
+            spawn_case(i, cases[i].take());
+        }
+        let slot = &stability_slot;
+        s.spawn_fifo(move |_| {
+            let outcome = (!stability_cases.is_empty())
+                .then(|| timings::time("stability", "all", || study(stability_cases, options)))
+                .transpose();
+            fill(slot, outcome);
+        });
+        for &i in &order[first..] {
+            spawn_case(i, cases[i].take());
+        }
+        for (c, slot) in oscillators.iter().zip(&sweep_slots) {
+            s.spawn_fifo(move |_| {
+                fill(
+                    slot,
+                    timings::time("sweep", &c.name, || sweep_case(c, options)),
+                );
+            });
+        }
+    });
+    let stability = taken(stability_slot);
+    let sweeps: Result<Vec<_>, Error> = sweep_slots.into_iter().map(taken).collect();
+    let outcomes: Vec<Result<_, Error>> = case_slots.into_iter().map(taken).collect();
     if let Some(r) = stability? {
         commands::stability::write(&r, out, quiet)?;
     }
@@ -528,6 +553,72 @@ fn run_everything(out: &Path, quiet: bool, set: OutputSet) -> Result<ExitCode, E
         })
         .collect();
     finish(written, out, quiet, None)
+}
+
+/// A task's outcome, filled once by the task that computes it.
+type Slot<T> = Mutex<Option<Result<T, Error>>>;
+
+/// Store a task's outcome in its slot.
+fn fill<T>(slot: &Slot<T>, outcome: Result<T, Error>) {
+    *slot.lock().unwrap_or_else(|e| e.into_inner()) = Some(outcome);
+}
+
+/// A slot's outcome once its task has run (an error if the task never filled it).
+fn taken<T>(slot: Slot<T>) -> Result<T, Error> {
+    slot.into_inner()
+        .unwrap_or_else(|e| e.into_inner())
+        .unwrap_or_else(|| {
+            Err(Error::Other(
+                "a task of the default run did not finish".into(),
+            ))
+        })
+}
+
+/// Relative CPU cost of one time step of a run, in units of 0.1 µs, from the default
+/// run's single-thread CPU per case (docs/performance.md §2): the predictor-corrector
+/// 0.06 µs, fe 0.2–1.1 µs; rapier about 2 µs on a mass (the oscillator) and 25 µs on a
+/// body with corners (block, rocking body: contact manifolds, substeps), twice that with
+/// a moving kinematic ground (its contacts are rebuilt every step).
+fn step_weight(engine: &str, variant: &str, model: &rockslide_core::case::Model) -> f64 {
+    use rockslide_core::case::Model;
+    match engine {
+        "rapier" => {
+            let body = match model {
+                Model::Oscillator(_) => 20.0,
+                Model::RockingBody(_) | Model::RigidBlock(_) => 250.0,
+            };
+            match variant {
+                "kinematic-ground" => 2.0 * body,
+                _ => body,
+            }
+        }
+        "fe" => 6.0,
+        _ => 1.0,
+    }
+}
+
+/// A case's estimated cost: Σ over its planned runs of steps × the run's step weight.
+fn estimated_cost(
+    case: &rockslide_core::case::Case,
+    engines: &[Box<dyn rockslide_engine_api::Engine>],
+) -> f64 {
+    plan(case, engines).map_or(0.0, |p| {
+        p.runs
+            .iter()
+            .map(|r| {
+                case.run.duration / r.dt * step_weight(r.engine, &r.variant, &case.scene.model)
+            })
+            .sum()
+    })
+}
+
+/// The cases' indices, costliest first (ties: the cases' order).
+fn longest_first(cases: &[rockslide_core::case::Case]) -> Vec<usize> {
+    let engines = registry::all();
+    let costs: Vec<f64> = cases.iter().map(|c| estimated_cost(c, &engines)).collect();
+    let mut order: Vec<usize> = (0..cases.len()).collect();
+    order.sort_by(|&a, &b| costs[b].total_cmp(&costs[a]));
+    order
 }
 
 /// Timed repeats of each sweep rung in the default command: one. The timing of a run is
@@ -815,4 +906,38 @@ fn write_reference(path: &Path, dt: f64, out: &Path) -> Result<ExitCode, Error> 
     rockslide_core::trace::write_csv(&trace, out)?;
     say!("{}: {} → {}", case.name, solution.method(), out.display());
     Ok(ExitCode::SUCCESS)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// rockslide shall start the default run's costliest cases first: a case's cost is
+    /// Σ steps × step weight over its planned runs.
+    #[test]
+    fn the_record_cases_with_rapier_bodies_are_scheduled_first() {
+        let paths: Vec<PathBuf> = [
+            "cases/pepo-mass-accel.toml",
+            "cases/records/pepo-loma-prieta.toml",
+            "cases/records/rpepo-loma-prieta.toml",
+            "cases/records/block-northridge.toml",
+        ]
+        .iter()
+        .map(PathBuf::from)
+        .collect();
+        let cases = load_all(&paths).unwrap();
+        let engines = registry::all();
+        // RPEPO, 60 s at 1 ms: fe single and double (6 each) and rapier's applied-force
+        // supports on a body (250)
+        assert_eq!(
+            estimated_cost(&cases[2], &engines),
+            60_000.0 * (6.0 + 6.0 + 250.0)
+        );
+        // block, 22 s at 1 ms: rapier's kinematic ground (500) and inertial force (250)
+        assert_eq!(
+            estimated_cost(&cases[3], &engines),
+            22_000.0 * (500.0 + 250.0)
+        );
+        assert_eq!(longest_first(&cases), [3, 2, 1, 0]);
+    }
 }

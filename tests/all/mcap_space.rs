@@ -15,27 +15,41 @@ use rockslide::case::{Case, parse_case};
 use rockslide::engine::{Run, RunStatus};
 use rockslide::report::write_case_outputs;
 use rockslide::suite::{CaseResult, run_case};
-use rockslide::trace::{Trace, q, read_mcap};
+use rockslide::trace::{Trace, q, read_mcap, scene3d};
 use serde_json::Value;
 
 use crate::common::case;
 
-/// The JSON messages of a file: (topic, log time, message); CDR messages are skipped
-/// (the state is read back with `read_mcap`).
+/// The 3D view's and the log's messages of a file as JSON: (topic, log time, message),
+/// one entry per transform of a `FrameTransforms` message; the state and contacts are
+/// skipped (read back with `read_mcap`).
 fn json_messages(path: &Path) -> Vec<(String, u64, Value)> {
     let bytes = std::fs::read(path).unwrap();
     mcap::MessageStream::new(&bytes)
         .unwrap()
         .map(|m| m.unwrap())
-        .filter(|m| m.channel.message_encoding == "json")
-        .map(|m| {
-            let v = serde_json::from_slice(&m.data).unwrap();
-            (m.channel.topic.clone(), m.log_time, v)
+        .flat_map(|m| {
+            let schema = &m.channel.schema.as_ref().unwrap().name;
+            let v: Value = match scene3d::message_type(schema) {
+                Some(ty) => scene3d::decode(ty, &m.data).unwrap(),
+                None if m.channel.message_encoding == "json" => {
+                    serde_json::from_slice(&m.data).unwrap()
+                }
+                None => return Vec::new(),
+            };
+            let entries = match v.get("transforms") {
+                Some(t) => t.as_array().unwrap().clone(),
+                None => vec![v],
+            };
+            entries
+                .into_iter()
+                .map(|v| (m.channel.topic.clone(), m.log_time, v))
+                .collect()
         })
         .collect()
 }
 
-/// The `foxglove.FrameTransform` messages of `topic` whose child frame is `child`.
+/// The transforms of `topic` whose child frame is `child`.
 fn transforms<'a>(
     msgs: &'a [(String, u64, Value)],
     topic: &str,

@@ -5,12 +5,14 @@
 //!   run and for the reference, whose values read back equal the CSV trace bit for bit;
 //! - per-step channels (state, contacts) as ROS 2 definitions (`ros2msg`, each field's SI
 //!   unit in a comment) and CDR messages, decoded here independently of the writer; the
-//!   3D and log channels as JSON in Foxglove's JSON-schema subset; log time = simulation
+//!   3D view as Foxglove's ROS 2 schemas in CDR (decoded here from the definition text the
+//!   file carries), the log as JSON in Foxglove's JSON-schema subset; log time = simulation
 //!   time in ns, zstd chunks, indexes and a summary;
 //! - only the fields the trace has (no rotation for a sliding-only oscillator, no 3D
 //!   channel for a scene without geometry);
-//! - for scenes with geometry, `foxglove.SceneUpdate`/`foxglove.FrameTransform` messages
-//!   whose transforms put the body where the trace says (checked against rigid-body
+//! - for scenes with geometry, `foxglove_msgs/msg/SceneUpdate` and
+//!   `foxglove_msgs/msg/FrameTransforms` messages (one per frame: the ground's and the
+//!   body's transform) whose transforms put the body where the trace says (checked against rigid-body
 //!   kinematics computed here, not by the writer's code);
 //! - the case file attached, engine settings, version and commit as metadata;
 //! - a diverged run still leaves a readable file with the reason recorded.
@@ -98,21 +100,116 @@ fn decode_cdr(definition: &str, data: &[u8]) -> Value {
     Value::Object(v)
 }
 
+/// A ROS 2 definition with its dependencies, parsed: type name → (field type, field
+/// name) in order; the root type is `""`. Dependencies follow the 80-`=` separator and
+/// `MSG: package/Type`; comments and constants (`NAME=value`) are skipped.
+fn parse_definition(text: &str) -> BTreeMap<String, Vec<(String, String)>> {
+    let mut types = BTreeMap::new();
+    for (k, block) in text.split(&"=".repeat(80)).enumerate() {
+        let mut lines = block
+            .lines()
+            .map(|l| l.split('#').next().unwrap().trim())
+            .filter(|l| !l.is_empty() && !l.contains('='));
+        let name = match k {
+            0 => String::new(),
+            _ => lines
+                .next()
+                .unwrap()
+                .strip_prefix("MSG: ")
+                .unwrap()
+                .to_string(),
+        };
+        let fields = lines
+            .map(|l| {
+                let (ty, name) = l.split_once(' ').unwrap();
+                (ty.to_string(), name.trim().to_string())
+            })
+            .collect();
+        assert!(types.insert(name, fields).is_none(), "a type defined twice");
+    }
+    types
+}
+
+/// One value of ROS 2 type `ty` read from a CDR message at `at` (alignment counted from
+/// the end of the 4-byte header), as JSON.
+fn read_cdr(
+    types: &BTreeMap<String, Vec<(String, String)>>,
+    ty: &str,
+    d: &[u8],
+    at: &mut usize,
+) -> Value {
+    let mut take = |align: usize, n: usize| {
+        *at = 4 + (*at - 4).div_ceil(align) * align;
+        let b = d[*at..*at + n].to_vec();
+        *at += n;
+        b
+    };
+    if let Some(item) = ty.strip_suffix("[]") {
+        let n = u32::from_le_bytes(take(4, 4).try_into().unwrap());
+        return Value::Array((0..n).map(|_| read_cdr(types, item, d, at)).collect());
+    }
+    match ty {
+        "float64" => Value::from(f64::from_le_bytes(take(8, 8).try_into().unwrap())),
+        "int32" => Value::from(i32::from_le_bytes(take(4, 4).try_into().unwrap())),
+        "uint32" => Value::from(u32::from_le_bytes(take(4, 4).try_into().unwrap())),
+        "uint8" => Value::from(take(1, 1)[0]),
+        "bool" => Value::from(take(1, 1)[0] != 0),
+        "string" => {
+            let n = u32::from_le_bytes(take(4, 4).try_into().unwrap()) as usize;
+            let b = take(1, n);
+            assert_eq!(b[n - 1], 0, "a string ends with NUL");
+            Value::from(std::str::from_utf8(&b[..n - 1]).unwrap())
+        }
+        _ => {
+            let fields = types
+                .get(ty)
+                .unwrap_or_else(|| panic!("{ty} is used but not defined"));
+            let mut v = serde_json::Map::new();
+            for (fty, name) in fields {
+                v.insert(name.clone(), read_cdr(types, fty, d, at));
+            }
+            Value::Object(v)
+        }
+    }
+}
+
+/// A CDR message of a Foxglove ROS 2 schema, decoded from its definition text.
+fn decode_foxglove(definition: &str, data: &[u8]) -> Value {
+    assert_eq!(&data[..4], &[0, 1, 0, 0], "little-endian CDR header");
+    let types = parse_definition(definition);
+    let mut at = 4;
+    let v = read_cdr(&types, "", data, &mut at);
+    assert_eq!(at, data.len(), "every byte of the message is a field");
+    v
+}
+
 /// Every message of a file: (topic, schema name, log time, JSON, or the CDR message's
-/// top-level `float64` fields as a JSON object).
+/// top-level `float64` fields as a JSON object, or a 3D-view message decoded from its
+/// definition). A `FrameTransforms` message gives one entry per transform.
 fn messages(path: &Path) -> Vec<(String, String, u64, Value)> {
     let bytes = std::fs::read(path).unwrap();
     mcap::MessageStream::new(&bytes)
         .unwrap()
-        .map(|m| {
+        .flat_map(|m| {
             let m = m.unwrap();
             let schema = m.channel.schema.as_ref().unwrap();
+            let text = std::str::from_utf8(&schema.data).unwrap();
             let v: Value = match m.channel.message_encoding.as_str() {
-                "cdr" => decode_cdr(std::str::from_utf8(&schema.data).unwrap(), &m.data),
+                "cdr" if schema.name.starts_with("foxglove_msgs/msg/") => {
+                    decode_foxglove(text, &m.data)
+                }
+                "cdr" => decode_cdr(text, &m.data),
                 "json" => serde_json::from_slice(&m.data).unwrap(),
                 other => panic!("message encoding {other}"),
             };
-            (m.channel.topic.clone(), schema.name.clone(), m.log_time, v)
+            let entries = match schema.name.as_str() {
+                "foxglove_msgs/msg/FrameTransforms" => v["transforms"].as_array().unwrap().clone(),
+                _ => vec![v],
+            };
+            entries
+                .into_iter()
+                .map(|v| (m.channel.topic.clone(), schema.name.clone(), m.log_time, v))
+                .collect::<Vec<_>>()
         })
         .collect()
 }
@@ -191,6 +288,19 @@ fn assert_schemas_in_foxglove_subset(path: &Path) -> usize {
     let bytes = std::fs::read(path).unwrap();
     let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
     for s in summary.schemas.values() {
+        if s.encoding == "ros2msg" && s.name.starts_with("foxglove_msgs/msg/") {
+            // every type it uses is defined (checked by decoding in `messages`)
+            let types = parse_definition(std::str::from_utf8(&s.data).unwrap());
+            for (ty, _) in types.values().flatten() {
+                let ty = ty.trim_end_matches("[]");
+                assert!(
+                    ty.chars().all(|c| c.is_ascii_alphanumeric()) || types.contains_key(ty),
+                    "{}: {ty} undefined",
+                    s.name
+                );
+            }
+            continue;
+        }
         if s.encoding == "ros2msg" {
             assert_ros2msg(std::str::from_utf8(&s.data).unwrap(), &s.name);
             continue;
@@ -545,11 +655,23 @@ fn rocking_body_pose_and_scene_follow_the_trace() {
             .schema
             .clone()
     };
-    assert_eq!(schema_of("/fe/exact/scene"), "foxglove.SceneUpdate");
-    assert_eq!(schema_of("/fe/exact/forces"), "foxglove.SceneUpdate");
-    assert_eq!(schema_of("/fe/exact/transform"), "foxglove.FrameTransform");
+    assert_eq!(
+        schema_of("/fe/exact/scene"),
+        "foxglove_msgs/msg/SceneUpdate"
+    );
+    assert_eq!(
+        schema_of("/fe/exact/forces"),
+        "foxglove_msgs/msg/SceneUpdate"
+    );
+    assert_eq!(
+        schema_of("/fe/exact/transform"),
+        "foxglove_msgs/msg/FrameTransforms"
+    );
+    // one FrameTransforms message a frame (51 frames, below)
+    let transform_channel = m.channels.iter().find(|c| c.topic == "/fe/exact/transform");
+    assert_eq!(transform_channel.unwrap().messages, 51);
     assert!(m.metadata.contains_key("scene3d"));
-    // State, SceneUpdate, FrameTransform, Log.
+    // State, SceneUpdate, FrameTransforms, Log.
     assert_eq!(assert_schemas_in_foxglove_subset(&path), 4);
 
     let msgs = messages(&path);
@@ -611,7 +733,7 @@ fn rocking_body_pose_and_scene_follow_the_trace() {
         );
         let stamp = &bt.3["timestamp"];
         assert_eq!(
-            stamp["sec"].as_u64().unwrap() * 1_000_000_000 + stamp["nsec"].as_u64().unwrap(),
+            stamp["sec"].as_u64().unwrap() * 1_000_000_000 + stamp["nanosec"].as_u64().unwrap(),
             ns
         );
     }
@@ -781,4 +903,59 @@ fn same_case_gives_identical_bytes_apart_from_wall_time() {
     let a = rockslide::trace::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
     let b = rockslide::trace::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
     assert_eq!(a, b);
+}
+
+#[test]
+fn a_minute_long_run_has_one_transform_message_per_scene_frame_with_the_exact_pose() {
+    // 60 s of trace every 20 ms (3,001 rows): the 3D view keeps one frame every
+    // 60 s / MAX_SCENE_FRAMES = 40 ms, i.e. every other row, and the last: 1,501 frames,
+    // each one FrameTransforms message (ground and body) and one forces message.
+    let chans = [&q::CM_X, &q::VEL];
+    let rows = 3001;
+    let mut trace = Trace::with_channels(&chans, rows);
+    for i in 0..rows {
+        let t = i as f64 * 0.02;
+        trace.push(t, &[0.001 * t.sin() / 3.0, 0.001 * t.cos() / 3.0]);
+    }
+    let result = result_with(
+        case(BLOCK_CASE, "block-minute"),
+        vec![run(
+            "rapier",
+            "inertial",
+            trace.clone(),
+            RunStatus::Completed,
+        )],
+    );
+    let out = tempfile::tempdir().unwrap();
+    let dir = write_case_outputs(&result, out.path()).unwrap();
+    let path = dir.join("block-minute.mcap");
+    let m = read_mcap(&path).unwrap();
+    let count = |topic: &str| {
+        m.channels
+            .iter()
+            .find(|c| c.topic == topic)
+            .unwrap()
+            .messages
+    };
+    assert_eq!(rockslide::trace::MAX_SCENE_FRAMES, 1_500);
+    assert_eq!(count("/rapier/inertial/transform"), 1_501);
+    assert_eq!(count("/rapier/inertial/forces"), 1_501);
+    assert_eq!(count("/rapier/inertial/state"), 3_001);
+    let msgs = messages(&path);
+    let bodies: Vec<_> = msgs
+        .iter()
+        .filter(|m| m.3["child_frame_id"] == "rapier/inertial/body")
+        .collect();
+    assert_eq!(bodies.len(), 1_501);
+    for (k, b) in bodies.iter().enumerate() {
+        let i = 2 * k; // rows 0, 2, 4, …, 3000
+        assert_eq!(b.2, (trace.time[i] * 1e9).round() as u64);
+        // the pose the trace holds, bit for bit: x = cm_x, z = h, no rotation
+        assert_eq!(
+            b.3["translation"]["x"].as_f64().unwrap(),
+            trace.columns[0][i]
+        );
+        assert_eq!(b.3["translation"]["z"].as_f64().unwrap(), 0.8);
+        assert_eq!(b.3["rotation"]["w"].as_f64().unwrap(), 1.0);
+    }
 }

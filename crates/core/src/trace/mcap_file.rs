@@ -8,8 +8,9 @@
 //!   one per trace row, with exactly the trace's fields and then, for a run with a contact
 //!   block, each contact's N, T, slip and gap (see [`super::contacts`]);
 //! - for scenes with geometry: `/<label>/scene` and `/<label>/forces`
-//!   (`foxglove.SceneUpdate`) and `/<label>/transform` (`foxglove.FrameTransform`), see
-//!   [`super::scene3d`]; these are decimated to one message per [`SCENE_PERIOD_NS`];
+//!   (`foxglove_msgs/msg/SceneUpdate`) and `/<label>/transform`
+//!   (`foxglove_msgs/msg/FrameTransforms`: the ground's and the body's transform of one
+//!   frame), `ros2msg`/`cdr`, see [`super::scene3d`]; one frame per [`scene_period_ns`];
 //! - files written before the contacts joined the state message have a channel
 //!   `/<label>/contacts` (schema `rockslide/Contacts<Label>`) beside it: still read;
 //! - `/log` (`foxglove.Log`): how each run ended, at the time it stopped;
@@ -203,18 +204,19 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             .add_schema(name, "jsonschema", v.to_string().as_bytes())
             .map_err(mcap_error)
     };
+    let ros2_schema = |out: &mut Out<W>, m: &'static scene3d::Msg| {
+        out.w
+            .add_schema(
+                &m.schema_name(),
+                cdr::SCHEMA_ENCODING,
+                scene3d::definition(m).as_bytes(),
+            )
+            .map_err(mcap_error)
+    };
     let scene_schema = match &log.geometry {
         Some(_) => Some((
-            json_schema(
-                &mut out,
-                "foxglove.SceneUpdate",
-                &scene3d::scene_update_schema(),
-            )?,
-            json_schema(
-                &mut out,
-                "foxglove.FrameTransform",
-                &scene3d::frame_transform_schema(),
-            )?,
+            ros2_schema(&mut out, &scene3d::SCENE_UPDATE)?,
+            ros2_schema(&mut out, &scene3d::FRAME_TRANSFORMS)?,
         )),
         None => None,
     };
@@ -265,7 +267,12 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
                 let none = BTreeMap::new();
                 let mut ch = |schema: u16, suffix: &str| {
                     out.w
-                        .add_channel(schema, &format!("/{}/{suffix}", run.label), "json", &none)
+                        .add_channel(
+                            schema,
+                            &format!("/{}/{suffix}", run.label),
+                            cdr::MESSAGE_ENCODING,
+                            &none,
+                        )
                         .map_err(mcap_error)
                 };
                 Some((
@@ -283,6 +290,7 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         .add_channel(log_schema, "/log", "json", &BTreeMap::new())
         .map_err(mcap_error)?;
 
+    let mut buf = Vec::with_capacity(512);
     // Static scenes first, at t = 0.
     if let Some(g) = &log.geometry {
         let mut first = true;
@@ -295,7 +303,8 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
                     }
                     first = false;
                 }
-                out.put_json(scene, 0, &s)?;
+                scene3d::encode(&scene3d::SCENE_UPDATE, &s, &mut buf);
+                out.put(scene, 0, &buf)?;
             }
         }
     }
@@ -309,7 +318,6 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         .iter()
         .map(|run| scene_period_ns(run.trace.end_time()))
         .collect();
-    let mut buf = Vec::with_capacity(512);
     loop {
         let next = (0..log.runs.len())
             .filter(|&r| row[r] < log.runs[r].trace.len())
@@ -326,11 +334,12 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             && let Some(p) = Pose::at(run.trace, i, g)
         {
             let lane_y = r as f64 * g.lane_spacing();
-            let ground = scene3d::ground_transform(ns, run.trace, i, lane_y, &run.label);
-            out.put_json(tf, ns, &ground)?;
-            out.put_json(tf, ns, &scene3d::body_transform(ns, &p, &run.label))?;
+            let tfs = scene3d::frame_transforms(ns, run.trace, i, lane_y, &p, &run.label);
+            scene3d::encode(&scene3d::FRAME_TRANSFORMS, &tfs, &mut buf);
+            out.put(tf, ns, &buf)?;
             let f = scene3d::forces(run.trace, i, ns, g, &p, &run.label);
-            out.put_json(forces, ns, &f)?;
+            scene3d::encode(&scene3d::SCENE_UPDATE, &f, &mut buf);
+            out.put(forces, ns, &buf)?;
             next_view[r] = ns + view_period[r];
         }
         if last_row {
@@ -931,6 +940,11 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             read_contact_message(&mut contents.contacts[bi].1, m.data).map_err(|e| bad(&e))?;
         } else if contents.channels[ci].message_encoding == "json" {
             serde_json::from_slice::<serde::de::IgnoredAny>(m.data).map_err(|e| bad(&e))?;
+        } else if let Some(ty) = scene3d::message_type(&contents.channels[ci].schema)
+            && is_cdr
+        {
+            // the 3D view: decoded to check it, not kept
+            scene3d::decode(ty, m.data).map_err(|e| bad(&e))?;
         }
         Ok(())
     })

@@ -1,7 +1,8 @@
 //! The 3D view of a trace for Foxglove's 3D panel: the scene's geometry (ground, body,
 //! supports), the body's pose rebuilt from the trace's channels, and the total support
-//! forces as arrows — encoded as the well-known Foxglove schemas `foxglove.SceneUpdate`,
-//! `foxglove.FrameTransform` and `foxglove.Log` in JSON.
+//! forces as arrows — encoded as the well-known Foxglove schemas in their ROS 2 form,
+//! `foxglove_msgs/msg/SceneUpdate` and `foxglove_msgs/msg/FrameTransforms` in CDR (a
+//! third of the JSON bytes, compressed: docs/performance.md §2), and `foxglove.Log` in JSON.
 //!
 //! Conventions (Foxglove's: x right, y into the screen, z up). A planar scene moves in the
 //! x–z plane; a counter-clockwise rotation θ as seen with x right and z up (the trace's
@@ -19,11 +20,11 @@
 //!          └▶ L/body  translation (x_cm, y_cm, z_cm0 + cm_z), rotation: origin at the centre of mass
 //! ```
 //!
-//! The JSON schemas below are written here from the field lists of Foxglove's message
-//! schema documentation (only the fields this module emits are described in detail); the
-//! 3D panel recognises the messages by schema *name*. They stay inside the JSON-schema
-//! subset Foxglove's reader turns into message definitions: every field has one concrete
-//! `type`, every object its `properties`, no `$ref`.
+//! The ROS 2 definitions below are written here from the field lists of Foxglove's message
+//! schemas (foxglove_msgs); the 3D panel recognises the messages by schema *name*
+//! (`foxglove_msgs/msg/…`, as it does `foxglove.…`) and decodes them with the definition
+//! the file carries. The messages are built as JSON values with the definitions' field
+//! names ([`encode`] writes them in CDR, [`decode`] reads them back).
 
 use serde_json::{Value, json};
 
@@ -294,9 +295,15 @@ pub fn drawable(trace: &Trace) -> bool {
     trace.has("cm_x") || trace.has("rel_disp")
 }
 
-/// Foxglove time `{sec, nsec}` from nanoseconds.
+/// Foxglove time `{sec, nsec}` from nanoseconds (the JSON `foxglove.Log`).
 pub fn time_json(ns: u64) -> Value {
     json!({ "sec": ns / 1_000_000_000, "nsec": ns % 1_000_000_000 })
+}
+
+/// ROS 2 time `{sec, nanosec}` (`builtin_interfaces/Time`) from nanoseconds: the 3D view's
+/// CDR messages.
+pub fn ros_time(ns: u64) -> Value {
+    json!({ "sec": ns / 1_000_000_000, "nanosec": ns % 1_000_000_000 })
 }
 
 fn vec3(x: f64, y: f64, z: f64) -> Value {
@@ -359,23 +366,17 @@ fn body_color(lane: usize, label: &str) -> [f64; 4] {
     }
 }
 
-/// One scene entity with every primitive list present (empty where unused), as the
-/// Foxglove JSON readers expect.
+/// One scene entity: the primitive lists `prims` gives (the others are empty in the CDR
+/// message), living until replaced.
 fn entity(ns: u64, frame: &str, id: &str, frame_locked: bool, prims: Value) -> Value {
     let mut e = json!({
-        "timestamp": time_json(ns),
+        "timestamp": ros_time(ns),
         "frame_id": frame,
         "id": id,
-        "lifetime": { "sec": 0, "nsec": 0 },
         "frame_locked": frame_locked,
-        "metadata": [],
-        "arrows": [], "cubes": [], "spheres": [], "cylinders": [],
-        "lines": [], "triangles": [], "texts": [], "models": []
     });
-    if let (Some(e), Some(p)) = (e.as_object_mut(), prims.as_object()) {
-        for (k, v) in p {
-            e.insert(k.clone(), v.clone());
-        }
+    if let (Some(e), Value::Object(p)) = (e.as_object_mut(), prims) {
+        e.extend(p);
     }
     e
 }
@@ -557,10 +558,10 @@ pub fn forces(trace: &Trace, i: usize, ns: u64, g: &Geometry, p: &Pose, label: &
     })
 }
 
-/// A `foxglove.FrameTransform` message.
+/// One `FrameTransform` (an element of a `FrameTransforms` message).
 pub fn transform(ns: u64, parent: &str, child: &str, t: (f64, f64, f64), q: [f64; 4]) -> Value {
     json!({
-        "timestamp": time_json(ns),
+        "timestamp": ros_time(ns),
         "parent_frame_id": parent,
         "child_frame_id": child,
         "translation": vec3(t.0, t.1, t.2),
@@ -589,6 +590,22 @@ pub fn ground_transform(ns: u64, trace: &Trace, i: usize, lane_y: f64, label: &s
     transform(ns, "world", &ground, (xg, lane_y + yg, 0.0), IDENTITY)
 }
 
+/// One frame of a run's transforms at row `i`, as one `FrameTransforms` message: the
+/// ground's, then the body's.
+pub fn frame_transforms(
+    ns: u64,
+    trace: &Trace,
+    i: usize,
+    lane_y: f64,
+    p: &Pose,
+    label: &str,
+) -> Value {
+    json!({ "transforms": [
+        ground_transform(ns, trace, i, lane_y, label),
+        body_transform(ns, p, label),
+    ] })
+}
+
 /// A `foxglove.Log` message (levels: 2 info, 3 warning, 4 error).
 pub fn log(ns: u64, level: u8, name: &str, message: &str) -> Value {
     json!({
@@ -601,20 +618,8 @@ pub fn log(ns: u64, level: u8, name: &str, message: &str) -> Value {
     })
 }
 
-// The schemas are inline (no `$ref`), every object has `properties` and every field one
-// concrete `type`: the subset Foxglove's JSON-schema reader accepts.
-
-fn num(d: &str) -> Value {
-    json!({ "type": "number", "description": d })
-}
-
-fn object(title: &str, props: Value) -> Value {
-    json!({ "type": "object", "title": title, "properties": props })
-}
-
-fn array_of(item: Value) -> Value {
-    json!({ "type": "array", "items": item })
-}
+// The log's JSON schema is inline (no `$ref`), every object has `properties` and every
+// field one concrete `type`: the subset Foxglove's JSON-schema reader accepts.
 
 fn time_schema(d: &str) -> Value {
     json!({
@@ -623,112 +628,6 @@ fn time_schema(d: &str) -> Value {
             "sec": { "type": "integer", "minimum": 0 },
             "nsec": { "type": "integer", "minimum": 0, "maximum": 999_999_999 }
         }
-    })
-}
-
-fn vector3_schema() -> Value {
-    object(
-        "foxglove.Vector3",
-        json!({ "x": num("x, m"), "y": num("y, m"), "z": num("z, m") }),
-    )
-}
-
-fn quaternion_schema() -> Value {
-    object(
-        "foxglove.Quaternion",
-        json!({ "x": num("x"), "y": num("y"), "z": num("z"), "w": num("w") }),
-    )
-}
-
-fn pose_schema() -> Value {
-    object(
-        "foxglove.Pose",
-        json!({ "position": vector3_schema(), "orientation": quaternion_schema() }),
-    )
-}
-
-fn color_schema() -> Value {
-    object(
-        "foxglove.Color",
-        json!({ "r": num("red, 0–1"), "g": num("green, 0–1"), "b": num("blue, 0–1"), "a": num("alpha, 0–1") }),
-    )
-}
-
-fn shape_schema(title: &str) -> Value {
-    object(
-        title,
-        json!({ "pose": pose_schema(), "size": vector3_schema(), "color": color_schema() }),
-    )
-}
-
-fn entity_schema() -> Value {
-    let unused = |title: &str| array_of(object(title, json!({})));
-    object(
-        "foxglove.SceneEntity",
-        json!({
-            "timestamp": time_schema("Timestamp of the entity (simulation time)"),
-            "frame_id": { "type": "string" },
-            "id": { "type": "string" },
-            "lifetime": time_schema("0: until replaced"),
-            "frame_locked": { "type": "boolean" },
-            "metadata": array_of(object("foxglove.KeyValuePair", json!({
-                "key": { "type": "string" }, "value": { "type": "string" }
-            }))),
-            "arrows": array_of(object("foxglove.ArrowPrimitive", json!({
-                "pose": pose_schema(),
-                "shaft_length": num("m"), "shaft_diameter": num("m"),
-                "head_length": num("m"), "head_diameter": num("m"),
-                "color": color_schema()
-            }))),
-            "cubes": array_of(shape_schema("foxglove.CubePrimitive")),
-            "spheres": array_of(shape_schema("foxglove.SpherePrimitive")),
-            "cylinders": unused("foxglove.CylinderPrimitive"),
-            "lines": unused("foxglove.LinePrimitive"),
-            "triangles": unused("foxglove.TriangleListPrimitive"),
-            "texts": array_of(object("foxglove.TextPrimitive", json!({
-                "pose": pose_schema(),
-                "billboard": { "type": "boolean" },
-                "font_size": num("px when scale_invariant"),
-                "scale_invariant": { "type": "boolean" },
-                "color": color_schema(),
-                "text": { "type": "string" }
-            }))),
-            "models": unused("foxglove.ModelPrimitive")
-        }),
-    )
-}
-
-/// JSON schema of `foxglove.SceneUpdate` (the fields emitted here).
-pub fn scene_update_schema() -> Value {
-    json!({
-        "title": "foxglove.SceneUpdate",
-        "description": "An update to the entities displayed in a 3D scene",
-        "type": "object",
-        "properties": {
-            "deletions": array_of(object("foxglove.SceneEntityDeletion", json!({
-                "timestamp": time_schema("Timestamp of the deletion"),
-                "type": { "type": "integer", "description": "0 matching id, 1 all" },
-                "id": { "type": "string" }
-            }))),
-            "entities": array_of(entity_schema())
-        }
-    })
-}
-
-/// JSON schema of `foxglove.FrameTransform`.
-pub fn frame_transform_schema() -> Value {
-    json!({
-        "title": "foxglove.FrameTransform",
-        "description": "A transform between two reference frames in 3D space",
-        "type": "object",
-        "properties": {
-            "timestamp": time_schema("Timestamp of the transform (simulation time)"),
-            "parent_frame_id": { "type": "string" },
-            "child_frame_id": { "type": "string" },
-            "translation": vector3_schema(),
-            "rotation": quaternion_schema()
-        },
-        "required": ["timestamp", "parent_frame_id", "child_frame_id", "translation", "rotation"]
     })
 }
 
@@ -748,4 +647,474 @@ pub fn log_schema() -> Value {
         },
         "required": ["timestamp", "level", "message", "name", "file", "line"]
     })
+}
+
+// ---------------------------------------------------------------------------------------
+// The 3D view's messages in CDR: `foxglove_msgs/msg/SceneUpdate` and
+// `foxglove_msgs/msg/FrameTransforms`, the ROS 2 forms of Foxglove's well-known schemas
+// (foxglove_msgs 3.x field lists, without the later `uuid`/`lineage` additions: a
+// reader decodes with the definition the file carries). One table of types below gives
+// the definition text, the encoder and the decoder, so the three cannot disagree.
+
+/// A field type of a ROS 2 message definition.
+#[derive(Debug)]
+pub enum Ty {
+    /// `float64`, 8-byte aligned.
+    F64,
+    /// `uint8`.
+    U8,
+    /// `bool` (one byte).
+    Bool,
+    /// `int32`, 4-byte aligned.
+    I32,
+    /// `uint32`, 4-byte aligned.
+    U32,
+    /// `string`: a `uint32` length (NUL included), the bytes, a NUL.
+    Str,
+    /// A nested message.
+    Msg(&'static Msg),
+    /// An unbounded sequence: a `uint32` count, then the elements.
+    Seq(&'static Ty),
+}
+
+/// A ROS 2 message type: `package/Type` and its fields in order.
+#[derive(Debug)]
+pub struct Msg {
+    /// `package/Type`, as dependencies are named in a definition.
+    pub name: &'static str,
+    /// (field name, type), in wire order.
+    pub fields: &'static [(&'static str, Ty)],
+}
+
+impl Msg {
+    /// The schema name Foxglove's 3D panel recognises: `package/msg/Type`.
+    pub fn schema_name(&self) -> String {
+        self.name.replacen('/', "/msg/", 1)
+    }
+}
+
+const TIME: Msg = Msg {
+    name: "builtin_interfaces/Time",
+    fields: &[("sec", Ty::I32), ("nanosec", Ty::U32)],
+};
+const DURATION: Msg = Msg {
+    name: "builtin_interfaces/Duration",
+    fields: &[("sec", Ty::I32), ("nanosec", Ty::U32)],
+};
+const XYZ: &[(&str, Ty)] = &[("x", Ty::F64), ("y", Ty::F64), ("z", Ty::F64)];
+const VECTOR3: Msg = Msg {
+    name: "geometry_msgs/Vector3",
+    fields: XYZ,
+};
+const POINT: Msg = Msg {
+    name: "geometry_msgs/Point",
+    fields: XYZ,
+};
+const QUATERNION: Msg = Msg {
+    name: "geometry_msgs/Quaternion",
+    fields: &[
+        ("x", Ty::F64),
+        ("y", Ty::F64),
+        ("z", Ty::F64),
+        ("w", Ty::F64),
+    ],
+};
+const POSE: Msg = Msg {
+    name: "geometry_msgs/Pose",
+    fields: &[
+        ("position", Ty::Msg(&POINT)),
+        ("orientation", Ty::Msg(&QUATERNION)),
+    ],
+};
+const COLOR: Msg = Msg {
+    name: "foxglove_msgs/Color",
+    fields: &[
+        ("r", Ty::F64),
+        ("g", Ty::F64),
+        ("b", Ty::F64),
+        ("a", Ty::F64),
+    ],
+};
+const KEY_VALUE: Msg = Msg {
+    name: "foxglove_msgs/KeyValuePair",
+    fields: &[("key", Ty::Str), ("value", Ty::Str)],
+};
+const ARROW: Msg = Msg {
+    name: "foxglove_msgs/ArrowPrimitive",
+    fields: &[
+        ("pose", Ty::Msg(&POSE)),
+        ("shaft_length", Ty::F64),
+        ("shaft_diameter", Ty::F64),
+        ("head_length", Ty::F64),
+        ("head_diameter", Ty::F64),
+        ("color", Ty::Msg(&COLOR)),
+    ],
+};
+const SHAPE: &[(&str, Ty)] = &[
+    ("pose", Ty::Msg(&POSE)),
+    ("size", Ty::Msg(&VECTOR3)),
+    ("color", Ty::Msg(&COLOR)),
+];
+const CUBE: Msg = Msg {
+    name: "foxglove_msgs/CubePrimitive",
+    fields: SHAPE,
+};
+const SPHERE: Msg = Msg {
+    name: "foxglove_msgs/SpherePrimitive",
+    fields: SHAPE,
+};
+const CYLINDER: Msg = Msg {
+    name: "foxglove_msgs/CylinderPrimitive",
+    fields: &[
+        ("pose", Ty::Msg(&POSE)),
+        ("size", Ty::Msg(&VECTOR3)),
+        ("bottom_scale", Ty::F64),
+        ("top_scale", Ty::F64),
+        ("color", Ty::Msg(&COLOR)),
+    ],
+};
+const LINE: Msg = Msg {
+    name: "foxglove_msgs/LinePrimitive",
+    fields: &[
+        ("type", Ty::U8),
+        ("pose", Ty::Msg(&POSE)),
+        ("thickness", Ty::F64),
+        ("scale_invariant", Ty::Bool),
+        ("points", Ty::Seq(&Ty::Msg(&POINT))),
+        ("color", Ty::Msg(&COLOR)),
+        ("colors", Ty::Seq(&Ty::Msg(&COLOR))),
+        ("indices", Ty::Seq(&Ty::U32)),
+    ],
+};
+const TRIANGLES: Msg = Msg {
+    name: "foxglove_msgs/TriangleListPrimitive",
+    fields: &[
+        ("pose", Ty::Msg(&POSE)),
+        ("points", Ty::Seq(&Ty::Msg(&POINT))),
+        ("color", Ty::Msg(&COLOR)),
+        ("colors", Ty::Seq(&Ty::Msg(&COLOR))),
+        ("indices", Ty::Seq(&Ty::U32)),
+    ],
+};
+const TEXT: Msg = Msg {
+    name: "foxglove_msgs/TextPrimitive",
+    fields: &[
+        ("pose", Ty::Msg(&POSE)),
+        ("billboard", Ty::Bool),
+        ("font_size", Ty::F64),
+        ("scale_invariant", Ty::Bool),
+        ("color", Ty::Msg(&COLOR)),
+        ("text", Ty::Str),
+    ],
+};
+const MODEL: Msg = Msg {
+    name: "foxglove_msgs/ModelPrimitive",
+    fields: &[
+        ("pose", Ty::Msg(&POSE)),
+        ("scale", Ty::Msg(&VECTOR3)),
+        ("color", Ty::Msg(&COLOR)),
+        ("override_color", Ty::Bool),
+        ("url", Ty::Str),
+        ("media_type", Ty::Str),
+        ("data", Ty::Seq(&Ty::U8)),
+    ],
+};
+const ENTITY: Msg = Msg {
+    name: "foxglove_msgs/SceneEntity",
+    fields: &[
+        ("timestamp", Ty::Msg(&TIME)),
+        ("frame_id", Ty::Str),
+        ("id", Ty::Str),
+        ("lifetime", Ty::Msg(&DURATION)),
+        ("frame_locked", Ty::Bool),
+        ("metadata", Ty::Seq(&Ty::Msg(&KEY_VALUE))),
+        ("arrows", Ty::Seq(&Ty::Msg(&ARROW))),
+        ("cubes", Ty::Seq(&Ty::Msg(&CUBE))),
+        ("spheres", Ty::Seq(&Ty::Msg(&SPHERE))),
+        ("cylinders", Ty::Seq(&Ty::Msg(&CYLINDER))),
+        ("lines", Ty::Seq(&Ty::Msg(&LINE))),
+        ("triangles", Ty::Seq(&Ty::Msg(&TRIANGLES))),
+        ("texts", Ty::Seq(&Ty::Msg(&TEXT))),
+        ("models", Ty::Seq(&Ty::Msg(&MODEL))),
+    ],
+};
+const DELETION: Msg = Msg {
+    name: "foxglove_msgs/SceneEntityDeletion",
+    fields: &[
+        ("timestamp", Ty::Msg(&TIME)),
+        ("type", Ty::U8),
+        ("id", Ty::Str),
+    ],
+};
+/// `foxglove_msgs/msg/SceneUpdate`: the static scene and the force arrows.
+pub const SCENE_UPDATE: Msg = Msg {
+    name: "foxglove_msgs/SceneUpdate",
+    fields: &[
+        ("deletions", Ty::Seq(&Ty::Msg(&DELETION))),
+        ("entities", Ty::Seq(&Ty::Msg(&ENTITY))),
+    ],
+};
+const FRAME_TRANSFORM: Msg = Msg {
+    name: "foxglove_msgs/FrameTransform",
+    fields: &[
+        ("timestamp", Ty::Msg(&TIME)),
+        ("parent_frame_id", Ty::Str),
+        ("child_frame_id", Ty::Str),
+        ("translation", Ty::Msg(&VECTOR3)),
+        ("rotation", Ty::Msg(&QUATERNION)),
+    ],
+};
+/// `foxglove_msgs/msg/FrameTransforms`: a run's ground and body transforms of one frame.
+pub const FRAME_TRANSFORMS: Msg = Msg {
+    name: "foxglove_msgs/FrameTransforms",
+    fields: &[("transforms", Ty::Seq(&Ty::Msg(&FRAME_TRANSFORM)))],
+};
+
+/// The 3D view's message type of a schema name (`None`: not one of them).
+pub fn message_type(schema_name: &str) -> Option<&'static Msg> {
+    [&SCENE_UPDATE, &FRAME_TRANSFORMS]
+        .into_iter()
+        .find(|m| m.schema_name() == schema_name)
+}
+
+/// A type's name in a definition (`float64`, `foxglove_msgs/Color[]`, ...).
+fn type_name(ty: &Ty) -> String {
+    match ty {
+        Ty::F64 => "float64".into(),
+        Ty::U8 => "uint8".into(),
+        Ty::Bool => "bool".into(),
+        Ty::I32 => "int32".into(),
+        Ty::U32 => "uint32".into(),
+        Ty::Str => "string".into(),
+        Ty::Msg(m) => m.name.into(),
+        Ty::Seq(t) => format!("{}[]", type_name(t)),
+    }
+}
+
+/// The message types `m` uses, depth first, each once.
+fn dependencies(m: &'static Msg, out: &mut Vec<&'static Msg>) {
+    for (_, ty) in m.fields {
+        let mut ty = ty;
+        while let Ty::Seq(t) = ty {
+            ty = t;
+        }
+        if let Ty::Msg(d) = ty
+            && !out.iter().any(|o| o.name == d.name)
+        {
+            out.push(d);
+            dependencies(d, out);
+        }
+    }
+}
+
+/// The ROS 2 definition of `m` (schema encoding `ros2msg`): its fields, then each type
+/// it uses after the 80-`=` separator and `MSG: package/Type`, as ROS 2 bundles them.
+pub fn definition(m: &'static Msg) -> String {
+    let fields = |m: &Msg| {
+        m.fields
+            .iter()
+            .map(|(n, t)| format!("{} {n}\n", type_name(t)))
+            .collect::<String>()
+    };
+    let mut deps = Vec::new();
+    dependencies(m, &mut deps);
+    let mut s = fields(m);
+    for d in deps {
+        s.push_str(&format!(
+            "{}\nMSG: {}\n{}",
+            "=".repeat(80),
+            d.name,
+            fields(d)
+        ));
+    }
+    s
+}
+
+/// Pad `buf` with zeros to a multiple of `n` past the 4-byte encapsulation header.
+fn align(buf: &mut Vec<u8>, n: usize) {
+    while (buf.len() - 4) % n != 0 {
+        buf.push(0);
+    }
+}
+
+/// `v` (a JSON object with `m`'s field names) as a CDR message of type `m`, into `buf`:
+/// the little-endian header, then every field in definition order; a field `v` lacks is
+/// zero, false, empty (a JSON `null` number is NaN).
+pub fn encode(m: &Msg, v: &Value, buf: &mut Vec<u8>) {
+    buf.clear();
+    buf.extend_from_slice(&super::CDR_LE_HEADER);
+    put_msg(m, v, buf);
+}
+
+fn put_msg(m: &Msg, v: &Value, buf: &mut Vec<u8>) {
+    for (name, ty) in m.fields {
+        put_field(ty, v.get(name), buf);
+    }
+}
+
+fn put_field(ty: &Ty, v: Option<&Value>, buf: &mut Vec<u8>) {
+    let int = |v: Option<&Value>| v.and_then(Value::as_i64).unwrap_or(0);
+    match ty {
+        Ty::F64 => {
+            align(buf, 8);
+            let x = match v {
+                Some(Value::Null) => f64::NAN,
+                v => v.and_then(Value::as_f64).unwrap_or(0.0),
+            };
+            buf.extend_from_slice(&x.to_le_bytes());
+        }
+        Ty::U8 => buf.push(int(v) as u8),
+        Ty::Bool => buf.push(u8::from(v.and_then(Value::as_bool).unwrap_or(false))),
+        Ty::I32 => {
+            align(buf, 4);
+            buf.extend_from_slice(&(int(v) as i32).to_le_bytes());
+        }
+        Ty::U32 => {
+            align(buf, 4);
+            buf.extend_from_slice(&(int(v) as u32).to_le_bytes());
+        }
+        Ty::Str => {
+            let text = v.and_then(Value::as_str).unwrap_or("");
+            align(buf, 4);
+            buf.extend_from_slice(&(text.len() as u32 + 1).to_le_bytes());
+            buf.extend_from_slice(text.as_bytes());
+            buf.push(0);
+        }
+        Ty::Msg(m) => put_msg(m, v.unwrap_or(&Value::Null), buf),
+        Ty::Seq(t) => {
+            let items = v.and_then(Value::as_array).map_or(&[][..], Vec::as_slice);
+            align(buf, 4);
+            buf.extend_from_slice(&(items.len() as u32).to_le_bytes());
+            for item in items {
+                put_field(t, Some(item), buf);
+            }
+        }
+    }
+}
+
+/// A CDR message of type `m` read back as JSON (field names as in the definition;
+/// NaN as `null`); an error says where the bytes end or what is wrong.
+pub fn decode(m: &Msg, data: &[u8]) -> Result<Value, String> {
+    let Some(header) = data.get(..4) else {
+        return Err(format!("{} bytes, shorter than the CDR header", data.len()));
+    };
+    if header[..2] != super::CDR_LE_HEADER[..2] {
+        return Err("not little-endian plain CDR".into());
+    }
+    let mut r = Reader { data, at: 4 };
+    let v = r.msg(m)?;
+    match data.len() - r.at {
+        0 => Ok(v),
+        n => Err(format!("{n} bytes after the last field of {}", m.name)),
+    }
+}
+
+struct Reader<'a> {
+    data: &'a [u8],
+    at: usize,
+}
+
+impl Reader<'_> {
+    fn take(&mut self, align: usize, n: usize) -> Result<&[u8], String> {
+        let start = 4 + (self.at - 4).next_multiple_of(align);
+        let bytes = self
+            .data
+            .get(start..start + n)
+            .ok_or_else(|| format!("message ends at byte {} inside a field", self.data.len()))?;
+        self.at = start + n;
+        Ok(bytes)
+    }
+
+    fn u32(&mut self) -> Result<u32, String> {
+        let b = self.take(4, 4)?;
+        Ok(u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    }
+
+    fn msg(&mut self, m: &Msg) -> Result<Value, String> {
+        let mut obj = serde_json::Map::with_capacity(m.fields.len());
+        for (name, ty) in m.fields {
+            obj.insert((*name).to_string(), self.field(ty)?);
+        }
+        Ok(Value::Object(obj))
+    }
+
+    fn field(&mut self, ty: &Ty) -> Result<Value, String> {
+        Ok(match ty {
+            Ty::F64 => {
+                let b = self.take(8, 8)?;
+                json!(f64::from_le_bytes(b.try_into().unwrap_or([0; 8])))
+            }
+            Ty::U8 => json!(self.take(1, 1)?[0]),
+            Ty::Bool => match self.take(1, 1)?[0] {
+                0 => json!(false),
+                1 => json!(true),
+                b => return Err(format!("bool byte {b}")),
+            },
+            Ty::I32 => json!(self.u32()? as i32),
+            Ty::U32 => json!(self.u32()?),
+            Ty::Str => {
+                let n = self.u32()? as usize;
+                let bytes = self.take(1, n)?;
+                let (nul, text) = bytes.split_last().ok_or("a string of length 0")?;
+                if *nul != 0 {
+                    return Err("a string without its NUL".into());
+                }
+                json!(std::str::from_utf8(text).map_err(|e| e.to_string())?)
+            }
+            Ty::Msg(m) => self.msg(m)?,
+            Ty::Seq(t) => {
+                let n = self.u32()? as usize;
+                // every element takes at least one byte: a count beyond the bytes left is damage
+                if n > self.data.len() - self.at {
+                    return Err(format!("a sequence of {n} in {} bytes", self.data.len()));
+                }
+                let mut items = Vec::with_capacity(n);
+                for _ in 0..n {
+                    items.push(self.field(t)?);
+                }
+                Value::Array(items)
+            }
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_frame_transform_reads_back_bit_for_bit_and_aligned() {
+        let tf = json!({ "transforms": [transform(
+            1_500_000_001,
+            "world",
+            "fe/single/ground",
+            (0.1 + 0.2, -3.0, f64::MIN_POSITIVE),
+            [0.0, -0.25f64.sin(), 0.0, 0.25f64.cos()],
+        )] });
+        let mut buf = Vec::new();
+        encode(&FRAME_TRANSFORMS, &tf, &mut buf);
+        // header 4, count 4, time 8, "world\0" 4 + 6 → pad 2, "fe/single/ground\0"
+        // 4 + 17 → at 49, pad to 56 (8-aligned past the header: 52), 7 float64
+        assert_eq!(buf.len(), 4 + 4 + 8 + 4 + 6 + 2 + 4 + 17 + 3 + 7 * 8);
+        assert_eq!(decode(&FRAME_TRANSFORMS, &buf).unwrap(), tf);
+        assert!(decode(&FRAME_TRANSFORMS, &buf[..buf.len() - 1]).is_err());
+        let mut longer = buf.clone();
+        longer.push(0);
+        assert!(decode(&FRAME_TRANSFORMS, &longer).is_err());
+    }
+
+    #[test]
+    fn definitions_name_each_dependency_once() {
+        let d = definition(&SCENE_UPDATE);
+        assert!(d.starts_with(
+            "foxglove_msgs/SceneEntityDeletion[] deletions\nfoxglove_msgs/SceneEntity[] entities\n"
+        ));
+        assert_eq!(d.matches("\nMSG: geometry_msgs/Pose\n").count(), 1);
+        assert_eq!(d.matches("MSG: ").count(), 18);
+        assert_eq!(SCENE_UPDATE.schema_name(), "foxglove_msgs/msg/SceneUpdate");
+        assert_eq!(
+            message_type("foxglove_msgs/msg/FrameTransforms").map(|m| m.name),
+            Some("foxglove_msgs/FrameTransforms")
+        );
+    }
 }

@@ -89,13 +89,31 @@ pub(crate) fn normalised_rms(a: &Trace, b: &Trace, key: &str, until: f64) -> Opt
         (b, a, false)
     };
     let col = coarse.column(key)?;
-    fine.column(key)?;
+    let fine_col = fine.column(key)?;
+    let (ft, m) = (&fine.time, fine.time.len());
+    if m == 0 {
+        return None;
+    }
     let (mut sum, mut n, mut peak_b) = (0.0, 0usize, 0.0_f64);
+    // `fine` linearly interpolated at each coarse time, as `Trace::sample` does, with one
+    // cursor walking both time axes (they ascend) instead of a search per row
+    let mut j = 0;
     for (i, &t) in coarse.time.iter().enumerate() {
         if t > until {
             break;
         }
-        let other = fine.sample(key, t)?;
+        while j < m && ft[j] <= t {
+            j += 1;
+        }
+        let other = match j {
+            0 => fine_col[0],
+            j if j >= m => fine_col[m - 1],
+            j => {
+                let (t0, t1) = (ft[j - 1], ft[j]);
+                let f = if t1 > t0 { (t - t0) / (t1 - t0) } else { 0.0 };
+                fine_col[j - 1] + f * (fine_col[j] - fine_col[j - 1])
+            }
+        };
         let (va, vb) = if coarse_is_a {
             (col[i], other)
         } else {
@@ -198,5 +216,30 @@ mod tests {
         // Windowed to t ≤ 0.5: peak |b| = 2.5.
         let r = normalised_rms(&a, &b, "rel_disp", 0.5).unwrap();
         assert!((r - 0.3 / 2.5).abs() < 1e-12, "{r}");
+    }
+
+    #[test]
+    fn the_cursor_interpolates_as_trace_sample_does_bit_for_bit() {
+        // irregular fine times (a repeated time, coarse times before, between and after
+        // them): the RMS from the cursor equals the one from `Trace::sample` per row
+        let fine = line(&[0.1, 0.2, 0.25, 0.25, 0.4, 0.6, 0.77, 0.8, 0.9], |t| {
+            (7.0 * t).sin()
+        });
+        let coarse = line(&[0.0, 0.1, 0.25, 0.3, 0.95, 1.2], |t| t * t);
+        let mut sum = 0.0;
+        for (i, &t) in coarse.time.iter().enumerate() {
+            let d = coarse.columns[0][i] - fine.sample("rel_disp", t).unwrap();
+            sum += d * d;
+        }
+        let peak = fine.columns[0].iter().fold(0.0_f64, |p, v| p.max(v.abs()));
+        let sample_peak = coarse
+            .time
+            .iter()
+            .map(|&t| fine.sample("rel_disp", t).unwrap().abs())
+            .fold(0.0, f64::max);
+        assert!(sample_peak <= peak);
+        let expected = (sum / 6.0).sqrt() / sample_peak;
+        let r = normalised_rms(&coarse, &fine, "rel_disp", f64::INFINITY).unwrap();
+        assert_eq!(r.to_bits(), expected.to_bits());
     }
 }
