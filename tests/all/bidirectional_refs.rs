@@ -342,7 +342,7 @@ fn the_plan_references_note_names_what_its_episode_count_counts() {
     );
     assert!(
         note.contains(
-            "The slip_episodes response is another count: runs of the x component's slip rate"
+            "The response \"Slip episodes\" (slip_episodes) is another count: runs of the x component's slip rate"
         ),
         "{note}"
     );
@@ -376,9 +376,6 @@ fn the_plan_references_note_names_what_its_episode_count_counts() {
         note.contains("; 13 slides (slip episodes of the plan slip"),
         "{note}"
     );
-    assert!(
-        note.contains("The slip_episodes response is another count"),
-        "{note}"
-    );
+    assert!(note.contains("(slip_episodes) is another count"), "{note}");
     assert_eq!(b.responses["slip_episodes"], 20.0);
 }
