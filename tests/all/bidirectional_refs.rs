@@ -313,3 +313,69 @@ fn bidirectional_motion_against_the_larger_one_directional_run() {
         );
     }
 }
+
+/// Runs of samples whose `col` rate exceeds 1e-3 of its largest (the rule of the
+/// `slip_episodes` response, written out again here).
+fn runs_of_rate(time: &[f64], col: &[f64]) -> usize {
+    let rate = |i: usize| ((col[i] - col[i - 1]) / (time[i] - time[i - 1])).abs();
+    let peak = (1..col.len()).map(rate).fold(0.0_f64, f64::max);
+    let slipping: Vec<bool> = (1..col.len()).map(|i| rate(i) > 1e-3 * peak).collect();
+    (0..slipping.len())
+        .filter(|&i| slipping[i] && (i == 0 || !slipping[i - 1]))
+        .count()
+}
+
+/// The plan reference's note and the response table count slip episodes differently, and
+/// the note says how (review: the note said "93 slip episodes" beside a table's 111). On
+/// the PEPO under the Chino Hills pair: 93 plastic phases, which are the runs of the plan
+/// slip path's rate read off the reference's fine trace; the table's 111 are the runs of
+/// the x component's slip rate on that trace (18 phases split where the slip turns across
+/// x), 104 on a trace sampled every 1 ms as fe's steps (fe's own: 105; measured 2026-11-24).
+#[test]
+fn the_plan_references_note_names_what_its_episode_count_counts() {
+    let c = case("spatial/pepo-chino-hills-pair");
+    let r = rockslide::suite::solve_reference(&c).unwrap();
+    let note = r.solution.method();
+    assert!(
+        note.contains("; 93 plastic phases (slip episodes of the plan slip"),
+        "{note}"
+    );
+    assert!(
+        note.contains(
+            "The response \"Slip episodes\" (slip_episodes) is another count: runs of the x component's slip rate"
+        ),
+        "{note}"
+    );
+    let (t, x, y) = (
+        &r.trace.time,
+        r.trace.column("slide").unwrap(),
+        r.trace.column("slide_y").unwrap(),
+    );
+    let mut path = vec![0.0; x.len()];
+    for i in 1..x.len() {
+        path[i] = path[i - 1] + (x[i] - x[i - 1]).hypot(y[i] - y[i - 1]);
+    }
+    assert_eq!(
+        runs_of_rate(t, &path),
+        93,
+        "the note's count, read off the trace"
+    );
+    assert_eq!(runs_of_rate(t, x), 111);
+    assert_eq!(r.responses["slip_episodes"], 111.0, "the table's count");
+    let every_ms =
+        rockslide::reference::sample_uniform(r.solution.as_ref(), c.run.duration, 50_000);
+    assert_eq!(
+        rockslide::analysis::responses(&every_ms)["slip_episodes"],
+        104.0,
+        "the table's count depends on the sampling"
+    );
+    // The block's note says the same of its slides (13 slides, 20 runs of the x slip rate).
+    let b = rockslide::suite::solve_reference(&case("spatial/block-chino-hills-pair")).unwrap();
+    let note = b.solution.method();
+    assert!(
+        note.contains("; 13 slides (slip episodes of the plan slip"),
+        "{note}"
+    );
+    assert!(note.contains("(slip_episodes) is another count"), "{note}");
+    assert_eq!(b.responses["slip_episodes"], 20.0);
+}

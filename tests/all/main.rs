@@ -32,6 +32,7 @@ mod rapier_records;
 mod rapier_rigid_block;
 mod rapier_rpepo;
 mod rapier_space;
+mod record_errors;
 mod record_pair_finding;
 mod records_block;
 mod records_formats;

@@ -235,10 +235,14 @@ fn case_errors_name_the_record_file_and_line() {
     let case_path = dir.path().join("c.toml");
     let e = parse_case(&case_path, &case_text("r.csv", "record_unit = \"g\"")).unwrap_err();
     let msg = e.to_string();
-    assert!(
-        msg.contains("r.csv:3:1: excitation.record: time 0.01 s is not after"),
-        "{msg}"
+    // At the case's `record` (line 12, column 10), then in the record (line 3, column 1).
+    let record = dir.path().join("r.csv");
+    let want = format!(
+        "{}:12:10: excitation.record: {}:3:1: time 0.01 s is not after",
+        case_path.display(),
+        record.display()
     );
+    assert!(msg.starts_with(&want), "{msg}");
     // No unit for a CSV: the message says so.
     let e = parse_case(&case_path, &case_text("r.csv", "")).unwrap_err();
     assert!(e.to_string().contains("record_unit"), "{e}");

@@ -13,7 +13,7 @@ use sha2::{Digest, Sha256};
 
 use crate::case::record::{AccelUnit, MAX_RECORD_BYTES, Record, STANDARD_GRAVITY, read_record};
 use crate::case::{Case, Locator, limits};
-use crate::error::{InputError, InputErrors, line_col};
+use crate::error::{InputError, InputErrors, io_reason, line_col};
 
 /// Most points in one grid.
 pub const MAX_POINTS: u64 = 1_000_000;
@@ -307,14 +307,13 @@ fn read_records(
             Some((_, Some(u))) => Some(u),
             None => None,
         };
-        if let Err(e) = std::fs::metadata(&r.path) {
-            let reason = format!("cannot read {}: {e}", r.path.display());
-            errors.push(loc.error(&r.field, reason));
-            continue;
-        }
         let read = read_record(&r.path, unit).and_then(|record| {
             let sha256 = file_sha256(&r.path).map_err(|e| {
-                InputError::new(&r.path, "", format!("cannot read the record: {e}"))
+                InputError::new(
+                    &r.path,
+                    "",
+                    format!("cannot read the record: {}", io_reason(&e)),
+                )
             })?;
             Ok((record, sha256))
         });
@@ -326,7 +325,11 @@ fn read_records(
                 sha256,
                 record,
             }),
-            Err(e) => errors.extend(e.0),
+            // Located at the grid's field and inside the record.
+            Err(e) => errors.extend(
+                e.0.into_iter()
+                    .map(|err| err.named_by(loc.error(&r.field, ""))),
+            ),
         }
     }
     records

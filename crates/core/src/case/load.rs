@@ -629,25 +629,21 @@ impl Validator<'_> {
         };
         let dir = case_path.parent().unwrap_or(Path::new(""));
         let path = dir.join(record);
+        let field = format!("{p}.record");
         let mut rec = match read_record_column(&path, unit, column) {
             Ok(r) => r,
             Err(errs) => {
-                // The record's own errors, located in the record file, under the case field.
-                for mut err in errs.0 {
-                    if err.field.is_empty() {
-                        err.field = format!("{p}.record");
-                    }
-                    self.errors.push(err);
+                // The record's own errors, located at the case's field and in the record.
+                for err in errs.0 {
+                    self.errors.push(err.named_by(self.loc.error(&field, "")));
                 }
                 return None;
             }
         };
         let pga = rec.pga();
         if pga == 0.0 {
-            self.fail(
-                &format!("{p}.record"),
-                format!("{}: every sample is zero", path.display()),
-            );
+            let err = InputError::new(&path, "", "every sample is zero: nothing moves the ground");
+            self.errors.push(err.named_by(self.loc.error(&field, "")));
             return None;
         }
         let scaling = match target {

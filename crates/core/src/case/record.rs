@@ -5,7 +5,9 @@
 //!
 //! Every malformed record (wrong NPTS, non-numeric or non-finite values, non-increasing
 //! time, no samples) is rejected with an [`InputError`] naming the record file, the line
-//! (and column where it helps) and what would be right — never a panic.
+//! (and column where it helps: the offending value, or NPTS or DT on the fourth AT2 header
+//! line) and what would be right — never a panic. A case or grid that names the record
+//! reports it at its own field too ([`InputError::named_by`]).
 //!
 //! Conventions (stated once, used everywhere):
 //! - 1 g = 9.80665 m/s² (standard gravity, CGPM 1901; SLAMMER and pyslammer use it too).
@@ -16,6 +18,7 @@
 //!   interpolation to a uniform step equal to its smallest interval, and the record's
 //!   `note` says so; at most the step limit's samples (`limits::max_steps`).
 //! - Read as engineers receive them: a UTF-8 byte-order mark is skipped, CRLF line ends,
+//!   trailing spaces, a last line without a newline, lowercase `npts=`/`dt=`,
 //!   tab, comma or semicolon separators, trailing separators and blank fields, Fortran `D`
 //!   exponents (`0.1234D-02`) are accepted. A file that is not UTF-8 is refused at the line
 //!   and column of its first invalid byte.
@@ -26,7 +29,7 @@
 
 use std::path::Path;
 
-use crate::error::{InputError, InputErrors};
+use crate::error::{InputError, InputErrors, io_reason};
 
 /// Largest record file read, bytes (256 MiB: a 10⁷-sample record takes about 150 MB).
 pub const MAX_RECORD_BYTES: u64 = 256 * 1024 * 1024;
@@ -175,8 +178,13 @@ pub fn read_record_column(
 /// byte-order mark removed.
 fn read_text(path: &Path) -> Result<String, InputError> {
     use std::io::Read;
-    let cannot =
-        |e: std::io::Error| InputError::new(path, "", format!("cannot read the record: {e}"));
+    let cannot = |e: std::io::Error| {
+        InputError::new(
+            path,
+            "",
+            format!("cannot read the record: {}", io_reason(&e)),
+        )
+    };
     let meta = std::fs::metadata(path).map_err(cannot)?;
     if !meta.is_file() {
         return Err(InputError::new(
@@ -284,39 +292,67 @@ fn tokens(line: &str) -> impl Iterator<Item = (usize, &str)> {
         .map(move |(s, t)| (line[..s].chars().count() + 1, t))
 }
 
+/// A number of the fourth AT2 header line and its 1-based column (for errors about it).
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct HeaderNumber {
+    value: f64,
+    column: usize,
+}
+
 /// NPTS and DT from the fourth AT2 header line, tolerant of its historical layouts:
 /// `NPTS=  3930, DT= .00500 SEC` (NGA), `NPTS= 3930 DT= 0.005` (no comma),
-/// `3930   .0050   NPTS, DT` (older PEER), case-insensitive, `DT=.005SEC` glued.
-fn npts_dt(line: &str) -> Option<(f64, f64)> {
-    // Normalise separators, then split keywords from numbers.
-    let upper = line.to_ascii_uppercase().replace(['=', ',', ':'], " ");
-    let mut words: Vec<String> = Vec::new();
-    for w in upper.split_whitespace() {
-        // "0.005SEC" → "0.005", "SEC"; "NPTS3930" is not a layout anyone wrote.
-        let w = w.trim_end_matches("SECONDS").trim_end_matches("SEC");
-        if !w.is_empty() {
-            words.push(w.to_string());
-        }
-    }
-    let num = |w: &str| parse_float(w).filter(|x| x.is_finite());
-    let after = |key: &str| {
-        words
-            .iter()
-            .position(|w| w == key)
-            .and_then(|i| words.get(i + 1))
-            .and_then(|w| num(w))
+/// `3930   .0050   NPTS, DT` (older PEER), case-insensitive, `DT=.005SEC` glued. A value
+/// that is not finite is returned as read, for the caller to refuse by name.
+fn npts_dt(line: &str) -> Option<(HeaderNumber, HeaderNumber)> {
+    let words = header_words(line);
+    let number = |i: usize| {
+        let (offset, word) = words.get(i)?;
+        parse_float(word).map(|value| HeaderNumber {
+            value,
+            column: line[..*offset].chars().count() + 1,
+        })
     };
+    let position = |key: &str| words.iter().position(|(_, w)| w == key);
+    let after = |key: &str| position(key).and_then(|i| number(i + 1));
     if let (Some(n), Some(dt)) = (after("NPTS"), after("DT")) {
         return Some((n, dt));
     }
     // Older layout: the two numbers first, then the keywords "NPTS, DT" in that order.
-    let numbers: Vec<f64> = words.iter().filter_map(|w| num(w)).collect();
-    let npts_pos = words.iter().position(|w| w == "NPTS")?;
-    let dt_pos = words.iter().position(|w| w == "DT")?;
-    if numbers.len() == 2 && npts_pos < dt_pos {
+    let numbers: Vec<HeaderNumber> = (0..words.len()).filter_map(number).collect();
+    if numbers.len() == 2 && position("NPTS")? < position("DT")? {
         return Some((numbers[0], numbers[1]));
     }
     None
+}
+
+/// The words of the fourth header line, upper-cased, with their byte offsets: split on
+/// whitespace, `=`, `,` and `:`; a unit glued to a number ("0.005SEC") cut off.
+fn header_words(line: &str) -> Vec<(usize, String)> {
+    let mut words = Vec::new();
+    let mut push = |start: usize, end: usize| {
+        let upper = line[start..end].to_ascii_uppercase();
+        // "NPTS3930" is not a layout anyone wrote; "0.005SEC" is.
+        let w = upper.trim_end_matches("SECONDS").trim_end_matches("SEC");
+        if !w.is_empty() {
+            words.push((start, w.to_string()));
+        }
+    };
+    let mut start = None;
+    for (i, c) in line.char_indices() {
+        let separator = c.is_whitespace() || matches!(c, '=' | ',' | ':');
+        match (separator, start) {
+            (true, Some(s)) => {
+                push(s, i);
+                start = None;
+            }
+            (false, None) => start = Some(i),
+            _ => {}
+        }
+    }
+    if let Some(s) = start {
+        push(s, line.len());
+    }
+    words
 }
 
 /// Parse the text of a PEER NGA `.AT2` file: four header lines (title; event, date,
@@ -383,7 +419,7 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
         }
     };
     // Line 4: NPTS and DT.
-    let Some((npts, dt)) = npts_dt(lines[3]) else {
+    let Some((npts_at, dt_at)) = npts_dt(lines[3]) else {
         return Err(at(
             path,
             4,
@@ -394,27 +430,26 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
             ),
         ));
     };
+    let (npts, dt) = (npts_at.value, dt_at.value);
+    let at_npts = |reason: String| at(path, 4, Some(npts_at.column), reason);
     if !(npts >= 1.0 && npts.fract() == 0.0) {
-        return Err(at(
-            path,
-            4,
-            None,
-            format!("NPTS is {npts}, but must be a whole number of at least 1"),
-        ));
+        return Err(at_npts(format!(
+            "NPTS is {npts}, but must be a whole number of at least 1"
+        )));
     }
-    if dt.is_nan() || dt <= 0.0 {
+    if !(dt.is_finite() && dt > 0.0) {
         return Err(at(
             path,
             4,
-            None,
-            format!("DT is {dt} s, but must be positive"),
+            Some(dt_at.column),
+            format!("DT is {dt} s, but must be a positive finite number"),
         ));
     }
     if dt < MIN_DT {
         return Err(at(
             path,
             4,
-            None,
+            Some(dt_at.column),
             format!("DT is {dt:e} s, below the smallest sample interval accepted ({MIN_DT:e} s)"),
         ));
     }
@@ -422,15 +457,10 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
     // be right, and must not be allocated.
     let room = text.len().div_ceil(2) as f64;
     if npts > room {
-        return Err(at(
-            path,
-            4,
-            None,
-            format!(
-                "NPTS = {npts}, but the file ({} bytes) cannot hold more than {room} values",
-                text.len()
-            ),
-        ));
+        return Err(at_npts(format!(
+            "NPTS = {npts}, but the file ({} bytes) cannot hold more than {room} values",
+            text.len()
+        )));
     }
     let npts = npts as usize;
     let mut samples = Vec::with_capacity(npts);
@@ -455,23 +485,15 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
         }
     }
     if samples.is_empty() {
-        return Err(at(
-            path,
-            4,
-            None,
-            format!("the record has no values, but NPTS = {npts}"),
-        ));
+        return Err(at_npts(format!(
+            "the record has no values, but NPTS = {npts}"
+        )));
     }
     if samples.len() != npts {
-        return Err(at(
-            path,
-            4,
-            None,
-            format!(
-                "NPTS = {npts}, but the file has {} values (the last on line {last_line})",
-                samples.len()
-            ),
-        ));
+        return Err(at_npts(format!(
+            "NPTS = {npts}, but the file has {} values (the last on line {last_line})",
+            samples.len()
+        )));
     }
     Ok(Record {
         dt,
@@ -727,9 +749,15 @@ mod tests {
             ("  4000   .0100   NPTS, DT", 4000.0, 0.01),
             ("NPTS=  3930, DT=.00500SEC", 3930.0, 0.005),
         ] {
-            assert_eq!(npts_dt(line), Some((n, dt)), "{line}");
+            let (npts, step) = npts_dt(line).unwrap_or_else(|| panic!("{line}"));
+            assert_eq!((npts.value, step.value), (n, dt), "{line}");
         }
         assert_eq!(npts_dt("DT= 0.01"), None);
+        // Columns of the values, for errors about them (1-based, in characters).
+        let (n, dt) = npts_dt("NPTS=  3930, DT= .00500 SEC").unwrap();
+        assert_eq!((n.column, dt.column), (8, 18));
+        let (n, dt) = npts_dt("  4000   .0100   NPTS, DT").unwrap();
+        assert_eq!((n.column, dt.column), (3, 10));
     }
 
     #[test]

@@ -11,7 +11,7 @@
 //! elastic). After each plastic step p is put back on the circle, p = u − R·n/K (the exact
 //! flow keeps |F| = R; this removes the integrator's drift of |F|, which is O(h⁵) a step).
 
-use super::block::{peak_resultant, plan_channels, write_plan};
+use super::block::{SLIP_EPISODES_RESPONSE, peak_resultant, plan_channels, write_plan};
 use super::drive::PlanDrive;
 use super::integrate::{Sample, dot, grid, hermite, locate, march, norm, rk4};
 use crate::ExactSolution;
@@ -219,7 +219,7 @@ impl ExactSolution for PlanEpo {
 
     fn method(&self) -> String {
         format!(
-            "elastic-perfectly-plastic oscillator with a circular yield surface (ṗ = (n·u̇)·n on |K(u − p)| = μ·M·g): classical RK4, steps ≤ {} s with a node at every kink of the drive, yield and unloading located by bisection; {} slip episodes",
+            "elastic-perfectly-plastic oscillator with a circular yield surface (ṗ = (n·u̇)·n on |K(u − p)| = μ·M·g): classical RK4, steps ≤ {} s with a node at every kink of the drive, yield and unloading located by bisection; {} plastic phases (slip episodes of the plan slip: yield to unloading). {SLIP_EPISODES_RESPONSE}",
             self.step,
             self.slips.len()
         )
