@@ -322,7 +322,6 @@ pub fn integrate(
     // A sliding oscillator steps in scalars (`slider`): the same operations, fewer of them.
     let slider = model.is_slider();
     for step in 1..=steps {
-        let t_start = (step - 1) as f64 * dt;
         // Step cutting: a step whose Newton iteration fails is retried as two halves,
         // down to Δt/2^max_step_cuts, then the step size grows back when aligned.
         let (mut pos, mut level) = (0u32, 0u32);
@@ -332,9 +331,15 @@ pub fn integrate(
             let t = if end == units {
                 step as f64 * dt
             } else {
+                let t_start = (step - 1) as f64 * dt;
                 t_start + dt * f64::from(end) / f64::from(units)
             };
-            let h = dt / f64::from(1u32 << level);
+            // dt/1 is dt: no division for an uncut step.
+            let h = if level == 0 {
+                dt
+            } else {
+                dt / f64::from(1u32 << level)
+            };
             if nm.h != h {
                 nm = Newmark::new(opts, h);
             }

@@ -36,7 +36,11 @@ impl Lu2 {
     fn new(matrix: [f64; 4]) -> Self {
         let [a, b, c, d] = matrix;
         let swap = c.abs() > a.abs();
-        let ((u00, u01), (r0, r1)) = if swap { ((c, d), (a, b)) } else { ((a, b), (c, d)) };
+        let ((u00, u01), (r0, r1)) = if swap {
+            ((c, d), (a, b))
+        } else {
+            ((a, b), (c, d))
+        };
         let (l10, u11) = if u00 == 0.0 {
             (r0, r1)
         } else {
@@ -146,8 +150,8 @@ pub(super) fn step(
         counters.iterations += it as u64;
         counters.max_step_iterations = counters.max_step_iterations.max(it as u64);
     };
-    let accept = |q: Vector2<f64>, v: Vector2<f64>, a: Vector2<f64>, pb: (f64, f64), damp| {
-        StepState {
+    let accept =
+        |q: Vector2<f64>, v: Vector2<f64>, a: Vector2<f64>, pb: (f64, f64), damp| StepState {
             t,
             q: Vector3::new(q.x, q.y, n.q.z),
             v: Vector3::new(v.x, v.y, 0.0),
@@ -157,8 +161,7 @@ pub(super) fn step(
             pb: Vector3::new(pb.0, pb.1, 0.0),
             damp,
             g,
-        }
-    };
+        };
     while it < newton.max_iterations {
         it += 1;
         let (a, v) = nm.kinematics(q - nq, &nv, &na);
