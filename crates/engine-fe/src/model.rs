@@ -684,38 +684,19 @@ fn assemble_direct<'e>(
 ) -> (Vector3<f64>, Matrix3<f64>) {
     let (mut p0, mut p1, mut p2) = (0.0, 0.0, 0.0);
     let mut k = [[0.0_f64; 3]; 3];
-    // The sums start at +0 and so never hold −0 (+0 + −0 is +0): adding a zero leaves
-    // them as they are, so an open element (no force, no tangent) is skipped and a
-    // sticking one's zero off-diagonal tangent terms are not added, with the same bits.
     for (e, d) in elements.zip(attachments) {
         let pk = kinematics(d);
         let (f, d) = e.trial(pk.u - ground);
-        let status = e.trial_state().status;
-        if status == Status::Open {
-            continue;
-        }
         let (gx, gz) = (pk.g.x, pk.g.y);
+        let (d00, d01, d10, d11) = (d[(0, 0)], d[(0, 1)], d[(1, 0)], d[(1, 1)]);
+        let (dgx, dgy) = (d00 * gx + d01 * gz, d10 * gx + d11 * gz);
+        let (gtdx, gtdy) = (d00 * gx + d10 * gz, d01 * gx + d11 * gz);
         p0 += f.x;
         p1 += f.y;
         p2 += gx * f.x + gz * f.y;
-        let (d00, d11) = (d[(0, 0)], d[(1, 1)]);
-        let (dgx, dgy, gtdx, gtdy) = if status == Status::Stick {
-            // D = diag(kx, kz): D·g and Dᵀ·g are (kx·gx, kz·gz) (d00·gx + 0·gz is
-            // d00·gx, up to the sign of a zero, which the sums below absorb).
-            let (x, z) = (d00 * gx, d11 * gz);
-            (x, z, x, z)
-        } else {
-            let (d01, d10) = (d[(0, 1)], d[(1, 0)]);
-            k[0][1] += d01;
-            k[1][0] += d10;
-            (
-                d00 * gx + d01 * gz,
-                d10 * gx + d11 * gz,
-                d00 * gx + d10 * gz,
-                d01 * gx + d11 * gz,
-            )
-        };
         k[0][0] += d00;
+        k[0][1] += d01;
+        k[1][0] += d10;
         k[1][1] += d11;
         k[0][2] += dgx;
         k[1][2] += dgy;
