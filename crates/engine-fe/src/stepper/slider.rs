@@ -265,3 +265,53 @@ fn linear_step(from: Option<[f64; 4]>, k: &[f64; 4], q: &Vector2<f64>) -> bool {
             && q.y.is_finite()
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Lu3;
+    use nalgebra::Matrix3;
+
+    /// `Lu2` against `Lu3` on [[a, b, 0], [c, d, 0], [0, 0, 1]] (entries over 24 orders of
+    /// magnitude, zeros, both pivot orders, singular blocks): the same solution bits, and
+    /// singular exactly when `Lu3` finds it singular.
+    #[test]
+    fn lu2_is_lu3_on_a_locked_theta_bit_for_bit() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let mantissa = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            let exponent = ((seed >> 3) % 25) as i32 - 12;
+            if seed % 7 == 0 {
+                0.0
+            } else {
+                mantissa * 10f64.powi(exponent)
+            }
+        };
+        let (mut singular, mut swapped) = (0, 0);
+        for case in 0..20_000 {
+            let [a, b, mut c, mut d] = [next(), next(), next(), next()];
+            if case % 53 == 0 {
+                (c, d) = (2.0 * a, 2.0 * b); // singular
+            }
+            let (r0, r1) = (next(), next());
+            let lu = Lu2::new([a, b, c, d]);
+            swapped += usize::from(lu.swap);
+            let ours = lu.solve(r0, r1);
+            let m = Matrix3::new(a, b, 0.0, c, d, 0.0, 0.0, 0.0, 1.0);
+            let theirs = Lu3::new(&m).solve(&Vector3::new(r0, r1, 0.0));
+            singular += usize::from(theirs.is_none());
+            match (ours, theirs) {
+                (Some((x0, x1)), Some(y)) => assert!(
+                    x0.to_bits() == y.x.to_bits() && x1.to_bits() == y.y.to_bits(),
+                    "{m}: ({x0}, {x1}) against {y}"
+                ),
+                (None, None) => {}
+                _ => panic!("{m}: {ours:?} against {theirs:?}"),
+            }
+        }
+        assert!(singular > 0 && swapped > 0);
+    }
+}
