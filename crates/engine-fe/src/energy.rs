@@ -2,6 +2,7 @@
 
 use nalgebra::Vector2;
 
+use super::element::Contact178;
 use super::model::Model;
 use super::stepper::Snapshot;
 
@@ -13,7 +14,8 @@ use super::stepper::Snapshot;
 ///   ground's work −½(Tₙ + Tₙ₊₁)·Δxg on each ground element (T the element's force on
 ///   its upper end; the ground pushes its lower end with −T);
 /// - kinetic K = ½M(vx² + vz²) + ½I·ω² (absolute velocities in the model's frame);
-/// - strain U = Σ ½T²/Kx + ½N²/Kz over every element, both of a double arrangement;
+/// - strain U = Σ ½T²/Kx + ½N²/Kz over every element (a condensed double support's
+///   series equivalent standing for its two elements);
 /// - friction D = Σ ½(Tₙ + Tₙ₊₁)·Δs over elements closed at both ends of the step (the
 ///   origin shift of an open element follows the point and is no slip), counted when
 ///   ≥ 0, so D never decreases;
@@ -85,10 +87,51 @@ impl EnergyBook {
         let kinetic =
             0.5 * body.mass * (s.v.x * s.v.x + s.v.y * s.v.y) + 0.5 * body.inertia * s.v.z * s.v.z;
         let potential = m.weight() * (s.q.y - s.q_static.y);
+        // Condensed double supports are booked on their series equivalents: the pair's
+        // strain ½T²/kx1 + ½T²/kx2 is ½T²/ks (and so for N), element 2 (bonded, linear)
+        // neither slips nor opens, and element 1's force, slip and status are the
+        // equivalent's — the same terms up to round-off, over half the elements.
+        let (strain, ground_force) = if m.condensed && !m.equivalents.is_empty() {
+            self.book_elements(m.equivalents.iter().map(|e| (e, true)))
+        } else {
+            self.book_elements(
+                m.links
+                    .iter()
+                    .map(|l| (&l.element, l.lower == super::model::Point::Ground)),
+            )
+        };
+        if self.started {
+            let (f_n, x_n, xg_n, fz_n, z_n) = self.last;
+            self.input += 0.5 * (f_n + f) * (s.q.x - x_n) - ground_force * (xg - xg_n)
+                + 0.5 * (fz_n + fz) * (s.q.y - z_n);
+        } else {
+            self.initial = kinetic + strain + potential;
+            self.started = true;
+        }
+        self.last = (f, s.q.x, xg, fz, s.q.y);
+        let error = self.initial + self.input - (kinetic + strain + self.friction + potential);
+        [
+            self.input,
+            kinetic,
+            strain,
+            self.friction,
+            potential,
+            error,
+            self.contact,
+        ]
+    }
+
+    /// Book the elements' committed states (each with whether its lower end is the
+    /// ground): friction and non-smooth terms into the book; returns (strain U,
+    /// Σ ½(Tₙ + Tₙ₊₁) over ground elements).
+    #[inline(always)]
+    fn book_elements<'e>(
+        &mut self,
+        elements: impl Iterator<Item = (&'e Contact178, bool)>,
+    ) -> (f64, f64) {
         let mut strain = 0.0;
-        let mut ground_force = 0.0; // Σ ½(Tₙ + Tₙ₊₁) over ground elements
-        for (link, prev) in m.links.iter().zip(self.prev.iter_mut()) {
-            let e = &link.element;
+        let mut ground_force = 0.0;
+        for ((e, on_ground), prev) in elements.zip(self.prev.iter_mut()) {
             let st = e.state();
             let (t, n) = (e.tangential(), e.normal());
             let open = st.status == super::element::Status::Open;
@@ -119,7 +162,7 @@ impl EnergyBook {
                     let work = 0.5 * (prev.force + st.force).dot(&(st.delta - prev.delta));
                     self.contact += work - (u - prev.strain);
                 }
-                if link.lower == super::model::Point::Ground {
+                if on_ground {
                     ground_force += 0.5 * (prev.force.x + t);
                 }
             }
@@ -131,24 +174,6 @@ impl EnergyBook {
                 open,
             };
         }
-        if self.started {
-            let (f_n, x_n, xg_n, fz_n, z_n) = self.last;
-            self.input += 0.5 * (f_n + f) * (s.q.x - x_n) - ground_force * (xg - xg_n)
-                + 0.5 * (fz_n + fz) * (s.q.y - z_n);
-        } else {
-            self.initial = kinetic + strain + potential;
-            self.started = true;
-        }
-        self.last = (f, s.q.x, xg, fz, s.q.y);
-        let error = self.initial + self.input - (kinetic + strain + self.friction + potential);
-        [
-            self.input,
-            kinetic,
-            strain,
-            self.friction,
-            potential,
-            error,
-            self.contact,
-        ]
+        (strain, ground_force)
     }
 }

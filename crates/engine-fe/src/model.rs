@@ -208,6 +208,12 @@ impl Lu3 {
 }
 
 impl Assembly {
+    /// Record the ground point of a step assembled outside `Model::assemble` (the sliding
+    /// oscillator's scalar step), for `Model::commit_step`.
+    pub(crate) fn set_ground(&mut self, xg: f64) {
+        self.ground = Vector2::new(xg, 0.0);
+    }
+
     /// (cos θ, sin θ) of the last assembly's body position, as its kinematics use them
     /// ((1, 0) with small rotations, whose kinematics ignore them).
     pub fn rotation(&self) -> (f64, f64) {
@@ -550,6 +556,33 @@ impl Model {
         }
         for e in &mut self.equivalents {
             e.restore();
+        }
+    }
+
+    /// Whether the model is a sliding oscillator whose step can run in scalars (the
+    /// body's X and Z, θ locked, one support at the centre of mass, condensed), on
+    /// `slider_element` (`stepper::slider`).
+    pub(crate) fn is_slider(&self) -> bool {
+        self.condensed
+            && !self.body.rotation
+            && self.kinematics == Kinematics::SmallRotation
+            && !self.p_delta
+            && self.body.inertia.is_finite()
+            && self.body.attachments == [Vector2::zeros()]
+            && matches!(
+                (self.nodes, self.links.len(), self.equivalents.len()),
+                (0, 1, 0) | (1, 2, 1)
+            )
+    }
+
+    /// The one element a slider's step iterates on (`is_slider`): the single
+    /// arrangement's element or the double one's series equivalent.
+    #[inline]
+    pub(crate) fn slider_element(&mut self) -> &mut Contact178 {
+        if self.nodes == 0 {
+            &mut self.links[0].element
+        } else {
+            &mut self.equivalents[0]
         }
     }
 

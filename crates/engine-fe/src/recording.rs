@@ -92,6 +92,14 @@ pub(crate) fn run_model(
     let mut check = SelfCheck::default();
     let mut book = EnergyBook::new(model.links.len());
     let mut row = [0.0_f64; 24];
+    if model.is_slider() && !rocking {
+        let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
+            let (values, contact) = slider_row(m, s, &drive, moves_ground, &mut check, &mut row);
+            trace.push(s.t, values);
+            trace.contacts.push(s.t, &[contact]);
+        });
+        return (trace, status, counters, check);
+    }
     let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s: &Snapshot| {
         let (xg, vg, ag) = s.ground;
         let (mut shear, mut normal) = (0.0, 0.0);
@@ -168,4 +176,50 @@ pub(crate) fn run_model(
         trace.contacts.push(s.t, &states);
     });
     (trace, status, counters, check)
+}
+
+/// The sliding oscillator's row (`Model::is_slider`, not rocking): the general recorder's
+/// values for its one support, with its sums over supports written out (each from +0,
+/// the slide and node over one support divided by 1, so the same bits), and the support's
+/// contact state.
+#[inline(always)]
+fn slider_row<'r>(
+    m: &Model,
+    s: &Snapshot,
+    drive: &Drive,
+    moves_ground: bool,
+    check: &mut SelfCheck,
+    row: &'r mut [f64; 24],
+) -> (&'r [f64], ContactState) {
+    let (xg, vg, ag) = s.ground;
+    let sup = &m.supports[0];
+    let e = &m.links[sup.ground_link].element;
+    let st = e.state();
+    let (tangential, normal) = (e.tangential(), e.normal());
+    let contact = ContactState {
+        normal,
+        tangential,
+        slip: st.slip,
+        gap: st.delta.y,
+    };
+    row[0] = drive.equivalent_force(s.t, s.force);
+    row[1] = 0.0 + tangential;
+    row[2] = s.q.x - xg;
+    row[3] = (0.0 + st.slip) / 1.0;
+    row[4] = s.v.x - vg;
+    row[5] = s.a.x - ag;
+    let mut i = 6;
+    if moves_ground {
+        row[i] = xg;
+        i += 1;
+    }
+    row[i] = 0.0 + normal;
+    i += 1;
+    if let Some(k) = sup.node {
+        let node = s.un[k].x - xg;
+        check.node_minus_slip = check.node_minus_slip.max((node - st.slip).abs());
+        row[i] = (0.0 + node) / 1.0;
+        i += 1;
+    }
+    (&row[..i], contact)
 }

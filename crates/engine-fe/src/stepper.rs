@@ -8,6 +8,8 @@
 //! Massless nodes carry no inertia: their rows are (1 + α)·p₊ − α·pₙ = 0.
 //! Nothing is allocated inside the loop: every vector lives in a [`Workspace`].
 
+mod slider;
+
 use nalgebra::{SVector, Vector2, Vector3};
 
 use super::model::{Assembly, Model, System, solve};
@@ -172,6 +174,8 @@ struct Workspace {
     /// Line search: the last accepted iterate and its Newton direction.
     un_prev: Vec<Vector2<f64>>,
     dun_prev: Vec<Vector2<f64>>,
+    /// The sliding oscillator's cached 2×2 factors (`slider`).
+    slider_factors: Option<slider::Lu2>,
 }
 
 impl Workspace {
@@ -186,6 +190,7 @@ impl Workspace {
             dun: z.clone(),
             un_prev: z.clone(),
             dun_prev: z,
+            slider_factors: None,
         }
     }
 
@@ -314,8 +319,9 @@ pub fn integrate(
     let units = 1u32 << max_depth;
     // The coefficients of the step size in use (recomputed when a step is cut).
     let mut nm = Newmark::new(opts, dt);
+    // A sliding oscillator steps in scalars (`slider`): the same operations, fewer of them.
+    let slider = model.is_slider();
     for step in 1..=steps {
-        let t_start = (step - 1) as f64 * dt;
         // Step cutting: a step whose Newton iteration fails is retried as two halves,
         // down to Δt/2^max_step_cuts, then the step size grows back when aligned.
         let (mut pos, mut level) = (0u32, 0u32);
@@ -325,13 +331,24 @@ pub fn integrate(
             let t = if end == units {
                 step as f64 * dt
             } else {
+                let t_start = (step - 1) as f64 * dt;
                 t_start + dt * f64::from(end) / f64::from(units)
             };
-            let h = dt / f64::from(1u32 << level);
+            // dt/1 is dt: no division for an uncut step.
+            let h = if level == 0 {
+                dt
+            } else {
+                dt / f64::from(1u32 << level)
+            };
             if nm.h != h {
                 nm = Newmark::new(opts, h);
             }
-            match newton_step(model, drive, opts, &nm, &mut w, &n, t, &mut counters) {
+            let result = if slider {
+                slider::step(model, drive, opts, &nm, &mut w, &n, t, &mut counters)
+            } else {
+                newton_step(model, drive, opts, &nm, &mut w, &n, t, &mut counters)
+            };
+            match result {
                 Ok(next) => {
                     model.commit_step(&w.asm, &mut w.un);
                     n = next;

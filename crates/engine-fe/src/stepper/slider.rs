@@ -1,0 +1,317 @@
+//! The sliding oscillator's step in scalars (the PEPO, single or condensed double): the
+//! body's X and Z with θ locked, one element from the ground to the centre of mass.
+//!
+//! The same Newton–Raphson with line search as `newton_step`, the same operations in the
+//! same order on the two live components, so the same bits: the general step's θ row
+//! carries exact zeros there (a locked θ, an attachment at the centre of mass), and the
+//! 3×3 LU of a matrix whose θ row and column are (0, 0, 1) is this 2×2 LU step for step
+//! (`Lu2`). What goes is the general step's dispatch, its 3-vectors and 3×3 matrices, and
+//! the 9-entry comparison of the cached factors.
+
+use nalgebra::{Vector2, Vector3};
+
+use super::{
+    Counters, Drive, FailureReason, LastIteration, Newmark, StepFailure, StepState, Workspace,
+};
+use crate::element::Element;
+use crate::model::Model;
+use crate::options::FeOptions;
+
+/// LU factors with partial pivoting of the Newton matrix's live block [[a, b], [c, d]]:
+/// `Lu3` on [[a, b, 0], [c, d, 0], [0, 0, 1]] operation for operation (row 1 the pivot
+/// only when strictly larger; the multiplier times the pivot's reciprocal), so the
+/// solutions are the same bits. Kept with the matrix it factors, reused while the next
+/// matrix is the same bit for bit.
+#[derive(Debug, Clone, Copy)]
+pub(super) struct Lu2 {
+    matrix: [f64; 4],
+    swap: bool,
+    u00: f64,
+    u01: f64,
+    l10: f64,
+    u11: f64,
+}
+
+impl Lu2 {
+    fn new(matrix: [f64; 4]) -> Self {
+        let [a, b, c, d] = matrix;
+        let swap = c.abs() > a.abs();
+        let ((u00, u01), (r0, r1)) = if swap {
+            ((c, d), (a, b))
+        } else {
+            ((a, b), (c, d))
+        };
+        let (l10, u11) = if u00 == 0.0 {
+            (r0, r1)
+        } else {
+            let l = r0 * (1.0 / u00);
+            (l, r1 + -u01 * l)
+        };
+        Self {
+            matrix,
+            swap,
+            u00,
+            u01,
+            l10,
+            u11,
+        }
+    }
+
+    fn same_matrix(&self, m: &[f64; 4]) -> bool {
+        self.matrix
+            .iter()
+            .zip(m)
+            .all(|(x, y)| x.to_bits() == y.to_bits())
+    }
+
+    /// Solve for the right-hand side (b0, b1); `None` if the matrix is singular.
+    fn solve(&self, b0: f64, b1: f64) -> Option<(f64, f64)> {
+        if self.u00 == 0.0 || self.u11 == 0.0 {
+            return None;
+        }
+        let (y0, y1) = if self.swap { (b1, b0) } else { (b0, b1) };
+        let y1 = y1 + -y0 * self.l10;
+        let x1 = y1 / self.u11;
+        let x0 = (y0 + -x1 * self.u01) / self.u00;
+        Some((x0, x1))
+    }
+}
+
+/// The factors of `m`, cached in `cache` (new ones unless `m` is the cached matrix).
+fn factors(cache: &mut Option<Lu2>, m: [f64; 4]) -> &Lu2 {
+    if !matches!(cache, Some(lu) if lu.same_matrix(&m)) {
+        *cache = Some(Lu2::new(m));
+    }
+    cache.as_ref().expect("just set")
+}
+
+/// The step's element evaluation: internal force (X, Z) on the body and its tangent
+/// [[k00, k01], [k10, k11]] at body position `q`, ground at `xg`.
+#[inline(always)]
+fn assemble(model: &mut Model, q: &Vector2<f64>, xg: f64) -> ((f64, f64), [f64; 4]) {
+    let e = model.slider_element();
+    // The attachment is the centre of mass: its displacement is q (`point_kin` adds
+    // −θ·0 = −0 to X, which leaves every value's bits as they are).
+    let (f, d) = e.trial(Vector2::new(q.x - xg, q.y));
+    // `assemble_direct`'s sums from zero (0 + x is x but for the sign of a zero).
+    (
+        (0.0 + f.x, 0.0 + f.y),
+        [
+            0.0 + d[(0, 0)],
+            0.0 + d[(0, 1)],
+            0.0 + d[(1, 0)],
+            0.0 + d[(1, 1)],
+        ],
+    )
+}
+
+/// One step of length `nm.h` from `n` to time `t` (`newton_step` for a slider model).
+#[allow(clippy::too_many_arguments)]
+pub(super) fn step(
+    model: &mut Model,
+    drive: &Drive,
+    opts: &FeOptions,
+    nm: &Newmark,
+    w: &mut Workspace,
+    n: &StepState,
+    t: f64,
+    counters: &mut Counters,
+) -> Result<StepState, StepFailure> {
+    let mass = model.body.mass;
+    let c = model.body.damping;
+    let Newmark {
+        alpha,
+        s,
+        c0,
+        c1,
+        h,
+        ..
+    } = *nm;
+    let damp_xx = s * c * c1;
+    let newton = opts.newton;
+    let g = drive.ground(t);
+    let fz = drive.vertical_force(t);
+    let f = Vector2::new(drive.force(t), -model.weight() + fz);
+    let f_norm = f.norm();
+    w.asm.set_ground(g.0);
+    let (nq, nv, na) = (n.q.xy(), n.v.xy(), n.a.xy());
+    // The start's share of the HHT residual, (fₙ − pₙ − damping)·α.
+    let start_x = ((n.f.x - n.pb.x) - n.damp) * alpha;
+    let start_z = (n.f.y - n.pb.y) * alpha;
+    let mass_c0 = mass * c0;
+    let mut q = nq + nv * h + na * (0.5 * h * h);
+    let mut last = LastIteration::default();
+    let mut it = 0;
+    let (mut q_prev, mut dq_prev) = (q, Vector2::zeros());
+    let (mut r_prev, mut lambda) = (f64::INFINITY, 1.0_f64);
+    // The tangent of the iterate a full Newton step left (`linear_step`).
+    let mut stepped_from: Option<[f64; 4]> = None;
+    let done = |it: usize, counters: &mut Counters| {
+        counters.iterations += it as u64;
+        counters.max_step_iterations = counters.max_step_iterations.max(it as u64);
+    };
+    let accept =
+        |q: Vector2<f64>, v: Vector2<f64>, a: Vector2<f64>, pb: (f64, f64), damp| StepState {
+            t,
+            q: Vector3::new(q.x, q.y, n.q.z),
+            v: Vector3::new(v.x, v.y, 0.0),
+            a: Vector3::new(a.x, a.y, 0.0),
+            f: Vector3::new(f.x, f.y, 0.0),
+            fz,
+            pb: Vector3::new(pb.0, pb.1, 0.0),
+            damp,
+            g,
+        };
+    while it < newton.max_iterations {
+        it += 1;
+        let (a, v) = nm.kinematics(q - nq, &nv, &na);
+        let (pb, k) = assemble(model, &q, g.0);
+        let damp = c * (v.x - g.1);
+        if linear_step(stepped_from, &k, &q) {
+            done(it, counters);
+            return Ok(accept(q, v, a, pb, damp));
+        }
+        let rx = ((f.x - pb.0) - damp) * s - start_x - mass * a.x;
+        let rz = (f.y - pb.1) * s - start_z - mass * a.y;
+        let r2 = rx * rx + rz * rz;
+        let fref = f_norm
+            + (pb.0 * pb.0 + pb.1 * pb.1).sqrt()
+            + ((mass * a.x) * (mass * a.x) + (mass * a.y) * (mass * a.y)).sqrt();
+        if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
+            lambda *= 0.5;
+            q = q_prev + dq_prev * lambda;
+            stepped_from = None;
+            continue;
+        }
+        if !(r2.is_finite() && q.iter().all(|x| x.is_finite())) {
+            done(it, counters);
+            return Err(StepFailure {
+                reason: FailureReason::NotFinite,
+                diverged: true,
+            });
+        }
+        if r2.sqrt() <= 1e-11 * fref {
+            done(it, counters);
+            return Ok(accept(q, v, a, pb, damp));
+        }
+        let matrix = [
+            (mass_c0 + k[0] * s) + damp_xx,
+            0.0 + k[1] * s,
+            0.0 + k[2] * s,
+            mass_c0 + k[3] * s,
+        ];
+        let Some((dx, dz)) = factors(&mut w.slider_factors, matrix).solve(rx, rz) else {
+            done(it, counters);
+            return Err(StepFailure {
+                reason: FailureReason::Singular(it),
+                diverged: false,
+            });
+        };
+        let dq = Vector2::new(dx, dz);
+        let (d2, inc2, u2) = (
+            dq.norm_squared(),
+            (q + dq - nq).norm_squared(),
+            // q's θ is +0 or −0 (locked): its square adds nothing.
+            q.norm_squared(),
+        );
+        let rn = r2.sqrt();
+        last = LastIteration {
+            residual: rn,
+            force_scale: fref,
+            correction_squared: d2,
+            increment_squared: inc2,
+        };
+        let force_ok = rn <= newton.force_tol * fref;
+        let disp_ok =
+            || d2.sqrt() <= (newton.displacement_tol * inc2.sqrt()).max(1e-12 * u2.sqrt());
+        if force_ok && disp_ok() {
+            done(it, counters);
+            return Ok(accept(q, v, a, pb, damp));
+        }
+        if force_ok && r_prev.is_finite() && rn > 0.5 * r_prev {
+            counters.roundoff_accepted += 1;
+            done(it, counters);
+            return Ok(accept(q, v, a, pb, damp));
+        }
+        (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
+        q += dq;
+        stepped_from = Some(k);
+    }
+    done(it, counters);
+    Err(StepFailure {
+        reason: FailureReason::NotConverged {
+            iterations: it,
+            last,
+            force_tol: newton.force_tol,
+            displacement_tol: newton.displacement_tol,
+        },
+        diverged: false,
+    })
+}
+
+/// Whether the iterate `q`, reached by a full Newton step from an iterate whose tangent was
+/// `from`, is converged without forming its residual: the same tangent bit for bit is
+/// the same contact state (stick, slip in the same direction, or open), in which the
+/// element's force is affine in q — and so are Newmark's a and v and the damping — so the
+/// residual, affine too, is zero at the Newton step's end up to the round-off of the
+/// solve. The general step forms that residual and accepts it at the round-off test
+/// (≤ 1e-11 of the force scale); accepting here gives the same iterate, the same
+/// iteration count, and the same bits whenever that test would pass.
+#[inline]
+fn linear_step(from: Option<[f64; 4]>, k: &[f64; 4], q: &Vector2<f64>) -> bool {
+    from.is_some_and(|from| {
+        from.iter().zip(k).all(|(x, y)| x.to_bits() == y.to_bits())
+            && q.x.is_finite()
+            && q.y.is_finite()
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::model::Lu3;
+    use nalgebra::Matrix3;
+
+    /// `Lu2` against `Lu3` on [[a, b, 0], [c, d, 0], [0, 0, 1]] (entries over 24 orders of
+    /// magnitude, zeros, both pivot orders, singular blocks): the same solution bits, and
+    /// singular exactly when `Lu3` finds it singular.
+    #[test]
+    fn lu2_is_lu3_on_a_locked_theta_bit_for_bit() {
+        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            let mantissa = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+            let exponent = ((seed >> 3) % 25) as i32 - 12;
+            if seed % 7 == 0 {
+                0.0
+            } else {
+                mantissa * 10f64.powi(exponent)
+            }
+        };
+        let (mut singular, mut swapped) = (0, 0);
+        for case in 0..20_000 {
+            let [a, b, mut c, mut d] = [next(), next(), next(), next()];
+            if case % 53 == 0 {
+                (c, d) = (2.0 * a, 2.0 * b); // singular
+            }
+            let (r0, r1) = (next(), next());
+            let lu = Lu2::new([a, b, c, d]);
+            swapped += usize::from(lu.swap);
+            let ours = lu.solve(r0, r1);
+            let m = Matrix3::new(a, b, 0.0, c, d, 0.0, 0.0, 0.0, 1.0);
+            let theirs = Lu3::new(&m).solve(&Vector3::new(r0, r1, 0.0));
+            singular += usize::from(theirs.is_none());
+            match (ours, theirs) {
+                (Some((x0, x1)), Some(y)) => assert!(
+                    x0.to_bits() == y.x.to_bits() && x1.to_bits() == y.y.to_bits(),
+                    "{m}: ({x0}, {x1}) against {y}"
+                ),
+                (None, None) => {}
+                _ => panic!("{m}: {ours:?} against {theirs:?}"),
+            }
+        }
+        assert!(singular > 0 && swapped > 0);
+    }
+}
