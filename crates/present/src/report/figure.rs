@@ -159,3 +159,310 @@ pub(crate) fn extreme_indices(
     }
     out
 }
+
+/// The same picture in fewer bytes. `plotters` writes every line as a `<polyline>` of
+/// absolute integer points — a min/max pair per pixel column gives many repeated points
+/// and straight runs — and every grid line as its own `<line>` with its attributes. This
+/// rewrites, exactly (the same geometry, the same paint order):
+/// - each polyline of integer points as a `<path>` with relative moves, after dropping
+///   repeated points and every point that lies on the straight segment between its
+///   neighbours ([`reduced`]: neither the shape, the joins nor a dash pattern's length
+///   change);
+/// - each run of consecutive `<line>` elements with the same attributes and direction
+///   (all vertical or all horizontal: parallel lines never overlap) as one `<path>` of
+///   one subpath per line.
+///
+/// Anything else (text, rectangles, circles, a polyline with non-integer points) is
+/// passed through unchanged.
+pub(crate) fn compact_svg(svg: &str) -> String {
+    let mut out = String::with_capacity(svg.len() / 2);
+    let mut grid = LineRun::default();
+    for row in svg.split_inclusive('\n') {
+        let element = row.trim_end_matches('\n');
+        if let Some(line) = parse_line(element) {
+            if !grid.accepts(&line) {
+                grid.flush(&mut out);
+            }
+            grid.push(line);
+            continue;
+        }
+        grid.flush(&mut out);
+        match polyline_as_path(element) {
+            Some(path) => {
+                out.push_str(&path);
+                out.push('\n');
+            }
+            None => out.push_str(row),
+        }
+    }
+    grid.flush(&mut out);
+    out
+}
+
+/// The points of a polyline after dropping each point equal to the one before it and each
+/// point lying on the segment between its neighbours, in the same direction (so the
+/// drawn segments cover the same pixels in the same order, and the path's length — the
+/// phase of a dash pattern — is unchanged).
+pub(crate) fn reduced(points: &[(i64, i64)]) -> Vec<(i64, i64)> {
+    let mut out: Vec<(i64, i64)> = Vec::with_capacity(points.len());
+    for &p in points {
+        if out.last() == Some(&p) {
+            continue;
+        }
+        while let [.., a, b] = out[..] {
+            let (u, v) = ((b.0 - a.0, b.1 - a.1), (p.0 - b.0, p.1 - b.1));
+            let straight_on = u.0 * v.1 == u.1 * v.0 && u.0 * v.0 + u.1 * v.1 > 0;
+            if !straight_on {
+                break;
+            }
+            out.pop();
+        }
+        out.push(p);
+    }
+    out
+}
+
+/// A path `d` drawing `points`: an absolute move to the first, then relative lines.
+fn relative_d(points: &[(i64, i64)]) -> String {
+    let mut d = String::with_capacity(4 * points.len() + 8);
+    let Some(&(x0, y0)) = points.first() else {
+        return d;
+    };
+    d.push('M');
+    push_numbers(&mut d, &[x0, y0]);
+    if points.len() > 1 {
+        d.push('l');
+        let mut first = true;
+        for w in points.windows(2) {
+            let (dx, dy) = (w[1].0 - w[0].0, w[1].1 - w[0].1);
+            if !first && dx >= 0 {
+                d.push(' ');
+            }
+            first = false;
+            push_numbers(&mut d, &[dx, dy]);
+        }
+    }
+    d
+}
+
+/// Numbers separated by a space, or by nothing before a minus sign.
+fn push_numbers(d: &mut String, numbers: &[i64]) {
+    use std::fmt::Write;
+    for (k, n) in numbers.iter().enumerate() {
+        if k > 0 && *n >= 0 {
+            d.push(' ');
+        }
+        let _ = write!(d, "{n}");
+    }
+}
+
+/// `<polyline a="…" points="x,y x,y "/>` of integer points as `<path a="…" d="…"/>`.
+fn polyline_as_path(element: &str) -> Option<String> {
+    let rest = element.strip_prefix("<polyline ")?.strip_suffix("/>")?;
+    let start = rest.find("points=\"")?;
+    let (attributes, tail) = rest.split_at(start);
+    let list = tail.strip_prefix("points=\"")?;
+    let end = list.find('"')?;
+    let (list, after) = (&list[..end], &list[end + 1..]);
+    let points = list
+        .split_ascii_whitespace()
+        .map(|pair| {
+            let (x, y) = pair.split_once(',')?;
+            Some((x.parse().ok()?, y.parse().ok()?))
+        })
+        .collect::<Option<Vec<(i64, i64)>>>()?;
+    Some(format!(
+        "<path {attributes}d=\"{}\"{after}/>",
+        relative_d(&reduced(&points))
+    ))
+}
+
+/// One `<line>`: its attributes but the coordinates, and its ends.
+struct GridLine<'a> {
+    attributes: &'a str,
+    from: (i64, i64),
+    to: (i64, i64),
+}
+
+impl GridLine<'_> {
+    /// Vertical (true), horizontal (false), or neither (None).
+    fn vertical(&self) -> Option<bool> {
+        match (self.from.0 == self.to.0, self.from.1 == self.to.1) {
+            (true, false) => Some(true),
+            (false, true) => Some(false),
+            _ => None,
+        }
+    }
+}
+
+/// `<line a="…" x1="…" y1="…" x2="…" y2="…"/>` with integer coordinates, the coordinates
+/// last (as `plotters` writes them).
+fn parse_line(element: &str) -> Option<GridLine<'_>> {
+    let rest = element.strip_prefix("<line ")?.strip_suffix("/>")?;
+    let start = rest.find("x1=\"")?;
+    let (attributes, coordinates) = rest.split_at(start);
+    let mut values = [0_i64; 4];
+    let mut tail = coordinates;
+    for (k, name) in ["x1=\"", "y1=\"", "x2=\"", "y2=\""].iter().enumerate() {
+        tail = tail.trim_start().strip_prefix(name)?;
+        let end = tail.find('"')?;
+        values[k] = tail[..end].parse().ok()?;
+        tail = &tail[end + 1..];
+    }
+    tail.trim().is_empty().then_some(GridLine {
+        attributes,
+        from: (values[0], values[1]),
+        to: (values[2], values[3]),
+    })
+}
+
+/// Consecutive `<line>` elements of the same attributes and direction, written as one path.
+#[derive(Default)]
+struct LineRun<'a> {
+    lines: Vec<GridLine<'a>>,
+}
+
+impl<'a> LineRun<'a> {
+    fn accepts(&self, line: &GridLine<'_>) -> bool {
+        self.lines.first().is_none_or(|first| {
+            first.attributes == line.attributes
+                && first.vertical().is_some()
+                && first.vertical() == line.vertical()
+        })
+    }
+
+    fn push(&mut self, line: GridLine<'a>) {
+        self.lines.push(line);
+    }
+
+    fn flush(&mut self, out: &mut String) {
+        use std::fmt::Write;
+        let Some(first) = self.lines.first() else {
+            return;
+        };
+        if self.lines.len() == 1 {
+            let l = first;
+            let _ = writeln!(
+                out,
+                "<line {}x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
+                l.attributes, l.from.0, l.from.1, l.to.0, l.to.1
+            );
+        } else {
+            let _ = write!(out, "<path {}fill=\"none\" d=\"", first.attributes);
+            for l in &self.lines {
+                let _ = match l.vertical() {
+                    Some(true) => write!(out, "M{} {}V{}", l.from.0, l.from.1, l.to.1),
+                    _ => write!(out, "M{} {}H{}", l.from.0, l.from.1, l.to.0),
+                };
+            }
+            out.push_str("\"/>\n");
+        }
+        self.lines.clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The points a path `d` written by [`relative_d`] draws, back in absolute pixels.
+    fn points_of(d: &str) -> Vec<(i64, i64)> {
+        let (start, moves) = d.trim_start_matches('M').split_once('l').unwrap_or((d, ""));
+        let numbers = |s: &str| -> Vec<i64> {
+            s.replace('-', " -")
+                .split_ascii_whitespace()
+                .map(|n| n.parse().unwrap())
+                .collect()
+        };
+        let first = numbers(start.trim_start_matches('M'));
+        let mut at = (first[0], first[1]);
+        let mut out = vec![at];
+        for pair in numbers(moves).chunks(2) {
+            at = (at.0 + pair[0], at.1 + pair[1]);
+            out.push(at);
+        }
+        out
+    }
+
+    #[test]
+    fn repeated_and_straight_on_points_are_dropped_turns_and_reversals_kept() {
+        let line = [
+            (0, 0),
+            (0, 0),
+            (1, 1), // on the segment (0,0)–(2,2): dropped
+            (2, 2),
+            (2, 5), // a pixel column's run up…
+            (2, 3), // …and back: a reversal, kept
+            (2, 3),
+            (3, 3), // on (2,3)–(4,3): dropped
+            (4, 3),
+            (5, 1),
+            (5, 4), // a monotone column run keeps its two ends
+            (5, 9),
+        ];
+        let expected = [(0, 0), (2, 2), (2, 5), (2, 3), (4, 3), (5, 1), (5, 9)];
+        assert_eq!(reduced(&line), expected);
+        assert_eq!(relative_d(&expected), "M0 0l2 2 0 3 0-2 2 0 1-2 0 8");
+        assert_eq!(points_of(&relative_d(&expected)), expected);
+        assert_eq!(reduced(&[(7, 7), (7, 7)]), [(7, 7)]);
+        assert_eq!(relative_d(&[(7, -7)]), "M7-7");
+    }
+
+    #[test]
+    fn a_constant_signal_is_one_segment_and_the_figure_less_than_half_its_bytes() {
+        // 2,000 samples of y = 0.25 drawn as plotters draws a figure: a polyline of 2,000
+        // points (one per sample, mostly repeated pixels) and a grid of <line> elements;
+        // compacted, the data line is its two ends and the grid one path per direction.
+        let mut raw = String::new();
+        {
+            let root = SVGBackend::with_string(&mut raw, (1000, 440)).into_drawing_area();
+            let mut chart = ChartBuilder::on(&root)
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(70)
+                .build_cartesian_2d(0.0..1.0, -1.0..1.0)
+                .unwrap();
+            chart
+                .configure_mesh()
+                .light_line_style(GRID)
+                .draw()
+                .unwrap();
+            let signal = (0..2000).map(|i| (i as f64 / 1999.0, 0.25));
+            chart
+                .draw_series(LineSeries::new(signal, palette(0).stroke_width(1)))
+                .unwrap();
+            root.present().unwrap();
+        }
+        let data = |svg: &str| -> String {
+            svg.lines()
+                .find(|l| l.contains("stroke=\"#1F77B4\""))
+                .unwrap()
+                .to_string()
+        };
+        let before = data(&raw);
+        assert_eq!(before.matches(',').count(), 2000, "one point per sample");
+        let compact = compact_svg(&raw);
+        let after = data(&compact);
+        let d = &after[after.find(" d=\"").unwrap() + 4..];
+        let ends = points_of(&d[..d.find('"').unwrap()]);
+        assert_eq!(ends.len(), 2, "{after}");
+        assert_eq!(ends[0].1, ends[1].1, "horizontal");
+        assert!(ends[1].0 > ends[0].0 + 800, "{ends:?}: across the plot");
+        assert_eq!(compact.matches("<line").count(), 0, "grid lines in paths");
+        assert_eq!(
+            compact.matches("V").count(),
+            raw.lines()
+                .filter(|l| l.starts_with("<line") && {
+                    let g = parse_line(l).unwrap();
+                    g.vertical() == Some(true)
+                })
+                .count()
+        );
+        assert!(
+            compact.len() * 2 < raw.len(),
+            "{} of {}",
+            compact.len(),
+            raw.len()
+        );
+    }
+}

@@ -364,7 +364,7 @@ fn draw(
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    dash_marked(&svg)
+    super::figure::compact_svg(&dash_marked(&svg))
 }
 
 /// The opacity that marks a line to be dashed: plotters writes a colour's alpha as the

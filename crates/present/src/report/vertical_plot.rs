@@ -162,5 +162,5 @@ fn draw(lines: &[(String, &Trace, RGBColor)], mu: f64, duration: f64) -> String 
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    dash_marked(&svg)
+    super::figure::compact_svg(&dash_marked(&svg))
 }
