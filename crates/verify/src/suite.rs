@@ -197,9 +197,18 @@ pub struct CaseResult {
     pub checks: Vec<Check>,
     /// Physical invariants of every completed run ([`crate::invariants`]).
     pub invariants: Vec<crate::invariants::InvariantCheck>,
+    /// Per run (in run order; missing or `None`: draw the trace), the per-slice extremes
+    /// of every channel over every step of a streamed run, which the figures draw instead
+    /// of its kept rows ([`crate::analysis::envelope`]).
+    pub envelopes: Vec<Option<crate::analysis::envelope::Envelope>>,
 }
 
 impl CaseResult {
+    /// The envelope of run `i`, when it was streamed.
+    pub fn envelope(&self, i: usize) -> Option<&crate::analysis::envelope::Envelope> {
+        self.envelopes.get(i).and_then(Option::as_ref)
+    }
+
     /// Whether the case passes the gate (as `rockslide check` decides it).
     pub fn gate_passed(&self) -> bool {
         // one truth with `check`: failed gated checks and gated tolerances that check nothing
@@ -448,7 +457,12 @@ fn analyse(
             None => crate::external::check_invariants(&case, r),
         })
         .collect();
+    let envelopes = streamed
+        .iter_mut()
+        .map(|s| s.as_mut().and_then(|s| s.envelope.take()))
+        .collect();
     Ok(CaseResult {
+        envelopes,
         invariants,
         case,
         runs,

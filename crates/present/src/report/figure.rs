@@ -7,6 +7,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use rockslide_core::trace::Trace;
+use rockslide_verify::analysis::envelope::Envelope;
 use rockslide_verify::suite::CaseResult;
 
 /// The reference's colour: black, drawn wider than the runs.
@@ -31,21 +32,48 @@ pub(crate) fn palette(i: usize) -> RGBColor {
     P[i % P.len()]
 }
 
+/// One participant of an overlay figure: label, trace, colour, and — for a streamed run —
+/// the per-slice extremes of every step, drawn instead of its kept rows.
+pub(crate) type Participant<'a> = (String, &'a Trace, RGBColor, Option<&'a Envelope>);
+
 /// The reference (black) and every run (the palette, in order) of a case, each with its
 /// label and trace: the participants the report's overlay figures draw.
-pub(crate) fn participants(r: &CaseResult) -> Vec<(String, &Trace, RGBColor)> {
-    let mut lines: Vec<(String, &Trace, RGBColor)> = Vec::new();
+pub(crate) fn participants(r: &CaseResult) -> Vec<Participant<'_>> {
+    let mut lines: Vec<Participant<'_>> = Vec::new();
     if let Ok(x) = &r.reference {
         lines.push((
             format!("reference ({})", x.solution.name()),
             &x.output,
             REFERENCE,
+            None,
         ));
     }
     for (i, run) in r.runs.iter().enumerate() {
-        lines.push((run.label(), &run.trace, palette(i)));
+        lines.push((run.label(), &run.trace, palette(i), r.envelope(i)));
     }
     lines
+}
+
+/// (time, scale(value)) of channel `key` to draw: a streamed run's per-slice extremes
+/// over every step when it has them, else the trace's samples reduced to a min/max pair
+/// per bucket beyond `max_points` ([`extreme_indices`]).
+pub(crate) fn channel_points(
+    trace: &Trace,
+    envelope: Option<&Envelope>,
+    key: &str,
+    scale: impl Fn(f64) -> f64,
+    max_points: usize,
+) -> Vec<(f64, f64)> {
+    if let Some(points) = envelope.and_then(|e| e.points(key)) {
+        return points.into_iter().map(|(t, v)| (t, scale(v))).collect();
+    }
+    let Some(col) = trace.column(key) else {
+        return Vec::new();
+    };
+    extreme_indices(col.len(), max_points, |i| col[i])
+        .into_iter()
+        .map(|i| (trace.time[i], scale(col[i])))
+        .collect()
 }
 
 /// One legend entry: label, colour, dashed line.

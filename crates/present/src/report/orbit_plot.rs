@@ -86,7 +86,7 @@ fn orbits(r: &CaseResult) -> Vec<Orbit> {
     let lines = participants(r);
     lines
         .into_iter()
-        .filter_map(|(label, trace, colour)| {
+        .filter_map(|(label, trace, colour, _)| {
             let (path, peak) = path(trace)?;
             Some(Orbit {
                 label,
