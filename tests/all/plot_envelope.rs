@@ -17,13 +17,24 @@ use rockslide::case::Case;
 use rockslide::report::write_case_outputs;
 use rockslide::suite::{CaseResult, run_case_streaming_above};
 
-/// The PEPO under its mass acceleration for `duration` s at Δt = 1 ms, rows kept every 12.5 ms.
+/// The PEPO under its mass acceleration for `duration` s, every engine at Δt = 1 ms (the
+/// predictor-corrector too: the case's own 10 ms is coarser than the kept rows), rows kept
+/// every 12.5 ms.
 fn pepo(duration: &str) -> Case {
-    crate::common::case_with(
-        "pepo-mass-accel",
+    let path = crate::common::repo("cases/pepo-mass-accel.toml");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let (run, pc) = (
         "duration = 1.0\ndt = 0.001\n",
-        &format!("duration = {duration}\ndt = 0.001\noutput_dt = 0.0125\n"),
-    )
+        "dt = 0.01               # the paper's spreadsheet step",
+    );
+    assert!(text.contains(run) && text.contains(pc));
+    let text = text
+        .replace(
+            run,
+            &format!("duration = {duration}\ndt = 0.001\noutput_dt = 0.0125\n"),
+        )
+        .replace(pc, "dt = 0.001");
+    rockslide::case::parse_case(&path, &text).expect("modified case loads")
 }
 
 /// The case run whole (no run streamed) and streamed (every run).
@@ -43,8 +54,13 @@ fn a_streamed_runs_envelope_is_its_whole_runs_per_slice_extremes_and_keeps_the_p
     let mut missed_by_kept_rows = 0;
     for (i, (w, s)) in whole.runs.iter().zip(&streamed.runs).enumerate() {
         let label = w.label();
-        assert!(whole.envelope(i).is_none(), "{label}: a whole run draws its trace");
-        let envelope = streamed.envelope(i).expect("a streamed run has an envelope");
+        assert!(
+            whole.envelope(i).is_none(),
+            "{label}: a whole run draws its trace"
+        );
+        let envelope = streamed
+            .envelope(i)
+            .expect("a streamed run has an envelope");
         assert_eq!(
             *envelope,
             Envelope::of_trace(&w.trace, duration, ENVELOPE_BUCKETS),
@@ -54,22 +70,30 @@ fn a_streamed_runs_envelope_is_its_whole_runs_per_slice_extremes_and_keeps_the_p
         for (c, q) in w.trace.channels.iter().enumerate() {
             let max = |v: &[f64]| v.iter().fold(f64::NEG_INFINITY, |m, &x| m.max(x));
             let whole_max = max(&w.trace.columns[c]);
-            let drawn_max = max(
-                &envelope
-                    .points(q.key)
-                    .unwrap()
-                    .iter()
-                    .map(|p| p.1)
-                    .collect::<Vec<_>>(),
+            let drawn_max = max(&envelope
+                .points(q.key)
+                .unwrap()
+                .iter()
+                .map(|p| p.1)
+                .collect::<Vec<_>>());
+            assert_eq!(
+                drawn_max.to_bits(),
+                whole_max.to_bits(),
+                "{label} {}",
+                q.key
             );
-            assert_eq!(drawn_max.to_bits(), whole_max.to_bits(), "{label} {}", q.key);
             if max(&s.trace.columns[c]) < whole_max {
                 missed_by_kept_rows += 1;
             }
         }
     }
-    // the rows kept every 12.5 ms miss most peaks of a 1-kHz run; the envelope has them
-    assert!(missed_by_kept_rows > 5, "{missed_by_kept_rows}");
+    eprintln!("channel peaks the kept rows miss: {missed_by_kept_rows}");
+    // the rows kept every 12.5 ms miss peaks of a 1-kHz run (6 channel peaks of the
+    // three engines' runs, measured); the envelope has every one
+    assert!(
+        missed_by_kept_rows >= 6,
+        "{missed_by_kept_rows}: measured 6"
+    );
 }
 
 #[test]
@@ -117,7 +141,11 @@ fn an_envelope_holds_the_same_values_for_ten_times_the_run() {
             .position(|r| r.engine == "predictor-corrector")
             .unwrap();
         let e = streamed.envelope(pc).unwrap();
-        (e.values_held(), e.channels.len(), streamed.runs[pc].stats.steps)
+        (
+            e.values_held(),
+            e.channels.len(),
+            streamed.runs[pc].stats.steps,
+        )
     };
     let (short, channels, steps) = held("1.0");
     let (long, _, steps_long) = held("10.0");
