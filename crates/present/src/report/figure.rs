@@ -193,12 +193,18 @@ pub(crate) fn extreme_indices(
 /// and straight runs — and every grid line as its own `<line>` with its attributes. This
 /// rewrites, exactly (the same geometry, the same paint order):
 /// - each polyline of integer points as a `<path>` with relative moves, after dropping
-///   repeated points and every point that lies on the straight segment between its
-///   neighbours ([`reduced`]: neither the shape, the joins nor a dash pattern's length
-///   change);
-/// - each run of consecutive `<line>` elements with the same attributes and direction
-///   (all vertical or all horizontal: parallel lines never overlap) as one `<path>` of
-///   one subpath per line.
+///   repeated points and every point inside a straight vertical or horizontal run
+///   ([`reduced`]: neither the shape, the joins nor a dash pattern's length change);
+/// - each run of consecutive `<line>` elements with the same attributes as `<line>`
+///   elements with their coordinates only, in a `<g>` carrying the attributes (all but
+///   an `opacity` other than 1, which stays on each line: a group's opacity would blend
+///   the lines together).
+///
+/// Rendered by librsvg and by Chromium, every figure of the default run is the same
+/// image pixel for pixel (docs/performance.md §2). Two rewrites that would save more are
+/// left out because Chromium's anti-aliasing is not exact under them: a `<path>` for a
+/// `<line>` (±2 of 255 levels along the grid) and dropping points inside a straight
+/// diagonal run (up to 46 levels on a few pixels).
 ///
 /// Anything else (text, rectangles, circles, a polyline with non-integer points) is
 /// passed through unchanged.
@@ -228,9 +234,9 @@ pub(crate) fn compact_svg(svg: &str) -> String {
 }
 
 /// The points of a polyline after dropping each point equal to the one before it and each
-/// point lying on the segment between its neighbours, in the same direction (so the
-/// drawn segments cover the same pixels in the same order, and the path's length — the
-/// phase of a dash pattern — is unchanged).
+/// point inside a vertical or horizontal run — on the segment between its neighbours, in
+/// the same direction — so the drawn segments cover the same pixels in the same order,
+/// and the path's length (the phase of a dash pattern) is unchanged.
 pub(crate) fn reduced(points: &[(i64, i64)]) -> Vec<(i64, i64)> {
     let mut out: Vec<(i64, i64)> = Vec::with_capacity(points.len());
     for &p in points {
@@ -239,7 +245,8 @@ pub(crate) fn reduced(points: &[(i64, i64)]) -> Vec<(i64, i64)> {
         }
         while let [.., a, b] = out[..] {
             let (u, v) = ((b.0 - a.0, b.1 - a.1), (p.0 - b.0, p.1 - b.1));
-            let straight_on = u.0 * v.1 == u.1 * v.0 && u.0 * v.0 + u.1 * v.1 > 0;
+            let axis = (u.0 == 0 && v.0 == 0) || (u.1 == 0 && v.1 == 0);
+            let straight_on = axis && u.0 * v.0 + u.1 * v.1 > 0;
             if !straight_on {
                 break;
             }
@@ -312,14 +319,21 @@ struct GridLine<'a> {
     to: (i64, i64),
 }
 
-impl GridLine<'_> {
-    /// Vertical (true), horizontal (false), or neither (None).
-    fn vertical(&self) -> Option<bool> {
-        match (self.from.0 == self.to.0, self.from.1 == self.to.1) {
-            (true, false) => Some(true),
-            (false, true) => Some(false),
-            _ => None,
-        }
+/// The attributes of a line split in those a group can carry and those each line keeps:
+/// an `opacity="1"` is dropped (the default), another opacity stays on the line.
+fn split_opacity(attributes: &str) -> (String, &str) {
+    let Some(start) = attributes.find("opacity=\"") else {
+        return (attributes.to_string(), "");
+    };
+    let end = attributes[start + 9..]
+        .find('"')
+        .map_or(attributes.len(), |e| start + 9 + e + 1);
+    let opacity = &attributes[start..end];
+    let rest = format!("{}{}", &attributes[..start], attributes[end..].trim_start());
+    if opacity == "opacity=\"1\"" {
+        (rest, "")
+    } else {
+        (rest, &attributes[start..(end + 1).min(attributes.len())])
     }
 }
 
@@ -344,7 +358,7 @@ fn parse_line(element: &str) -> Option<GridLine<'_>> {
     })
 }
 
-/// Consecutive `<line>` elements of the same attributes and direction, written as one path.
+/// Consecutive `<line>` elements of the same attributes, written in one group.
 #[derive(Default)]
 struct LineRun<'a> {
     lines: Vec<GridLine<'a>>,
@@ -352,11 +366,9 @@ struct LineRun<'a> {
 
 impl<'a> LineRun<'a> {
     fn accepts(&self, line: &GridLine<'_>) -> bool {
-        self.lines.first().is_none_or(|first| {
-            first.attributes == line.attributes
-                && first.vertical().is_some()
-                && first.vertical() == line.vertical()
-        })
+        self.lines
+            .first()
+            .is_none_or(|first| first.attributes == line.attributes)
     }
 
     fn push(&mut self, line: GridLine<'a>) {
@@ -368,22 +380,21 @@ impl<'a> LineRun<'a> {
         let Some(first) = self.lines.first() else {
             return;
         };
-        if self.lines.len() == 1 {
-            let l = first;
+        let (group, kept) = split_opacity(first.attributes);
+        let single = self.lines.len() == 1;
+        if !single {
+            let _ = writeln!(out, "<g {}>", group.trim_end());
+        }
+        for l in &self.lines {
+            let attributes = if single { first.attributes } else { kept };
             let _ = writeln!(
                 out,
-                "<line {}x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
-                l.attributes, l.from.0, l.from.1, l.to.0, l.to.1
+                "<line {attributes}x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
+                l.from.0, l.from.1, l.to.0, l.to.1
             );
-        } else {
-            let _ = write!(out, "<path {}fill=\"none\" d=\"", first.attributes);
-            for l in &self.lines {
-                let _ = match l.vertical() {
-                    Some(true) => write!(out, "M{} {}V{}", l.from.0, l.from.1, l.to.1),
-                    _ => write!(out, "M{} {}H{}", l.from.0, l.from.1, l.to.0),
-                };
-            }
-            out.push_str("\"/>\n");
+        }
+        if !single {
+            out.push_str("</g>\n");
         }
         self.lines.clear();
     }
@@ -413,11 +424,11 @@ mod tests {
     }
 
     #[test]
-    fn repeated_and_straight_on_points_are_dropped_turns_and_reversals_kept() {
+    fn repeated_points_and_inner_points_of_vertical_or_horizontal_runs_are_dropped() {
         let line = [
             (0, 0),
             (0, 0),
-            (1, 1), // on the segment (0,0)–(2,2): dropped
+            (1, 1), // on the diagonal (0,0)–(2,2): kept (see `compact_svg`)
             (2, 2),
             (2, 5), // a pixel column's run up…
             (2, 3), // …and back: a reversal, kept
@@ -428,12 +439,40 @@ mod tests {
             (5, 4), // a monotone column run keeps its two ends
             (5, 9),
         ];
-        let expected = [(0, 0), (2, 2), (2, 5), (2, 3), (4, 3), (5, 1), (5, 9)];
+        let expected = [
+            (0, 0),
+            (1, 1),
+            (2, 2),
+            (2, 5),
+            (2, 3),
+            (4, 3),
+            (5, 1),
+            (5, 9),
+        ];
         assert_eq!(reduced(&line), expected);
-        assert_eq!(relative_d(&expected), "M0 0l2 2 0 3 0-2 2 0 1-2 0 8");
+        assert_eq!(relative_d(&expected), "M0 0l1 1 1 1 0 3 0-2 2 0 1-2 0 8");
         assert_eq!(points_of(&relative_d(&expected)), expected);
         assert_eq!(reduced(&[(7, 7), (7, 7)]), [(7, 7)]);
         assert_eq!(relative_d(&[(7, -7)]), "M7-7");
+    }
+
+    #[test]
+    fn grid_lines_share_their_attributes_in_a_group_but_a_partial_opacity() {
+        let svg = "<line opacity=\"1\" stroke=\"#EEEEEE\" stroke-width=\"1\" x1=\"82\" y1=\"387\" x2=\"82\" y2=\"37\"/>\n\
+                   <line opacity=\"1\" stroke=\"#EEEEEE\" stroke-width=\"1\" x1=\"97\" y1=\"387\" x2=\"97\" y2=\"37\"/>\n\
+                   <line opacity=\"0.2\" stroke=\"#000000\" stroke-width=\"1\" x1=\"82\" y1=\"40\" x2=\"900\" y2=\"40\"/>\n\
+                   <line opacity=\"0.2\" stroke=\"#000000\" stroke-width=\"1\" x1=\"82\" y1=\"80\" x2=\"900\" y2=\"80\"/>\n\
+                   <line opacity=\"1\" stroke=\"#000000\" stroke-width=\"1\" x1=\"1\" y1=\"2\" x2=\"3\" y2=\"4\"/>\n";
+        let expected = "<g stroke=\"#EEEEEE\" stroke-width=\"1\">\n\
+                        <line x1=\"82\" y1=\"387\" x2=\"82\" y2=\"37\"/>\n\
+                        <line x1=\"97\" y1=\"387\" x2=\"97\" y2=\"37\"/>\n\
+                        </g>\n\
+                        <g stroke=\"#000000\" stroke-width=\"1\">\n\
+                        <line opacity=\"0.2\" x1=\"82\" y1=\"40\" x2=\"900\" y2=\"40\"/>\n\
+                        <line opacity=\"0.2\" x1=\"82\" y1=\"80\" x2=\"900\" y2=\"80\"/>\n\
+                        </g>\n\
+                        <line opacity=\"1\" stroke=\"#000000\" stroke-width=\"1\" x1=\"1\" y1=\"2\" x2=\"3\" y2=\"4\"/>\n";
+        assert_eq!(compact_svg(svg), expected);
     }
 
     #[test]
@@ -476,15 +515,14 @@ mod tests {
         assert_eq!(ends.len(), 2, "{after}");
         assert_eq!(ends[0].1, ends[1].1, "horizontal");
         assert!(ends[1].0 > ends[0].0 + 800, "{ends:?}: across the plot");
-        assert_eq!(compact.matches("<line").count(), 0, "grid lines in paths");
+        // every grid line kept, the light grid's attributes once, on its group
+        let lines = |svg: &str| svg.matches("<line").count();
+        assert!(lines(&raw) > 10);
+        assert_eq!(lines(&compact), lines(&raw));
         assert_eq!(
-            compact.matches("V").count(),
-            raw.lines()
-                .filter(|l| l.starts_with("<line") && {
-                    let g = parse_line(l).unwrap();
-                    g.vertical() == Some(true)
-                })
-                .count()
+            compact.matches("stroke=\"#EEEEEE\"").count(),
+            1,
+            "{compact}"
         );
         assert!(
             compact.len() * 2 < raw.len(),

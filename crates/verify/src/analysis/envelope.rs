@@ -77,7 +77,7 @@ impl Envelope {
 
     /// The slice of time `t`: ⌊t / duration · buckets⌋, clamped to the slices.
     fn bucket(&self, t: f64) -> usize {
-        if !(self.duration > 0.0) {
+        if self.duration.is_nan() || self.duration <= 0.0 {
             return 0;
         }
         // `as` saturates: a negative or NaN time falls in the first slice
