@@ -236,7 +236,8 @@ pub fn execute(
 /// so its memory follows its output rows, not its steps. Every shipped case runs below
 /// it (the longest: 2·10⁵ steps), so their figures keep every step; a streamed run's
 /// responses, invariants and history errors are those of a whole run bit for bit
-/// (tests/all/streaming.rs), its figures show the kept rows.
+/// (tests/all/streaming.rs), and its figures draw every channel's per-slice extremes over
+/// every step ([`crate::analysis::envelope`]), not the kept rows.
 pub const STREAMING_STEPS: u64 = 500_000;
 
 /// Whether planned run `p` of `case` is streamed: more than [`STREAMING_STEPS`] steps of
