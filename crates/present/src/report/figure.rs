@@ -193,18 +193,20 @@ pub(crate) fn extreme_indices(
 /// and straight runs — and every grid line as its own `<line>` with its attributes. This
 /// rewrites, exactly (the same geometry, the same paint order):
 /// - each polyline of integer points as a `<path>` with relative moves, after dropping
-///   repeated points and every point inside a straight vertical or horizontal run
-///   ([`reduced`]: neither the shape, the joins nor a dash pattern's length change);
+///   each point that repeats the one before it ([`reduced`]: a segment of no length, so
+///   neither the shape, the joins nor a dash pattern's phase change);
 /// - each run of consecutive `<line>` elements with the same attributes as `<line>`
 ///   elements with their coordinates only, in a `<g>` carrying the attributes (all but
 ///   an `opacity` other than 1, which stays on each line: a group's opacity would blend
 ///   the lines together).
 ///
 /// Rendered by librsvg and by Chromium, every figure of the default run is the same
-/// image pixel for pixel (docs/performance.md §2). Two rewrites that would save more are
-/// left out because Chromium's anti-aliasing is not exact under them: a `<path>` for a
-/// `<line>` (±2 of 255 levels along the grid) and dropping points inside a straight
-/// diagonal run (up to 46 levels on a few pixels).
+/// image pixel for pixel (docs/performance.md §2). Rewrites that would save more are left
+/// out because Chromium's anti-aliasing is not exact under them (librsvg's is): a
+/// `<path>` for a `<line>` (±2 of 255 levels along the grid), dropping the inner points
+/// of a straight run — vertical (≤ 5 levels on ≤ 52 pixels of 7 of the default run's
+/// figures, for 0.09 MB), horizontal (±3 levels on a few dozen pixels) or diagonal (up to
+/// 46 levels on a few pixels).
 ///
 /// Anything else (text, rectangles, circles, a polyline with non-integer points) is
 /// passed through unchanged.
@@ -233,26 +235,13 @@ pub(crate) fn compact_svg(svg: &str) -> String {
     out
 }
 
-/// The points of a polyline after dropping each point equal to the one before it and each
-/// point inside a vertical or horizontal run — on the segment between its neighbours, in
-/// the same direction — so the drawn segments cover the same pixels in the same order,
-/// and the path's length (the phase of a dash pattern) is unchanged.
+/// The points of a polyline without the points that repeat the one before them.
 pub(crate) fn reduced(points: &[(i64, i64)]) -> Vec<(i64, i64)> {
     let mut out: Vec<(i64, i64)> = Vec::with_capacity(points.len());
     for &p in points {
-        if out.last() == Some(&p) {
-            continue;
+        if out.last() != Some(&p) {
+            out.push(p);
         }
-        while let [.., a, b] = out[..] {
-            let (u, v) = ((b.0 - a.0, b.1 - a.1), (p.0 - b.0, p.1 - b.1));
-            let axis = (u.0 == 0 && v.0 == 0) || (u.1 == 0 && v.1 == 0);
-            let straight_on = axis && u.0 * v.0 + u.1 * v.1 > 0;
-            if !straight_on {
-                break;
-            }
-            out.pop();
-        }
-        out.push(p);
     }
     out
 }
@@ -424,20 +413,18 @@ mod tests {
     }
 
     #[test]
-    fn repeated_points_and_inner_points_of_vertical_or_horizontal_runs_are_dropped() {
+    fn repeated_points_are_dropped_and_every_other_kept() {
         let line = [
             (0, 0),
             (0, 0),
-            (1, 1), // on the diagonal (0,0)–(2,2): kept (see `compact_svg`)
+            (1, 1),
             (2, 2),
-            (2, 5), // a pixel column's run up…
-            (2, 3), // …and back: a reversal, kept
+            (2, 5),
             (2, 3),
-            (3, 3), // on (2,3)–(4,3): dropped
-            (4, 3),
-            (5, 1),
-            (5, 4), // a monotone column run keeps its two ends
-            (5, 9),
+            (2, 3),
+            (2, 1), // inside a column's run: kept (see `compact_svg`)
+            (2, 0),
+            (3, 0),
         ];
         let expected = [
             (0, 0),
@@ -445,12 +432,12 @@ mod tests {
             (2, 2),
             (2, 5),
             (2, 3),
-            (4, 3),
-            (5, 1),
-            (5, 9),
+            (2, 1),
+            (2, 0),
+            (3, 0),
         ];
         assert_eq!(reduced(&line), expected);
-        assert_eq!(relative_d(&expected), "M0 0l1 1 1 1 0 3 0-2 2 0 1-2 0 8");
+        assert_eq!(relative_d(&expected), "M0 0l1 1 1 1 0 3 0-2 0-2 0-1 1 0");
         assert_eq!(points_of(&relative_d(&expected)), expected);
         assert_eq!(reduced(&[(7, 7), (7, 7)]), [(7, 7)]);
         assert_eq!(relative_d(&[(7, -7)]), "M7-7");
@@ -476,10 +463,11 @@ mod tests {
     }
 
     #[test]
-    fn a_constant_signal_is_one_segment_and_the_figure_less_than_half_its_bytes() {
+    fn a_constant_signal_is_one_point_per_pixel_column_and_the_figure_less_than_half_its_bytes() {
         // 2,000 samples of y = 0.25 drawn as plotters draws a figure: a polyline of 2,000
         // points (one per sample, mostly repeated pixels) and a grid of <line> elements;
-        // compacted, the data line is its two ends and the grid one path per direction.
+        // compacted, the data line is one point per pixel column and the grid's
+        // attributes are written once.
         let mut raw = String::new();
         {
             let root = SVGBackend::with_string(&mut raw, (1000, 440)).into_drawing_area();
@@ -512,9 +500,12 @@ mod tests {
         let after = data(&compact);
         let d = &after[after.find(" d=\"").unwrap() + 4..];
         let ends = points_of(&d[..d.find('"').unwrap()]);
-        assert_eq!(ends.len(), 2, "{after}");
-        assert_eq!(ends[0].1, ends[1].1, "horizontal");
-        assert!(ends[1].0 > ends[0].0 + 800, "{ends:?}: across the plot");
+        // one point per pixel column (the samples are denser than the columns), all on
+        // one row
+        let columns = (ends[ends.len() - 1].0 - ends[0].0 + 1) as usize;
+        assert!(columns > 800, "{ends:?}: across the plot");
+        assert_eq!(ends.len(), columns, "{after}");
+        assert!(ends.windows(2).all(|w| w[1] == (w[0].0 + 1, w[0].1)));
         // every grid line kept, the light grid's attributes once, on its group
         let lines = |svg: &str| svg.matches("<line").count();
         assert!(lines(&raw) > 10);
