@@ -149,6 +149,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         reference: Err("none".into()),
         checks: Vec::new(),
         invariants: Vec::new(),
+        envelopes: Vec::new(),
     };
     let bytes = mcap_bytes(&case_trace_log(&rock))?;
     let mut scene = Value::Null;

@@ -24,6 +24,7 @@ mod opensees;
 mod orbit_plot;
 mod output_step;
 mod paper_values;
+mod plot_envelope;
 mod predictor_corrector;
 mod properties;
 mod rapier_options;

@@ -290,6 +290,7 @@ fn grid_result(trace: Trace) -> CaseResult {
     CaseResult {
         run_responses: vec![responses(&run.trace)],
         invariants: Vec::new(),
+        envelopes: Vec::new(),
         history_errors: vec![None],
         runs: vec![run],
         case: c,

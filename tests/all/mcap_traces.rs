@@ -543,6 +543,7 @@ fn result_with(case: Case, runs: Vec<Run>) -> CaseResult {
     CaseResult {
         run_responses: runs.iter().map(|r| responses(&r.trace)).collect(),
         invariants: Vec::new(),
+        envelopes: Vec::new(),
         history_errors: runs.iter().map(|_| None).collect(),
         runs,
         case,

@@ -197,9 +197,18 @@ pub struct CaseResult {
     pub checks: Vec<Check>,
     /// Physical invariants of every completed run ([`crate::invariants`]).
     pub invariants: Vec<crate::invariants::InvariantCheck>,
+    /// Per run (in run order; missing or `None`: draw the trace), the per-slice extremes
+    /// of every channel over every step of a streamed run, which the figures draw instead
+    /// of its kept rows ([`crate::analysis::envelope`]).
+    pub envelopes: Vec<Option<crate::analysis::envelope::Envelope>>,
 }
 
 impl CaseResult {
+    /// The envelope of run `i`, when it was streamed.
+    pub fn envelope(&self, i: usize) -> Option<&crate::analysis::envelope::Envelope> {
+        self.envelopes.get(i).and_then(Option::as_ref)
+    }
+
     /// Whether the case passes the gate (as `rockslide check` decides it).
     pub fn gate_passed(&self) -> bool {
         // one truth with `check`: failed gated checks and gated tolerances that check nothing
@@ -227,7 +236,8 @@ pub fn execute(
 /// so its memory follows its output rows, not its steps. Every shipped case runs below
 /// it (the longest: 2·10⁵ steps), so their figures keep every step; a streamed run's
 /// responses, invariants and history errors are those of a whole run bit for bit
-/// (tests/all/streaming.rs), its figures show the kept rows.
+/// (tests/all/streaming.rs), and its figures draw every channel's per-slice extremes over
+/// every step ([`crate::analysis::envelope`]), not the kept rows.
 pub const STREAMING_STEPS: u64 = 500_000;
 
 /// Whether planned run `p` of `case` is streamed: more than [`STREAMING_STEPS`] steps of
@@ -448,7 +458,12 @@ fn analyse(
             None => crate::external::check_invariants(&case, r),
         })
         .collect();
+    let envelopes = streamed
+        .iter_mut()
+        .map(|s| s.as_mut().and_then(|s| s.envelope.take()))
+        .collect();
     Ok(CaseResult {
+        envelopes,
         invariants,
         case,
         runs,

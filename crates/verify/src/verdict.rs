@@ -429,6 +429,7 @@ dt = 0.1
             reference: Err("none".into()),
             checks: Vec::new(),
             invariants,
+            envelopes: Vec::new(),
         }
     }
 

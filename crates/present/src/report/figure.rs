@@ -7,6 +7,7 @@
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use rockslide_core::trace::Trace;
+use rockslide_verify::analysis::envelope::Envelope;
 use rockslide_verify::suite::CaseResult;
 
 /// The reference's colour: black, drawn wider than the runs.
@@ -31,21 +32,48 @@ pub(crate) fn palette(i: usize) -> RGBColor {
     P[i % P.len()]
 }
 
+/// One participant of an overlay figure: label, trace, colour, and — for a streamed run —
+/// the per-slice extremes of every step, drawn instead of its kept rows.
+pub(crate) type Participant<'a> = (String, &'a Trace, RGBColor, Option<&'a Envelope>);
+
 /// The reference (black) and every run (the palette, in order) of a case, each with its
 /// label and trace: the participants the report's overlay figures draw.
-pub(crate) fn participants(r: &CaseResult) -> Vec<(String, &Trace, RGBColor)> {
-    let mut lines: Vec<(String, &Trace, RGBColor)> = Vec::new();
+pub(crate) fn participants(r: &CaseResult) -> Vec<Participant<'_>> {
+    let mut lines: Vec<Participant<'_>> = Vec::new();
     if let Ok(x) = &r.reference {
         lines.push((
             format!("reference ({})", x.solution.name()),
             &x.output,
             REFERENCE,
+            None,
         ));
     }
     for (i, run) in r.runs.iter().enumerate() {
-        lines.push((run.label(), &run.trace, palette(i)));
+        lines.push((run.label(), &run.trace, palette(i), r.envelope(i)));
     }
     lines
+}
+
+/// (time, scale(value)) of channel `key` to draw: a streamed run's per-slice extremes
+/// over every step when it has them, else the trace's samples reduced to a min/max pair
+/// per bucket beyond `max_points` ([`extreme_indices`]).
+pub(crate) fn channel_points(
+    trace: &Trace,
+    envelope: Option<&Envelope>,
+    key: &str,
+    scale: impl Fn(f64) -> f64,
+    max_points: usize,
+) -> Vec<(f64, f64)> {
+    if let Some(points) = envelope.and_then(|e| e.points(key)) {
+        return points.into_iter().map(|(t, v)| (t, scale(v))).collect();
+    }
+    let Some(col) = trace.column(key) else {
+        return Vec::new();
+    };
+    extreme_indices(col.len(), max_points, |i| col[i])
+        .into_iter()
+        .map(|i| (trace.time[i], scale(col[i])))
+        .collect()
 }
 
 /// One legend entry: label, colour, dashed line.
@@ -158,4 +186,340 @@ pub(crate) fn extreme_indices(
         }
     }
     out
+}
+
+/// The same picture in fewer bytes. `plotters` writes every line as a `<polyline>` of
+/// absolute integer points — a min/max pair per pixel column gives many repeated points
+/// and straight runs — and every grid line as its own `<line>` with its attributes. This
+/// rewrites, exactly (the same geometry, the same paint order):
+/// - each polyline of integer points as a `<path>` with relative moves, after dropping
+///   each point that repeats the one before it ([`reduced`]: a segment of no length, so
+///   neither the shape, the joins nor a dash pattern's phase change);
+/// - each run of consecutive `<line>` elements with the same attributes as `<line>`
+///   elements with their coordinates only, in a `<g>` carrying the attributes (all but
+///   an `opacity` other than 1, which stays on each line: a group's opacity would blend
+///   the lines together).
+///
+/// Rendered by librsvg and by Chromium, every figure of the default run is the same
+/// image pixel for pixel (docs/performance.md §2). Rewrites that would save more are left
+/// out because Chromium's anti-aliasing is not exact under them (librsvg's is): a
+/// `<path>` for a `<line>` (±2 of 255 levels along the grid), dropping the inner points
+/// of a straight run — vertical (≤ 5 levels on ≤ 52 pixels of 7 of the default run's
+/// figures, for 0.09 MB), horizontal (±3 levels on a few dozen pixels) or diagonal (up to
+/// 46 levels on a few pixels).
+///
+/// Anything else (text, rectangles, circles, a polyline with non-integer points) is
+/// passed through unchanged.
+pub(crate) fn compact_svg(svg: &str) -> String {
+    let mut out = String::with_capacity(svg.len() / 2);
+    let mut grid = LineRun::default();
+    for row in svg.split_inclusive('\n') {
+        let element = row.trim_end_matches('\n');
+        if let Some(line) = parse_line(element) {
+            if !grid.accepts(&line) {
+                grid.flush(&mut out);
+            }
+            grid.push(line);
+            continue;
+        }
+        grid.flush(&mut out);
+        match polyline_as_path(element) {
+            Some(path) => {
+                out.push_str(&path);
+                out.push('\n');
+            }
+            None => out.push_str(row),
+        }
+    }
+    grid.flush(&mut out);
+    out
+}
+
+/// The points of a polyline without the points that repeat the one before them.
+pub(crate) fn reduced(points: &[(i64, i64)]) -> Vec<(i64, i64)> {
+    let mut out: Vec<(i64, i64)> = Vec::with_capacity(points.len());
+    for &p in points {
+        if out.last() != Some(&p) {
+            out.push(p);
+        }
+    }
+    out
+}
+
+/// A path `d` drawing `points`: an absolute move to the first, then relative lines.
+fn relative_d(points: &[(i64, i64)]) -> String {
+    let mut d = String::with_capacity(4 * points.len() + 8);
+    let Some(&(x0, y0)) = points.first() else {
+        return d;
+    };
+    d.push('M');
+    push_numbers(&mut d, &[x0, y0]);
+    if points.len() > 1 {
+        d.push('l');
+        let mut first = true;
+        for w in points.windows(2) {
+            let (dx, dy) = (w[1].0 - w[0].0, w[1].1 - w[0].1);
+            if !first && dx >= 0 {
+                d.push(' ');
+            }
+            first = false;
+            push_numbers(&mut d, &[dx, dy]);
+        }
+    }
+    d
+}
+
+/// Numbers separated by a space, or by nothing before a minus sign.
+fn push_numbers(d: &mut String, numbers: &[i64]) {
+    use std::fmt::Write;
+    for (k, n) in numbers.iter().enumerate() {
+        if k > 0 && *n >= 0 {
+            d.push(' ');
+        }
+        let _ = write!(d, "{n}");
+    }
+}
+
+/// `<polyline a="…" points="x,y x,y "/>` of integer points as `<path a="…" d="…"/>`.
+fn polyline_as_path(element: &str) -> Option<String> {
+    let rest = element.strip_prefix("<polyline ")?.strip_suffix("/>")?;
+    let start = rest.find("points=\"")?;
+    let (attributes, tail) = rest.split_at(start);
+    let list = tail.strip_prefix("points=\"")?;
+    let end = list.find('"')?;
+    let (list, after) = (&list[..end], &list[end + 1..]);
+    let points = list
+        .split_ascii_whitespace()
+        .map(|pair| {
+            let (x, y) = pair.split_once(',')?;
+            Some((x.parse().ok()?, y.parse().ok()?))
+        })
+        .collect::<Option<Vec<(i64, i64)>>>()?;
+    Some(format!(
+        "<path {attributes}d=\"{}\"{after}/>",
+        relative_d(&reduced(&points))
+    ))
+}
+
+/// One `<line>`: its attributes but the coordinates, and its ends.
+struct GridLine<'a> {
+    attributes: &'a str,
+    from: (i64, i64),
+    to: (i64, i64),
+}
+
+/// The attributes of a line split in those a group can carry and those each line keeps:
+/// an `opacity="1"` is dropped (the default), another opacity stays on the line.
+fn split_opacity(attributes: &str) -> (String, &str) {
+    let Some(start) = attributes.find("opacity=\"") else {
+        return (attributes.to_string(), "");
+    };
+    let end = attributes[start + 9..]
+        .find('"')
+        .map_or(attributes.len(), |e| start + 9 + e + 1);
+    let opacity = &attributes[start..end];
+    let rest = format!("{}{}", &attributes[..start], attributes[end..].trim_start());
+    if opacity == "opacity=\"1\"" {
+        (rest, "")
+    } else {
+        (rest, &attributes[start..(end + 1).min(attributes.len())])
+    }
+}
+
+/// `<line a="…" x1="…" y1="…" x2="…" y2="…"/>` with integer coordinates, the coordinates
+/// last (as `plotters` writes them).
+fn parse_line(element: &str) -> Option<GridLine<'_>> {
+    let rest = element.strip_prefix("<line ")?.strip_suffix("/>")?;
+    let start = rest.find("x1=\"")?;
+    let (attributes, coordinates) = rest.split_at(start);
+    let mut values = [0_i64; 4];
+    let mut tail = coordinates;
+    for (k, name) in ["x1=\"", "y1=\"", "x2=\"", "y2=\""].iter().enumerate() {
+        tail = tail.trim_start().strip_prefix(name)?;
+        let end = tail.find('"')?;
+        values[k] = tail[..end].parse().ok()?;
+        tail = &tail[end + 1..];
+    }
+    tail.trim().is_empty().then_some(GridLine {
+        attributes,
+        from: (values[0], values[1]),
+        to: (values[2], values[3]),
+    })
+}
+
+/// Consecutive `<line>` elements of the same attributes, written in one group.
+#[derive(Default)]
+struct LineRun<'a> {
+    lines: Vec<GridLine<'a>>,
+}
+
+impl<'a> LineRun<'a> {
+    fn accepts(&self, line: &GridLine<'_>) -> bool {
+        self.lines
+            .first()
+            .is_none_or(|first| first.attributes == line.attributes)
+    }
+
+    fn push(&mut self, line: GridLine<'a>) {
+        self.lines.push(line);
+    }
+
+    fn flush(&mut self, out: &mut String) {
+        use std::fmt::Write;
+        let Some(first) = self.lines.first() else {
+            return;
+        };
+        let (group, kept) = split_opacity(first.attributes);
+        let single = self.lines.len() == 1;
+        if !single {
+            let _ = writeln!(out, "<g {}>", group.trim_end());
+        }
+        for l in &self.lines {
+            let attributes = if single { first.attributes } else { kept };
+            let _ = writeln!(
+                out,
+                "<line {attributes}x1=\"{}\" y1=\"{}\" x2=\"{}\" y2=\"{}\"/>",
+                l.from.0, l.from.1, l.to.0, l.to.1
+            );
+        }
+        if !single {
+            out.push_str("</g>\n");
+        }
+        self.lines.clear();
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The points a path `d` written by [`relative_d`] draws, back in absolute pixels.
+    fn points_of(d: &str) -> Vec<(i64, i64)> {
+        let (start, moves) = d.trim_start_matches('M').split_once('l').unwrap_or((d, ""));
+        let numbers = |s: &str| -> Vec<i64> {
+            s.replace('-', " -")
+                .split_ascii_whitespace()
+                .map(|n| n.parse().unwrap())
+                .collect()
+        };
+        let first = numbers(start.trim_start_matches('M'));
+        let mut at = (first[0], first[1]);
+        let mut out = vec![at];
+        for pair in numbers(moves).chunks(2) {
+            at = (at.0 + pair[0], at.1 + pair[1]);
+            out.push(at);
+        }
+        out
+    }
+
+    #[test]
+    fn repeated_points_are_dropped_and_every_other_kept() {
+        let line = [
+            (0, 0),
+            (0, 0),
+            (1, 1),
+            (2, 2),
+            (2, 5),
+            (2, 3),
+            (2, 3),
+            (2, 1), // inside a column's run: kept (see `compact_svg`)
+            (2, 0),
+            (3, 0),
+        ];
+        let expected = [
+            (0, 0),
+            (1, 1),
+            (2, 2),
+            (2, 5),
+            (2, 3),
+            (2, 1),
+            (2, 0),
+            (3, 0),
+        ];
+        assert_eq!(reduced(&line), expected);
+        assert_eq!(relative_d(&expected), "M0 0l1 1 1 1 0 3 0-2 0-2 0-1 1 0");
+        assert_eq!(points_of(&relative_d(&expected)), expected);
+        assert_eq!(reduced(&[(7, 7), (7, 7)]), [(7, 7)]);
+        assert_eq!(relative_d(&[(7, -7)]), "M7-7");
+    }
+
+    #[test]
+    fn grid_lines_share_their_attributes_in_a_group_but_a_partial_opacity() {
+        let svg = "<line opacity=\"1\" stroke=\"#EEEEEE\" stroke-width=\"1\" x1=\"82\" y1=\"387\" x2=\"82\" y2=\"37\"/>\n\
+                   <line opacity=\"1\" stroke=\"#EEEEEE\" stroke-width=\"1\" x1=\"97\" y1=\"387\" x2=\"97\" y2=\"37\"/>\n\
+                   <line opacity=\"0.2\" stroke=\"#000000\" stroke-width=\"1\" x1=\"82\" y1=\"40\" x2=\"900\" y2=\"40\"/>\n\
+                   <line opacity=\"0.2\" stroke=\"#000000\" stroke-width=\"1\" x1=\"82\" y1=\"80\" x2=\"900\" y2=\"80\"/>\n\
+                   <line opacity=\"1\" stroke=\"#000000\" stroke-width=\"1\" x1=\"1\" y1=\"2\" x2=\"3\" y2=\"4\"/>\n";
+        let expected = "<g stroke=\"#EEEEEE\" stroke-width=\"1\">\n\
+                        <line x1=\"82\" y1=\"387\" x2=\"82\" y2=\"37\"/>\n\
+                        <line x1=\"97\" y1=\"387\" x2=\"97\" y2=\"37\"/>\n\
+                        </g>\n\
+                        <g stroke=\"#000000\" stroke-width=\"1\">\n\
+                        <line opacity=\"0.2\" x1=\"82\" y1=\"40\" x2=\"900\" y2=\"40\"/>\n\
+                        <line opacity=\"0.2\" x1=\"82\" y1=\"80\" x2=\"900\" y2=\"80\"/>\n\
+                        </g>\n\
+                        <line opacity=\"1\" stroke=\"#000000\" stroke-width=\"1\" x1=\"1\" y1=\"2\" x2=\"3\" y2=\"4\"/>\n";
+        assert_eq!(compact_svg(svg), expected);
+    }
+
+    #[test]
+    fn a_constant_signal_is_one_point_per_pixel_column_and_the_figure_less_than_half_its_bytes() {
+        // 2,000 samples of y = 0.25 drawn as plotters draws a figure: a polyline of 2,000
+        // points (one per sample, mostly repeated pixels) and a grid of <line> elements;
+        // compacted, the data line is one point per pixel column and the grid's
+        // attributes are written once.
+        let mut raw = String::new();
+        {
+            let root = SVGBackend::with_string(&mut raw, (1000, 440)).into_drawing_area();
+            let mut chart = ChartBuilder::on(&root)
+                .margin(12)
+                .x_label_area_size(40)
+                .y_label_area_size(70)
+                .build_cartesian_2d(0.0..1.0, -1.0..1.0)
+                .unwrap();
+            chart
+                .configure_mesh()
+                .light_line_style(GRID)
+                .draw()
+                .unwrap();
+            let signal = (0..2000).map(|i| (i as f64 / 1999.0, 0.25));
+            chart
+                .draw_series(LineSeries::new(signal, palette(0).stroke_width(1)))
+                .unwrap();
+            root.present().unwrap();
+        }
+        let data = |svg: &str| -> String {
+            svg.lines()
+                .find(|l| l.contains("stroke=\"#1F77B4\""))
+                .unwrap()
+                .to_string()
+        };
+        let before = data(&raw);
+        assert_eq!(before.matches(',').count(), 2000, "one point per sample");
+        let compact = compact_svg(&raw);
+        let after = data(&compact);
+        let d = &after[after.find(" d=\"").unwrap() + 4..];
+        let ends = points_of(&d[..d.find('"').unwrap()]);
+        // one point per pixel column (the samples are denser than the columns), all on
+        // one row
+        let columns = (ends[ends.len() - 1].0 - ends[0].0 + 1) as usize;
+        assert!(columns > 800, "{ends:?}: across the plot");
+        assert_eq!(ends.len(), columns, "{after}");
+        assert!(ends.windows(2).all(|w| w[1] == (w[0].0 + 1, w[0].1)));
+        // every grid line kept, the light grid's attributes once, on its group
+        let lines = |svg: &str| svg.matches("<line").count();
+        assert!(lines(&raw) > 10);
+        assert_eq!(lines(&compact), lines(&raw));
+        assert_eq!(
+            compact.matches("stroke=\"#EEEEEE\"").count(),
+            1,
+            "{compact}"
+        );
+        assert!(
+            compact.len() * 2 < raw.len(),
+            "{} of {}",
+            compact.len(),
+            raw.len()
+        );
+    }
 }

@@ -86,7 +86,7 @@ fn orbits(r: &CaseResult) -> Vec<Orbit> {
     let lines = participants(r);
     lines
         .into_iter()
-        .filter_map(|(label, trace, colour)| {
+        .filter_map(|(label, trace, colour, _)| {
             let (path, peak) = path(trace)?;
             Some(Orbit {
                 label,
@@ -186,7 +186,7 @@ fn draw(orbits: &[Orbit], extent: f64) -> String {
             return failed_svg(SIDE, &e.to_string());
         }
     }
-    svg
+    super::figure::compact_svg(&svg)
 }
 
 /// An arrow from the origin to `tip` with a head 4 % of the axes' half-width long.

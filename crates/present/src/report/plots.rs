@@ -100,10 +100,11 @@ const SPECS: &[Spec] = &[
     },
 ];
 
-/// A line to draw: participant label and trace.
+/// A line to draw: participant label, trace, and a streamed run's envelope.
 struct Line<'a> {
     label: String,
     trace: &'a Trace,
+    envelope: Option<&'a rockslide_verify::analysis::envelope::Envelope>,
 }
 
 fn lines(r: &CaseResult) -> Vec<Line<'_>> {
@@ -112,9 +113,10 @@ fn lines(r: &CaseResult) -> Vec<Line<'_>> {
         out.push(Line {
             label: format!("reference ({})", x.solution.name()),
             trace: &x.output,
+            envelope: None,
         });
     }
-    for run in &r.runs {
+    for (i, run) in r.runs.iter().enumerate() {
         let mut label = run.label();
         if !run.status.completed() {
             label.push_str(&format!(" ({})", run.status.label()));
@@ -122,6 +124,7 @@ fn lines(r: &CaseResult) -> Vec<Line<'_>> {
         out.push(Line {
             label,
             trace: &run.trace,
+            envelope: r.envelope(i),
         });
     }
     out
@@ -138,23 +141,31 @@ fn colour(i: usize, has_reference: bool) -> RGBColor {
 
 /// (time, value·factor) points of a channel, reduced to per-bucket min and max (in time
 /// order) when long, so that peaks survive and the SVG stays small.
+#[cfg(test)]
 fn points(trace: &Trace, key: &str, factor: f64) -> Vec<(f64, f64)> {
-    let Some(col) = trace.column(key) else {
-        return Vec::new();
-    };
-    super::figure::extreme_indices(col.len(), MAX_POINTS, |i| col[i])
-        .into_iter()
-        .map(|i| (trace.time[i], col[i] * factor))
-        .collect()
+    super::figure::channel_points(trace, None, key, |v| v * factor, MAX_POINTS)
 }
 
-fn peak(trace: &Trace, channels: &[&Quantity]) -> f64 {
-    channels
-        .iter()
-        .filter_map(|c| trace.column(c.key))
-        .flat_map(|col| col.iter())
-        .filter(|v| v.is_finite())
-        .fold(0.0_f64, |m, v| m.max(v.abs()))
+/// The points of a line's channel: a streamed run's envelope, else its trace reduced.
+fn line_points(line: &Line<'_>, key: &str, factor: f64) -> Vec<(f64, f64)> {
+    super::figure::channel_points(line.trace, line.envelope, key, |v| v * factor, MAX_POINTS)
+}
+
+/// The largest |value| of a line's channels over every step (a streamed run's envelope
+/// has every step's; its trace only the kept rows).
+fn peak(line: &Line<'_>, channels: &[&Quantity]) -> f64 {
+    let mut peak = 0.0_f64;
+    for c in channels {
+        if let Some(p) = line.envelope.and_then(|e| e.peak_abs(c.key)) {
+            peak = peak.max(p);
+        } else if let Some(col) = line.trace.column(c.key) {
+            peak = col
+                .iter()
+                .filter(|v| v.is_finite())
+                .fold(peak, |m, v| m.max(v.abs()));
+        }
+    }
+    peak
 }
 
 /// Every figure of a case whose channels some participant has.
@@ -186,7 +197,7 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
         }
         let peaks: Vec<f64> = members
             .iter()
-            .map(|&i| peak(all[i].trace, spec.channels))
+            .map(|&i| peak(&all[i], spec.channels))
             .collect();
         let scale = if has_reference && members[0] == 0 {
             peaks[0]
@@ -216,7 +227,7 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
             let names: Vec<String> = off
                 .iter()
                 .map(|&i| {
-                    let p = peak(all[i].trace, spec.channels) * spec.channels[0].display.1;
+                    let p = peak(&all[i], spec.channels) * spec.channels[0].display.1;
                     format!(
                         "{} (peak {} {})",
                         all[i].label,
@@ -268,7 +279,7 @@ fn draw(
     let mut series: Vec<Series> = Vec::new();
     for &i in members {
         for (ci, c) in spec.channels.iter().enumerate() {
-            let p = points(all[i].trace, c.key, factor);
+            let p = line_points(&all[i], c.key, factor);
             if !p.is_empty() {
                 series.push((i, ci, p));
             }
@@ -364,7 +375,7 @@ fn draw(
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    dash_marked(&svg)
+    super::figure::compact_svg(&dash_marked(&svg))
 }
 
 /// The opacity that marks a line to be dashed: plotters writes a colour's alpha as the

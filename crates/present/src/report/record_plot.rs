@@ -133,7 +133,7 @@ fn draw(title: &str, ylabel: &str, points: &[(f64, f64)], duration: f64) -> Stri
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    svg
+    super::figure::compact_svg(&svg)
 }
 
 #[cfg(test)]

@@ -89,6 +89,7 @@ fn result() -> CaseResult {
         runs,
         run_responses,
         invariants: Vec::new(),
+        envelopes: Vec::new(),
         history_errors: vec![None, None],
         not_applicable: vec![(
             "predictor-corrector",

@@ -7,10 +7,13 @@
 
 use plotters::prelude::*;
 
-use super::figure::{GRID, draw_legend, failed_svg, legend_height, participants};
+use super::figure::{
+    GRID, Participant, channel_points, draw_legend, failed_svg, legend_height, participants,
+};
 use super::plots::{DASH_MARK, Figure, dash_marked};
 use rockslide_core::case::Model;
 use rockslide_core::trace::Trace;
+use rockslide_verify::analysis::envelope::Envelope;
 use rockslide_verify::suite::CaseResult;
 
 /// Figure size in pixels (the time-history figures' width), before the legend.
@@ -27,7 +30,7 @@ pub(crate) fn vertical_figure(r: &CaseResult) -> Option<Figure> {
         Model::RigidBlock(b) => b.mu,
     };
     let mut lines = participants(r);
-    lines.retain(|(_, t, _)| t.has("normal") && t.has("resistance"));
+    lines.retain(|(_, t, _, _)| t.has("normal") && t.has("resistance"));
     if lines.is_empty() {
         return None;
     }
@@ -76,26 +79,21 @@ fn finding(r: &CaseResult) -> String {
 }
 
 /// A channel's (time, factor·value·1e-3) points reduced to a min/max pair per pixel column
-/// (at most [`MAX_POINTS`]), so that every peak stays drawn.
-fn points(trace: &Trace, key: &str, factor: f64) -> Vec<(f64, f64)> {
-    let Some(values) = trace.column(key) else {
-        return Vec::new();
-    };
-    super::figure::extreme_indices(values.len(), MAX_POINTS, |i| values[i])
-        .into_iter()
-        .map(|i| (trace.time[i], factor * values[i] * 1e-3))
-        .collect()
+/// (at most [`MAX_POINTS`]; a streamed run's per-slice extremes of every step), so that
+/// every peak stays drawn.
+fn points(trace: &Trace, envelope: Option<&Envelope>, key: &str, factor: f64) -> Vec<(f64, f64)> {
+    channel_points(trace, envelope, key, |v| factor * v * 1e-3, MAX_POINTS)
 }
 
-fn draw(lines: &[(String, &Trace, RGBColor)], mu: f64, duration: f64) -> String {
+fn draw(lines: &[Participant<'_>], mu: f64, duration: f64) -> String {
     let mu = if mu.is_finite() { mu } else { 0.0 };
     let series: Vec<_> = lines
         .iter()
-        .map(|(_, t, c)| {
+        .map(|(_, t, c, e)| {
             (
-                points(t, "resistance", 1.0),
-                points(t, "normal", mu),
-                points(t, "normal", 1.0),
+                points(t, *e, "resistance", 1.0),
+                points(t, *e, "normal", mu),
+                points(t, *e, "normal", 1.0),
                 *c,
             )
         })
@@ -109,7 +107,7 @@ fn draw(lines: &[(String, &Trace, RGBColor)], mu: f64, duration: f64) -> String 
     let y = if peak > 0.0 { 1.05 * peak } else { 1.0 };
     let entries: Vec<(String, RGBColor, bool)> = lines
         .iter()
-        .flat_map(|(label, _, c)| {
+        .flat_map(|(label, _, c, _)| {
             [
                 (format!("{label}: R"), *c, false),
                 (format!("{label}: ±μN"), *c, true),
@@ -162,5 +160,5 @@ fn draw(lines: &[(String, &Trace, RGBColor)], mu: f64, duration: f64) -> String 
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    dash_marked(&svg)
+    super::figure::compact_svg(&dash_marked(&svg))
 }

@@ -5,6 +5,7 @@
 
 mod checks;
 pub mod energy;
+pub mod envelope;
 mod metrics;
 pub mod stability;
 pub mod streamed;

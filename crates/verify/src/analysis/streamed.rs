@@ -15,7 +15,8 @@
 //! whole-trace readings ([`super::responses`], [`crate::invariants::check_run`],
 //! [`super::history_difference`]), so the numbers are the same bit for bit. One reading is
 //! taken off the kept rows instead: the peak tilt between the first two impacts (rotation;
-//! no streaming engine records one).
+//! no streaming engine records one). The figures draw each channel's per-slice extremes
+//! over every step ([`super::envelope`]), not the kept rows.
 
 use rockslide_core::case::Case;
 use rockslide_core::response::{DEFS, Reading};
@@ -23,6 +24,7 @@ use rockslide_core::trace::{ContactBlock, ContactState, OutputStep, Trace};
 use rockslide_engine_api::{Run, StepSink};
 use rockslide_reference::ExactSolution;
 
+use super::envelope::{ENVELOPE_BUCKETS, Envelope};
 use super::{Responses, responses};
 use crate::invariants::{InvariantCheck, StreamedInvariants};
 
@@ -253,6 +255,8 @@ pub struct StreamedSummary {
     pub rows: u64,
     /// Rows kept in memory (the output step's).
     pub kept_rows: usize,
+    /// Every channel's per-slice extremes over every step: what the figures draw.
+    pub envelope: Option<Envelope>,
 }
 
 /// Second pass: keeps the rows at the output step and reads every summary step by step.
@@ -270,6 +274,7 @@ pub struct Summaries<'a> {
     readings: Vec<ReadingState>,
     invariants: Option<StreamedInvariants>,
     history: Option<HistoryState<'a>>,
+    envelope: Option<Envelope>,
     rows: u64,
 }
 
@@ -297,6 +302,7 @@ impl<'a> Summaries<'a> {
             readings: Vec::new(),
             invariants: None,
             history: None,
+            envelope: None,
             rows: 0,
         }
     }
@@ -335,6 +341,7 @@ impl<'a> Summaries<'a> {
             invariants,
             rows: self.rows,
             kept_rows: run.trace.len(),
+            envelope: self.envelope.take(),
         }
     }
 }
@@ -384,6 +391,11 @@ impl StepSink for Summaries<'_> {
                 sum: 0.0,
             })
         });
+        self.envelope = Some(Envelope::new(
+            &layout.channels,
+            self.case.run.duration,
+            ENVELOPE_BUCKETS,
+        ));
         self.rows = 0;
     }
 
@@ -399,6 +411,9 @@ impl StepSink for Summaries<'_> {
         }
         if let Some(h) = &mut self.history {
             h.row(t, values);
+        }
+        if let Some(e) = &mut self.envelope {
+            e.row(t, values);
         }
         let kept = self.step.as_mut().is_none_or(|s| s.keeps(t));
         if kept {
