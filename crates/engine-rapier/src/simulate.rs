@@ -95,9 +95,10 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
 fn apply_support_forces(rig: &mut Rig) {
     let body = &mut rig.world.bodies[rig.structure];
     let (cm, phi) = (body.translation(), angle_z(body));
+    let rotation = phi.sin_cos();
     let (mut fx, mut fy, mut torque) = (0.0, 0.0, 0.0);
     for sup in &rig.supports {
-        let (ax, ay) = sup.anchor(cm, phi);
+        let (ax, ay) = sup.anchor_at(cm, rotation);
         let (sx, sy) = sup.force_on_body();
         fx += sx;
         fy += sy;
@@ -328,11 +329,16 @@ fn supports_after_step(rig: &mut Rig, ground_height: f64) {
     }
     let body = &rig.world.bodies[rig.structure];
     let (cm, phi) = (body.translation(), angle_z(body));
+    let rotation = phi.sin_cos();
     let gx = rig.world.bodies[rig.ground].translation().x;
     let gy = ground_height;
     for sup in rig.supports.iter_mut() {
-        let (ax, ay) = sup.anchor(cm, phi);
+        let (ax, ay) = sup.anchor_at(cm, rotation);
         let (s, cap) = sup.update((ax - gx - sup.x, ay - gy));
+        if rig.applied_supports {
+            // no joints: the engine applies the supports' forces before the next step
+            continue;
+        }
         if let Some(joint) = rig.world.impulse_joints.get_mut(sup.joint, false) {
             joint
                 .data
