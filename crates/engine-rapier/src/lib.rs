@@ -8,6 +8,8 @@
 //! - `world`: building the world (ground, structure, feet, joints);
 //! - `ground`: ground displacement and velocity tables for both ground-motion routes;
 //! - `simulate`: the time loop and the recorded channels;
+//! - `rows`: where the rows go (a trace for a whole run, the caller's sink for a streamed
+//!   one: the engine streams natively), and the pilot run's path length;
 //! - `contact_forces`: the ground's force on a body from rapier's contact impulses;
 //! - `vertical`: vertical ground motion by both routes, the oscillator on a support.
 
