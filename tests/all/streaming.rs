@@ -11,7 +11,8 @@
 //!   100 MB limit before any step runs;
 //! - a streamed run and a whole run of the same case give the same response quantities,
 //!   history errors, invariants and checks bit for bit, every engine (those that do not
-//!   stream natively run whole and forward their rows), and the streamed run keeps
+//!   stream natively run whole and forward their rows; rapier alone on each of its time
+//!   loops), and the streamed run keeps
 //!   exactly the rows the whole run's files keep;
 //! - the bytes per value of the estimate against the files a run writes.
 
@@ -137,9 +138,17 @@ mod streamed_equals_whole {
 
     fn both(case: Case) -> (CaseResult, CaseResult) {
         let engines = rockslide::engine::all();
-        // the predictor-corrector streams natively (no trace held), the others forward
+        // the predictor-corrector and rapier stream natively (no trace held), fe forwards
         let native: Vec<bool> = engines.iter().map(|e| e.streams_natively()).collect();
-        assert_eq!(native, [true, false, false]);
+        assert_eq!(native, [true, false, true]);
+        both_with(case, engines)
+    }
+
+    /// The case run whole and streamed (every run) by `engines`.
+    fn both_with(
+        case: Case,
+        engines: Vec<Box<dyn rockslide::engine::Engine>>,
+    ) -> (CaseResult, CaseResult) {
         let whole = run_case_streaming_above(case.clone(), &engines, u64::MAX).unwrap();
         let streamed = run_case_streaming_above(case, &engines, 0).unwrap();
         (whole, streamed)
@@ -239,5 +248,96 @@ mod streamed_equals_whole {
             assert!(r.trace.len() < 90, "{}: {} rows", r.label(), r.trace.len());
         }
         assert_same(&whole, &streamed, |w| bits(&w.trace.at_output_step(0.0125)));
+    }
+
+    /// A shipped case with texts replaced, in order (each must occur).
+    fn edited(name: &str, edits: &[(&str, &str)]) -> Case {
+        let path = crate::common::repo(&format!("cases/{name}.toml"));
+        let mut text = std::fs::read_to_string(&path).unwrap();
+        for (from, to) in edits {
+            assert!(text.contains(from), "{from:?} not in {name}");
+            text = text.replacen(from, to, 1);
+        }
+        rockslide::case::parse_case(&path, &text).expect("edited case loads")
+    }
+
+    /// rapier alone, streaming natively, on each of its time loops: the oscillator
+    /// (joint-limit contact and foot), the oscillator on a support under vertical motion,
+    /// the block (and on the kinematic ground its step rule's pilot, which keeps only its
+    /// path length), the block lifting off, the rocking body (applied-force supports,
+    /// joint-limit supports, feet), and in plan the oscillator, the block on the kinematic
+    /// ground (its pilot in plan) and the rocking grid: the same responses, history errors,
+    /// invariants, checks, statistics and findings as the whole run, bit for bit, and the
+    /// rows of its files; each run records the values the engine declares before running.
+    #[test]
+    fn rapier_natively_on_each_of_its_time_loops() {
+        let rapier = || {
+            let mut engines = rockslide::engine::all();
+            engines.retain(|e| e.id() == "rapier");
+            engines
+        };
+        let foot = "[engines.rapier]\ncontact_model = \"foot\"\n#";
+        let joints = "[engines.rapier]\ncontact_model = \"joint-limit\"\n#";
+        // every row kept: a streamed run reads the tilt after the first impact off its kept
+        // rows (analysis::streamed), which at the case's output step are not every row
+        let short_northridge = ("duration = 22.0", "duration = 3.0");
+        let every_row = ("output_dt = 0.02", "# output_dt = 0.02");
+        let plan_rpepo: [(&str, &str); 3] = [
+            ("[model]\n", "[model]\nhalf_depth = 0.3\nsupport_rows = 2\n"),
+            ("cycles = 5.0 ", "cycles = 5.0\nazimuth_deg = 30 "),
+            ("duration = 2.0 ", "duration = 0.5 "),
+        ];
+        let cases = [
+            edited("pepo-mass-accel", &[]),
+            edited("pepo-mass-accel", &[("[engines.rapier]", foot)]),
+            edited("vertical/pepo-mass-accel-vertical", &[]),
+            edited("rigid-sliding-block", &[]),
+            edited("vertical/block-liftoff", &[]),
+            edited("records/block-northridge", &[short_northridge, every_row]),
+            edited(
+                "rpepo-mass-accel",
+                &[("duration = 2.0 ", "duration = 0.7 ")],
+            ),
+            edited(
+                "rpepo-mass-accel",
+                &[
+                    ("[engines.rapier]", joints),
+                    ("duration = 2.0 ", "duration = 0.7 "),
+                ],
+            ),
+            edited(
+                "rpepo-mass-accel",
+                &[
+                    ("[engines.rapier]", foot),
+                    ("duration = 2.0 ", "duration = 0.7 "),
+                ],
+            ),
+            edited("spatial/pepo-pulse-azimuth30", &[]),
+            edited(
+                "records/block-northridge",
+                &[
+                    ("mu = 0.185", "mu = 0.185\nhalf_depth = 1.0"),
+                    ("polarity = 1", "polarity = 1\nazimuth_deg = 30"),
+                    short_northridge,
+                    every_row,
+                ],
+            ),
+            edited("rpepo-mass-accel", &plan_rpepo),
+        ];
+        for case in cases {
+            let output_dt = case.run.output_dt;
+            let (whole, streamed) = both_with(case.clone(), rapier());
+            assert!(!whole.runs.is_empty());
+            // the values a row records, declared before the run (the estimates' count)
+            for r in &whole.runs {
+                let recorded = 1 + r.trace.channels.len() + 4 * r.trace.contacts.count();
+                let declared = rapier()[0].recorded_values(&case, &r.variant);
+                assert_eq!(declared, Some(recorded), "{}", r.label());
+            }
+            assert_same(&whole, &streamed, |w| match output_dt {
+                Some(o) => bits(&w.trace.at_output_step(o)),
+                None => bits(&w.trace),
+            });
+        }
     }
 }

@@ -8,6 +8,8 @@
 //! - `world`: building the world (ground, structure, feet, joints);
 //! - `ground`: ground displacement and velocity tables for both ground-motion routes;
 //! - `simulate`: the time loop and the recorded channels;
+//! - `rows`: where the rows go (a trace for a whole run, the caller's sink for a streamed
+//!   one: the engine streams natively), and the pilot run's path length;
 //! - `contact_forces`: the ground's force on a body from rapier's contact impulses;
 //! - `vertical`: vertical ground motion by both routes, the oscillator on a support.
 
@@ -15,6 +17,7 @@
 
 mod contact_forces;
 mod ground;
+mod rows;
 mod settings;
 mod simulate;
 mod space;
@@ -32,7 +35,7 @@ pub use world::{SUPPORT_DAMPING_SHARE, Support};
 
 use rockslide_core::case::{Case, Excitation, Model, Scene};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Engine, NotApplicable, Run, SolverStats};
+use rockslide_engine_api::{Engine, NotApplicable, Run, SolverStats, StepSink, step_count};
 
 /// The rapier rigid-body engine.
 pub struct Rapier;
@@ -91,6 +94,42 @@ impl Engine for Rapier {
     }
 
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
+        let mut rows = rows::TraceSink::sized(step_count(case.run.duration, dt) + 1);
+        let mut run = self.run_into(case, variant, dt, &mut rows)?;
+        run.trace = rows.trace;
+        Ok(run)
+    }
+
+    fn run_streaming(
+        &self,
+        case: &Case,
+        variant: &str,
+        dt: f64,
+        sink: &mut dyn StepSink,
+    ) -> Result<Run, InputError> {
+        self.run_into(case, variant, dt, sink)
+    }
+
+    fn streams_natively(&self) -> bool {
+        true
+    }
+
+    fn recorded_values(&self, case: &Case, _variant: &str) -> Option<usize> {
+        let (channels, contacts) = recorded_layout(case)?;
+        Some(1 + channels + contacts * rockslide_core::trace::CONTACT_FIELDS.len())
+    }
+}
+
+impl Rapier {
+    /// Run one variant at time step `dt`, handing every row to `sink` as it is recorded
+    /// (the rapier world holds no trace); the returned run's trace is the layout only.
+    fn run_into(
+        &self,
+        case: &Case,
+        variant: &str,
+        dt: f64,
+        sink: &mut dyn StepSink,
+    ) -> Result<Run, InputError> {
         let mut settings = RapierSettings::from_case(case).map_err(|mut e| e.remove(0))?;
         let drive = match variant {
             variant::KINEMATIC_GROUND => Drive::KinematicGround,
@@ -98,7 +137,7 @@ impl Engine for Rapier {
             _ => Drive::AppliedForce,
         };
         if let Some(spatial) = case.scene.spatial() {
-            return space::run(case, spatial, drive, variant, dt, settings, None);
+            return space::run(case, spatial, drive, (variant, dt), settings, None, sink);
         }
         vertical::check_settings(case, &settings)?;
         let vert = case.scene.vertical();
@@ -126,7 +165,7 @@ impl Engine for Rapier {
                     "rapier step [s] (output step / stride)".into(),
                     format!("{dt_in} (stride {stride}; the step rule's period scaled to the vertical mode √(Kz/M) when faster)"),
                 ));
-                vertical::run_oscillator(rig, drive, (ex, v), (dt, stride), duration)
+                vertical::run_oscillator(rig, drive, (ex, v), (dt, stride), duration, sink)
             }
             Model::Oscillator(osc) => {
                 let (rig, stride) = match settings.oscillator_contact {
@@ -157,7 +196,15 @@ impl Engine for Rapier {
                         (rig, steps.stride)
                     }
                 };
-                simulate::run_oscillator(rig, osc.contact.kx, drive, ex, (dt, stride), duration)
+                simulate::run_oscillator(
+                    rig,
+                    osc.contact.kx,
+                    drive,
+                    ex,
+                    (dt, stride),
+                    duration,
+                    sink,
+                )
             }
             Model::RigidBlock(b) => {
                 let stride = if drive == Drive::KinematicGround
@@ -189,7 +236,7 @@ impl Engine for Rapier {
                         b.mass
                     ),
                 ));
-                simulate::run_block(rig, b, drive, (ex, vert), (dt, stride), duration)
+                simulate::run_block(rig, b, drive, (ex, vert), (dt, stride), duration, sink)
             }
             Model::RockingBody(r) if settings.oscillator_contact != OscillatorContact::Foot => {
                 let omega_r = rocking_mode(r);
@@ -205,7 +252,15 @@ impl Engine for Rapier {
                 };
                 describe_rocking_joint_limit(r, omega_r, dt_in, stride, &settings, &mut described);
                 findings.push(rocking_validity(omega_r, dt_in, &settings));
-                simulate::run_rocking_joint_limit(rig, r, drive, (ex, vert), (dt, stride), duration)
+                simulate::run_rocking_joint_limit(
+                    rig,
+                    r,
+                    drive,
+                    (ex, vert),
+                    (dt, stride),
+                    duration,
+                    sink,
+                )
             }
             Model::RockingBody(r) => {
                 let rig = world::rocking_body(r, &settings, dt, drive.ground_kind());
@@ -267,7 +322,7 @@ impl Engine for Rapier {
                     "rocking mode of the rotational inertia on the supports √((n·Kx·h² + Kz·Σx²)/I) = {omega_r:.0} rad/s, ω·h = {:.2} per substep",
                     omega_r * dt / settings.substeps as f64
                 ));
-                simulate::run_rocking(rig, r, drive, ex, dt, duration, SETTLE_STEPS)
+                simulate::run_rocking(rig, r, drive, ex, dt, (duration, SETTLE_STEPS), sink)
             }
         };
         let ground = match drive {
@@ -587,20 +642,17 @@ fn block_kinematic_stride(
     };
     let duration = case.run.duration;
     let pilot_rig = world::rigid_block(b, settings, dt, world::GroundKind::Fixed);
-    let pilot = simulate::run_block(
+    let mut path = rows::PathLength::of(rockslide_core::trace::q::SLIDE.key, None);
+    simulate::run_block(
         pilot_rig,
         b,
         Drive::InertialForce,
         (ex, case.scene.vertical()),
         (dt, 1),
         duration,
+        &mut path,
     );
-    let slid = total_variation(
-        pilot
-            .trace
-            .column(rockslide_core::trace::q::SLIDE.key)
-            .unwrap_or(&[]),
-    );
+    let slid = path.sum;
     let eps = settings.accuracy;
     let dt_max = 2.0 * eps * slid / abs_ag;
     let n = rockslide_engine_api::step_count(duration, dt);
@@ -642,11 +694,6 @@ fn block_kinematic_stride(
 /// substeps +0.45 %, −0.76 %, −0.52 %, −0.25 ms, 2 episodes, in 2.74 s (docs/rapier-engine.md).
 fn block_substeps(substeps: usize, stride: usize) -> usize {
     substeps.div_ceil(stride).max(1)
-}
-
-/// Sum of |x(k+1) − x(k)|: the total distance a channel travels.
-fn total_variation(x: &[f64]) -> f64 {
-    x.windows(2).map(|w| (w[1] - w[0]).abs()).sum()
 }
 
 /// Peak |acceleration| of the excitation (ground or mass), m/s²; 0 without one.
@@ -691,7 +738,40 @@ pub fn run_on_grid(
         .scene
         .spatial()
         .ok_or_else(|| case.field_error("model.kind", "is not a 3D scene"))?;
-    space::run(case, spatial, drive, variant, dt, settings, Some(grid))
+    let mut rows = rows::TraceSink::sized(step_count(case.run.duration, dt) + 1);
+    let mut run = space::run(
+        case,
+        spatial,
+        drive,
+        (variant, dt),
+        settings,
+        Some(grid),
+        &mut rows,
+    )?;
+    run.trace = rows.trace;
+    Ok(run)
+}
+
+/// The channels and the contacts one row of a run of `case` records (every variant of a
+/// scene records the same), or `None` for a 3D body without its depth (the run refuses it).
+fn recorded_layout(case: &Case) -> Option<(usize, usize)> {
+    let moves = case.scene.excitation.moves_ground();
+    let model = &case.scene.model;
+    if let Some(spatial) = case.scene.spatial() {
+        return Some(match model {
+            Model::RockingBody(r) => {
+                let grid = RockingGrid::from_scene(r, spatial.depth?, spatial.inertia);
+                (space_rocking::channels(moves).len(), grid.points.len())
+            }
+            _ => (space::plan_channels(moves).len(), 1),
+        });
+    }
+    Some(match model {
+        // the sliding channels and N(t)
+        Model::Oscillator(_) => (rockslide_core::trace::q::sliding(moves).len() + 1, 1),
+        Model::RigidBlock(_) => (simulate::block_channels(moves).len(), 1),
+        Model::RockingBody(r) => (simulate::rocking_channels(moves).len(), r.supports),
+    })
 }
 
 /// rapier steps per output step `dt` of the kinematic-ground block so that each is at most

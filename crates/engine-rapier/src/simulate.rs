@@ -6,10 +6,11 @@ use rapier3d_f64::prelude::*;
 
 use super::contact_forces::ground_force;
 use super::ground::GroundTable;
+use super::rows::layout;
 use super::world::{FOOT_HALF, GroundKind, ROCK_FOOT_HALF, Rig, angle_z};
 use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Signal, Vertical};
-use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
-use rockslide_engine_api::{RunStatus, step_count};
+use rockslide_core::trace::{ContactState, Quantity, Trace, q};
+use rockslide_engine_api::{RunStatus, StepSink, step_count};
 
 /// How the excitation enters the rapier world.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -94,9 +95,10 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
 fn apply_support_forces(rig: &mut Rig) {
     let body = &mut rig.world.bodies[rig.structure];
     let (cm, phi) = (body.translation(), angle_z(body));
+    let rotation = phi.sin_cos();
     let (mut fx, mut fy, mut torque) = (0.0, 0.0, 0.0);
     for sup in &rig.supports {
-        let (ax, ay) = sup.anchor(cm, phi);
+        let (ax, ay) = sup.anchor_at(cm, rotation);
         let (sx, sy) = sup.force_on_body();
         fx += sx;
         fy += sy;
@@ -116,6 +118,7 @@ pub fn run_oscillator(
     ex: &Excitation,
     (dt, stride): (f64, usize),
     duration: f64,
+    sink: &mut dyn StepSink,
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
@@ -123,10 +126,9 @@ pub fn run_oscillator(
     let moves = ex.moves_ground();
     let mut channels: Vec<&'static Quantity> = q::sliding(moves);
     channels.push(&q::NORMAL);
-    let mut trace = Trace::with_channels(&channels, n + 1);
     // The one contact: the foot on the ground (rigid rapier contact), or the joint-limit
     // contact (no vertical motion: gap 0).
-    trace.contacts = ContactBlock::for_supports(1, 0.0, n + 1);
+    let trace = layout(&channels, 1, 0.0);
     let mut row = vec![0.0; channels.len()];
     let (m, mf) = (rig.mass, rig.foot_mass);
     let weight = -rig.world.gravity.y * m;
@@ -136,7 +138,7 @@ pub fn run_oscillator(
     let foot = rig.feet.first().copied();
     let x_m0 = rig.world.bodies[rig.structure].translation().x;
     let x_f0 = foot.map_or(0.0, |f| rig.world.bodies[f].translation().x);
-    let record = |trace: &mut Trace, rig: &Rig, k: usize, prev: &mut (f64, f64)| {
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize, prev: &mut (f64, f64)| {
         let t = (k / stride) as f64 * dt;
         let bm = &rig.world.bodies[rig.structure];
         let x = bm.translation().x - x_m0 - ground_frame(drive, &g, k).0;
@@ -185,12 +187,18 @@ pub fn run_oscillator(
             row[..6].copy_from_slice(&vals[..6]);
             row[6] = normal;
         }
-        trace.push(t, &row);
-        trace.contacts.push(t, &[base]);
+        out.row(t, &row, &[base]);
         *prev = (v, vy);
     };
     let steps = (n * stride, dt_in, stride);
-    time_loop(&mut rig, (drive, ex, &g), steps, trace, (0.0, 0.0), record)
+    time_loop(
+        &mut rig,
+        (drive, ex, &g),
+        steps,
+        (trace, sink),
+        (0.0, 0.0),
+        record,
+    )
 }
 
 /// The oscillator's one contact after a step of `dt`: with a foot, the ground's contact
@@ -250,17 +258,20 @@ pub(crate) fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable
 
 /// The common time loop, driven by `(drive, excitation, ground table)`: `steps = (n, dt, stride)`: n rapier steps of dt; drive the
 /// ground, step the world, record after every `stride`-th step (the recorder gets the
-/// step index) with the recorder's own memory; a body whose pose stops being finite ends
-/// the run as `Diverged` (a result, not a panic).
+/// step index and hands its row to `sink`) with the recorder's own memory; a body whose
+/// pose stops being finite ends the run as `Diverged` (a result, not a panic). The
+/// outcome's trace is `layout` (the rows went to `sink`).
 pub(crate) fn time_loop<M>(
     rig: &mut Rig,
     (drive, ex, g): (Drive, &Excitation, &GroundTable),
     (n, dt, stride): (usize, f64, usize),
-    mut trace: Trace,
+    (layout, sink): (Trace, &mut dyn StepSink),
     mut memory: M,
-    mut record: impl FnMut(&mut Trace, &Rig, usize, &mut M),
+    mut record: impl FnMut(&mut dyn StepSink, &Rig, usize, &mut M),
 ) -> Outcome {
-    record(&mut trace, rig, 0, &mut memory);
+    sink.begin(&layout);
+    record(sink, rig, 0, &mut memory);
+    let mut rows = 1;
     let mut status = RunStatus::Completed;
     for k in 0..n {
         drive_step(rig, drive, ex, g, k, dt);
@@ -279,12 +290,13 @@ pub(crate) fn time_loop<M>(
             break;
         }
         if (k + 1) % stride == 0 {
-            record(&mut trace, rig, k + 1, &mut memory);
+            record(sink, rig, k + 1, &mut memory);
+            rows += 1;
         }
     }
     Outcome {
-        steps: ((trace.len() - 1) * stride) as u64,
-        trace,
+        steps: ((rows - 1) * stride) as u64,
+        trace: layout,
         status,
     }
 }
@@ -317,11 +329,16 @@ fn supports_after_step(rig: &mut Rig, ground_height: f64) {
     }
     let body = &rig.world.bodies[rig.structure];
     let (cm, phi) = (body.translation(), angle_z(body));
+    let rotation = phi.sin_cos();
     let gx = rig.world.bodies[rig.ground].translation().x;
     let gy = ground_height;
     for sup in rig.supports.iter_mut() {
-        let (ax, ay) = sup.anchor(cm, phi);
+        let (ax, ay) = sup.anchor_at(cm, rotation);
         let (s, cap) = sup.update((ax - gx - sup.x, ay - gy));
+        if rig.applied_supports {
+            // no joints: the engine applies the supports' forces before the next step
+            continue;
+        }
         if let Some(joint) = rig.world.impulse_joints.get_mut(sup.joint, false) {
             joint
                 .data
@@ -348,31 +365,14 @@ pub fn run_block(
     (ex, vertical): (&Excitation, Option<&Vertical>),
     (dt, stride): (f64, usize),
     duration: f64,
+    sink: &mut dyn StepSink,
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
     let g = GroundTable::new(ex, dt_in, n * stride).with_vertical(vertical, dt_in);
-    let moves = ex.moves_ground();
-    let mut channels: Vec<&'static Quantity> = vec![
-        &q::FORCE,
-        &q::RESISTANCE,
-        &q::REL_DISP,
-        &q::SLIDE,
-        &q::VEL,
-        &q::ACC,
-        &q::CM_X,
-        &q::CM_Z,
-        &q::ROTATION,
-        &q::UPLIFT,
-        &q::CONTACTS,
-        &q::NORMAL,
-    ];
-    if moves {
-        channels.push(&q::GROUND_DISP);
-    }
-    let mut trace = Trace::with_channels(&channels, n + 1);
+    let channels = block_channels(ex.moves_ground());
     // One contact, the block's base on the ground (rigid rapier contact).
-    trace.contacts = ContactBlock::for_supports(1, 0.0, n + 1);
+    let trace = layout(&channels, 1, 0.0);
     let mut row = vec![0.0; channels.len()];
     let (m, bw, hh) = (block.mass, block.half_width, block.half_height);
     let grav = -rig.world.gravity.y;
@@ -403,7 +403,7 @@ pub fn run_block(
         let c = corners_of(cm_start, phi_start);
         state.corners = [c[0].0, c[1].0];
     }
-    let record = |trace: &mut Trace, rig: &Rig, k: usize, st: &mut BlockMemory| {
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize, st: &mut BlockMemory| {
         let t = (k / stride) as f64 * dt;
         let body = &rig.world.bodies[rig.structure];
         let cm = body.translation();
@@ -476,7 +476,6 @@ pub fn run_block(
         ];
         let len = row.len();
         row.copy_from_slice(&vals[..len]);
-        trace.push(t, &row);
         let gf = ground_force(&rig.world, rig.structure, rig.ground, dt_in);
         let lowest = corners[0].1.min(corners[1].1);
         let base = ContactState {
@@ -485,16 +484,39 @@ pub fn run_block(
             slip: st.contact_slip,
             gap: gf.dist.unwrap_or(lowest),
         };
-        trace.contacts.push(t, &[base]);
+        out.row(t, &row, &[base]);
     };
     time_loop(
         &mut rig,
         (drive, ex, &g),
         (n * stride, dt_in, stride),
-        trace,
+        (trace, sink),
         state,
         record,
     )
+}
+
+/// The channels of a rigid block's trace (the ground displacement last, when the ground
+/// moves).
+pub(crate) fn block_channels(moves: bool) -> Vec<&'static Quantity> {
+    let mut channels: Vec<&'static Quantity> = vec![
+        &q::FORCE,
+        &q::RESISTANCE,
+        &q::REL_DISP,
+        &q::SLIDE,
+        &q::VEL,
+        &q::ACC,
+        &q::CM_X,
+        &q::CM_Z,
+        &q::ROTATION,
+        &q::UPLIFT,
+        &q::CONTACTS,
+        &q::NORMAL,
+    ];
+    if moves {
+        channels.push(&q::GROUND_DISP);
+    }
+    channels
 }
 
 /// What the block recorder carries from one row to the next.
@@ -535,18 +557,17 @@ pub fn run_rocking(
     drive: Drive,
     ex: &Excitation,
     dt: f64,
-    duration: f64,
-    settle_steps: usize,
+    (duration, settle_steps): (f64, usize),
+    sink: &mut dyn StepSink,
 ) -> Outcome {
     let n = step_count(duration, dt);
     let g = GroundTable::new(ex, dt, n);
     let moves = ex.moves_ground();
     let channels = rocking_channels(moves);
     settle(&mut rig, settle_steps);
-    let mut trace = Trace::with_channels(&channels, n + 1);
     // One contact per foot on the ground (rigid rapier contacts; the support's Kz is the
     // spring joint above the foot).
-    trace.contacts = ContactBlock::for_supports(rig.feet.len(), 0.0, n + 1);
+    let trace = layout(&channels, rig.feet.len(), 0.0);
     let mut states = vec![ContactState::default(); rig.feet.len()];
     let mut row = vec![0.0; channels.len()];
     let m = body.mass;
@@ -565,7 +586,7 @@ pub fn run_rocking(
     // compression W/(n·Kz) above its settled level.
     let open_gap = 0.01 * body.weight() / (nf as f64 * kz);
     start_in_ground_frame(&mut rig, drive, &g);
-    let record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: &mut f64| {
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize, v_prev: &mut f64| {
         let t = k as f64 * dt;
         let b = &rig.world.bodies[rig.structure];
         let cm = b.translation();
@@ -621,15 +642,21 @@ pub fn run_rocking(
         ];
         let len = row.len();
         row.copy_from_slice(&vals[..len]);
-        trace.push(t, &row);
-        trace.contacts.push(t, &states);
+        out.row(t, &row, &states);
     };
-    time_loop(&mut rig, (drive, ex, &g), (n, dt, 1), trace, 0.0, record)
+    time_loop(
+        &mut rig,
+        (drive, ex, &g),
+        (n, dt, 1),
+        (trace, sink),
+        0.0,
+        record,
+    )
 }
 
 /// The channels of a rocking body's trace, in the order both rocking models record them
 /// (the ground displacement last, when the ground moves).
-fn rocking_channels(moves: bool) -> Vec<&'static Quantity> {
+pub(crate) fn rocking_channels(moves: bool) -> Vec<&'static Quantity> {
     let mut channels: Vec<&'static Quantity> = vec![
         &q::FORCE,
         &q::RESISTANCE,
@@ -663,16 +690,16 @@ pub fn run_rocking_joint_limit(
     (ex, vertical): (&Excitation, Option<&Vertical>),
     (dt, stride): (f64, usize),
     duration: f64,
+    sink: &mut dyn StepSink,
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
     let g = GroundTable::new(ex, dt_in, n * stride).with_vertical(vertical, dt_in);
     let moves = ex.moves_ground();
     let channels = rocking_channels(moves);
-    let mut trace = Trace::with_channels(&channels, n + 1);
     // One contact per support: the vertical spring (compression only, compliance 1/Kz)
     // and the horizontal spring capped at μ·N with its slider.
-    trace.contacts = ContactBlock::for_supports(rig.supports.len(), 1.0 / body.contact.kz, n + 1);
+    let trace = layout(&channels, rig.supports.len(), 1.0 / body.contact.kz);
     let mut states = vec![ContactState::default(); rig.supports.len()];
     let mut row = vec![0.0; channels.len()];
     let m = body.mass;
@@ -681,7 +708,7 @@ pub fn run_rocking_joint_limit(
     let (cm0, phi0) = (b0.translation(), angle_z(b0));
     let o0 = cm0.x + phi0.sin() * hh;
     start_in_ground_frame(&mut rig, drive, &g);
-    let record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: &mut f64| {
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize, v_prev: &mut f64| {
         let t = (k / stride) as f64 * dt;
         let b = &rig.world.bodies[rig.structure];
         let cm = b.translation();
@@ -729,9 +756,8 @@ pub fn run_rocking_joint_limit(
         ];
         let len = row.len();
         row.copy_from_slice(&vals[..len]);
-        trace.push(t, &row);
-        trace.contacts.push(t, &states);
+        out.row(t, &row, &states);
     };
     let steps = (n * stride, dt_in, stride);
-    time_loop(&mut rig, (drive, ex, &g), steps, trace, 0.0, record)
+    time_loop(&mut rig, (drive, ex, &g), steps, (trace, sink), 0.0, record)
 }

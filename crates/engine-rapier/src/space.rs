@@ -27,6 +27,7 @@ use rapier3d_f64::prelude::*;
 
 use super::contact_forces::ground_force;
 use super::ground::GroundTable;
+use super::rows::{PathLength, layout};
 use super::settings::{OscillatorSteps, RapierSettings, StepRule};
 use super::simulate::{Drive, force_at, mean_over_step};
 use super::world::{GroundKind, add_ground, new_world, rapier_friction};
@@ -35,8 +36,8 @@ use rockslide_core::case::{
     Case, Excitation, Model, Oscillator, RigidBlock, Scene, Signal, Spatial,
 };
 use rockslide_core::error::InputError;
-use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, plan_slip_increment, q};
-use rockslide_engine_api::{NotApplicable, Run, RunStatus, SolverStats, step_count};
+use rockslide_core::trace::{ContactState, Quantity, Trace, plan_slip_increment, q};
+use rockslide_engine_api::{NotApplicable, Run, RunStatus, SolverStats, StepSink, step_count};
 
 /// A plan vector (x, y) as a rapier vector at height `up`.
 pub(crate) fn to_world(p: [f64; 2], up: f64) -> Vector {
@@ -220,7 +221,7 @@ pub struct Outcome {
 }
 
 /// The channels every 3D run records (the x channels keep the planar keys).
-fn plan_channels(moves: bool) -> Vec<&'static Quantity> {
+pub(crate) fn plan_channels(moves: bool) -> Vec<&'static Quantity> {
     let mut c = vec![
         &q::FORCE,
         &q::RESISTANCE,
@@ -331,6 +332,7 @@ pub fn run_oscillator(
     pd: &PlanDrive,
     (dt, stride): (f64, usize),
     n: usize,
+    sink: &mut dyn StepSink,
 ) -> Outcome {
     let dt_in = dt / stride as f64;
     let mut world = new_world(settings, dt_in, 0.0);
@@ -349,9 +351,9 @@ pub fn run_oscillator(
     pd.start(&mut world, mass);
     let moves = pd.first.moves_ground();
     let channels = plan_channels(moves);
-    let mut trace = Trace::with_channels(&channels, n + 1);
     // The one contact: compliance 0 (no vertical motion), |T| = |F| ≤ μ·N.
-    trace.contacts = ContactBlock::for_supports(1, 0.0, n + 1);
+    let trace = layout(&channels, 1, 0.0);
+    sink.begin(&trace);
     let mut row = vec![0.0; channels.len()];
     let mut slider = PlanSlider {
         kx: osc.contact.kx,
@@ -369,7 +371,7 @@ pub fn run_oscillator(
     let mut v_prev = 0.0;
     let (mut p_prev, mut path) = ([0.0, 0.0], 0.0);
     let mut record =
-        |trace: &mut Trace, world: &PhysicsWorld, k: usize, spring: [f64; 2], p: [f64; 2]| {
+        |out: &mut dyn StepSink, world: &PhysicsWorld, k: usize, spring: [f64; 2], p: [f64; 2]| {
             let t = (k / stride) as f64 * dt;
             let (u, v) = relative(world, k);
             let acc = if k == 0 { 0.0 } else { (v[0] - v_prev) / dt };
@@ -385,7 +387,6 @@ pub fn run_oscillator(
                 ground: pd.disp[k][0],
             }
             .write(&mut row);
-            trace.push(t, &row);
             path += plan_slip_increment(spring, sub(p, p_prev));
             p_prev = p;
             let state = ContactState {
@@ -394,9 +395,9 @@ pub fn run_oscillator(
                 slip: path,
                 gap: 0.0,
             };
-            trace.contacts.push(t, &[state]);
+            out.row(t, &row, &[state]);
         };
-    record(&mut trace, &world, 0, spring, slider.p);
+    record(sink, &world, 0, spring, slider.p);
     let mut status = RunStatus::Completed;
     let mut steps = 0;
     for k in 0..n * stride {
@@ -419,7 +420,7 @@ pub fn run_oscillator(
         let (u, _) = relative(&world, k + 1);
         spring = slider.update(u);
         if (k + 1) % stride == 0 {
-            record(&mut trace, &world, k + 1, spring, slider.p);
+            record(sink, &world, k + 1, spring, slider.p);
         }
     }
     Outcome {
@@ -438,6 +439,7 @@ pub fn run_block(
     pd: &PlanDrive,
     (dt, stride): (f64, usize),
     n: usize,
+    sink: &mut dyn StepSink,
 ) -> Outcome {
     let dt_in = dt / stride as f64;
     let mu = rapier_friction(b.mu);
@@ -456,14 +458,14 @@ pub fn run_block(
     pd.start(&mut world, block);
     let moves = pd.first.moves_ground();
     let channels = plan_channels(moves);
-    let mut trace = Trace::with_channels(&channels, n + 1);
-    trace.contacts = ContactBlock::for_supports(1, 0.0, n + 1);
+    let trace = layout(&channels, 1, 0.0);
+    sink.begin(&trace);
     let mut row = vec![0.0; channels.len()];
     let m = b.mass;
     let start = plan(world.bodies[block].translation());
     let mut v_prev = [0.0, 0.0];
     let (mut u_prev, mut path) = ([0.0, 0.0], 0.0);
-    let mut record = |trace: &mut Trace, world: &PhysicsWorld, k: usize| {
+    let mut record = |out: &mut dyn StepSink, world: &PhysicsWorld, k: usize| {
         let t = (k / stride) as f64 * dt;
         let (xg, vg) = pd.frame(k);
         let body = &world.bodies[block];
@@ -486,7 +488,6 @@ pub fn run_block(
             ground: pd.disp[k][0],
         }
         .write(&mut row);
-        trace.push(t, &row);
         // T resists the block's motion relative to the ground: minus the ground's force.
         let t_plan = [-gf.x, gf.z];
         path += plan_slip_increment(t_plan, sub(u, u_prev));
@@ -497,9 +498,9 @@ pub fn run_block(
             slip: path,
             gap: gf.dist.unwrap_or(0.0),
         };
-        trace.contacts.push(t, &[state]);
+        out.row(t, &row, &[state]);
     };
-    record(&mut trace, &world, 0);
+    record(sink, &world, 0);
     let mut status = RunStatus::Completed;
     let mut steps = 0;
     for k in 0..n * stride {
@@ -515,7 +516,7 @@ pub fn run_block(
             break;
         }
         if (k + 1) % stride == 0 {
-            record(&mut trace, &world, k + 1);
+            record(sink, &world, k + 1);
         }
     }
     Outcome {
@@ -542,12 +543,9 @@ pub fn block_kinematic_stride(
     let n = step_count(case.run.duration, dt);
     let pilot_drive = PlanDrive::new(Drive::InertialForce, ex, spatial, dt, n);
     let abs_ag = pilot_drive.abs_acceleration_integral();
-    let pilot = run_block(b, half_depth, settings, &pilot_drive, (dt, 1), n);
-    let sx = pilot.trace.column(q::SLIDE.key).unwrap_or(&[]);
-    let sy = pilot.trace.column(q::SLIDE_Y.key).unwrap_or(&[]);
-    let slid: f64 = (1..sx.len())
-        .map(|k| (sx[k] - sx[k - 1]).hypot(sy[k] - sy[k - 1]))
-        .sum();
+    let mut path = PathLength::of(q::SLIDE.key, Some(q::SLIDE_Y.key));
+    run_block(b, half_depth, settings, &pilot_drive, (dt, 1), n, &mut path);
+    let slid = path.sum;
     let dt_max = 2.0 * settings.accuracy * slid / abs_ag;
     (block_stride(dt, dt_max, n), slid, abs_ag, dt_max)
 }
@@ -580,10 +578,10 @@ pub fn run(
     case: &Case,
     spatial: &Spatial,
     drive: Drive,
-    variant: &str,
-    dt: f64,
+    (variant, dt): (&str, f64),
     mut settings: RapierSettings,
     grid: Option<&super::space_rocking::RockingGrid>,
+    sink: &mut dyn StepSink,
 ) -> Result<Run, InputError> {
     check(&case.scene).map_err(|e| case.field_error("model.kind", e.0))?;
     let mut said = Statement {
@@ -592,9 +590,17 @@ pub fn run(
     };
     let outcome = match &case.scene.model {
         Model::Oscillator(osc) => {
-            oscillator_case(case, spatial, osc, drive, dt, &settings, &mut said)
+            oscillator_case(case, spatial, osc, drive, dt, &settings, (&mut said, sink))
         }
-        Model::RigidBlock(b) => block_case(case, spatial, b, drive, dt, &mut settings, &mut said)?,
+        Model::RigidBlock(b) => block_case(
+            case,
+            spatial,
+            b,
+            drive,
+            dt,
+            &mut settings,
+            (&mut said, sink),
+        )?,
         Model::RockingBody(r) => {
             let depth = spatial.depth.ok_or_else(|| {
                 case.field_error(
@@ -609,7 +615,15 @@ pub fn run(
             let grid = grid.cloned().unwrap_or_else(|| {
                 super::space_rocking::RockingGrid::from_scene(r, depth, spatial.inertia)
             });
-            super::space_rocking::case(&grid, spatial, depth, pd_for, (dt, n), &settings, &mut said)
+            super::space_rocking::case(
+                &grid,
+                spatial,
+                depth,
+                pd_for,
+                (dt, n),
+                &settings,
+                (&mut said, sink),
+            )
         }
     };
     said.described.push((
@@ -657,7 +671,7 @@ fn oscillator_case(
     drive: Drive,
     dt: f64,
     settings: &RapierSettings,
-    said: &mut Statement,
+    (said, sink): (&mut Statement, &mut dyn StepSink),
 ) -> Outcome {
     let ex = &case.scene.excitation;
     let n = step_count(case.run.duration, dt);
@@ -680,7 +694,7 @@ fn oscillator_case(
         steps.dt_max,
         settings.accuracy
     ));
-    run_oscillator(osc, settings, &pd, (dt, steps.stride), n)
+    run_oscillator(osc, settings, &pd, (dt, steps.stride), n, sink)
 }
 
 /// The block on the ground slab (the kinematic ground at its step rule under a record),
@@ -692,7 +706,7 @@ fn block_case(
     drive: Drive,
     dt: f64,
     settings: &mut RapierSettings,
-    said: &mut Statement,
+    (said, sink): (&mut Statement, &mut dyn StepSink),
 ) -> Result<Outcome, InputError> {
     let ex = &case.scene.excitation;
     let n = step_count(case.run.duration, dt);
@@ -738,7 +752,7 @@ fn block_case(
             ""
         }
     ));
-    Ok(run_block(b, depth, settings, &pd, (dt, stride), n))
+    Ok(run_block(b, depth, settings, &pd, (dt, stride), n, sink))
 }
 
 /// The block's kinematic-ground step rule ([`block_kinematic_stride`]) with what it

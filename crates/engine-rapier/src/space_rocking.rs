@@ -26,7 +26,8 @@ use super::settings::{MAX_STRIDE, RapierSettings, StepRule};
 use super::space::{Outcome, PlanDrive, Statement, diverged, plan, radial_return, to_world};
 use super::world::{friction_cap, new_world, rocking_inertia};
 use rockslide_core::case::{Depth, RockingBody, Spatial};
-use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, plan_slip_increment, q};
+use rockslide_core::trace::{ContactState, Quantity, plan_slip_increment, q};
+use rockslide_engine_api::StepSink;
 
 /// The grid of supports and the body on it, as the time loop reads them.
 #[derive(Debug, Clone)]
@@ -151,7 +152,7 @@ impl GridSupport {
 }
 
 /// The channels of a 3D rocking run (the catalogue's plan-motion set for a rocking body).
-fn channels(moves: bool) -> Vec<&'static Quantity> {
+pub(crate) fn channels(moves: bool) -> Vec<&'static Quantity> {
     q::plan_motion(moves, true)
 }
 
@@ -196,6 +197,7 @@ pub fn run(
     pd: &PlanDrive,
     (dt, stride): (f64, usize),
     n: usize,
+    sink: &mut dyn StepSink,
 ) -> Outcome {
     let dt_in = dt / stride as f64;
     let mut world = new_world(settings, dt_in, grid.gravity);
@@ -218,9 +220,9 @@ pub fn run(
     pd.start(&mut world, handle);
     let moves = pd.first.moves_ground();
     let chans = channels(moves);
-    let mut trace = Trace::with_channels(&chans, n + 1);
     let count = grid.points.len();
-    trace.contacts = ContactBlock::for_supports(count, 1.0 / grid.kz, n + 1);
+    let trace = super::rows::layout(&chans, count, 1.0 / grid.kz);
+    sink.begin(&trace);
     let mut states = vec![ContactState::default(); count];
     let mut row = vec![0.0; chans.len()];
     let start = GridSupport {
@@ -232,83 +234,83 @@ pub fn run(
     let cm0 = world.bodies[handle].translation();
     let o0 = plan(anchor(&world.bodies[handle], [0.0, 0.0], grid.cm_height));
     let mut v_prev = [0.0, 0.0];
-    let mut record = |trace: &mut Trace, world: &PhysicsWorld, k: usize, sups: &[GridSupport]| {
-        let t = (k / stride) as f64 * dt;
-        let (xg, vg) = pd.frame(k);
-        let b = &world.bodies[handle];
-        let cm = b.translation();
-        let o = plan(anchor(b, [0.0, 0.0], grid.cm_height));
-        let v = plan(b.linvel());
-        let v = [v[0] - vg[0], v[1] - vg[1]];
-        let acc = if k == 0 {
-            [0.0, 0.0]
-        } else {
-            [(v[0] - v_prev[0]) / dt, (v[1] - v_prev[1]) / dt]
-        };
-        v_prev = v;
-        let (mut shear, mut slide, mut normal) = ([0.0, 0.0], [0.0, 0.0], 0.0);
-        let (mut uplift, mut contacts) = (0.0_f64, 0.0);
-        for (state, s) in states.iter_mut().zip(sups) {
-            shear = [shear[0] + s.t[0], shear[1] + s.t[1]];
-            slide = [slide[0] + s.p[0], slide[1] + s.p[1]];
-            normal += s.normal;
-            uplift = uplift.max(s.delta[2]);
-            if s.normal > 0.0 {
-                contacts += 1.0;
-            }
-            *state = ContactState {
-                normal: s.normal,
-                tangential: s.t[0].hypot(s.t[1]),
-                slip: s.slip_along,
-                gap: s.delta[2],
+    let mut record =
+        |out: &mut dyn StepSink, world: &PhysicsWorld, k: usize, sups: &[GridSupport]| {
+            let t = (k / stride) as f64 * dt;
+            let (xg, vg) = pd.frame(k);
+            let b = &world.bodies[handle];
+            let cm = b.translation();
+            let o = plan(anchor(b, [0.0, 0.0], grid.cm_height));
+            let v = plan(b.linvel());
+            let v = [v[0] - vg[0], v[1] - vg[1]];
+            let acc = if k == 0 {
+                [0.0, 0.0]
+            } else {
+                [(v[0] - v_prev[0]) / dt, (v[1] - v_prev[1]) / dt]
             };
-        }
-        let slide = [slide[0] / count as f64, slide[1] / count as f64];
-        let force = pd.force(m, t);
-        let rot = b.rotation().to_scaled_axis();
-        let cm_plan = plan(cm - cm0);
-        let mut vals = [0.0; 25];
-        let mut i = 0;
-        let mut put = |x: f64| {
-            vals[i] = x;
-            i += 1;
+            v_prev = v;
+            let (mut shear, mut slide, mut normal) = ([0.0, 0.0], [0.0, 0.0], 0.0);
+            let (mut uplift, mut contacts) = (0.0_f64, 0.0);
+            for (state, s) in states.iter_mut().zip(sups) {
+                shear = [shear[0] + s.t[0], shear[1] + s.t[1]];
+                slide = [slide[0] + s.p[0], slide[1] + s.p[1]];
+                normal += s.normal;
+                uplift = uplift.max(s.delta[2]);
+                if s.normal > 0.0 {
+                    contacts += 1.0;
+                }
+                *state = ContactState {
+                    normal: s.normal,
+                    tangential: s.t[0].hypot(s.t[1]),
+                    slip: s.slip_along,
+                    gap: s.delta[2],
+                };
+            }
+            let slide = [slide[0] / count as f64, slide[1] / count as f64];
+            let force = pd.force(m, t);
+            let rot = b.rotation().to_scaled_axis();
+            let cm_plan = plan(cm - cm0);
+            let mut vals = [0.0; 25];
+            let mut i = 0;
+            let mut put = |x: f64| {
+                vals[i] = x;
+                i += 1;
+            };
+            for pair in [
+                force,
+                shear,
+                [o[0] - o0[0] - xg[0], o[1] - o0[1] - xg[1]],
+                slide,
+                v,
+                acc,
+            ] {
+                put(pair[0]);
+                put(pair[1]);
+            }
+            put(slide[0].hypot(slide[1]));
+            put(if slide == [0.0, 0.0] {
+                0.0
+            } else {
+                slide[1].atan2(slide[0]).to_degrees()
+            });
+            if moves {
+                put(pd.disp[k][0]);
+                put(pd.disp[k][1]);
+            }
+            put(cm_plan[0] - xg[0]);
+            put(cm_plan[1] - xg[1]);
+            put(cm.y - cm0.y);
+            // rotation about the scene's −y (the planar sign), x, z
+            put(rot.z);
+            put(rot.x);
+            put(rot.y);
+            put(uplift.max(0.0));
+            put(contacts);
+            put(normal);
+            row.copy_from_slice(&vals[..i]);
+            out.row(t, &row, &states);
         };
-        for pair in [
-            force,
-            shear,
-            [o[0] - o0[0] - xg[0], o[1] - o0[1] - xg[1]],
-            slide,
-            v,
-            acc,
-        ] {
-            put(pair[0]);
-            put(pair[1]);
-        }
-        put(slide[0].hypot(slide[1]));
-        put(if slide == [0.0, 0.0] {
-            0.0
-        } else {
-            slide[1].atan2(slide[0]).to_degrees()
-        });
-        if moves {
-            put(pd.disp[k][0]);
-            put(pd.disp[k][1]);
-        }
-        put(cm_plan[0] - xg[0]);
-        put(cm_plan[1] - xg[1]);
-        put(cm.y - cm0.y);
-        // rotation about the scene's −y (the planar sign), x, z
-        put(rot.z);
-        put(rot.x);
-        put(rot.y);
-        put(uplift.max(0.0));
-        put(contacts);
-        put(normal);
-        row.copy_from_slice(&vals[..i]);
-        trace.push(t, &row);
-        trace.contacts.push(t, &states);
-    };
-    record(&mut trace, &world, 0, &sups);
+    record(sink, &world, 0, &sups);
     let mut status = rockslide_engine_api::RunStatus::Completed;
     let mut steps = 0;
     for k in 0..n * stride {
@@ -324,7 +326,7 @@ pub fn run(
         let xg = ground_plan(pd, k + 1);
         update_supports(&world.bodies[handle], grid, xg, &mut sups);
         if (k + 1) % stride == 0 {
-            record(&mut trace, &world, k + 1, &sups);
+            record(sink, &world, k + 1, &sups);
         }
     }
     Outcome {
@@ -348,7 +350,7 @@ pub(crate) fn case<'a>(
     pd_for: impl FnOnce(f64, usize) -> PlanDrive<'a>,
     (dt, n): (f64, usize),
     settings: &RapierSettings,
-    said: &mut Statement,
+    (said, sink): (&mut Statement, &mut dyn StepSink),
 ) -> Outcome {
     let omega = grid.stiffest_mode();
     let stride = stride(omega, dt, settings);
@@ -403,7 +405,7 @@ pub(crate) fn case<'a>(
             "outside the engine's validity: ω_r·h = {omega_h:.3} (rule ≤ {APPLIED_FORCE_OMEGA_H}; symplectic Euler is unstable beyond 2)"
         )
     });
-    run(grid, settings, &pd, (dt, stride), n)
+    run(grid, settings, &pd, (dt, stride), n, sink)
 }
 
 /// The rocking grid's measured agreement, stated in its runs' findings

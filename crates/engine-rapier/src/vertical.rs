@@ -29,8 +29,8 @@ use super::simulate::{Drive, Outcome, force_at, ground_frame, start_in_ground_fr
 use super::world::{self, GroundKind, Rig, Support};
 use rockslide_core::case::{Case, Excitation, Model, NormalForce, Oscillator, Scene, Vertical};
 use rockslide_core::error::InputError;
-use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
-use rockslide_engine_api::{NotApplicable, step_count};
+use rockslide_core::trace::{ContactState, Quantity, q};
+use rockslide_engine_api::{NotApplicable, StepSink, step_count};
 
 /// The vertical ground motion at the step times: yg(t_n) and vg_y(t_n⁺), from rest.
 #[derive(Debug, Clone, PartialEq)]
@@ -239,6 +239,7 @@ pub(crate) fn run_oscillator(
     (ex, vertical): (&Excitation, &Vertical),
     (dt, stride): (f64, usize),
     duration: f64,
+    sink: &mut dyn StepSink,
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
@@ -246,13 +247,12 @@ pub(crate) fn run_oscillator(
     let moves = ex.moves_ground();
     let mut channels: Vec<&'static Quantity> = q::sliding(moves);
     channels.push(&q::NORMAL);
-    let mut trace = Trace::with_channels(&channels, n + 1);
     let kz = rig.supports[0].kz;
-    trace.contacts = ContactBlock::for_supports(1, 1.0 / kz, n + 1);
+    let trace = super::rows::layout(&channels, 1, 1.0 / kz);
     let mut row = vec![0.0; channels.len()];
     let m = rig.mass;
     start_in_ground_frame(&mut rig, drive, &g);
-    let record = |trace: &mut Trace, rig: &Rig, k: usize, v_prev: &mut f64| {
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize, v_prev: &mut f64| {
         let t = (k / stride) as f64 * dt;
         let (x_g, v_g) = ground_frame(drive, &g, k);
         let body = &rig.world.bodies[rig.structure];
@@ -274,14 +274,13 @@ pub(crate) fn run_oscillator(
         }
         let last = row.len() - 1;
         row[last] = sup.normal;
-        trace.push(t, &row);
-        trace.contacts.push(t, &[state]);
+        out.row(t, &row, &[state]);
     };
     time_loop(
         &mut rig,
         (drive, ex, &g),
         (n * stride, dt_in, stride),
-        trace,
+        (trace, sink),
         0.0,
         record,
     )

@@ -437,7 +437,12 @@ impl Support {
 
     /// The anchor's world position for a body at `cm` rotated by `phi`, m.
     pub fn anchor(&self, cm: Vector, phi: f64) -> (f64, f64) {
-        let (sn, cs) = phi.sin_cos();
+        self.anchor_at(cm, phi.sin_cos())
+    }
+
+    /// [`Support::anchor`] with the rotation's (sin φ, cos φ) computed once for every
+    /// support of the body.
+    pub fn anchor_at(&self, cm: Vector, (sn, cs): (f64, f64)) -> (f64, f64) {
         (
             cm.x + cs * self.x + sn * self.cm_height,
             cm.y + sn * self.x - cs * self.cm_height,

@@ -354,42 +354,50 @@ fn closed_over(s0: &ContactState, s1: &ContactState) -> bool {
 }
 
 /// `stick_slip` per contact: creep while stuck over the slip path (steps closed at both
-/// ends), summed over contacts.
+/// ends), each contact's sums added in contact order (as [`StreamedInvariants`] adds
+/// them, so a streamed run's measure is the whole run's bit for bit).
 fn block_stick_slip(b: &ContactBlock, mu: f64) -> f64 {
     let (mut creep, mut path) = (0.0, 0.0);
     for c in 0..b.count() {
+        let (mut creep_c, mut path_c) = (0.0, 0.0);
         for i in 1..b.len() {
             let (s0, s1) = (b.at(i - 1, c), b.at(i, c));
             if !closed_over(&s0, &s1) {
                 continue;
             }
             let ds = (s1.slip - s0.slip).abs();
-            path += ds;
+            path_c += ds;
             if stuck_state(&s0, mu) && stuck_state(&s1, mu) {
-                creep += ds;
+                creep_c += ds;
             }
         }
+        creep += creep_c;
+        path += path_c;
     }
     creep / path.max(SLIP_FLOOR)
 }
 
 /// `dissipation` per contact: negative friction work over the absolute friction work, the
 /// work of a step being T at its end times its slip (the return mapping's dissipation,
-/// ≥ 0 for any backward-Euler Coulomb law), over steps closed at both ends.
+/// ≥ 0 for any backward-Euler Coulomb law), over steps closed at both ends; each
+/// contact's sums added in contact order (as [`StreamedInvariants`] adds them).
 fn block_dissipation(b: &ContactBlock, mu: f64, weight: f64) -> f64 {
     let (mut negative, mut total) = (0.0, 0.0);
     for c in 0..b.count() {
+        let (mut negative_c, mut total_c) = (0.0, 0.0);
         for i in 1..b.len() {
             let (s0, s1) = (b.at(i - 1, c), b.at(i, c));
             if !closed_over(&s0, &s1) {
                 continue;
             }
             let work = s1.tangential * (s1.slip - s0.slip);
-            total += work.abs();
+            total_c += work.abs();
             if work < 0.0 {
-                negative -= work;
+                negative_c -= work;
             }
         }
+        negative += negative_c;
+        total += total_c;
     }
     negative / total.max(mu * weight * SLIP_FLOOR)
 }
