@@ -341,3 +341,24 @@ mod streamed_equals_whole {
         }
     }
 }
+
+/// A long run is streamed only where streaming bounds its memory: a natively streaming
+/// engine over 5·10⁵ steps that keeps at most half its rows. The PEPO at Δt = 1 ms for
+/// 1,000 s (10⁶ steps): without `output_dt` every row is kept, so streaming would hold the
+/// same trace and only add the second pass — run whole; every 2 ms (half the rows):
+/// streamed; every 1.5 ms (two thirds): whole; 10³ steps: whole.
+#[test]
+fn a_run_is_streamed_only_where_it_keeps_at_most_half_its_rows() {
+    let dir = tempfile::tempdir().unwrap();
+    let streamed = |duration: f64, run_extra: &str| {
+        let case = rockslide::case::load_case(&pepo(dir.path(), duration, run_extra)).unwrap();
+        let engines = rockslide::engine::all();
+        let plan = rockslide::suite::plan(&case, &engines).unwrap();
+        assert_eq!(plan.runs.len(), 1, "the predictor-corrector alone");
+        rockslide::suite::streams(&case, &plan.runs[0])
+    };
+    assert!(!streamed(1000.0, ""));
+    assert!(streamed(1000.0, "output_dt = 0.002\n"));
+    assert!(!streamed(1000.0, "output_dt = 0.0015\n"));
+    assert!(!streamed(1.0, "output_dt = 0.002\n"));
+}

@@ -241,11 +241,21 @@ pub fn execute(
 pub const STREAMING_STEPS: u64 = 500_000;
 
 /// Whether planned run `p` of `case` is streamed: more than [`STREAMING_STEPS`] steps of
-/// an engine that streams natively. An engine that does not would run whole anyway and
+/// an engine that streams natively, keeping at most half its rows (`[run] output_dt` at
+/// least 2 Δt). An engine that does not stream natively would run whole anyway and
 /// forward its rows — holding its whole trace, and run twice by the two passes — so its
-/// long runs are analysed whole, once.
+/// long runs are analysed whole, once; a run that keeps every row (no `output_dt`) holds
+/// its whole trace either way, so streaming would only cost the second pass.
 pub fn streams(case: &Case, p: &PlannedRun) -> bool {
-    p.native_streaming && streams_above(case, p, STREAMING_STEPS)
+    p.native_streaming && streams_above(case, p, STREAMING_STEPS) && keeps_few_rows(case, p)
+}
+
+/// Whether run `p` keeps at most half its rows: the case's output step at least twice
+/// the run's Δt (to a relative 10⁻⁹, so 0.002 s over 0.001 s counts whatever its bits).
+fn keeps_few_rows(case: &Case, p: &PlannedRun) -> bool {
+    case.run
+        .output_dt
+        .is_some_and(|o| o >= 2.0 * p.dt * (1.0 - 1e-9))
 }
 
 /// Whether planned run `p` of `case` takes more than `steps` steps.
@@ -423,41 +433,53 @@ fn analyse(
     }
     let runs = crate::external::with_external_runs(&case, runs);
     streamed.resize(runs.len(), None);
-    if let Ok(r) = &mut reference {
-        r.at_compared_times(&runs);
-    }
-    let run_responses: Vec<Responses> = runs
-        .iter()
-        .zip(&streamed)
-        .map(|(r, s)| match s {
-            Some(s) => s.responses.clone(),
-            None => responses(&r.trace),
-        })
-        .collect();
-    let history_errors = runs
-        .iter()
-        .zip(&streamed)
-        .map(|(r, s)| {
-            if let Some(s) = s {
-                return s.history.map(|(max, rms)| HistoryError { max, rms });
+    // the reference sampled at the compared times with the history errors, beside the
+    // responses and the invariants (independent readings of every run): on both cores
+    let (history_errors, (run_responses, invariants)): (_, (Vec<Responses>, _)) = rayon::join(
+        || {
+            if let Ok(r) = &mut reference {
+                r.at_compared_times(&runs);
             }
-            let sampled = reference.as_ref().ok()?.at_times(&r.trace.time);
-            history_difference(&r.trace, &sampled, "rel_disp")
-                .map(|(max, rms)| HistoryError { max, rms })
-        })
-        .collect();
+            let reference = &reference;
+            runs.iter()
+                .zip(&streamed)
+                .map(|(r, s)| {
+                    if let Some(s) = s {
+                        return s.history.map(|(max, rms)| HistoryError { max, rms });
+                    }
+                    let sampled = reference.as_ref().ok()?.at_times(&r.trace.time);
+                    history_difference(&r.trace, &sampled, "rel_disp")
+                        .map(|(max, rms)| HistoryError { max, rms })
+                })
+                .collect()
+        },
+        || {
+            rayon::join(
+                || {
+                    runs.iter()
+                        .zip(&streamed)
+                        .map(|(r, s)| match s {
+                            Some(s) => s.responses.clone(),
+                            None => responses(&r.trace),
+                        })
+                        .collect()
+                },
+                || {
+                    runs.iter()
+                        .zip(&streamed)
+                        .flat_map(|(r, s)| match s {
+                            Some(s) => s.invariants.clone(),
+                            None => crate::external::check_invariants(&case, r),
+                        })
+                        .collect()
+                },
+            )
+        },
+    );
     let reference_responses = reference.as_ref().ok().map(|r| &r.responses);
     let checks = evaluate_tolerances(&case.tolerances, &runs, &run_responses, reference_responses);
     let checks =
         crate::external::adjust_checks(&case, &runs, &run_responses, reference_responses, checks);
-    let invariants = runs
-        .iter()
-        .zip(&streamed)
-        .flat_map(|(r, s)| match s {
-            Some(s) => s.invariants.clone(),
-            None => crate::external::check_invariants(&case, r),
-        })
-        .collect();
     let envelopes = streamed
         .iter_mut()
         .map(|s| s.as_mut().and_then(|s| s.envelope.take()))
