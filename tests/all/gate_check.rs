@@ -311,3 +311,45 @@ fn error_lines_carry_the_error_prefix() {
     assert!(err.lines().count() >= 2, "{err}");
     assert!(err.lines().all(|l| l.starts_with("error: ")), "{err}");
 }
+
+/// The stability scenes carry gated tolerances against their exact references too (a user
+/// may `check` them: they are out of the default folders because `rockslide stability`
+/// classifies them at other steps). Their tolerances were measured at rapier's 16 substeps
+/// and went stale, unnoticed, when rapier moved to its step rule: this holds them. Every
+/// scene passes, nothing is skipped, and JUnit judges at least one check per
+/// `[[tolerance]]` table of the files (counted here from their text), besides the runs'
+/// invariants.
+#[test]
+fn the_stability_scenes_pass_their_own_gate() {
+    let dir = tempfile::tempdir().unwrap();
+    let junit = dir.path().join("junit.xml");
+    let o = check(&["cases/stability"], &dir.path().join("out"), Some(&junit));
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let folder = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/stability");
+    let tolerances: usize = std::fs::read_dir(&folder)
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| p.extension().is_some_and(|x| x == "toml"))
+        .map(|p| {
+            std::fs::read_to_string(p)
+                .unwrap()
+                .matches("[[tolerance]]")
+                .count()
+        })
+        .sum();
+    assert!(tolerances >= 13, "every scene gated: {tolerances}");
+    let xml = std::fs::read_to_string(&junit).unwrap();
+    let (declared, cases, failures, skipped) = junit_counts(&xml);
+    assert_eq!((failures, declared), (0, cases), "{xml}");
+    assert!(
+        cases > tolerances,
+        "{cases} judged for {tolerances} tolerances"
+    );
+    // skipped: only the invariant breaks rocking-10g declares (its [[expected_violation]])
+    assert_eq!(
+        xml.matches("<skipped message=\"declared known [expected_violation[")
+            .count(),
+        skipped,
+        "{xml}"
+    );
+}
