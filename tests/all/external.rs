@@ -189,10 +189,14 @@ fn bad_external_files_and_labels_are_located_input_errors() {
     };
     let e = load("label = \"x\"\nfile = \"bad.csv\"\nprogram = \"p\"\n");
     let bad = dir.path().join("bad.csv");
+    // located twice: at the case's `file = ` value (two lines after `[[external]]`,
+    // column 8), then in the results file (line 3, column 5)
+    let file_line = format!("{PEPO}\n[[external]]\n").matches('\n').count() + 2;
     assert_eq!(
         e,
         format!(
-            "{}:3:5: external[0].file: column \"slide [m]\": \"1e-3x\" is not a number",
+            "{}:{file_line}:8: external[0].file: {}:3:5: column \"slide [m]\": \"1e-3x\" is not a number",
+            path.display(),
             bad.display()
         )
     );
@@ -215,9 +219,13 @@ fn bad_external_files_and_labels_are_located_input_errors() {
         "{e}"
     );
     let e = load("label = \"x\"\nfile = \"missing.csv\"\nprogram = \"p\"\n");
-    assert!(
-        e.contains("external[0].file: cannot read the results file"),
-        "{e}"
+    assert_eq!(
+        e,
+        format!(
+            "{}:{file_line}:8: external[0].file: {}: cannot read the results file: No such file or directory",
+            path.display(),
+            dir.path().join("missing.csv").display()
+        )
     );
 }
 

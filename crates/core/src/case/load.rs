@@ -1015,13 +1015,19 @@ impl Validator<'_> {
                     field,
                 }),
                 Err(errs) => {
-                    for mut err in errs.0 {
-                        err.field = if err.field.is_empty() {
-                            format!("{field}.file")
-                        } else {
-                            format!("{field}.{}", err.field)
+                    // The results file's own errors, located at the case's field (`file`,
+                    // or the option that names the column) and in the results file.
+                    for err in errs.0 {
+                        let case_field = match err.field.as_str() {
+                            "" => format!("{field}.file"),
+                            inner => format!("{field}.{inner}"),
                         };
-                        self.errors.push(err);
+                        let in_file = InputError {
+                            field: String::new(),
+                            ..err
+                        };
+                        self.errors
+                            .push(in_file.named_by(self.loc.error(&case_field, "")));
                     }
                 }
             }

@@ -193,8 +193,10 @@ pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTra
     {
         return read_external_mcap(path, format.topic.as_deref());
     }
-    let bytes = read_bounded(path, MAX_EXTERNAL_BYTES)
-        .map_err(|e| InputError::new(path, "", format!("cannot read the results file: {e}")))?;
+    let bytes = read_bounded(path, MAX_EXTERNAL_BYTES).map_err(|e| {
+        let why = crate::error::io_reason(&e);
+        InputError::new(path, "", format!("cannot read the results file: {why}"))
+    })?;
     let text = String::from_utf8(bytes).map_err(|e| {
         let (line, col) = crate::error::line_col(
             &String::from_utf8_lossy(&e.as_bytes()[..e.utf8_error().valid_up_to()]),
