@@ -9,7 +9,7 @@
 
 use rockslide_core::case::{Case, Scene};
 use rockslide_core::error::InputError;
-use rockslide_core::trace::{ContactState, Trace};
+use rockslide_core::trace::{ContactBlock, ContactState, Trace};
 use serde::{Deserialize, Serialize};
 
 /// Why an engine cannot represent a scene.
@@ -209,6 +209,41 @@ pub trait StepSink {
     /// One row: time, s; values in channel order; each contact's state in contact order
     /// (empty when the run has no per-contact block).
     fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]);
+}
+
+/// Keeps every row in a trace sized for the run up front (no reallocation in the time
+/// loop): how an engine that streams natively makes a whole run ([`Engine::run`]) from
+/// the same loop that feeds a caller's sink.
+#[derive(Debug, Default)]
+pub struct TraceSink {
+    /// The rows so far, under the run's layout.
+    pub trace: Trace,
+    /// Rows the trace is sized for.
+    rows: usize,
+}
+
+impl TraceSink {
+    /// A sink for a run of `rows` rows.
+    pub fn sized(rows: usize) -> Self {
+        Self {
+            trace: Trace::default(),
+            rows,
+        }
+    }
+}
+
+impl StepSink for TraceSink {
+    fn begin(&mut self, layout: &Trace) {
+        self.trace = Trace::with_channels(&layout.channels, self.rows);
+        let names: Vec<&str> = layout.contacts.names.iter().map(String::as_str).collect();
+        self.trace.contacts =
+            ContactBlock::with_contacts(&names, &layout.contacts.compliance, self.rows);
+    }
+
+    fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
+        self.trace.push(t, values);
+        self.trace.contacts.push(t, contacts);
+    }
 }
 
 /// The layout of a trace: its channels and its contact block's names and compliances,

@@ -4,7 +4,7 @@ use super::resistance::resistance;
 use crate::vertical::NormalStepper;
 use rockslide_core::case::{Excitation, Jump, Oscillator, Vertical};
 use rockslide_core::trace::{ContactBlock, ContactState, Trace, q};
-use rockslide_engine_api::{Run, RunStatus, SolverStats, StepSink, step_count};
+use rockslide_engine_api::{Run, RunStatus, SolverStats, StepSink, TraceSink, step_count};
 
 /// How support motion enters the equation of motion (paper Eqs 10–12).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -47,10 +47,7 @@ pub fn simulate_with_vertical(
     s: &PcSettings,
     variant: &str,
 ) -> Run {
-    let mut sink = TraceSink {
-        trace: Trace::default(),
-        rows: step_count(s.duration, s.dt) + 1,
-    };
+    let mut sink = TraceSink::sized(step_count(s.duration, s.dt) + 1);
     let mut run = integrate(osc, excitation, vertical, s, variant, &mut sink, None);
     run.trace = sink.trace;
     // Eq 9 read off the whole columns (the streamed run keeps a front of them instead)
@@ -119,26 +116,6 @@ impl StepSink for PeakDisplacement {
 
 /// Column of `rel_disp` in the predictor-corrector's rows ([`q::sliding`]).
 const REL_DISP_COLUMN: usize = 2;
-
-/// Records the rows into a trace sized for the run up front (no reallocation).
-struct TraceSink {
-    trace: Trace,
-    rows: usize,
-}
-
-impl StepSink for TraceSink {
-    fn begin(&mut self, layout: &Trace) {
-        self.trace = Trace::with_channels(&layout.channels, self.rows);
-        let names: Vec<&str> = layout.contacts.names.iter().map(String::as_str).collect();
-        self.trace.contacts =
-            ContactBlock::with_contacts(&names, &layout.contacts.compliance, self.rows);
-    }
-
-    fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
-        self.trace.push(t, values);
-        self.trace.contacts.push(t, contacts);
-    }
-}
 
 /// The largest Eq 9 change over the rows whose |x| is at least `floor` (1 % of the run's
 /// peak |x|, known from a first pass), kept step by step.

@@ -1,6 +1,6 @@
 //! Where a run's rows go. Every time loop hands its rows to a [`StepSink`] as it records
 //! them and holds none itself: a whole run ([`Engine::run`]) keeps them in a
-//! [`TraceSink`], a streamed run ([`Engine::run_streaming`]) gives them to the caller's
+//! [`TraceSink`] (engine-api), a streamed run ([`Engine::run_streaming`]) gives them to the caller's
 //! sink, so its memory does not grow with its length. A pilot run keeps only the one sum
 //! it is run for ([`PathLength`]).
 //!
@@ -9,6 +9,7 @@
 
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace};
 use rockslide_engine_api::StepSink;
+pub(crate) use rockslide_engine_api::TraceSink;
 
 /// The layout of a run: its channels and a contact block of `contacts` supports of normal
 /// compliance `compliance` (m/N), without rows.
@@ -16,38 +17,6 @@ pub(crate) fn layout(channels: &[&'static Quantity], contacts: usize, compliance
     let mut trace = Trace::with_channels(channels, 0);
     trace.contacts = ContactBlock::for_supports(contacts, compliance, 0);
     trace
-}
-
-/// Keeps every row in a trace sized for the run up front (no reallocation in the loop).
-pub(crate) struct TraceSink {
-    /// The rows so far, under the run's layout.
-    pub(crate) trace: Trace,
-    /// Rows the trace is sized for.
-    rows: usize,
-}
-
-impl TraceSink {
-    /// A sink for a run of `rows` rows.
-    pub(crate) fn sized(rows: usize) -> Self {
-        Self {
-            trace: Trace::default(),
-            rows,
-        }
-    }
-}
-
-impl StepSink for TraceSink {
-    fn begin(&mut self, layout: &Trace) {
-        self.trace = Trace::with_channels(&layout.channels, self.rows);
-        let names: Vec<&str> = layout.contacts.names.iter().map(String::as_str).collect();
-        self.trace.contacts =
-            ContactBlock::with_contacts(&names, &layout.contacts.compliance, self.rows);
-    }
-
-    fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
-        self.trace.push(t, values);
-        self.trace.contacts.push(t, contacts);
-    }
 }
 
 /// The length of the path one or two channels travel, Σ‖x(k+1) − x(k)‖ (|Δx| for one
