@@ -906,6 +906,25 @@ impl Model {
     }
 }
 
+/// Test matrix entries: a xorshift sequence from `seed`, uniform mantissas over 24 orders
+/// of magnitude (10⁻¹² … 10¹²), and exact zeros when the state is a multiple of
+/// `zero_every` — the entries the LU tests compare bit for bit.
+#[cfg(test)]
+pub(crate) fn values_over_24_decades(mut seed: u64, zero_every: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        let mantissa = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
+        let exponent = ((seed >> 3) % 25) as i32 - 12;
+        if seed % zero_every == 0 {
+            0.0
+        } else {
+            mantissa * 10f64.powi(exponent)
+        }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -914,19 +933,7 @@ mod tests {
     /// 24 orders of magnitude, zeros, singular ones): the same solution bits.
     #[test]
     fn lu3_is_nalgebras_lu_bit_for_bit() {
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            let mantissa = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
-            let exponent = ((seed >> 3) % 25) as i32 - 12;
-            if seed % 11 == 0 {
-                0.0
-            } else {
-                mantissa * 10f64.powi(exponent)
-            }
-        };
+        let mut next = values_over_24_decades(0x2545_f491_4f6c_dd1d, 11);
         let mut singular = 0;
         for case in 0..20_000 {
             let mut m = Matrix3::from_fn(|_, _| next());
