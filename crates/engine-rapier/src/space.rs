@@ -30,10 +30,11 @@ use super::ground::GroundTable;
 use super::rows::{PathLength, layout};
 use super::settings::{OscillatorSteps, RapierSettings, StepRule};
 use super::simulate::{Drive, force_at, mean_over_step};
+use super::vertical::VerticalTable;
 use super::world::{GroundKind, add_ground, new_world, rapier_friction};
 use super::{MAX_BLOCK_STEPS, block_stride};
 use rockslide_core::case::{
-    Case, Excitation, Model, Oscillator, RigidBlock, Scene, Signal, Spatial,
+    Case, Excitation, Model, NormalForce, Oscillator, RigidBlock, Scene, Signal, Spatial, Vertical,
 };
 use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactState, Quantity, Trace, plan_slip_increment, q};
@@ -66,13 +67,22 @@ fn azimuth_deg(a: [f64; 2]) -> f64 {
     }
 }
 
-/// Why rapier does not run a 3D scene, if it does not.
+/// Why rapier does not run a 3D scene, if it does not. A vertical component is the
+/// oscillator's only ([`PlanVertical`]: its support's Kz, as in 2D).
 pub fn check(scene: &Scene) -> Result<(), NotApplicable> {
-    if scene.vertical().is_some() {
-        return Err(NotApplicable(
-            "vertical excitation in a bidirectional (3D) scene is not yet modelled in rapier"
-                .into(),
-        ));
+    if let Some(v) = scene.vertical() {
+        return match &scene.model {
+            Model::Oscillator(_) if v.normal_force == NormalForce::QuasiStatic => Err(NotApplicable(
+                "rapier's oscillator in plan under vertical motion stands on its vertical stiffness Kz: a rigid vertical contact (normal_force = \"quasi-static\") is not its model".into(),
+            )),
+            Model::Oscillator(o) if o.double.is_some() => Err(NotApplicable(
+                "rapier models vertical motion in plan on the single contact, not the double arrangement".into(),
+            )),
+            Model::Oscillator(_) => Ok(()),
+            _ => Err(NotApplicable(
+                "vertical excitation in a bidirectional (3D) scene is modelled in rapier for the oscillator only (the block and the rocking body in plan are not built for it)".into(),
+            )),
+        };
     }
     match &scene.model {
         Model::RigidBlock(b) if b.initial_tilt != 0.0 => Err(NotApplicable(
@@ -307,6 +317,49 @@ impl PlanSlider {
     }
 }
 
+/// The plan oscillator's vertical contact under a vertical component: the mass is free
+/// vertically too, on a compression-only spring Kz (no collider: an applied force, as the
+/// plan contact), from static rest compressed by M·g/Kz. World gravity is 0; the engine
+/// applies N − M·g − M·a_v over each step, a_v the step's mean (−m·(vg_y(n+1) −
+/// vg_y(n))/Δt, every route: the vertical is in the ground's frame), N = Kz·δ after the
+/// step (0 once the spring opens), and caps the plan slider at μ·N.
+pub(crate) struct PlanVertical {
+    kz: f64,
+    mass: f64,
+    weight: f64,
+    /// vg_y(t_k⁺) at the rapier steps, m/s.
+    vel: Vec<f64>,
+    dt: f64,
+}
+
+impl PlanVertical {
+    /// For `n` rapier steps of `dt`.
+    pub(crate) fn new(osc: &Oscillator, vertical: &Vertical, dt: f64, n: usize) -> Self {
+        PlanVertical {
+            kz: osc.contact.kz,
+            mass: osc.mass,
+            weight: osc.normal_force(),
+            vel: VerticalTable::new(vertical, dt, n).vel,
+            dt,
+        }
+    }
+
+    /// The body's height at static rest (the spring compressed by M·g/Kz), m.
+    fn rest_height(&self) -> f64 {
+        -self.weight / self.kz
+    }
+
+    /// N = Kz·δ for a body at `height` (δ = −height), compression only, N.
+    fn normal(&self, height: f64) -> f64 {
+        (-self.kz * height).max(0.0)
+    }
+
+    /// The vertical force on the body over step k → k+1 given the normal force `n`.
+    fn force(&self, n: f64, k: usize) -> f64 {
+        n - self.weight - self.mass * (self.vel[k + 1] - self.vel[k]) / self.dt
+    }
+}
+
 /// The radial return of a spring `k` in series with a slider `p` on the circle of radius
 /// `limit` (the circular friction cone), after a step that left the spring's end at `u`:
 /// where k·|u − p| > limit the slider follows along u − p so that |F| = limit. Returns the
@@ -329,7 +382,7 @@ pub(crate) fn radial_return(k: f64, limit: f64, p: &mut [f64; 2], u: [f64; 2]) -
 pub fn run_oscillator(
     osc: &Oscillator,
     settings: &RapierSettings,
-    pd: &PlanDrive,
+    (pd, vertical): (&PlanDrive, Option<&PlanVertical>),
     (dt, stride): (f64, usize),
     n: usize,
     sink: &mut dyn StepSink,
@@ -343,16 +396,21 @@ pub fn run_oscillator(
     let ground = world.insert_body(ground_body);
     let m = osc.mass;
     let body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(
+            0.0,
+            vertical.map_or(0.0, |v| v.rest_height()),
+            0.0,
+        ))
         .additional_mass_properties(MassProperties::new(Vector::ZERO, m, Vector::ONE))
-        .enabled_translations(true, false, true)
+        .enabled_translations(true, vertical.is_some(), true)
         .lock_rotations()
         .can_sleep(false);
     let mass = world.insert_body(body);
     pd.start(&mut world, mass);
     let moves = pd.first.moves_ground();
     let channels = plan_channels(moves);
-    // The one contact: compliance 0 (no vertical motion), |T| = |F| ≤ μ·N.
-    let trace = layout(&channels, 1, 0.0);
+    // The one contact, |T| = |F| ≤ μ·N: compliance 0 without vertical motion, 1/Kz with.
+    let trace = layout(&channels, 1, vertical.map_or(0.0, |v| 1.0 / v.kz));
     sink.begin(&trace);
     let mut row = vec![0.0; channels.len()];
     let mut slider = PlanSlider {
@@ -361,7 +419,8 @@ pub fn run_oscillator(
         p: [0.0, 0.0],
     };
     let c = osc.damping();
-    let weight = osc.normal_force();
+    let mu = osc.contact.mu;
+    let mut normal = osc.normal_force();
     let relative = |world: &PhysicsWorld, k: usize| {
         let (xg, vg) = pd.frame(k);
         let b = &world.bodies[mass];
@@ -370,8 +429,13 @@ pub fn run_oscillator(
     let mut spring = [0.0, 0.0];
     let mut v_prev = 0.0;
     let (mut p_prev, mut path) = ([0.0, 0.0], 0.0);
-    let mut record =
-        |out: &mut dyn StepSink, world: &PhysicsWorld, k: usize, spring: [f64; 2], p: [f64; 2]| {
+    let height = |world: &PhysicsWorld| world.bodies[mass].translation().y;
+    let mut record = |out: &mut dyn StepSink,
+                      world: &PhysicsWorld,
+                      k: usize,
+                      (spring, p): ([f64; 2], [f64; 2]),
+                      normal: f64| {
+        {
             let t = (k / stride) as f64 * dt;
             let (u, v) = relative(world, k);
             let acc = if k == 0 { 0.0 } else { (v[0] - v_prev) / dt };
@@ -383,21 +447,26 @@ pub fn run_oscillator(
                 slide: p,
                 vel: v,
                 acc,
-                normal: weight,
+                normal,
                 ground: pd.disp[k][0],
             }
             .write(&mut row);
             path += plan_slip_increment(spring, sub(p, p_prev));
             p_prev = p;
             let state = ContactState {
-                normal: weight,
+                normal,
                 tangential: norm(spring),
                 slip: path,
-                gap: 0.0,
+                gap: if vertical.is_some() {
+                    height(world)
+                } else {
+                    0.0
+                },
             };
             out.row(t, &row, &[state]);
-        };
-    record(sink, &world, 0, spring, slider.p);
+        }
+    };
+    record(sink, &world, 0, (spring, slider.p), normal);
     let mut status = RunStatus::Completed;
     let mut steps = 0;
     for k in 0..n * stride {
@@ -407,9 +476,10 @@ pub fn run_oscillator(
             m * a[0] - spring[0] - c * v[0],
             m * a[1] - spring[1] - c * v[1],
         ];
+        let up = vertical.map_or(0.0, |v| v.force(normal, k));
         let b = &mut world.bodies[mass];
         b.reset_forces(false);
-        b.add_force(to_world(f, 0.0), false);
+        b.add_force(to_world(f, up), false);
         pd.move_ground(&mut world, ground, k);
         world.step();
         steps += 1;
@@ -417,10 +487,14 @@ pub fn run_oscillator(
             status = d;
             break;
         }
+        if let Some(v) = vertical {
+            normal = v.normal(height(&world));
+            slider.limit = mu * normal;
+        }
         let (u, _) = relative(&world, k + 1);
         spring = slider.update(u);
         if (k + 1) % stride == 0 {
-            record(sink, &world, k + 1, spring, slider.p);
+            record(sink, &world, k + 1, (spring, slider.p), normal);
         }
     }
     Outcome {
@@ -566,6 +640,27 @@ pub fn oscillator_steps(
     }
 }
 
+/// The oscillator's steps in plan under a vertical component: the planar rule with its
+/// period scaled to the vertical mode √(Kz/M) when that is faster, and no longer than a
+/// vertical record's sample step (the 2D rule, [`super::vertical::oscillator_steps`]).
+fn vertical_steps(
+    osc: &Oscillator,
+    ex: &Excitation,
+    vertical: &Vertical,
+    settings: &RapierSettings,
+    dt: f64,
+) -> OscillatorSteps {
+    let (stride, dt_inner, steps) =
+        super::vertical::oscillator_steps(osc, ex, vertical, dt, settings.accuracy);
+    let scale = (osc.omega() / (osc.contact.kz / osc.mass).sqrt()).min(1.0);
+    OscillatorSteps {
+        stride,
+        dt_inner,
+        dt_max: steps.dt_max * scale,
+        ..steps
+    }
+}
+
 /// What a run states besides its trace: settings and findings, as (name, value) and text.
 pub(crate) struct Statement {
     pub(crate) described: Vec<(String, String)>,
@@ -675,26 +770,51 @@ fn oscillator_case(
 ) -> Outcome {
     let ex = &case.scene.excitation;
     let n = step_count(case.run.duration, dt);
-    let steps = oscillator_steps(osc, ex, settings, dt);
+    let vertical = case.scene.vertical();
+    let steps = match vertical {
+        Some(v) => vertical_steps(osc, ex, v, settings, dt),
+        None => oscillator_steps(osc, ex, settings, dt),
+    };
     let pd = PlanDrive::new(drive, ex, spatial, steps.dt_inner, n * steps.stride);
+    let pv = vertical.map(|v| PlanVertical::new(osc, v, steps.dt_inner, n * steps.stride));
     said.described
         .retain(|(k, _)| !k.starts_with("contact softness") && !k.starts_with("friction"));
     said.described.push((
         "contact model".into(),
-        "applied force in plan: one body free in x and y (no collider, rotations and the vertical locked); the engine computes Kx·(u − p) − C·u̇ after every rapier step, the slider p returned radially onto |F| ≤ μ·M·g (circular cone), and applies it over the next step (the only model in plan: contact_model is not read)".into(),
+        if pv.is_some() {
+            "applied force in plan: one body free in x, y and z (no collider, rotations locked); the engine computes Kx·(u − p) − C·u̇ after every rapier step, the slider p returned radially onto |F| ≤ μ·N (circular cone, N from the vertical spring), and applies it over the next step (the only model in plan: contact_model is not read)"
+        } else {
+            "applied force in plan: one body free in x and y (no collider, rotations and the vertical locked); the engine computes Kx·(u − p) − C·u̇ after every rapier step, the slider p returned radially onto |F| ≤ μ·M·g (circular cone), and applies it over the next step (the only model in plan: contact_model is not read)"
+        }
+        .into(),
     ));
+    if pv.is_some() {
+        said.described.push((
+            "vertical ground motion".into(),
+            "the body free vertically too, on a compression-only spring Kz from static rest (an applied force, world gravity 0): N − M·g − M·a_v over each step, a_v the step's mean −(vg_y(n+1) − vg_y(n))/Δt on every route (the vertical in the ground's frame), N = Kz·δ after the step, the slider's circle μ·N".into(),
+        ));
+    }
     said.described.push((
         "rapier step [s] (output step / stride)".into(),
         format!("{} (stride {})", steps.dt_inner, steps.stride),
     ));
     said.findings.push(format!(
-        "{} the engine's validity: rapier step {:.3e} s, the planar oscillator's step rule asks ≤ {:.3e} s for accuracy {}; |F| ≤ μ·N by construction; measured against the plan-motion reference (docs/rapier-engine.md, \"Plan motion\"): {OSCILLATOR_MEASURED}",
+        "{} the engine's validity: rapier step {:.3e} s, the planar oscillator's step rule asks ≤ {:.3e} s for accuracy {}{}; |F| ≤ μ·N by construction; measured against the plan-motion reference (docs/rapier-engine.md, \"Plan motion\"): {OSCILLATOR_MEASURED}{}",
         if steps.within_target() { "within" } else { "outside" },
         steps.dt_inner,
         steps.dt_max,
-        settings.accuracy
+        settings.accuracy,
+        if pv.is_some() { " (its period scaled to the vertical mode √(Kz/M) when faster)" } else { "" },
+        if pv.is_some() { VERTICAL_MEASURED } else { "" },
     ));
-    run_oscillator(osc, settings, &pd, (dt, steps.stride), n, sink)
+    run_oscillator(
+        osc,
+        settings,
+        (&pd, pv.as_ref()),
+        (dt, steps.stride),
+        n,
+        sink,
+    )
 }
 
 /// The block on the ground slab (the kinematic ground at its step rule under a record),
@@ -795,6 +915,10 @@ fn kinematic_rule(
 /// The oscillator's measured agreement, stated in its runs' findings
 /// (tests/all/rapier_space.rs).
 const OSCILLATOR_MEASURED: &str = "peaks and residual +0.003 %, slip start −0.8 ms; under the shipped record pair (T = 0.5 s, μ = 0.05) peak relative displacement +0.82 %, residual resultant sliding +0.66 %, first order in the step (the radial return moves the slider along the step's last direction)";
+
+/// The vertical component's measured agreement, stated in its runs' findings
+/// (tests/all/vertical_plan.rs).
+const VERTICAL_MEASURED: &str = "; with a vertical component (pepo-pulse-azimuth30-vertical) TBD";
 
 /// The block's measured agreement, stated in its runs' findings
 /// (tests/all/rapier_space.rs).

@@ -1,9 +1,10 @@
 //! The horizontal drive of a 3D scene as a 2-vector function of time, with its kinks.
 
-use rockslide_core::case::{Excitation, Scene, Signal};
+use rockslide_core::case::{Excitation, NormalForce, Scene, Signal};
 
 /// The force per unit mass d(t) on the body (relative coordinates), in (x, y), and the
-/// vertical ground acceleration a_v(t) when the scene has one.
+/// vertical ground acceleration a_v(t) when the scene has one, with how the normal force
+/// follows it.
 #[derive(Debug, Clone)]
 pub struct PlanDrive {
     first: Option<Signal>,
@@ -12,6 +13,7 @@ pub struct PlanDrive {
     e1: [f64; 2],
     e2: [f64; 2],
     vertical: Option<Signal>,
+    normal_force: NormalForce,
 }
 
 impl PlanDrive {
@@ -29,13 +31,32 @@ impl PlanDrive {
             e1: [sign * e1[0], sign * e1[1]],
             e2: [sign * e2[0], sign * e2[1]],
             vertical: None,
+            normal_force: NormalForce::QuasiStatic,
         }
     }
 
-    /// With a vertical ground acceleration a_v(t) (positive upward).
+    /// With a vertical ground acceleration a_v(t) (positive upward), the normal force
+    /// rigid (N = M·(g + a_v)) unless [`PlanDrive::with_normal_force`] says otherwise.
     pub fn with_vertical(mut self, vertical: Signal) -> Self {
         self.vertical = Some(vertical);
         self
+    }
+
+    /// How the normal force follows a_v (the oscillator's reference reads it; the block
+    /// is rigid-plastic, N = M·(g + a_v) whatever it says).
+    pub fn with_normal_force(mut self, normal_force: NormalForce) -> Self {
+        self.normal_force = normal_force;
+        self
+    }
+
+    /// How the normal force follows a_v.
+    pub fn normal_force(&self) -> NormalForce {
+        self.normal_force
+    }
+
+    /// Whether the drive has a vertical component.
+    pub fn has_vertical(&self) -> bool {
+        self.vertical.is_some()
     }
 
     /// The drive of a scene: its `[excitation]` along e₁, `[excitation.y]` along e₂ (a
@@ -55,7 +76,9 @@ impl PlanDrive {
         };
         let drive = PlanDrive::new(first, e1, second, e2, sign);
         Ok(match scene.vertical() {
-            Some(v) => drive.with_vertical(v.signal.clone()),
+            Some(v) => drive
+                .with_vertical(v.signal.clone())
+                .with_normal_force(v.normal_force),
             None => drive,
         })
     }
@@ -73,6 +96,27 @@ impl PlanDrive {
     /// The vertical ground acceleration a_v(t), m/s² (0 without one).
     pub fn vertical(&self, t: f64) -> f64 {
         self.vertical.as_ref().map_or(0.0, |s| s.value(t))
+    }
+
+    /// da_v/dt at `t` on the smooth piece of a_v that holds `inside` (a time strictly
+    /// inside the integration step, whose ends are at kinks or inside one piece): the
+    /// one-sided rate at a kink, as the step's stages need it, m/s³.
+    pub fn vertical_rate(&self, t: f64, inside: f64) -> f64 {
+        match &self.vertical {
+            None => 0.0,
+            Some(s @ Signal::Record { .. }) => s.derivative(inside),
+            Some(
+                s @ Signal::SinePulse {
+                    amplitude, omega, ..
+                },
+            ) => {
+                if inside > 0.0 && inside < s.end() {
+                    amplitude * omega * (omega * t).cos()
+                } else {
+                    0.0
+                }
+            }
+        }
     }
 
     /// The times in (0, end) where the drive is not smooth: record samples, pulse ends.

@@ -10,6 +10,12 @@
 //! in speed and direction, because its sliding direction is stiff near rest ([`radau`]).
 //! Convergence is measured by halving the step (docs/bidirectional.md).
 //!
+//! A vertical component a_v(t) makes the friction cone's radius follow the normal force:
+//! μ·M·(g + a_v) for the block (rigid-plastic), and for the oscillator the scene's
+//! `normal_force` — rigid, N = M·(g + a_v), or the contact's Kz, N = Kz·δ with the
+//! vertical oscillator integrated beside the plan motion; both stop with an error at
+//! lift-off (N ≤ 0).
+//!
 //! Coordinates: relative to the ground; the drive d(t) is the force per unit mass on the
 //! body, a(t) for a mass acceleration, −a_g(t) for a ground acceleration, a 2-vector.
 
@@ -34,17 +40,12 @@ pub fn for_case(case: &Case) -> Result<Box<dyn crate::ExactSolution>, String> {
     let scene = &case.scene;
     let drive = PlanDrive::of_scene(scene)?;
     match &scene.model {
-        Model::Oscillator(o) => {
-            if scene.vertical.is_some() {
-                return Err("the plan-motion oscillator reference does not take a vertical component (the friction cone's radius would follow N(t)): not modelled".into());
-            }
-            Ok(Box::new(PlanEpo::solve(
-                o,
-                &drive,
-                case.run.duration,
-                DEFAULT_STEP,
-            )?))
-        }
+        Model::Oscillator(o) => Ok(Box::new(PlanEpo::solve(
+            o,
+            &drive,
+            case.run.duration,
+            DEFAULT_STEP,
+        )?)),
         Model::RigidBlock(b) => Ok(Box::new(PlanBlock::solve(
             b.mu,
             b.gravity,
