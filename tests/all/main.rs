@@ -53,3 +53,4 @@ mod sweep_order;
 mod vertical;
 mod vertical_engines;
 mod vertical_integrator;
+mod vertical_plan;

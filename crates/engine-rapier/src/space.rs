@@ -918,7 +918,7 @@ const OSCILLATOR_MEASURED: &str = "peaks and residual +0.003 %, slip start −0.
 
 /// The vertical component's measured agreement, stated in its runs' findings
 /// (tests/all/vertical_plan.rs).
-const VERTICAL_MEASURED: &str = "; with a vertical component (pepo-pulse-azimuth30-vertical) TBD";
+const VERTICAL_MEASURED: &str = "; with a vertical pulse at 2/3 on its spring Kz (pepo-pulse-azimuth30-vertical) peaks and residual within 0.00003 %, slip start −0.8 ms";
 
 /// The block's measured agreement, stated in its runs' findings
 /// (tests/all/rapier_space.rs).
