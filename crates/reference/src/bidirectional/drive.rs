@@ -109,13 +109,8 @@ impl PlanDrive {
                 s @ Signal::SinePulse {
                     amplitude, omega, ..
                 },
-            ) => {
-                if inside > 0.0 && inside < s.end() {
-                    amplitude * omega * (omega * t).cos()
-                } else {
-                    0.0
-                }
-            }
+            ) if inside > 0.0 && inside < s.end() => amplitude * omega * (omega * t).cos(),
+            Some(Signal::SinePulse { .. }) => 0.0,
         }
     }
 
