@@ -75,12 +75,15 @@ pub fn check(scene: &Scene) -> Result<(), NotApplicable> {
             Model::Oscillator(_) if v.normal_force == NormalForce::QuasiStatic => Err(NotApplicable(
                 "rapier's oscillator in plan under vertical motion stands on its vertical stiffness Kz: a rigid vertical contact (normal_force = \"quasi-static\") is not its model".into(),
             )),
+            Model::RockingBody(_) if v.normal_force == NormalForce::QuasiStatic => Err(NotApplicable(
+                "rapier's rocking body in plan stands on its supports' Kz: a rigid vertical contact (normal_force = \"quasi-static\") is not its model".into(),
+            )),
             Model::Oscillator(o) if o.double.is_some() => Err(NotApplicable(
                 "rapier models vertical motion in plan on the single contact, not the double arrangement".into(),
             )),
-            Model::Oscillator(_) => Ok(()),
-            _ => Err(NotApplicable(
-                "vertical excitation in a bidirectional (3D) scene is modelled in rapier for the oscillator only (the block and the rocking body in plan are not built for it)".into(),
+            Model::Oscillator(_) | Model::RockingBody(_) => Ok(()),
+            Model::RigidBlock(_) => Err(NotApplicable(
+                "vertical excitation in a bidirectional (3D) scene is not yet modelled for rapier's rigid block (the slab block in plan is not built for it)".into(),
             )),
         };
     }
@@ -714,7 +717,7 @@ pub fn run(
                 &grid,
                 spatial,
                 depth,
-                pd_for,
+                (pd_for, case.scene.vertical()),
                 (dt, n),
                 &settings,
                 (&mut said, sink),

@@ -24,8 +24,9 @@ use rapier3d_f64::prelude::*;
 use super::APPLIED_FORCE_OMEGA_H;
 use super::settings::{MAX_STRIDE, RapierSettings, StepRule};
 use super::space::{Outcome, PlanDrive, Statement, diverged, plan, radial_return, to_world};
+use super::vertical::VerticalTable;
 use super::world::{friction_cap, new_world, rocking_inertia};
-use rockslide_core::case::{Depth, RockingBody, Spatial};
+use rockslide_core::case::{Depth, RockingBody, Spatial, Vertical};
 use rockslide_core::trace::{ContactState, Quantity, plan_slip_increment, q};
 use rockslide_engine_api::StepSink;
 
@@ -172,10 +173,15 @@ fn update_supports(body: &RigidBody, grid: &RockingGrid, xg: [f64; 2], sups: &mu
 }
 
 /// The supports' resultant on the body (force at the CM and moment about it, rapier
-/// axes) plus the drive's force `extra` (plan), applied over the next step.
-fn apply_forces(body: &mut RigidBody, grid: &RockingGrid, sups: &[GridSupport], extra: [f64; 2]) {
+/// axes) plus the drive's force `extra` (plan, and up), applied over the next step.
+fn apply_forces(
+    body: &mut RigidBody,
+    grid: &RockingGrid,
+    sups: &[GridSupport],
+    extra: ([f64; 2], f64),
+) {
     let cm = body.translation();
-    let mut force = to_world(extra, 0.0);
+    let mut force = to_world(extra.0, extra.1);
     let mut moment = Vector::ZERO;
     for (s, pt) in sups.iter().zip(&grid.points) {
         let f = to_world([-s.t[0], -s.t[1]], s.normal);
@@ -190,11 +196,13 @@ fn apply_forces(body: &mut RigidBody, grid: &RockingGrid, sups: &[GridSupport], 
 
 /// Run the rocking body on its grid: `n` output steps of `dt`, each `stride` rapier
 /// steps, the drive's tables at the rapier step. The body starts in static equilibrium
-/// (every support compressed by W/(n·Kz)).
+/// (every support compressed by W/(n·Kz)). A vertical component (`vertical`: vg_y at the
+/// rapier steps) pushes the body by −M·(vg_y(k+1) − vg_y(k))/Δt over each step on every
+/// route: the vertical is taken in the ground's frame, the supports' heights from 0.
 pub fn run(
     grid: &RockingGrid,
     settings: &RapierSettings,
-    pd: &PlanDrive,
+    (pd, vertical): (&PlanDrive, Option<&[f64]>),
     (dt, stride): (f64, usize),
     n: usize,
     sink: &mut dyn StepSink,
@@ -315,7 +323,13 @@ pub fn run(
     let mut steps = 0;
     for k in 0..n * stride {
         let a = pd.specific_force(k);
-        apply_forces(&mut world.bodies[handle], grid, &sups, [m * a[0], m * a[1]]);
+        let up = vertical.map_or(0.0, |vg| -m * (vg[k + 1] - vg[k]) / dt_in);
+        apply_forces(
+            &mut world.bodies[handle],
+            grid,
+            &sups,
+            ([m * a[0], m * a[1]], up),
+        );
         pd.move_ground(&mut world, ground, k);
         world.step();
         steps += 1;
@@ -347,7 +361,7 @@ pub(crate) fn case<'a>(
     grid: &RockingGrid,
     spatial: &Spatial,
     depth: Depth,
-    pd_for: impl FnOnce(f64, usize) -> PlanDrive<'a>,
+    (pd_for, vertical): (impl FnOnce(f64, usize) -> PlanDrive<'a>, Option<&Vertical>),
     (dt, n): (f64, usize),
     settings: &RapierSettings,
     (said, sink): (&mut Statement, &mut dyn StepSink),
@@ -356,6 +370,13 @@ pub(crate) fn case<'a>(
     let stride = stride(omega, dt, settings);
     let dt_in = dt / stride as f64;
     let pd = pd_for(dt_in, n * stride);
+    let vg = vertical.map(|v| VerticalTable::new(v, dt_in, n * stride).vel);
+    if vg.is_some() {
+        said.described.push((
+            "vertical ground motion".into(),
+            "−M·(vg_y(n+1) − vg_y(n))/Δt on the body over each step, every route (the vertical in the ground's frame: the supports' heights measured from 0); N from each support's Kz".into(),
+        ));
+    }
     let omega_h = omega * dt_in / settings.substeps as f64;
     said.described
         .retain(|(k, _)| !k.starts_with("contact softness") && !k.starts_with("friction"));
@@ -405,7 +426,7 @@ pub(crate) fn case<'a>(
             "outside the engine's validity: ω_r·h = {omega_h:.3} (rule ≤ {APPLIED_FORCE_OMEGA_H}; symplectic Euler is unstable beyond 2)"
         )
     });
-    run(grid, settings, &pd, (dt, stride), n, sink)
+    run(grid, settings, (&pd, vg.as_deref()), (dt, stride), n, sink)
 }
 
 /// The rocking grid's measured agreement, stated in its runs' findings
