@@ -103,6 +103,14 @@ impl Contact178 {
         self.trial = state;
     }
 
+    /// Set the committed state only, for an element that is never trialled: a condensed
+    /// support's elements 1 and 2, whose states are rebuilt from their series equivalent
+    /// at every converged step (`Model::commit_step`) and only read after. Its trial
+    /// state is left as it was (`restore` would copy the committed one over it).
+    pub(crate) fn set_state(&mut self, state: ContactState) {
+        self.committed = state;
+    }
+
     /// Normal compression N ≥ 0 of the committed state (tension for bonded elements is
     /// returned negative), N.
     pub fn normal(&self) -> f64 {

@@ -536,7 +536,7 @@ impl Model {
             // Support i's elements 1 and 2 are links 2i and 2i + 1 and its node is node i
             // (`supports_for`, checked by `with_equivalents`): one pass over the three
             // arrays, no index to check. Every link is a condensed support's element 1
-            // or 2, set (committed and trial) by `split_equivalent`; the equivalent is
+            // or 2, its committed state set by `split_equivalent`; the equivalent is
             // committed beside them.
             let supports = self.links.chunks_exact_mut(2).zip(un.iter_mut());
             for ((pair, node), eq) in supports.zip(self.equivalents.iter_mut()) {
@@ -667,8 +667,9 @@ fn split_equivalent(
         Vector2::new(st.force.x / upper.kx, st.force.y / upper.kz)
     };
     let d1 = st.delta - d2;
-    lower.set_committed(ContactState { delta: d1, ..st });
-    upper.set_committed(ContactState {
+    // Only the committed states: a condensed support's elements are never trialled.
+    lower.set_state(ContactState { delta: d1, ..st });
+    upper.set_state(ContactState {
         slip: upper.state().slip,
         delta: d2,
         force: st.force,
