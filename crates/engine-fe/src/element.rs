@@ -103,6 +103,14 @@ impl Contact178 {
         self.trial = state;
     }
 
+    /// Set the committed state only, for an element that is never trialled: a condensed
+    /// support's elements 1 and 2, whose states are rebuilt from their series equivalent
+    /// at every converged step (`Model::commit_step`) and only read after. Its trial
+    /// state is left as it was (`restore` would copy the committed one over it).
+    pub(crate) fn set_state(&mut self, state: ContactState) {
+        self.committed = state;
+    }
+
     /// Normal compression N ≥ 0 of the committed state (tension for bonded elements is
     /// returned negative), N.
     pub fn normal(&self) -> f64 {
@@ -115,12 +123,23 @@ impl Contact178 {
     }
 }
 
-impl Element for Contact178 {
-    #[inline]
-    fn trial(&mut self, d: Vector2<f64>) -> (Vector2<f64>, Matrix2<f64>) {
+impl Contact178 {
+    /// [`Element::trial`] of an element known not to be bonded (a contact with the ground:
+    /// the single arrangement's elements and the series equivalents). The same
+    /// operations on the same path with the bonded element's tests left out, so the same
+    /// bits.
+    #[inline(always)]
+    pub(crate) fn trial_contact(&mut self, d: Vector2<f64>) -> (Vector2<f64>, Matrix2<f64>) {
+        debug_assert!(!self.bonded);
+        self.trial_as(d, false)
+    }
+
+    /// The return mapping at trial displacement `d`, bonded or not as `bonded` says.
+    #[inline(always)]
+    fn trial_as(&mut self, d: Vector2<f64>, bonded: bool) -> (Vector2<f64>, Matrix2<f64>) {
         let (kx, kz) = (self.kx, self.kz);
         let s_n = self.committed.slip;
-        if !self.bonded && d.y > 0.0 {
+        if !bonded && d.y > 0.0 {
             // Open: no force; the tangential origin follows the point, so a contact that
             // closes again starts unstressed (CONTA178 re-establishes sticking on contact).
             self.trial = ContactState {
@@ -134,7 +153,7 @@ impl Element for Contact178 {
         let n = -kz * d.y; // normal compression, N = −kz·δz
         let t_trial = kx * (d.x - s_n); // elastic predictor
         let cap = self.mu * n.max(0.0); // Coulomb limit μ·N of this element
-        let stick = self.mu.is_infinite() || t_trial.abs() <= cap || (self.bonded && n <= 0.0);
+        let stick = self.mu.is_infinite() || t_trial.abs() <= cap || (bonded && n <= 0.0);
         if stick {
             self.trial = ContactState {
                 slip: s_n,
@@ -159,6 +178,13 @@ impl Element for Contact178 {
                 Matrix2::new(0.0, -sg * self.mu * kz, 0.0, kz),
             )
         }
+    }
+}
+
+impl Element for Contact178 {
+    #[inline]
+    fn trial(&mut self, d: Vector2<f64>) -> (Vector2<f64>, Matrix2<f64>) {
+        self.trial_as(d, self.bonded)
     }
 
     #[inline]

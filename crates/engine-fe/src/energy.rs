@@ -63,6 +63,9 @@ struct ElementEnergy {
     strain: f64,
     /// Gap open.
     open: bool,
+    /// Whether the element's tangential and normal stiffnesses are finite and positive
+    /// (a strain term is booked for them): found at the first step, kept after.
+    springs: (bool, bool),
 }
 
 impl EnergyBook {
@@ -91,14 +94,21 @@ impl EnergyBook {
         // strain ½T²/kx1 + ½T²/kx2 is ½T²/ks (and so for N), element 2 (bonded, linear)
         // neither slips nor opens, and element 1's force, slip and status are the
         // equivalent's — the same terms up to round-off, over half the elements.
-        let (strain, ground_force) = if m.condensed && !m.equivalents.is_empty() {
-            self.book_elements(m.equivalents.iter().map(|e| (e, true)))
-        } else {
-            self.book_elements(
-                m.links
+        let (strain, ground_force) = match (m.condensed && !m.equivalents.is_empty(), self.started)
+        {
+            (true, true) => self.book_elements::<true>(m.equivalents.iter().map(|e| (e, true))),
+            (true, false) => self.book_elements::<false>(m.equivalents.iter().map(|e| (e, true))),
+            (false, started) => {
+                let links = m
+                    .links
                     .iter()
-                    .map(|l| (&l.element, l.lower == super::model::Point::Ground)),
-            )
+                    .map(|l| (&l.element, l.lower == super::model::Point::Ground));
+                if started {
+                    self.book_elements::<true>(links)
+                } else {
+                    self.book_elements::<false>(links)
+                }
+            }
         };
         if self.started {
             let (f_n, x_n, xg_n, fz_n, z_n) = self.last;
@@ -123,9 +133,10 @@ impl EnergyBook {
 
     /// Book the elements' committed states (each with whether its lower end is the
     /// ground): friction and non-smooth terms into the book; returns (strain U,
-    /// Σ ½(Tₙ + Tₙ₊₁) over ground elements).
+    /// Σ ½(Tₙ + Tₙ₊₁) over ground elements). `STARTED` is `self.started`, a constant so
+    /// that the loop of every step after the first carries no first-step branch.
     #[inline(always)]
-    fn book_elements<'e>(
+    fn book_elements<'e, const STARTED: bool>(
         &mut self,
         elements: impl Iterator<Item = (&'e Contact178, bool)>,
     ) -> (f64, f64) {
@@ -135,17 +146,23 @@ impl EnergyBook {
             let st = e.state();
             let (t, n) = (e.tangential(), e.normal());
             let open = st.status == super::element::Status::Open;
+            let springs = if STARTED {
+                prev.springs
+            } else {
+                let spring = |k: f64| k.is_finite() && k > 0.0;
+                (spring(e.kx), spring(e.kz))
+            };
             // A zero force stores nothing: the term would be +0 (skipped, the same bits;
             // no division for an open element).
             let mut u = 0.0;
-            if t != 0.0 && e.kx.is_finite() && e.kx > 0.0 {
+            if t != 0.0 && springs.0 {
                 u += 0.5 * t * t / e.kx;
             }
-            if n != 0.0 && e.kz.is_finite() && e.kz > 0.0 {
+            if n != 0.0 && springs.1 {
                 u += 0.5 * n * n / e.kz;
             }
             strain += u;
-            if self.started {
+            if STARTED {
                 if !open && !prev.open {
                     // Trapezoidal, as Newmark's work: ½(Tₙ + Tₙ₊₁)·Δs. It is ≥ 0 unless
                     // T reverses inside the step (|Tₙ| > |Tₙ₊₁|, opposite signs); such
@@ -172,6 +189,7 @@ impl EnergyBook {
                 slip: st.slip,
                 strain: u,
                 open,
+                springs,
             };
         }
         (strain, ground_force)

@@ -533,16 +533,17 @@ impl Model {
     /// (`split_equivalent`), so outputs and the energy book see every element.
     pub fn commit_step(&mut self, a: &Assembly, un: &mut [Vector2<f64>]) {
         if self.condensed && self.nodes > 0 {
-            for (sup, eq) in self.supports.iter().zip(&self.equivalents) {
-                let Some(k) = sup.node else { continue };
-                if let [l1, l2] = &mut self.links[sup.ground_link..sup.ground_link + 2] {
-                    un[k] = split_equivalent(eq, &mut l1.element, &mut l2.element) + a.ground;
+            // Support i's elements 1 and 2 are links 2i and 2i + 1 and its node is node i
+            // (`supports_for`, checked by `with_equivalents`): one pass over the three
+            // arrays, no index to check. Every link is a condensed support's element 1
+            // or 2, its committed state set by `split_equivalent`; the equivalent is
+            // committed beside them.
+            let supports = self.links.chunks_exact_mut(2).zip(un.iter_mut());
+            for ((pair, node), eq) in supports.zip(self.equivalents.iter_mut()) {
+                if let [l1, l2] = pair {
+                    *node = split_equivalent(eq, &mut l1.element, &mut l2.element) + a.ground;
                 }
-            }
-            // Every link is a condensed support's element 1 or 2, set (committed and
-            // trial) by `split_equivalent`: only the equivalents are left to commit.
-            for e in &mut self.equivalents {
-                e.commit();
+                eq.commit();
             }
             return;
         }
@@ -604,7 +605,12 @@ impl Model {
             );
             l2.and_then(|l2| series_equivalent(&l1.element, &l2.element))
         });
-        if let Some(eq) = pairs.collect::<Option<Vec<_>>>() {
+        let laid_out = self.supports.iter().enumerate().all(|(i, sup)| {
+            sup.ground_link == 2 * i && sup.node == Some(i) && self.links.len() == 2 * self.nodes
+        });
+        if let Some(eq) = pairs.collect::<Option<Vec<_>>>()
+            && laid_out
+        {
             self.equivalents = eq;
             self.condensed = true;
         }
@@ -661,8 +667,9 @@ fn split_equivalent(
         Vector2::new(st.force.x / upper.kx, st.force.y / upper.kz)
     };
     let d1 = st.delta - d2;
-    lower.set_committed(ContactState { delta: d1, ..st });
-    upper.set_committed(ContactState {
+    // Only the committed states: a condensed support's elements are never trialled.
+    lower.set_state(ContactState { delta: d1, ..st });
+    upper.set_state(ContactState {
         slip: upper.state().slip,
         delta: d2,
         force: st.force,
@@ -686,17 +693,19 @@ fn assemble_direct<'e>(
     let mut k = [[0.0_f64; 3]; 3];
     for (e, d) in elements.zip(attachments) {
         let pk = kinematics(d);
-        let (f, d) = e.trial(pk.u - ground);
+        let (f, d) = e.trial_contact(pk.u - ground);
         let (gx, gz) = (pk.g.x, pk.g.y);
-        let (d00, d01, d10, d11) = (d[(0, 0)], d[(0, 1)], d[(1, 0)], d[(1, 1)]);
-        let (dgx, dgy) = (d00 * gx + d01 * gz, d10 * gx + d11 * gz);
-        let (gtdx, gtdy) = (d00 * gx + d10 * gz, d01 * gx + d11 * gz);
+        // d10 = ∂N/∂δx is +0 in every state of the element (its normal is fixed): its
+        // products are ±0, and every sum they entered starts from +0 (`k` below, or
+        // `k22`'s term, itself added to a sum from +0), where a ±0 term changes no bit.
+        let (d00, d01, d11) = (d[(0, 0)], d[(0, 1)], d[(1, 1)]);
+        let (dgx, dgy) = (d00 * gx + d01 * gz, d11 * gz);
+        let (gtdx, gtdy) = (d00 * gx, d01 * gx + d11 * gz);
         p0 += f.x;
         p1 += f.y;
         p2 += gx * f.x + gz * f.y;
         k[0][0] += d00;
         k[0][1] += d01;
-        k[1][0] += d10;
         k[1][1] += d11;
         k[0][2] += dgx;
         k[1][2] += dgy;

@@ -195,9 +195,17 @@ impl Workspace {
     }
 
     /// Keep the nodes' converged displacements and forces as the next step's start
-    /// (nothing to copy without nodes: no call for an empty copy every step).
-    fn keep_nodes(&mut self) {
-        if !self.un.is_empty() {
+    /// (nothing to copy without nodes: no call for an empty copy every step). With
+    /// condensed supports (`loop_nodes` = 0) the step reads neither `un` nor the node
+    /// forces, and `commit_step` writes every node of `un`: the two vectors are swapped,
+    /// and the node forces (never assembled) are not copied.
+    fn keep_nodes(&mut self, loop_nodes: usize) {
+        if self.un.is_empty() {
+            return;
+        }
+        if loop_nodes == 0 {
+            std::mem::swap(&mut self.un, &mut self.un_n);
+        } else {
             self.un_n.copy_from_slice(&self.un);
             self.pn_n.copy_from_slice(&self.asm.pn);
         }
@@ -292,7 +300,7 @@ pub fn integrate(
     };
     model.assemble(&n.q, &mut w.un, g0.0, &mut w.asm);
     n.pb = w.asm.pb;
-    w.keep_nodes();
+    w.keep_nodes(model.loop_nodes());
     n.a = (n.f - n.pb - Vector3::new(n.damp, 0.0, 0.0))
         .component_div(&m.map(|x| if x > 0.0 { x } else { f64::INFINITY }));
     if !model.body.rotation {
@@ -352,7 +360,7 @@ pub fn integrate(
                 Ok(next) => {
                     model.commit_step(&w.asm, &mut w.un);
                     n = next;
-                    w.keep_nodes();
+                    w.keep_nodes(model.loop_nodes());
                     pos = end;
                     if level > 0 && pos % (2 * size) == 0 {
                         level -= 1;
@@ -516,7 +524,8 @@ fn newton_step(
     // Predictor: constant acceleration over the step.
     let mut q = n.q + n.v * h + n.a * (0.5 * h * h);
     let nodes = model.loop_nodes();
-    if model.nodes > 0 {
+    // Condensed supports: `un` is not read before `commit_step` writes it.
+    if nodes > 0 {
         w.un.copy_from_slice(&w.un_n);
     }
     // Predictor: nodes on the ground move with it (element 1 is the stiff one); a

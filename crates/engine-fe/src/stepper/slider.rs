@@ -13,7 +13,6 @@ use nalgebra::{Vector2, Vector3};
 use super::{
     Counters, Drive, FailureReason, LastIteration, Newmark, StepFailure, StepState, Workspace,
 };
-use crate::element::Element;
 use crate::model::Model;
 use crate::options::FeOptions;
 
@@ -92,7 +91,7 @@ fn assemble(model: &mut Model, q: &Vector2<f64>, xg: f64) -> ((f64, f64), [f64; 
     let e = model.slider_element();
     // The attachment is the centre of mass: its displacement is q (`point_kin` adds
     // −θ·0 = −0 to X, which leaves every value's bits as they are).
-    let (f, d) = e.trial(Vector2::new(q.x - xg, q.y));
+    let (f, d) = e.trial_contact(Vector2::new(q.x - xg, q.y));
     // `assemble_direct`'s sums from zero (0 + x is x but for the sign of a zero).
     (
         (0.0 + f.x, 0.0 + f.y),
