@@ -345,7 +345,7 @@ mod streamed_equals_whole {
     /// as the rows go by, and under vertical motion), and the 3D model's (the PEPO in plan,
     /// the RPEPO on a 10 × 2 grid): the same responses, history errors, invariants,
     /// checks, statistics and findings as the whole run, bit for bit, and the rows of its
-    /// files.
+    /// files; each run records the values the engine declares before running.
     #[test]
     fn fe_natively_on_each_of_its_recorders() {
         let fe = || {
@@ -369,8 +369,14 @@ mod streamed_equals_whole {
         ];
         for case in cases {
             let output_dt = case.run.output_dt;
-            let (whole, streamed) = both_with(case, fe());
+            let (whole, streamed) = both_with(case.clone(), fe());
             assert!(!whole.runs.is_empty());
+            // the values a row records, declared before the run (the estimates' count)
+            for r in &whole.runs {
+                let recorded = 1 + r.trace.channels.len() + 4 * r.trace.contacts.count();
+                let declared = fe()[0].recorded_values(&case, &r.variant);
+                assert_eq!(declared, Some(recorded), "{}", r.label());
+            }
             assert_same(&whole, &streamed, |w| match output_dt {
                 Some(o) => bits(&w.trace.at_output_step(o)),
                 None => bits(&w.trace),

@@ -114,6 +114,14 @@ impl Engine for Fe {
         true
     }
 
+    fn recorded_values(&self, case: &Case, variant: &str) -> Option<usize> {
+        let opts = options(case).ok()?;
+        match case.scene.spatial() {
+            Some(s) => space::recorded_values_space(case, s, variant),
+            None => simulate::recorded_values(case, variant, &opts),
+        }
+    }
+
     fn models_plan_motion(&self) -> bool {
         true
     }

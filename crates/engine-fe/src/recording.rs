@@ -79,6 +79,12 @@ pub(crate) fn layout_of_model(case: &Case, model: &Model) -> Trace {
     trace
 }
 
+/// Values one row of `layout` records: time, its channels, its contacts' fields.
+pub(crate) fn values_per_row(layout: &Trace) -> usize {
+    1 + layout.channels.len()
+        + layout.contacts.count() * rockslide_core::trace::CONTACT_FIELDS.len()
+}
+
 /// Run a built model into a trace sized for the run up front: the whole run.
 #[cfg(test)]
 pub(crate) fn run_whole(

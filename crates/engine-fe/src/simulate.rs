@@ -77,6 +77,15 @@ pub fn simulate_into<S: StepSink + ?Sized>(
     })
 }
 
+/// Values one row of `variant` of the case's 2D scene records (time, channels, the
+/// contacts' fields), or `None` when the variant does not build.
+pub(crate) fn recorded_values(case: &Case, variant: &str, opts: &FeOptions) -> Option<usize> {
+    let (model, _, _) = build_model(case, variant, opts).ok()?;
+    Some(super::recording::values_per_row(
+        &super::recording::layout_of_model(case, &model),
+    ))
+}
+
 /// The model of `variant`, its double arrangement if any, and where its rotational inertia
 /// came from (empty for an oscillator).
 fn build_model(

@@ -105,6 +105,28 @@ fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Qua
     c
 }
 
+/// The layout of a 3D run of `body`: its channels and one contact per support (its lower
+/// element), without rows.
+fn layout(body: &SpaceBody, moves_ground: bool, double: bool) -> Trace {
+    let mut layout = Trace::with_channels(&channels(body.rotation, moves_ground, double), 0);
+    let kz = body.double.map_or(body.contact.kz, |d| d.lower.kz);
+    layout.contacts = ContactBlock::for_supports(body.supports.len(), 1.0 / kz, 0);
+    layout
+}
+
+/// Values one row of `variant` of a 3D scene records (time, channels, the contacts'
+/// fields), or `None` when the variant does not build.
+pub fn recorded_values_space(case: &Case, spatial: &Spatial, variant: &str) -> Option<usize> {
+    let double = variant == variant::DOUBLE;
+    let (body, _) = body(case, spatial, double).ok()?;
+    let moves_ground = matches!(case.scene.excitation, Excitation::GroundDisplacement(_));
+    Some(crate::recording::values_per_row(&layout(
+        &body,
+        moves_ground,
+        double,
+    )))
+}
+
 /// Run `variant` of a 3D scene at step `dt`: the whole run, its trace sized up front.
 pub fn simulate_space(
     case: &Case,
@@ -150,9 +172,7 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
     let moves_ground = matches!(excitation, Excitation::GroundDisplacement(_));
     let rocking = body.rotation;
     let steps = step_count(case.run.duration, dt);
-    let mut layout = Trace::with_channels(&channels(rocking, moves_ground, double), 0);
-    let kz = body.double.map_or(body.contact.kz, |d| d.lower.kz);
-    layout.contacts = ContactBlock::for_supports(body.supports.len(), 1.0 / kz, 0);
+    let layout = layout(&body, moves_ground, double);
     sink.begin(&layout);
     let mut states = vec![ContactState::default(); body.supports.len()];
     // each support's last slip vector and its slip accumulated along the friction force
