@@ -5,6 +5,10 @@
 //! allocations whatever the length, so the count must not change with the step count; an
 //! allocation in the loop would add one per step (1000 or more here).
 //!
+//! A streamed run of every engine also holds no memory in proportion to its length: the
+//! allocator keeps each thread's live bytes and their peak, and a streamed run of N and
+//! of 10·N steps into a sink that keeps nothing must peak at the same number of bytes.
+//!
 //! Its own test binary (`[[test]] no_alloc`): the counting allocator is global to the
 //! binary it is linked into, and the other tests need not pay for it.
 
@@ -20,6 +24,9 @@ struct Counting;
 
 thread_local! {
     static ALLOCATIONS: Cell<u64> = const { Cell::new(0) };
+    /// Bytes allocated and not yet freed by this thread (frees of other threads' blocks
+    /// count against the thread that frees them), and their peak since the last reset.
+    static LIVE_BYTES: Cell<(i64, i64)> = const { Cell::new((0, 0)) };
 }
 
 fn count_one() {
@@ -27,24 +34,36 @@ fn count_one() {
     let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
 }
 
+/// `bytes` more (or, negative, fewer) live bytes on this thread.
+fn live(bytes: i64) {
+    let _ = LIVE_BYTES.try_with(|c| {
+        let (now, peak) = c.get();
+        c.set((now + bytes, peak.max(now + bytes)));
+    });
+}
+
 // SAFETY: every call is forwarded unchanged to the system allocator.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
         count_one();
+        live(layout.size() as i64);
         // SAFETY: the caller's layout, forwarded.
         unsafe { System.alloc(layout) }
     }
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
         count_one();
+        live(layout.size() as i64);
         // SAFETY: the caller's layout, forwarded.
         unsafe { System.alloc_zeroed(layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
         count_one();
+        live(new_size as i64 - layout.size() as i64);
         // SAFETY: the caller's pointer, layout and size, forwarded.
         unsafe { System.realloc(ptr, layout, new_size) }
     }
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        live(-(layout.size() as i64));
         // SAFETY: the caller's pointer and layout, forwarded.
         unsafe { System.dealloc(ptr, layout) }
     }
@@ -218,4 +237,100 @@ fn a_streamed_predictor_corrector_run_allocates_the_same_for_ten_times_the_steps
     assert_eq!(steps_long, 10 * steps);
     assert_eq!((kept, kept_long), (101, 101));
     assert_eq!(long, short);
+}
+
+/// Bytes the findings of a run 10 times longer may hold more: a digit more in each of a
+/// few step and iteration counts.
+const FINDINGS_DIGITS: i64 = 16;
+
+/// A sink that keeps nothing but the number of rows it was handed.
+#[derive(Default)]
+struct CountRows(u64);
+
+impl rockslide::engine::StepSink for CountRows {
+    fn begin(&mut self, _layout: &rockslide::trace::Trace) {}
+    fn row(&mut self, _t: f64, _values: &[f64], _contacts: &[rockslide::trace::ContactState]) {
+        self.0 += 1;
+    }
+}
+
+/// Peak live bytes above the start of a streamed run of `engine`/`variant` on `case` for
+/// `duration` into a sink that keeps nothing, and the rows it handed on.
+fn streamed_peak(engine: &dyn Engine, case: &Case, variant: &str, duration: f64) -> (i64, u64) {
+    let mut case = case.clone();
+    case.run.duration = duration;
+    let start = LIVE_BYTES.with(|c| {
+        let (now, _) = c.get();
+        c.set((now, now));
+        now
+    });
+    let mut rows = CountRows::default();
+    let run = engine
+        .run_streaming(&case, variant, DT, &mut rows)
+        .expect("the run starts");
+    let peak = LIVE_BYTES.with(Cell::get).1 - start;
+    assert!(run.status.completed(), "{}/{variant}", engine.id());
+    assert!(
+        run.trace.is_empty(),
+        "{}/{variant}: no rows kept",
+        engine.id()
+    );
+    drop(run);
+    (peak, rows.0)
+}
+
+/// Every variant of engine `id` on `case` streamed for T = `duration` and 10·T at
+/// Δt = 1 ms: the peak of live bytes is the same but for the digits the longer run's
+/// findings gain (its step and iteration counts: measured 0–3 bytes), at most
+/// [`FINDINGS_DIGITS`]; an engine holding a trace or a table per step would need ≥ 8
+/// bytes more per step, ≥ 36 kB more here.
+fn assert_streamed_memory_bounded(id: &str, name: &str, case: &Case, duration: f64) {
+    let engines = engine::all();
+    let engine = engines.iter().find(|e| e.id() == id).expect("registered");
+    assert!(engine.streams_natively(), "{id}");
+    for variant in engine.variants(&case.scene).expect("runs the case") {
+        // A first run warms whatever is set up once per process (lazy tables).
+        streamed_peak(engine.as_ref(), case, variant, duration);
+        let (short, rows) = streamed_peak(engine.as_ref(), case, variant, duration);
+        let (long, rows_long) = streamed_peak(engine.as_ref(), case, variant, 10.0 * duration);
+        eprintln!(
+            "{id}/{variant} on {name} streamed: peak {short} bytes for {rows} rows, {long} for {rows_long}"
+        );
+        assert_eq!(rows, (duration / DT).round() as u64 + 1, "{id}/{variant}");
+        assert_eq!(rows_long, 10 * (rows - 1) + 1, "{id}/{variant}");
+        assert!(
+            (short..=short + FINDINGS_DIGITS).contains(&long),
+            "{id}/{variant} on {name}: peak {short} bytes for T, {long} for 10·T"
+        );
+    }
+}
+
+/// fe streams natively (issue 18 item 3): the PEPO and the RPEPO, single and double (the
+/// RPEPO's sensitivity reruns included), and the PEPO in plan.
+#[test]
+fn a_streamed_fe_run_holds_the_same_memory_for_ten_times_the_steps() {
+    assert_streamed_memory_bounded("fe", "the PEPO", &case("pepo-mass-accel.toml"), 1.0);
+    assert_streamed_memory_bounded("fe", "the RPEPO", &case("rpepo-mass-accel.toml"), 0.5);
+    let plan = case("spatial/pepo-pulse-azimuth30.toml");
+    assert_streamed_memory_bounded("fe", "the PEPO in plan", &plan, 1.0);
+}
+
+/// rapier streams natively with its ground motion evaluated per step (no table per step):
+/// the sliding block on both ground routes, the PEPO oscillator under ground
+/// displacement, and the PEPO on its support under vertical motion.
+#[test]
+fn a_streamed_rapier_run_holds_the_same_memory_for_ten_times_the_steps() {
+    let block = case("rigid-sliding-block.toml");
+    assert_streamed_memory_bounded("rapier", "the block", &block, 1.0);
+    let pepo = case("pepo-ground-disp.toml");
+    assert_streamed_memory_bounded("rapier", "the PEPO, ground displacement", &pepo, 1.0);
+    let vertical = case("vertical/pepo-mass-accel-vertical.toml");
+    assert_streamed_memory_bounded("rapier", "the PEPO, vertical", &vertical, 1.0);
+}
+
+/// The predictor-corrector, likewise.
+#[test]
+fn a_streamed_predictor_corrector_run_holds_the_same_memory_for_ten_times_the_steps() {
+    let pepo = case("pepo-mass-accel.toml");
+    assert_streamed_memory_bounded("predictor-corrector", "the PEPO", &pepo, 1.0);
 }

@@ -10,10 +10,9 @@
 //!   written: 3.8 GB. Both computed here from those counts, and both refused under a
 //!   100 MB limit before any step runs;
 //! - a streamed run and a whole run of the same case give the same response quantities,
-//!   history errors, invariants and checks bit for bit, every engine (those that do not
-//!   stream natively run whole and forward their rows; rapier alone on each of its time
-//!   loops), and the streamed run keeps
-//!   exactly the rows the whole run's files keep;
+//!   history errors, invariants and checks bit for bit, every engine (each streams
+//!   natively; rapier alone on each of its time loops, fe alone on each of its
+//!   recorders), and the streamed run keeps exactly the rows the whole run's files keep;
 //! - the bytes per value of the estimate against the files a run writes.
 
 use std::path::Path;
@@ -138,9 +137,9 @@ mod streamed_equals_whole {
 
     fn both(case: Case) -> (CaseResult, CaseResult) {
         let engines = rockslide::engine::all();
-        // the predictor-corrector and rapier stream natively (no trace held), fe forwards
+        // every engine streams natively (no trace held)
         let native: Vec<bool> = engines.iter().map(|e| e.streams_natively()).collect();
-        assert_eq!(native, [true, false, true]);
+        assert_eq!(native, [true, true, true]);
         both_with(case, engines)
     }
 
@@ -339,6 +338,58 @@ mod streamed_equals_whole {
                 None => bits(&w.trace),
             });
         }
+    }
+    /// fe alone, streaming natively, on each of its recorders: the sliding oscillator's
+    /// (the PEPO single, under mass acceleration and ground displacement), the general one
+    /// (the PEPO double; the RPEPO single and double, whose sensitivity findings are read
+    /// as the rows go by, and under vertical motion), and the 3D model's (the PEPO in plan,
+    /// the RPEPO on a 10 × 2 grid): the same responses, history errors, invariants,
+    /// checks, statistics and findings as the whole run, bit for bit, and the rows of its
+    /// files; each run records the values the engine declares before running.
+    #[test]
+    fn fe_natively_on_each_of_its_recorders() {
+        let fe = || {
+            let mut engines = rockslide::engine::all();
+            engines.retain(|e| e.id() == "fe");
+            engines
+        };
+        let short_rpepo = ("duration = 2.0 ", "duration = 0.7 ");
+        let plan_rpepo: [(&str, &str); 3] = [
+            ("[model]\n", "[model]\nhalf_depth = 0.3\nsupport_rows = 2\n"),
+            ("cycles = 5.0 ", "cycles = 5.0\nazimuth_deg = 30 "),
+            ("duration = 2.0 ", "duration = 0.5 "),
+        ];
+        let cases = [
+            edited("pepo-mass-accel", &[]),
+            edited("pepo-ground-disp", &[]),
+            edited("rpepo-mass-accel", &[short_rpepo]),
+            edited("vertical/rpepo-mass-accel-vertical", &[]),
+            edited("spatial/pepo-pulse-azimuth30", &[]),
+            edited("rpepo-mass-accel", &plan_rpepo),
+        ];
+        for case in cases {
+            let output_dt = case.run.output_dt;
+            let (whole, streamed) = both_with(case.clone(), fe());
+            assert!(!whole.runs.is_empty());
+            // the values a row records, declared before the run (the estimates' count)
+            for r in &whole.runs {
+                let recorded = 1 + r.trace.channels.len() + 4 * r.trace.contacts.count();
+                let declared = fe()[0].recorded_values(&case, &r.variant);
+                assert_eq!(declared, Some(recorded), "{}", r.label());
+            }
+            assert_same(&whole, &streamed, |w| match output_dt {
+                Some(o) => bits(&w.trace.at_output_step(o)),
+                None => bits(&w.trace),
+            });
+        }
+        // the sensitivity findings (read as the rows go by) are among those compared
+        let (whole, _) = both_with(edited("rpepo-mass-accel", &[short_rpepo]), fe());
+        assert!(
+            whole.runs[0]
+                .findings
+                .iter()
+                .any(|f| f.starts_with("sensitivity — rotational inertia ×10: peak |sliding|"))
+        );
     }
 }
 

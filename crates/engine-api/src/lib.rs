@@ -240,6 +240,7 @@ impl StepSink for TraceSink {
             ContactBlock::with_contacts(&names, &layout.contacts.compliance, self.rows);
     }
 
+    #[inline]
     fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
         self.trace.push(t, values);
         self.trace.contacts.push(t, contacts);

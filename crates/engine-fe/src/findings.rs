@@ -1,7 +1,9 @@
 //! What an fe run found about itself, reported as findings: the model's eigenfrequencies,
 //! the series stiffness of a double arrangement and the node-versus-slip check, the
 //! Newton statistics, and for a rocking body the sensitivity to the rotational inertia
-//! and to the kinematics (the run repeated with each alternative).
+//! and to the kinematics (the run repeated with each alternative). A rocking run's headline
+//! numbers for those findings are read as it runs ([`Summary`], a [`StepSink`]), so
+//! neither the run nor its alternatives keep a trace for them.
 
 use super::model::Model;
 use super::modes::eigenfrequencies;
@@ -9,8 +11,8 @@ use super::options::{FeOptions, Kinematics};
 use super::recording::{SelfCheck, run_model};
 use super::stepper::Counters;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
-use rockslide_core::trace::Trace;
-use rockslide_engine_api::RunStatus;
+use rockslide_core::trace::{ContactState, Trace};
+use rockslide_engine_api::{RunStatus, StepSink};
 
 const PI: f64 = std::f64::consts::PI;
 
@@ -21,7 +23,8 @@ pub(crate) struct Findings<'a> {
     pub double: Option<&'a DoubleContact>,
     pub opts: &'a FeOptions,
     pub dt: f64,
-    pub trace: &'a Trace,
+    /// The run's headline numbers, read as it ran (a rocking run with sensitivity on).
+    pub summary: Option<&'a Summary>,
     pub status: &'a RunStatus,
     pub counters: Counters,
     pub check: SelfCheck,
@@ -35,7 +38,7 @@ pub(crate) fn findings(run: &Findings) -> Vec<String> {
         double,
         opts,
         dt,
-        trace,
+        summary,
         status,
         counters,
         check,
@@ -110,8 +113,7 @@ pub(crate) fn findings(run: &Findings) -> Vec<String> {
         counters.step_cuts,
         counters.roundoff_accepted
     ));
-    if rocking && opts.sensitivity && status.completed() {
-        let base = Summary::of(trace);
+    if let (true, Some(base)) = (rocking && opts.sensitivity && status.completed(), summary) {
         findings.push(format!("this run: {}", base.describe()));
         let mut alternatives: Vec<(String, Model)> = Vec::new();
         for factor in [0.1, 10.0, 100.0] {
@@ -129,12 +131,10 @@ pub(crate) fn findings(run: &Findings) -> Vec<String> {
             ));
         }
         for (label, m) in alternatives {
-            let (tr, st, _, _) = run_model(case, m, dt, opts);
+            let mut alternative = Summary::default();
+            let (st, _, _) = run_model(case, m, dt, opts, &mut alternative);
             if st.completed() {
-                findings.push(format!(
-                    "sensitivity — {label}: {}",
-                    Summary::of(&tr).describe()
-                ));
+                findings.push(format!("sensitivity — {label}: {}", alternative.describe()));
             } else {
                 findings.push(format!("sensitivity — {label}: {st}"));
             }
@@ -143,8 +143,14 @@ pub(crate) fn findings(run: &Findings) -> Vec<String> {
     findings
 }
 
-/// Headline numbers of a rocking run, for sensitivity findings.
-struct Summary {
+/// Headline numbers of a rocking run, for sensitivity findings, read row by row as the
+/// run is recorded (a [`StepSink`] that keeps no rows): the peak |sliding| and |rotation|,
+/// the peak uplift, the range of the centre of mass's height and the first row with no
+/// contact, each folded in row order as over the whole columns.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Summary {
+    /// Columns of slide, rotation, uplift, cm_z and contacts (absent: `None`).
+    columns: [Option<usize>; 5],
     slide: f64,
     rotation: f64,
     uplift: f64,
@@ -152,25 +158,78 @@ struct Summary {
     liftoff: Option<f64>,
 }
 
-impl Summary {
-    fn of(t: &Trace) -> Self {
-        let col = |k: &str| t.column(k).unwrap_or(&[]);
-        let peak = |k: &str| col(k).iter().fold(0.0_f64, |m, x| m.max(x.abs()));
-        let cz = col("cm_z");
+impl Default for Summary {
+    fn default() -> Self {
         Summary {
-            slide: peak("slide"),
-            rotation: peak("rotation"),
-            uplift: col("uplift").iter().copied().fold(0.0, f64::max),
-            cm_z: (
-                cz.iter().copied().fold(f64::INFINITY, f64::min),
-                cz.iter().copied().fold(f64::NEG_INFINITY, f64::max),
-            ),
-            liftoff: col("contacts")
-                .iter()
-                .position(|&c| c <= 0.0)
-                .map(|i| t.time[i]),
+            columns: [None; 5],
+            slide: 0.0,
+            rotation: 0.0,
+            uplift: 0.0,
+            cm_z: (f64::INFINITY, f64::NEG_INFINITY),
+            liftoff: None,
         }
     }
+}
+
+impl StepSink for Summary {
+    fn begin(&mut self, layout: &Trace) {
+        let column = |key: &str| layout.channels.iter().position(|q| q.key == key);
+        self.columns = ["slide", "rotation", "uplift", "cm_z", "contacts"].map(column);
+    }
+
+    fn row(&mut self, t: f64, values: &[f64], _contacts: &[ContactState]) {
+        let [slide, rotation, uplift, cm_z, contacts] = self.columns.map(|c| c.map(|c| values[c]));
+        if let Some(x) = slide {
+            self.slide = self.slide.max(x.abs());
+        }
+        if let Some(x) = rotation {
+            self.rotation = self.rotation.max(x.abs());
+        }
+        if let Some(x) = uplift {
+            self.uplift = f64::max(self.uplift, x);
+        }
+        if let Some(z) = cm_z {
+            self.cm_z = (f64::min(self.cm_z.0, z), f64::max(self.cm_z.1, z));
+        }
+        if let (None, Some(c)) = (self.liftoff, contacts)
+            && c <= 0.0
+        {
+            self.liftoff = Some(t);
+        }
+    }
+}
+
+/// A sink that reads a [`Summary`] of every row it hands on to another sink.
+pub(crate) struct Summarised<'a, S: StepSink + ?Sized> {
+    /// The run's summary so far.
+    pub summary: Summary,
+    /// Where the rows go.
+    sink: &'a mut S,
+}
+
+impl<'a, S: StepSink + ?Sized> Summarised<'a, S> {
+    /// Summarise the rows handed on to `sink`.
+    pub fn new(sink: &'a mut S) -> Self {
+        Self {
+            summary: Summary::default(),
+            sink,
+        }
+    }
+}
+
+impl<S: StepSink + ?Sized> StepSink for Summarised<'_, S> {
+    fn begin(&mut self, layout: &Trace) {
+        self.summary.begin(layout);
+        self.sink.begin(layout);
+    }
+
+    fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
+        self.summary.row(t, values, contacts);
+        self.sink.row(t, values, contacts);
+    }
+}
+
+impl Summary {
     fn describe(&self) -> String {
         format!(
             "peak |sliding| {:.3} mm, peak |rotation| {:.3} mrad, peak uplift {:.3} mm, CM vertical {:.3} … {:.3} mm, first full lift-off {}",

@@ -13,7 +13,8 @@
 //! - `modes`: the model's own eigenfrequencies.
 //! - `options`: the `[engines.fe]` options.
 //! - `simulate`: one run: build the model, integrate, gather settings and findings.
-//! - `recording`: the trace channels and the row recorded at every step.
+//! - `recording`: the trace channels and the row handed to a sink at every step (the
+//!   engine streams natively: a whole run is the same loop into a trace sized up front).
 //! - `energy`: the energy bookkeeping of rocking runs.
 //! - `findings`: eigenfrequencies, self-checks and sensitivity reported as findings.
 //! - `vertical`: vertical ground motion as an inertial load (issue 15).
@@ -36,11 +37,11 @@ pub use element::{Contact178, ContactState, Element, Status};
 pub use model::{Model, default_rotational_inertia};
 pub use modes::{Modes, eigenfrequencies};
 pub use options::{FeOptions, Integrator, Kinematics, Newton, OPTION_KEYS};
-pub use simulate::simulate;
+pub use simulate::{simulate, simulate_into};
 
 use rockslide_core::case::{Case, Model as SceneModel, Scene};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Engine, NotApplicable, Run};
+use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink};
 
 /// Variant names.
 pub mod variant {
@@ -88,17 +89,49 @@ impl Engine for Fe {
     }
 
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
-        let (opts, errors) = FeOptions::parse(case);
-        if let Some(e) = errors.into_iter().next() {
-            return Err(e);
-        }
+        let opts = options(case)?;
         match case.scene.spatial() {
             Some(s) => space::simulate_space(case, s, variant, dt, &opts),
             None => simulate(case, variant, dt, &opts),
         }
     }
 
+    fn run_streaming(
+        &self,
+        case: &Case,
+        variant: &str,
+        dt: f64,
+        sink: &mut dyn StepSink,
+    ) -> Result<Run, InputError> {
+        let opts = options(case)?;
+        match case.scene.spatial() {
+            Some(s) => space::simulate_space_into(case, s, variant, dt, &opts, sink),
+            None => simulate_into(case, variant, dt, &opts, sink),
+        }
+    }
+
+    fn streams_natively(&self) -> bool {
+        true
+    }
+
+    fn recorded_values(&self, case: &Case, variant: &str) -> Option<usize> {
+        let opts = options(case).ok()?;
+        match case.scene.spatial() {
+            Some(s) => space::recorded_values_space(case, s, variant),
+            None => simulate::recorded_values(case, variant, &opts),
+        }
+    }
+
     fn models_plan_motion(&self) -> bool {
         true
+    }
+}
+
+/// The case's `[engines.fe]` options, or the first error in them.
+fn options(case: &Case) -> Result<FeOptions, InputError> {
+    let (opts, errors) = FeOptions::parse(case);
+    match errors.into_iter().next() {
+        Some(e) => Err(e),
+        None => Ok(opts),
     }
 }

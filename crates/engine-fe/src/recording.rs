@@ -1,6 +1,8 @@
-//! The time loop's recorder: which channels a scene's trace has, and the row written at
-//! every converged step (relative quantities: mass or base point O against the ground;
-//! energy terms for rocking bodies).
+//! The time loop's recorder: which channels a scene's trace has, and the row handed to a
+//! [`StepSink`] at every converged step (relative quantities: mass or base point O against
+//! the ground; energy terms for rocking bodies). The recorder holds no rows: a whole run
+//! hands them to engine-api's `TraceSink` sized up front, a streamed run
+//! to the caller's sink, so a streamed run's memory does not grow with its length.
 
 use nalgebra::Vector2;
 
@@ -10,7 +12,7 @@ use super::options::FeOptions;
 use super::stepper::{Counters, Drive, Snapshot, integrate};
 use rockslide_core::case::{Case, Model as SceneModel};
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
-use rockslide_engine_api::{RunStatus, step_count};
+use rockslide_engine_api::{RunStatus, StepSink, step_count};
 
 /// Self-checks gathered while recording.
 #[derive(Debug, Clone, Copy, Default)]
@@ -59,13 +61,52 @@ fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Qua
     c
 }
 
-/// Run a built model and record its trace.
-pub(crate) fn run_model(
+/// The layout of a model's trace: its channels and one contact per support (its ground
+/// element: element 1 in the double arrangement), without rows.
+pub(crate) fn layout_of_model(case: &Case, model: &Model) -> Trace {
+    let moves_ground = matches!(
+        case.scene.excitation,
+        rockslide_core::case::Excitation::GroundDisplacement(_)
+    );
+    let rocking = model.body.rotation;
+    let double = model.nodes > 0;
+    let mut trace = Trace::with_channels(&channels(rocking, moves_ground, double), 0);
+    let ground_kz = model
+        .supports
+        .first()
+        .map_or(0.0, |s| model.links[s.ground_link].element.kz);
+    trace.contacts = ContactBlock::for_supports(model.supports.len(), 1.0 / ground_kz, 0);
+    trace
+}
+
+/// Values one row of `layout` records: time, its channels, its contacts' fields.
+pub(crate) fn values_per_row(layout: &Trace) -> usize {
+    1 + layout.channels.len()
+        + layout.contacts.count() * rockslide_core::trace::CONTACT_FIELDS.len()
+}
+
+/// Run a built model into a trace sized for the run up front: the whole run.
+#[cfg(test)]
+pub(crate) fn run_whole(
+    case: &Case,
+    model: Model,
+    dt: f64,
+    opts: &FeOptions,
+) -> (Trace, RunStatus, Counters, SelfCheck) {
+    let mut sink = rockslide_engine_api::TraceSink::sized(step_count(case.run.duration, dt) + 1);
+    let (status, counters, check) = run_model(case, model, dt, opts, &mut sink);
+    (sink.trace, status, counters, check)
+}
+
+/// Run a built model, handing its layout and then every recorded row to `sink`: generic
+/// over the sink, so that the whole run (engine-api's `TraceSink`) is compiled for its own sink.
+pub(crate) fn run_model<S: StepSink + ?Sized>(
     case: &Case,
     mut model: Model,
     dt: f64,
     opts: &FeOptions,
-) -> (Trace, RunStatus, Counters, SelfCheck) {
+    sink: &mut S,
+) -> (RunStatus, Counters, SelfCheck) {
     let excitation = &case.scene.excitation;
     let moves_ground = matches!(
         excitation,
@@ -73,15 +114,8 @@ pub(crate) fn run_model(
     );
     let rocking = model.body.rotation;
     let double = model.nodes > 0;
-    let chans = channels(rocking, moves_ground, double);
     let steps = step_count(case.run.duration, dt);
-    let mut trace = Trace::with_channels(&chans, steps + 1);
-    // One contact per support: its ground element (element 1 in the double arrangement).
-    let ground_kz = model
-        .supports
-        .first()
-        .map_or(0.0, |s| model.links[s.ground_link].element.kz);
-    trace.contacts = ContactBlock::for_supports(model.supports.len(), 1.0 / ground_kz, steps + 1);
+    sink.begin(&layout_of_model(case, &model));
     let mut states = vec![ContactState::default(); model.supports.len()];
     let drive = Drive::new(excitation, model.body.mass)
         .with_vertical(case.scene.vertical().map(|v| &v.signal));
@@ -95,10 +129,9 @@ pub(crate) fn run_model(
     if model.is_slider() && !rocking {
         let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
             let (values, contact) = slider_row(m, s, &drive, moves_ground, &mut check, &mut row);
-            trace.push(s.t, values);
-            trace.contacts.push(s.t, &[contact]);
+            sink.row(s.t, values, &[contact]);
         });
-        return (trace, status, counters, check);
+        return (status, counters, check);
     }
     let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s: &Snapshot| {
         let (xg, vg, ag) = s.ground;
@@ -172,10 +205,9 @@ pub(crate) fn run_model(
                 put(v);
             }
         }
-        trace.push(s.t, &row[..i]);
-        trace.contacts.push(s.t, &states);
+        sink.row(s.t, &row[..i], &states);
     });
-    (trace, status, counters, check)
+    (status, counters, check)
 }
 
 /// The sliding oscillator's row (`Model::is_slider`, not rocking): the general recorder's

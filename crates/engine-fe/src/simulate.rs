@@ -1,20 +1,49 @@
 //! Running one variant of a scene: build the model from the scene, integrate it
 //! (`recording`), and gather what the run used and found (`findings`) into a [`Run`].
+//! The rows go to a [`StepSink`] as they are recorded: a whole run ([`simulate`]) keeps
+//! them in a [`TraceSink`] sized up front, a streamed run ([`simulate_into`]) hands them
+//! on and holds none (what the findings read of the rows is a running summary).
 
-use super::findings::{Findings, findings};
+use super::findings::{Findings, Summarised, findings};
 use super::model::{Model, default_rotational_inertia};
 use super::options::{FeOptions, Integrator};
 use super::recording::run_model;
 use super::variant;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Run, SolverStats};
+use rockslide_engine_api::{Run, SolverStats, StepSink, TraceSink, step_count};
 
-/// Run `variant` of the case's scene at time step `dt` with `opts`.
+/// Run `variant` of the case's scene at time step `dt` with `opts`: the whole run, its
+/// trace sized for the run up front.
 pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result<Run, InputError> {
+    let mut rows = TraceSink::sized(step_count(case.run.duration, dt) + 1);
+    let mut run = simulate_into(case, variant, dt, opts, &mut rows)?;
+    run.trace = rows.trace;
+    Ok(run)
+}
+
+/// Run `variant` of the case's scene at time step `dt` with `opts`, handing the layout
+/// and every recorded row to `sink`: the returned run's trace is the layout (channels,
+/// contact names and compliances) without rows.
+pub fn simulate_into<S: StepSink + ?Sized>(
+    case: &Case,
+    variant: &str,
+    dt: f64,
+    opts: &FeOptions,
+    sink: &mut S,
+) -> Result<Run, InputError> {
     let (model, double, inertia_note) = build_model(case, variant, opts)?;
     let rocking = model.body.rotation;
-    let (trace, status, counters, check) = run_model(case, model.clone(), dt, opts);
+    // The sensitivity findings compare the run's headline numbers with its alternatives':
+    // read as the rows go by, only where they are reported.
+    let (status, counters, check, summary) = if rocking && opts.sensitivity {
+        let mut summarised = Summarised::new(sink);
+        let (status, counters, check) = run_model(case, model.clone(), dt, opts, &mut summarised);
+        (status, counters, check, Some(summarised.summary))
+    } else {
+        let (status, counters, check) = run_model(case, model.clone(), dt, opts, sink);
+        (status, counters, check, None)
+    };
     let settings = settings(case, dt, opts, rocking, double.is_some(), inertia_note);
     let findings = findings(&Findings {
         case,
@@ -22,7 +51,7 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
         double: double.as_ref(),
         opts,
         dt,
-        trace: &trace,
+        summary: summary.as_ref(),
         status: &status,
         counters,
         check,
@@ -42,10 +71,19 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
             roundoff_accepted: Some(counters.roundoff_accepted),
         },
         findings,
-        trace,
+        trace: super::recording::layout_of_model(case, &model),
         status,
         wall_seconds: 0.0,
     })
+}
+
+/// Values one row of `variant` of the case's 2D scene records (time, channels, the
+/// contacts' fields), or `None` when the variant does not build.
+pub(crate) fn recorded_values(case: &Case, variant: &str, opts: &FeOptions) -> Option<usize> {
+    let (model, _, _) = build_model(case, variant, opts).ok()?;
+    Some(super::recording::values_per_row(
+        &super::recording::layout_of_model(case, &model),
+    ))
 }
 
 /// The model of `variant`, its double arrangement if any, and where its rotational inertia
@@ -194,6 +232,7 @@ fn settings(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::recording::run_whole;
     use std::path::Path;
 
     fn case(name: &str) -> Case {
@@ -218,8 +257,8 @@ mod tests {
         nodes.condensed = false;
 
         let dt = 1e-3;
-        let (a, sa, ca, _) = run_model(&case, model, dt, &opts);
-        let (b, sb, cb, _) = run_model(&case, nodes, dt, &opts);
+        let (a, sa, ca, _) = run_whole(&case, model, dt, &opts);
+        let (b, sb, cb, _) = run_whole(&case, nodes, dt, &opts);
         assert!(sa.completed() && sb.completed());
         let mut worst = 0.0_f64;
         for (x, y) in a.columns.iter().zip(&b.columns) {
@@ -252,8 +291,8 @@ mod tests {
             let mut general = model.clone();
             general.condensed = false;
             assert!(!general.is_slider());
-            let (a, sa, ca, _) = run_model(&case, model, 1e-3, &opts);
-            let (b, sb, cb, _) = run_model(&case, general, 1e-3, &opts);
+            let (a, sa, ca, _) = run_whole(&case, model, 1e-3, &opts);
+            let (b, sb, cb, _) = run_whole(&case, general, 1e-3, &opts);
             assert!(sa.completed() && sb.completed(), "{name}");
             assert_eq!(ca, cb, "{name}");
             let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
@@ -276,7 +315,7 @@ mod tests {
         let mut nodes = model.clone();
         nodes.condensed = false;
         let peaks = |m: Model| {
-            let (trace, status, _, _) = run_model(&case, m, 1e-3, &opts);
+            let (trace, status, _, _) = run_whole(&case, m, 1e-3, &opts);
             assert!(status.completed());
             let peak = |key: &str| {
                 let column = trace.column(key).expect("a channel");

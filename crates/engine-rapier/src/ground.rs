@@ -1,6 +1,8 @@
 //! Ground motion as the rigid-body engine feeds it to rapier: the ground's displacement
-//! and velocity at every step time, precomputed before the time loop so the loop does not
-//! allocate. The two routes read the same tables:
+//! and velocity at every step time, evaluated when the time loop asks for it (the same
+//! function of the step time, so the same bits, as the tables of one entry per step it
+//! replaces), so that a run holds no memory in proportion to its length and its loop does
+//! not allocate. The two routes read the same ground:
 //!
 //! - *kinematic ground*: the ground body is moved to xg(t_{n+1}) each step, so the
 //!   velocity the contact sees over the step is (xg(n+1) − xg(n))/Δt;
@@ -14,6 +16,8 @@
 //! between samples (the acceleration is piecewise linear). Both routes read that one
 //! ground, so they can be compared with each other; the run's settings name it.
 
+use std::cell::Cell;
+
 use rockslide_core::case::record::{Baseline, GroundMotion, integrate};
 use rockslide_core::case::{Excitation, Signal};
 
@@ -22,22 +26,26 @@ use rockslide_core::case::{Excitation, Signal};
 /// other engines see the same acceleration), docs/records-and-studies.md.
 pub const RECORD_BASELINE: Baseline = Baseline::None;
 
-/// Ground displacement and (right-continuous) ground velocity at the step times.
-#[derive(Debug, Clone, PartialEq)]
-pub struct GroundTable {
-    /// xg(t_n), m.
-    pub disp: Vec<f64>,
-    /// vg(t_n⁺), m/s.
-    pub vel: Vec<f64>,
-    /// The vertical ground motion at the same times, if the scene has one (`vertical`).
-    pub vertical: Option<super::vertical::VerticalTable>,
+/// One horizontal (or vertical) ground motion at the step times `t_k = k·dt`:
+/// displacement and right-continuous velocity computed at each step time asked for. A
+/// recorded acceleration is integrated once, at its own samples (memory in proportion to
+/// the record, not to the run). The loop asks for each step time a few times (a step
+/// drives with k and k + 1, the recorder reads k): the last two are kept.
+#[derive(Debug, Clone)]
+pub struct GroundAt {
+    /// The excitation the ground follows.
+    excitation: Excitation,
+    /// A recorded acceleration integrated at its samples: (sample step, motion).
+    record: Option<(f64, GroundMotion)>,
+    /// Step, s.
+    dt: f64,
+    /// The last step times evaluated: (k, xg, vg), the older first (`usize::MAX`: none).
+    recent: Cell<[(usize, f64, f64); 2]>,
 }
 
-impl GroundTable {
-    /// Tables for `n + 1` step times `t_k = k·dt`.
-    pub fn new(excitation: &Excitation, dt: f64, n: usize) -> Self {
-        let mut disp = Vec::with_capacity(n + 1);
-        let mut vel = Vec::with_capacity(n + 1);
+impl GroundAt {
+    /// The motion of `excitation` at step times `k·dt`.
+    pub fn new(excitation: &Excitation, dt: f64) -> Self {
         // A record is integrated once, at its samples (O(samples), not per step time).
         let record = match excitation {
             Excitation::GroundAcceleration(Signal::Record {
@@ -45,36 +53,94 @@ impl GroundTable {
             }) => Some((*rdt, integrate(*rdt, samples, RECORD_BASELINE))),
             _ => None,
         };
-        for k in 0..=n {
-            let t = k as f64 * dt;
-            let (x, v) = match (excitation, &record) {
-                (_, Some((rdt, m))) => record_at(m, *rdt, t),
-                (Excitation::GroundDisplacement(s), _) => (s.value(t), s.derivative(t)),
-                (Excitation::GroundAcceleration(s), _) => integrated(s, t),
-                (Excitation::None | Excitation::MassAcceleration(_), _) => (0.0, 0.0),
-            };
-            disp.push(x);
-            vel.push(v);
-        }
         Self {
-            disp,
-            vel,
+            excitation: excitation.clone(),
+            record,
+            dt,
+            recent: Cell::new([(usize::MAX, 0.0, 0.0); 2]),
+        }
+    }
+
+    /// (xg(t_k), vg(t_k⁺)).
+    #[inline]
+    pub fn at(&self, k: usize) -> (f64, f64) {
+        let recent = self.recent.get();
+        for &(j, x, v) in recent.iter().rev() {
+            if j == k {
+                return (x, v);
+            }
+        }
+        let (x, v) = self.evaluate(k);
+        self.recent.set([recent[1], (k, x, v)]);
+        (x, v)
+    }
+
+    /// xg(t_k), m.
+    #[inline]
+    pub fn disp(&self, k: usize) -> f64 {
+        self.at(k).0
+    }
+
+    /// vg(t_k⁺), m/s.
+    #[inline]
+    pub fn vel(&self, k: usize) -> f64 {
+        self.at(k).1
+    }
+
+    /// The motion at step time `k·dt`, computed.
+    fn evaluate(&self, k: usize) -> (f64, f64) {
+        let t = k as f64 * self.dt;
+        match (&self.excitation, &self.record) {
+            (_, Some((rdt, m))) => record_at(m, *rdt, t),
+            (Excitation::GroundDisplacement(s), _) => (s.value(t), s.derivative(t)),
+            (Excitation::GroundAcceleration(s), _) => integrated(s, t),
+            (Excitation::None | Excitation::MassAcceleration(_), _) => (0.0, 0.0),
+        }
+    }
+}
+
+/// Ground displacement and (right-continuous) ground velocity at the step times, and the
+/// vertical ground motion at the same times if the scene has one.
+#[derive(Debug, Clone)]
+pub struct GroundTable {
+    /// The horizontal motion.
+    horizontal: GroundAt,
+    /// The vertical ground motion at the same times, if the scene has one (`vertical`).
+    pub vertical: Option<super::vertical::VerticalTable>,
+}
+
+impl GroundTable {
+    /// The ground at step times `t_k = k·dt`.
+    pub fn new(excitation: &Excitation, dt: f64) -> Self {
+        Self {
+            horizontal: GroundAt::new(excitation, dt),
             vertical: None,
         }
     }
 
-    /// The same tables with the scene's vertical ground motion (if any) at the same times.
+    /// The same ground with the scene's vertical ground motion (if any) at the same times.
     pub fn with_vertical(self, vertical: Option<&rockslide_core::case::Vertical>, dt: f64) -> Self {
-        let n = self.disp.len() - 1;
         Self {
-            vertical: vertical.map(|v| super::vertical::VerticalTable::new(v, dt, n)),
+            vertical: vertical.map(|v| super::vertical::VerticalTable::new(v, dt)),
             ..self
         }
     }
 
+    /// xg(t_k), m.
+    #[inline]
+    pub fn disp(&self, k: usize) -> f64 {
+        self.horizontal.disp(k)
+    }
+
+    /// vg(t_k⁺), m/s.
+    #[inline]
+    pub fn vel(&self, k: usize) -> f64 {
+        self.horizontal.vel(k)
+    }
+
     /// Mean ground acceleration over step `k → k+1`, m/s² (velocity jumps included).
     pub fn mean_acceleration(&self, k: usize, dt: f64) -> f64 {
-        (self.vel[k + 1] - self.vel[k]) / dt
+        (self.vel(k + 1) - self.vel(k)) / dt
     }
 }
 
@@ -93,7 +159,7 @@ fn integrated(s: &Signal, t: f64) -> (f64, f64) {
             let x = a / w * (tt - (w * tt).sin() / w);
             (x + v * (t - tt), v)
         }
-        // (`GroundTable::new` integrates a record once; this per-time path is not used.)
+        // (`GroundAt::new` integrates a record once; this per-time path is not used.)
         Signal::Record { dt, samples, .. } => {
             record_at(&integrate(*dt, samples, RECORD_BASELINE), *dt, t)
         }
@@ -131,11 +197,11 @@ mod tests {
             omega: std::f64::consts::PI,
             cycles: 0.5,
         };
-        let g = GroundTable::new(&Excitation::GroundAcceleration(s), 0.5, 4);
+        let g = GroundTable::new(&Excitation::GroundAcceleration(s), 0.5);
         let v_end = 4.0 / std::f64::consts::PI;
-        assert!((g.vel[2] - v_end).abs() < 1e-12);
-        assert!((g.vel[4] - v_end).abs() < 1e-12);
-        assert!((g.disp[4] - g.disp[2] - v_end).abs() < 1e-12);
+        assert!((g.vel(2) - v_end).abs() < 1e-12);
+        assert!((g.vel(4) - v_end).abs() < 1e-12);
+        assert!((g.disp(4) - g.disp(2) - v_end).abs() < 1e-12);
     }
 
     #[test]
@@ -145,12 +211,12 @@ mod tests {
             omega: std::f64::consts::PI,
             cycles: 0.5,
         };
-        let g = GroundTable::new(&Excitation::GroundDisplacement(s), 0.5, 3);
+        let g = GroundTable::new(&Excitation::GroundDisplacement(s), 0.5);
         assert!(
-            (g.vel[0] - std::f64::consts::PI).abs() < 1e-12,
+            (g.vel(0) - std::f64::consts::PI).abs() < 1e-12,
             "vg(0+) = Aθ"
         );
-        assert_eq!(g.vel[2], 0.0, "vg(td+) = 0");
+        assert_eq!(g.vel(2), 0.0, "vg(td+) = 0");
     }
 
     #[test]
@@ -165,21 +231,21 @@ mod tests {
         };
         let m = integrate(0.1, &acc, RECORD_BASELINE);
         // Step 0.025 s: 4 step times per sample; at samples the table equals `integrate`.
-        let g = GroundTable::new(&Excitation::GroundAcceleration(s), 0.025, 48);
+        let g = GroundTable::new(&Excitation::GroundAcceleration(s), 0.025);
         for i in 0..11 {
             assert!(
-                (g.disp[4 * i] - m.disp[i]).abs() < 1e-14,
+                (g.disp(4 * i) - m.disp[i]).abs() < 1e-14,
                 "disp at sample {i}"
             );
-            assert!((g.vel[4 * i] - m.vel[i]).abs() < 1e-14, "vel at sample {i}");
+            assert!((g.vel(4 * i) - m.vel[i]).abs() < 1e-14, "vel at sample {i}");
         }
         // Between samples: the corrected acceleration is linear, so v is the exact
         // quadratic; check the midpoint against Simpson on the corrected a (exact here).
         let (a0, a1) = (m.acc[3], m.acc[4]);
         let v_mid = m.vel[3] + 0.05 * (a0 + (a0 + a1) / 2.0) / 2.0;
-        assert!((g.vel[14] - v_mid).abs() < 1e-14);
+        assert!((g.vel(14) - v_mid).abs() < 1e-14);
         // After the record the ground coasts at its last velocity.
-        assert!((g.vel[48] - m.vel[10]).abs() < 1e-14);
-        assert!((g.disp[48] - m.disp[10] - 0.2 * m.vel[10]).abs() < 1e-14);
+        assert!((g.vel(48) - m.vel[10]).abs() < 1e-14);
+        assert!((g.disp(48) - m.disp[10] - 0.2 * m.vel[10]).abs() < 1e-14);
     }
 }

@@ -83,7 +83,7 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
         Drive::KinematicGround => {
             let ground = &mut rig.world.bodies[rig.ground];
             let y = ground.translation().y;
-            ground.set_next_kinematic_translation(Vector::new(g.disp[k + 1], y, 0.0));
+            ground.set_next_kinematic_translation(Vector::new(g.disp(k + 1), y, 0.0));
         }
     }
     super::vertical::drive_step(rig, drive, g, k, dt);
@@ -122,7 +122,7 @@ pub fn run_oscillator(
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in, n * stride);
+    let g = GroundTable::new(ex, dt_in);
     let moves = ex.moves_ground();
     let mut channels: Vec<&'static Quantity> = q::sliding(moves);
     channels.push(&q::NORMAL);
@@ -177,7 +177,7 @@ pub fn run_oscillator(
             xf,
             v,
             a,
-            g.disp[k],
+            g.disp(k),
             normal,
         ];
         let len = row.len();
@@ -240,7 +240,7 @@ fn oscillator_contact(
 /// velocity) for a kinematic ground, zero for a fixed one.
 pub(crate) fn ground_frame(drive: Drive, g: &GroundTable, k: usize) -> (f64, f64) {
     if drive == Drive::KinematicGround {
-        (g.disp[k], g.vel[k])
+        (g.disp(k), g.vel(k))
     } else {
         (0.0, 0.0)
     }
@@ -249,9 +249,9 @@ pub(crate) fn ground_frame(drive: Drive, g: &GroundTable, k: usize) -> (f64, f64
 /// With the inertial-force route a ground velocity that jumps at t = 0 gives every body
 /// the relative velocity −vg(0⁺) in the ground's frame.
 pub(crate) fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable) {
-    if drive == Drive::InertialForce && g.vel[0] != 0.0 {
+    if drive == Drive::InertialForce && g.vel(0) != 0.0 {
         for &(h, _) in &rig.inertial_masses {
-            rig.world.bodies[h].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
+            rig.world.bodies[h].set_linvel(Vector::new(-g.vel(0), 0.0, 0.0), false);
         }
     }
 }
@@ -369,7 +369,7 @@ pub fn run_block(
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in, n * stride).with_vertical(vertical, dt_in);
+    let g = GroundTable::new(ex, dt_in).with_vertical(vertical, dt_in);
     let channels = block_channels(ex.moves_ground());
     // One contact, the block's base on the ground (rigid rapier contact).
     let trace = layout(&channels, 1, 0.0);
@@ -380,8 +380,8 @@ pub fn run_block(
     // static sink of rapier's soft contact (g/ω², ω = 2π·30 Hz).
     let soft_sink = grav / (2.0 * std::f64::consts::PI * 30.0_f64).powi(2);
     let contact_gap = (1e-3 * bw).max(2.0 * soft_sink);
-    if drive == Drive::InertialForce && g.vel[0] != 0.0 {
-        rig.world.bodies[rig.structure].set_linvel(Vector::new(-g.vel[0], 0.0, 0.0), false);
+    if drive == Drive::InertialForce && g.vel(0) != 0.0 {
+        rig.world.bodies[rig.structure].set_linvel(Vector::new(-g.vel(0), 0.0, 0.0), false);
     }
     // Horizontal positions are measured from the block standing flat at x = 0 (the
     // world is built that way), so a tilted start shows its offset as the reference does.
@@ -419,7 +419,7 @@ pub fn run_block(
         let ag = if k == 0 {
             0.0
         } else {
-            (g.vel[k] - g.vel[k - stride]) / dt
+            (g.vel(k) - g.vel(k - stride)) / dt
         };
         let f_true = match ex {
             Excitation::MassAcceleration(s) if k > 0 => m * mean_over_step(s, t - dt, dt),
@@ -472,7 +472,7 @@ pub fn run_block(
             uplift.max(0.0),
             n_contact,
             normal,
-            g.disp[k],
+            g.disp(k),
         ];
         let len = row.len();
         row.copy_from_slice(&vals[..len]);
@@ -561,7 +561,7 @@ pub fn run_rocking(
     sink: &mut dyn StepSink,
 ) -> Outcome {
     let n = step_count(duration, dt);
-    let g = GroundTable::new(ex, dt, n);
+    let g = GroundTable::new(ex, dt);
     let moves = ex.moves_ground();
     let channels = rocking_channels(moves);
     settle(&mut rig, settle_steps);
@@ -638,7 +638,7 @@ pub fn run_rocking(
             uplift.max(0.0),
             contacts,
             normal,
-            g.disp[k],
+            g.disp(k),
         ];
         let len = row.len();
         row.copy_from_slice(&vals[..len]);
@@ -694,7 +694,7 @@ pub fn run_rocking_joint_limit(
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in, n * stride).with_vertical(vertical, dt_in);
+    let g = GroundTable::new(ex, dt_in).with_vertical(vertical, dt_in);
     let moves = ex.moves_ground();
     let channels = rocking_channels(moves);
     // One contact per support: the vertical spring (compression only, compliance 1/Kz)
@@ -752,7 +752,7 @@ pub fn run_rocking_joint_limit(
             uplift.max(0.0),
             contacts,
             normal,
-            g.disp[k],
+            g.disp(k),
         ];
         let len = row.len();
         row.copy_from_slice(&vals[..len]);

@@ -137,11 +137,11 @@ impl<'a> PlanDrive<'a> {
             .as_ref()
             .map_or(Excitation::None, |s| same_kind(ex, s.clone()));
         let (e1, e2) = (spatial.first_direction(), spatial.second_direction());
-        let g1 = GroundTable::new(ex, dt, n);
-        let g2 = GroundTable::new(&second, dt, n);
+        let g1 = GroundTable::new(ex, dt);
+        let g2 = GroundTable::new(&second, dt);
         let comb = |a: f64, b: f64| [a * e1[0] + b * e2[0], a * e1[1] + b * e2[1]];
-        let disp = (0..=n).map(|k| comb(g1.disp[k], g2.disp[k])).collect();
-        let vel = (0..=n).map(|k| comb(g1.vel[k], g2.vel[k])).collect();
+        let disp = (0..=n).map(|k| comb(g1.disp(k), g2.disp(k))).collect();
+        let vel = (0..=n).map(|k| comb(g1.vel(k), g2.vel(k))).collect();
         Self {
             drive,
             first: ex,

@@ -23,7 +23,7 @@
 
 use rapier3d_f64::prelude::*;
 
-use super::ground::GroundTable;
+use super::ground::{GroundAt, GroundTable};
 use super::settings::{OscillatorContact, OscillatorSteps, RapierSettings};
 use super::simulate::{Drive, Outcome, force_at, ground_frame, start_in_ground_frame, time_loop};
 use super::world::{self, GroundKind, Rig, Support};
@@ -32,27 +32,30 @@ use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactState, Quantity, q};
 use rockslide_engine_api::{NotApplicable, StepSink, step_count};
 
-/// The vertical ground motion at the step times: yg(t_n) and vg_y(t_n⁺), from rest.
-#[derive(Debug, Clone, PartialEq)]
-pub struct VerticalTable {
-    /// yg(t_n), m (positive upward).
-    pub disp: Vec<f64>,
-    /// vg_y(t_n⁺), m/s.
-    pub vel: Vec<f64>,
-}
+/// The vertical ground motion at the step times: yg(t_n) and vg_y(t_n⁺), from rest,
+/// evaluated when asked for (the horizontal ground's integration, `ground::GroundAt`).
+#[derive(Debug, Clone)]
+pub struct VerticalTable(GroundAt);
 
 impl VerticalTable {
-    /// Tables for `n + 1` step times `t_k = k·dt` (the horizontal tables' integration).
-    pub fn new(vertical: &Vertical, dt: f64, n: usize) -> Self {
-        let t = GroundTable::new(
+    /// The motion at step times `t_k = k·dt`.
+    pub fn new(vertical: &Vertical, dt: f64) -> Self {
+        Self(GroundAt::new(
             &Excitation::GroundAcceleration(vertical.signal.clone()),
             dt,
-            n,
-        );
-        Self {
-            disp: t.disp,
-            vel: t.vel,
-        }
+        ))
+    }
+
+    /// yg(t_k), m (positive upward).
+    #[inline]
+    pub fn disp(&self, k: usize) -> f64 {
+        self.0.disp(k)
+    }
+
+    /// vg_y(t_k⁺), m/s.
+    #[inline]
+    pub fn vel(&self, k: usize) -> f64 {
+        self.0.vel(k)
     }
 }
 
@@ -105,7 +108,7 @@ pub(crate) fn describe(case: &Case, drive: Drive) -> Option<(String, String)> {
 /// ground's yg for a kinematic ground, 0 for a fixed one.
 pub(crate) fn ground_height(drive: Drive, g: &GroundTable, k: usize) -> f64 {
     match (&g.vertical, drive) {
-        (Some(v), Drive::KinematicGround) => v.disp[k],
+        (Some(v), Drive::KinematicGround) => v.disp(k),
         _ => 0.0,
     }
 }
@@ -122,7 +125,7 @@ pub(crate) fn inertial_acceleration(
 ) -> f64 {
     match (&g.vertical, drive) {
         (Some(_), Drive::KinematicGround) | (None, _) => 0.0,
-        (Some(v), _) if k >= stride => (v.vel[k] - v.vel[k - stride]) / dt_out,
+        (Some(v), _) if k >= stride => (v.vel(k) - v.vel(k - stride)) / dt_out,
         _ => 0.0,
     }
 }
@@ -134,10 +137,10 @@ pub(crate) fn drive_step(rig: &mut Rig, drive: Drive, g: &GroundTable, k: usize,
     if drive == Drive::KinematicGround {
         // from where the ground started (the rigs place it differently), to yg(t_{n+1})
         let ground = &mut rig.world.bodies[rig.ground];
-        let y = ground.translation().y - v.disp[k] + v.disp[k + 1];
-        ground.set_next_kinematic_translation(Vector::new(g.disp[k + 1], y, 0.0));
+        let y = ground.translation().y - v.disp(k) + v.disp(k + 1);
+        ground.set_next_kinematic_translation(Vector::new(g.disp(k + 1), y, 0.0));
     } else {
-        let av = (v.vel[k + 1] - v.vel[k]) / dt;
+        let av = (v.vel(k + 1) - v.vel(k)) / dt;
         for &(h, m) in &rig.inertial_masses {
             rig.world.bodies[h].add_force(Vector::new(0.0, -m * av, 0.0), false);
         }
@@ -243,7 +246,7 @@ pub(crate) fn run_oscillator(
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in, n * stride).with_vertical(Some(vertical), dt_in);
+    let g = GroundTable::new(ex, dt_in).with_vertical(Some(vertical), dt_in);
     let moves = ex.moves_ground();
     let mut channels: Vec<&'static Quantity> = q::sliding(moves);
     channels.push(&q::NORMAL);
@@ -270,7 +273,7 @@ pub(crate) fn run_oscillator(
         let vals = [force_at(ex, m, t), sup.shear(), x, sup.s, v, a];
         row[..6].copy_from_slice(&vals);
         if moves {
-            row[6] = g.disp[k];
+            row[6] = g.disp(k);
         }
         let last = row.len() - 1;
         row[last] = sup.normal;

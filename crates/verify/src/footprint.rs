@@ -2,12 +2,13 @@
 //! (rows = duration / Δt of each run), and refused with a clear error when over a limit.
 //!
 //! A whole run keeps one row per step in memory for the analysis; a run streamed by an
-//! engine that streams natively (`crate::suite::streams`: the predictor-corrector and
-//! rapier, when the case keeps at most half the rows) keeps only the rows at the case's
-//! output step, its analysis reading every step as it comes (`crate::analysis::streamed`).
-//! Each row is counted with the values its engine declares (`Engine::recorded_values`: the
-//! predictor-corrector and rapier declare theirs, fe none, so every quantity of the
-//! catalogue is counted for it); the
+//! engine that streams natively (`crate::suite::streams`: every engine — the
+//! predictor-corrector, fe and rapier — when the case keeps at most half the rows) keeps
+//! only the rows at the case's output step, its analysis reading every step as it comes
+//! (`crate::analysis::streamed`), the engine itself holding nothing per step. Each row is
+//! counted with the values its engine declares (`Engine::recorded_values`: every engine
+//! declares its own; one that declared none would be counted with every quantity of the
+//! catalogue); the
 //! reference is sampled at every run's kept times, once for the files and once per run
 //! for its history error. A plan over a limit is refused here, naming the case file and
 //! the field, instead of exhausting the machine part-way through.

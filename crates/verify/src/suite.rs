@@ -242,7 +242,8 @@ pub const STREAMING_STEPS: u64 = 500_000;
 
 /// Whether planned run `p` of `case` is streamed: more than [`STREAMING_STEPS`] steps of
 /// an engine that streams natively, keeping at most half its rows (`[run] output_dt` at
-/// least 2 Δt). An engine that does not stream natively would run whole anyway and
+/// least 2 Δt); every registered engine streams natively (the predictor-corrector, fe,
+/// rapier). An engine that does not stream natively would run whole anyway and
 /// forward its rows — holding its whole trace, and run twice by the two passes — so its
 /// long runs are analysed whole, once; a run that keeps every row (no `output_dt`) holds
 /// its whole trace either way, so streaming would only cost the second pass.

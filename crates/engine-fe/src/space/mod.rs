@@ -24,5 +24,5 @@ pub use contact::{ConeContact, ConeState};
 pub use model::{BlockGrid, SpaceBody, SpaceModel};
 pub use rotation::{exp as rotation_exp, log as rotation_log, right_jacobian};
 pub use run::{SpaceRow, SpaceRun, run_space};
-pub use scene::{simulate_space, variants};
+pub use scene::{recorded_values_space, simulate_space, simulate_space_into, variants};
 pub use stepper::{SpaceCounters, SpaceDrive};

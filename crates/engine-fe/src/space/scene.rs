@@ -3,6 +3,8 @@
 //! `supports` × `support_rows` grid), driven by the excitation pair, recorded as a trace
 //! whose x channels keep the 2D keys and whose y channels are added (`*_y`), with the
 //! per-contact block giving |T|, the slip accumulated along the friction force (Σ T̂·Δs) and the gap.
+//! The rows go to a [`StepSink`] as they are recorded (a whole run: a `TraceSink` sized up
+//! front; a streamed run: the caller's sink, no rows held).
 
 use nalgebra::{Matrix3, Vector2, Vector3};
 
@@ -15,7 +17,7 @@ use crate::variant;
 use rockslide_core::case::{Case, Excitation, Model as SceneModel, Scene, Spatial};
 use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, plan_slip_increment, q};
-use rockslide_engine_api::{NotApplicable, Run, SolverStats, step_count};
+use rockslide_engine_api::{NotApplicable, Run, SolverStats, StepSink, TraceSink, step_count};
 
 /// The variants of a 3D scene, or why fe does not run it.
 pub fn variants(scene: &Scene, spatial: &Spatial) -> Result<Vec<&'static str>, NotApplicable> {
@@ -103,13 +105,51 @@ fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Qua
     c
 }
 
-/// Run `variant` of a 3D scene at step `dt`.
+/// The layout of a 3D run of `body`: its channels and one contact per support (its lower
+/// element), without rows.
+fn layout(body: &SpaceBody, moves_ground: bool, double: bool) -> Trace {
+    let mut layout = Trace::with_channels(&channels(body.rotation, moves_ground, double), 0);
+    let kz = body.double.map_or(body.contact.kz, |d| d.lower.kz);
+    layout.contacts = ContactBlock::for_supports(body.supports.len(), 1.0 / kz, 0);
+    layout
+}
+
+/// Values one row of `variant` of a 3D scene records (time, channels, the contacts'
+/// fields), or `None` when the variant does not build.
+pub fn recorded_values_space(case: &Case, spatial: &Spatial, variant: &str) -> Option<usize> {
+    let double = variant == variant::DOUBLE;
+    let (body, _) = body(case, spatial, double).ok()?;
+    let moves_ground = matches!(case.scene.excitation, Excitation::GroundDisplacement(_));
+    Some(crate::recording::values_per_row(&layout(
+        &body,
+        moves_ground,
+        double,
+    )))
+}
+
+/// Run `variant` of a 3D scene at step `dt`: the whole run, its trace sized up front.
 pub fn simulate_space(
     case: &Case,
     spatial: &Spatial,
     variant: &str,
     dt: f64,
     opts: &FeOptions,
+) -> Result<Run, InputError> {
+    let mut rows = TraceSink::sized(step_count(case.run.duration, dt) + 1);
+    let mut run = simulate_space_into(case, spatial, variant, dt, opts, &mut rows)?;
+    run.trace = rows.trace;
+    Ok(run)
+}
+
+/// Run `variant` of a 3D scene at step `dt`, handing the layout and every recorded row to
+/// `sink`: the returned run's trace is the layout without rows.
+pub fn simulate_space_into<S: StepSink + ?Sized>(
+    case: &Case,
+    spatial: &Spatial,
+    variant: &str,
+    dt: f64,
+    opts: &FeOptions,
+    sink: &mut S,
 ) -> Result<Run, InputError> {
     let double = match variant {
         variant::SINGLE => false,
@@ -132,9 +172,8 @@ pub fn simulate_space(
     let moves_ground = matches!(excitation, Excitation::GroundDisplacement(_));
     let rocking = body.rotation;
     let steps = step_count(case.run.duration, dt);
-    let mut trace = Trace::with_channels(&channels(rocking, moves_ground, double), steps + 1);
-    let kz = body.double.map_or(body.contact.kz, |d| d.lower.kz);
-    trace.contacts = ContactBlock::for_supports(body.supports.len(), 1.0 / kz, steps + 1);
+    let layout = layout(&body, moves_ground, double);
+    sink.begin(&layout);
     let mut states = vec![ContactState::default(); body.supports.len()];
     // each support's last slip vector and its slip accumulated along the friction force
     let mut slid = vec![(Vector2::zeros(), 0.0_f64); body.supports.len()];
@@ -187,7 +226,6 @@ pub fn simulate_space(
         if double {
             put(r.node_disp.x);
         }
-        trace.push(s.t, &values[..i]);
         for ((c, sup), (last, along)) in states.iter_mut().zip(&m.supports).zip(&mut slid) {
             let st = sup.lower.state();
             let tangential = sup.lower.tangential();
@@ -201,7 +239,7 @@ pub fn simulate_space(
                 gap: st.delta.z,
             };
         }
-        trace.contacts.push(s.t, &states);
+        sink.row(s.t, &values[..i], &states);
     });
     Ok(Run {
         engine: "fe",
@@ -222,7 +260,7 @@ pub fn simulate_space(
             roundoff_accepted: Some(counters.roundoff_accepted),
         },
         findings: Vec::new(),
-        trace,
+        trace: layout,
         status,
         wall_seconds: 0.0,
     })
