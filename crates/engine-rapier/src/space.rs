@@ -115,16 +115,19 @@ pub(crate) struct PlanDrive<'a> {
     second: Excitation,
     e1: [f64; 2],
     e2: [f64; 2],
-    /// x_g(t_k) in plan, m.
-    pub(crate) disp: Vec<[f64; 2]>,
-    /// v_g(t_k⁺) in plan, m/s.
-    vel: Vec<[f64; 2]>,
+    /// The first component's ground motion at the step times (evaluated when asked for).
+    g1: GroundTable,
+    /// The second component's.
+    g2: GroundTable,
+    /// rapier's steps in the run.
+    n: usize,
     /// rapier's step, s.
     dt: f64,
 }
 
 impl<'a> PlanDrive<'a> {
-    /// Tables for `n` rapier steps of `dt`.
+    /// The drive of `n` rapier steps of `dt` (the ground evaluated at each step's time
+    /// when asked for: no table grows with the run).
     pub(crate) fn new(
         drive: Drive,
         ex: &'a Excitation,
@@ -139,19 +142,27 @@ impl<'a> PlanDrive<'a> {
         let (e1, e2) = (spatial.first_direction(), spatial.second_direction());
         let g1 = GroundTable::new(ex, dt);
         let g2 = GroundTable::new(&second, dt);
-        let comb = |a: f64, b: f64| [a * e1[0] + b * e2[0], a * e1[1] + b * e2[1]];
-        let disp = (0..=n).map(|k| comb(g1.disp(k), g2.disp(k))).collect();
-        let vel = (0..=n).map(|k| comb(g1.vel(k), g2.vel(k))).collect();
         Self {
             drive,
             first: ex,
             second,
             e1,
             e2,
-            disp,
-            vel,
+            g1,
+            g2,
+            n,
             dt,
         }
+    }
+
+    /// x_g(t_k) in plan, m.
+    pub(crate) fn disp(&self, k: usize) -> [f64; 2] {
+        self.comb(self.g1.disp(k), self.g2.disp(k))
+    }
+
+    /// v_g(t_k⁺) in plan, m/s.
+    fn vel(&self, k: usize) -> [f64; 2] {
+        self.comb(self.g1.vel(k), self.g2.vel(k))
     }
 
     fn comb(&self, a: f64, b: f64) -> [f64; 2] {
@@ -175,7 +186,7 @@ impl<'a> PlanDrive<'a> {
                 self.comb(mean(self.first), mean(&self.second))
             }
             Drive::InertialForce => {
-                let dv = sub(self.vel[k + 1], self.vel[k]);
+                let dv = sub(self.vel(k + 1), self.vel(k));
                 [-dv[0] / self.dt, -dv[1] / self.dt]
             }
             Drive::KinematicGround => [0.0, 0.0],
@@ -186,7 +197,7 @@ impl<'a> PlanDrive<'a> {
     /// on the kinematic route, zero on a fixed ground.
     pub(crate) fn frame(&self, k: usize) -> ([f64; 2], [f64; 2]) {
         if self.drive == Drive::KinematicGround {
-            (self.disp[k], self.vel[k])
+            (self.disp(k), self.vel(k))
         } else {
             ([0.0, 0.0], [0.0, 0.0])
         }
@@ -203,23 +214,25 @@ impl<'a> PlanDrive<'a> {
         if self.drive == Drive::KinematicGround {
             let g = &mut world.bodies[ground];
             let up = g.translation().y;
-            g.set_next_kinematic_translation(to_world(self.disp[k + 1], up));
+            g.set_next_kinematic_translation(to_world(self.disp(k + 1), up));
         }
     }
 
     /// At t = 0 on the inertial route, a ground velocity that jumps gives the body the
     /// relative velocity −v_g(0⁺).
     pub(crate) fn start(&self, world: &mut PhysicsWorld, body: RigidBodyHandle) {
-        let v0 = self.vel[0];
+        let v0 = self.vel(0);
         if self.drive == Drive::InertialForce && v0 != [0.0, 0.0] {
             world.bodies[body].set_linvel(to_world([-v0[0], -v0[1]], 0.0), false);
         }
     }
 
-    /// Σ |Δv_g| over the table: ∫|a_g|dt of the plan ground acceleration (vector norm),
+    /// Σ |Δv_g| over the run's steps: ∫|a_g|dt of the plan ground acceleration (vector norm),
     /// m/s.
     fn abs_acceleration_integral(&self) -> f64 {
-        self.vel.windows(2).map(|w| norm(sub(w[1], w[0]))).sum()
+        (0..self.n)
+            .map(|k| norm(sub(self.vel(k + 1), self.vel(k))))
+            .sum()
     }
 }
 
@@ -330,19 +343,19 @@ pub(crate) struct PlanVertical {
     kz: f64,
     mass: f64,
     weight: f64,
-    /// vg_y(t_k⁺) at the rapier steps, m/s.
-    vel: Vec<f64>,
+    /// vg_y(t_k⁺) at the rapier steps, m/s, evaluated when asked for.
+    vel: VerticalTable,
     dt: f64,
 }
 
 impl PlanVertical {
-    /// For `n` rapier steps of `dt`.
-    pub(crate) fn new(osc: &Oscillator, vertical: &Vertical, dt: f64, n: usize) -> Self {
+    /// For rapier steps of `dt`.
+    pub(crate) fn new(osc: &Oscillator, vertical: &Vertical, dt: f64) -> Self {
         PlanVertical {
             kz: osc.contact.kz,
             mass: osc.mass,
             weight: osc.normal_force(),
-            vel: VerticalTable::new(vertical, dt, n).vel,
+            vel: VerticalTable::new(vertical, dt),
             dt,
         }
     }
@@ -359,7 +372,7 @@ impl PlanVertical {
 
     /// The vertical force on the body over step k → k+1 given the normal force `n`.
     fn force(&self, n: f64, k: usize) -> f64 {
-        n - self.weight - self.mass * (self.vel[k + 1] - self.vel[k]) / self.dt
+        n - self.weight - self.mass * (self.vel.vel(k + 1) - self.vel.vel(k)) / self.dt
     }
 }
 
@@ -451,7 +464,7 @@ pub fn run_oscillator(
                 vel: v,
                 acc,
                 normal,
-                ground: pd.disp[k][0],
+                ground: pd.disp(k)[0],
             }
             .write(&mut row);
             path += plan_slip_increment(spring, sub(p, p_prev));
@@ -562,7 +575,7 @@ pub fn run_block(
             vel: v,
             acc,
             normal: gf.y,
-            ground: pd.disp[k][0],
+            ground: pd.disp(k)[0],
         }
         .write(&mut row);
         // T resists the block's motion relative to the ground: minus the ground's force.
@@ -779,7 +792,7 @@ fn oscillator_case(
         None => oscillator_steps(osc, ex, settings, dt),
     };
     let pd = PlanDrive::new(drive, ex, spatial, steps.dt_inner, n * steps.stride);
-    let pv = vertical.map(|v| PlanVertical::new(osc, v, steps.dt_inner, n * steps.stride));
+    let pv = vertical.map(|v| PlanVertical::new(osc, v, steps.dt_inner));
     said.described
         .retain(|(k, _)| !k.starts_with("contact softness") && !k.starts_with("friction"));
     said.described.push((

@@ -202,7 +202,7 @@ fn apply_forces(
 pub fn run(
     grid: &RockingGrid,
     settings: &RapierSettings,
-    (pd, vertical): (&PlanDrive, Option<&[f64]>),
+    (pd, vertical): (&PlanDrive, Option<&VerticalTable>),
     (dt, stride): (f64, usize),
     n: usize,
     sink: &mut dyn StepSink,
@@ -302,8 +302,9 @@ pub fn run(
                 slide[1].atan2(slide[0]).to_degrees()
             });
             if moves {
-                put(pd.disp[k][0]);
-                put(pd.disp[k][1]);
+                let xg = pd.disp(k);
+                put(xg[0]);
+                put(xg[1]);
             }
             put(cm_plan[0] - xg[0]);
             put(cm_plan[1] - xg[1]);
@@ -323,7 +324,7 @@ pub fn run(
     let mut steps = 0;
     for k in 0..n * stride {
         let a = pd.specific_force(k);
-        let up = vertical.map_or(0.0, |vg| -m * (vg[k + 1] - vg[k]) / dt_in);
+        let up = vertical.map_or(0.0, |vg| -m * (vg.vel(k + 1) - vg.vel(k)) / dt_in);
         apply_forces(
             &mut world.bodies[handle],
             grid,
@@ -370,7 +371,7 @@ pub(crate) fn case<'a>(
     let stride = stride(omega, dt, settings);
     let dt_in = dt / stride as f64;
     let pd = pd_for(dt_in, n * stride);
-    let vg = vertical.map(|v| VerticalTable::new(v, dt_in, n * stride).vel);
+    let vg = vertical.map(|v| VerticalTable::new(v, dt_in));
     if vg.is_some() {
         said.described.push((
             "vertical ground motion".into(),
@@ -426,7 +427,7 @@ pub(crate) fn case<'a>(
             "outside the engine's validity: ω_r·h = {omega_h:.3} (rule ≤ {APPLIED_FORCE_OMEGA_H}; symplectic Euler is unstable beyond 2)"
         )
     });
-    run(grid, settings, (&pd, vg.as_deref()), (dt, stride), n, sink)
+    run(grid, settings, (&pd, vg.as_ref()), (dt, stride), n, sink)
 }
 
 /// The rocking grid's measured agreement, stated in its runs' findings
