@@ -256,8 +256,8 @@ mod streamed_equals_whole {
     /// every run counts 93 episodes read at every 1 ms step, as the reference's 93 plastic
     /// phases (measured 2026-11-24; the x component alone gave 105, 105 and 106: a slip
     /// that turns across x stops x's rate). Read off the rows kept at the case's 20 ms
-    /// output step, 91 (the reference sampled every 20 ms: 91 too): two sticks shorter than
-    /// 20 ms join their neighbours. The block: 13 runs for rapier against the reference's
+    /// output step, 91 (the reference sampled every 20 ms: 91 too): the reference's two
+    /// shortest sticks, 18.9 and 21.0 ms, hold no whole 20 ms step and join their neighbours. The block: 13 runs for rapier against the reference's
     /// 12 (rapier registers a round-off slip as its contact settles at t = 0; slip start 0).
     #[test]
     fn every_engine_on_the_plan_cases_counts_along_the_slip_path() {
