@@ -132,6 +132,8 @@ fn shards_merged_equal_the_unsharded_summary() {
         let b = std::fs::read(merged.join(f)).unwrap();
         assert!(a == b, "{f} differs between unsharded and merged");
     }
+    let figure = std::fs::read_to_string(merged.join("residual-vs-pga.svg")).unwrap();
+    crate::report_sections::compacted(&figure);
     // The typed result the summary is rendered from: what merge gathered, read back.
     assert_eq!(Study::load(&merged).unwrap(), c);
     // The summary has one row per point and run, polarity mirroring the sliding exactly

@@ -44,6 +44,17 @@ fn row(md: &str, first: &str) -> Vec<String> {
 }
 
 /// A CSV file as header and numeric rows.
+/// A figure written through the reports' compaction (`present::report::figure::compact_svg`):
+/// every line a `<path>` of relative moves (plotters writes `<polyline>`s), the grid lines
+/// in groups carrying their attributes.
+pub fn compacted(svg: &str) {
+    assert!(!svg.contains("<polyline"), "a polyline left");
+    assert!(
+        svg.contains("<path ") && svg.contains(" d=\"M") && svg.contains("<g "),
+        "no path or group"
+    );
+}
+
 fn csv(p: &Path) -> (Vec<String>, Vec<Vec<String>>) {
     let mut r = csv::Reader::from_path(p).unwrap();
     let h = r.headers().unwrap().iter().map(String::from).collect();
@@ -144,6 +155,7 @@ fn pepo_report_has_energy_audit_and_the_picked_up_sweep() {
     // The figure: written, linked from the Markdown, inline in the HTML.
     let svg = read(&case.join("plot-work-precision.svg"));
     assert!(svg.contains("median run time [s]") && svg.contains("Δt [s]"));
+    compacted(&svg);
     assert!(md.contains("![plot-work-precision.svg](plot-work-precision.svg)"));
     let html = read(&case.join("report.html"));
     assert!(
@@ -234,6 +246,7 @@ fn suite_report_has_the_stability_section() {
     }
     let svg = read(&out.join("stability-map.svg"));
     assert!(svg.contains("Δt / T"));
+    compacted(&svg);
     assert!(md.contains("![stability-map.svg](stability-map.svg)"));
     let html = read(&out.join("summary.html"));
     assert!(html.contains("\nStability map: class of every run\n</text>"));

@@ -37,7 +37,9 @@ pub enum Reading {
     /// Sum of the absolute increments (sliding: the total distance slid, both ways).
     TotalVariation,
     /// Number of slip episodes: maximal runs of steps whose slide rate exceeds the slip
-    /// threshold (a count, no unit).
+    /// threshold (a count, no unit). On a plan trace the rate is the planar one along the
+    /// slip path, |(Δslide, Δslide_y)|/Δt ([`QuantityDef::plan_partner`]), so an episode
+    /// whose slip turns across x is one episode.
     SlipEpisodes,
 }
 
@@ -65,6 +67,14 @@ impl QuantityDef {
                 | Reading::FirstCrossing
                 | Reading::SecondCrossing
         )
+    }
+    /// The y component read with the channel on plan traces, when the quantity reads
+    /// both: slip episodes count along the slip path (`slide`, `slide_y`). `None` for
+    /// every other quantity, and where a trace has no such column the channel alone is
+    /// read.
+    pub fn plan_partner(&self) -> Option<&'static Quantity> {
+        (matches!(self.reading, Reading::SlipEpisodes) && self.channel.key == q::SLIDE.key)
+            .then_some(&q::SLIDE_Y)
     }
     /// Whether the quantity is a count (no unit) rather than a value of its channel.
     pub fn is_count(&self) -> bool {

@@ -6,7 +6,8 @@
 use plotters::prelude::*;
 
 use crate::report::figure::{
-    Entry, GRID, class_colour, draw_legend, failed_svg, legend_height, log_range, palette,
+    Entry, GRID, class_colour, compact_svg, draw_legend, failed_svg, legend_height, log_range,
+    palette,
 };
 use rockslide_verify::sweep::StabilityResult;
 
@@ -97,5 +98,5 @@ pub(crate) fn figure(st: &StabilityResult) -> Option<String> {
             return Some(failed_svg(W, &e.to_string()));
         }
     }
-    Some(svg)
+    Some(compact_svg(&svg))
 }

@@ -9,7 +9,9 @@ use std::collections::BTreeMap;
 
 use plotters::prelude::*;
 
-use crate::report::figure::{Entry, GRID, draw_legend, failed_svg, legend_height, palette};
+use crate::report::figure::{
+    Entry, GRID, compact_svg, draw_legend, failed_svg, legend_height, palette,
+};
 use rockslide_core::case::record::STANDARD_GRAVITY;
 use rockslide_verify::study::{RIGID, Study, label, short_name};
 
@@ -120,5 +122,5 @@ pub(crate) fn residual_vs_pga(c: &Study, only: Option<&str>) -> String {
             return failed_svg(W, &e.to_string());
         }
     }
-    svg
+    compact_svg(&svg)
 }

@@ -6,7 +6,7 @@
 use plotters::prelude::*;
 
 use crate::report::figure::{
-    Entry, GRID, draw_legend, failed_svg, legend_height, log_range, palette,
+    Entry, GRID, compact_svg, draw_legend, failed_svg, legend_height, log_range, palette,
 };
 use rockslide_verify::sweep::SweepResult;
 
@@ -113,5 +113,5 @@ pub(crate) fn figure(sweep: &SweepResult) -> Option<String> {
             return Some(failed_svg(W, &e.to_string()));
         }
     }
-    Some(svg)
+    Some(compact_svg(&svg))
 }

@@ -325,9 +325,12 @@ pub(crate) fn plan_channels() -> Vec<&'static Quantity> {
 }
 
 /// What a plan reference's note says of the `slip_episodes` response beside its own count
-/// of slip episodes (the two differ: on the PEPO under the Chino Hills pair, 93 plastic
-/// phases against 111 runs of the x slip rate sampled every 0.25 ms, 104 every 1 ms).
-pub(crate) const SLIP_EPISODES_RESPONSE: &str = "The response \"Slip episodes\" (slip_episodes) is another count: runs of the x component's slip rate, read off a sampled trace as for every engine, so an episode whose slip turns across x is split there, and the count depends on how finely the trace is sampled";
+/// of slip episodes. The response reads the planar slip rate along the slip path, so it
+/// meets the note's count where every stick is longer than a sample and every slide faster
+/// than 1e-3 of the fastest: on the PEPO under the Chino Hills pair 93 plastic phases and
+/// 93 runs sampled every 0.25, 1, 5 or 10 ms (91 every 20 ms); on the block 13 slides and
+/// 12 runs (one slide peaks at 5.8e-4 of the fastest slide rate).
+pub(crate) const SLIP_EPISODES_RESPONSE: &str = "The response \"Slip episodes\" (slip_episodes) is read off a sampled trace as for every engine: runs of samples whose planar slip rate along the slip path, |(Δslide, Δslide_y)|/Δt, exceeds 1e-3 of its largest, so a slip that turns across x stays one episode, a stick that holds no whole sample step joins its neighbours, and a slide slower than 1e-3 of the fastest is not counted";
 
 /// Fill the channels of [`plan_channels`].
 pub(crate) fn write_plan(out: &mut [f64], u: [f64; 2], slip: [f64; 2], v: [f64; 2]) {

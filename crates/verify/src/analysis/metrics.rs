@@ -29,7 +29,10 @@ pub fn responses(trace: &Trace) -> Responses {
             Reading::SlipStart => slip_window(&trace.time, col).map(|w| w.0),
             Reading::SlipEnd => slip_window(&trace.time, col).map(|w| w.1),
             Reading::TotalVariation => Some(total_variation(col)),
-            Reading::SlipEpisodes => Some(slip_episodes(&trace.time, col) as f64),
+            Reading::SlipEpisodes => {
+                let y = d.plan_partner().and_then(|y| trace.column(y.key));
+                Some(slip_episodes(&trace.time, col, y) as f64)
+            }
             Reading::FirstZero => col.iter().position(|&c| c <= 0.0).map(|i| trace.time[i]),
             Reading::FirstCrossing => sign_changes(&trace.time, col).first().copied(),
             Reading::SecondCrossing => sign_changes(&trace.time, col).get(1).copied(),
@@ -78,11 +81,24 @@ pub fn slip_window(time: &[f64], slide: &[f64]) -> Option<(f64, f64)> {
     Some((time[first - 1], time[last]))
 }
 
-/// Whether each step `i` (from sample i − 1 to i, `i ≥ 1`) slips: its slide rate exceeds
-/// 1e-3 of the run's largest, the threshold [`slip_window`] uses.
-/// Empty when the slide never changes.
-fn slipping_steps(time: &[f64], slide: &[f64]) -> Vec<bool> {
-    let rate = |i: usize| ((slide[i] - slide[i - 1]) / (time[i] - time[i - 1])).abs();
+/// Slide rate of one step of length `dt` whose slide changed by `dx` (and by `dy` along y
+/// on a plan trace): |Δx|/Δt, or the planar rate |(Δx, Δy)|/Δt along the slip path.
+/// With Δy = 0 the two are the same number bit for bit (`hypot(Δx, 0)` is |Δx| exactly).
+pub(super) fn slide_rate(dt: f64, dx: f64, dy: Option<f64>) -> f64 {
+    match dy {
+        None => (dx / dt).abs(),
+        Some(dy) => dx.hypot(dy) / dt,
+    }
+}
+
+/// Whether each step `i` (from sample i − 1 to i, `i ≥ 1`) slips: its slide rate
+/// ([`slide_rate`], planar when `slide_y` is given) exceeds 1e-3 of the run's largest, the
+/// threshold [`slip_window`] uses. Empty when the slide never changes.
+fn slipping_steps(time: &[f64], slide: &[f64], slide_y: Option<&[f64]>) -> Vec<bool> {
+    let rate = |i: usize| {
+        let dy = slide_y.map(|y| y[i] - y[i - 1]);
+        slide_rate(time[i] - time[i - 1], slide[i] - slide[i - 1], dy)
+    };
     let peak = (1..slide.len()).map(rate).fold(0.0_f64, f64::max);
     if peak.is_nan() || peak <= 0.0 {
         return Vec::new();
@@ -92,10 +108,12 @@ fn slipping_steps(time: &[f64], slide: &[f64]) -> Vec<bool> {
 }
 
 /// Number of slip episodes read off a slide history: maximal runs of slipping steps
-/// (rate above 1e-3 of the largest, as [`slip_window`]). Read the same way off every
-/// engine's trace; a stick shorter than one output step joins its neighbours.
-pub fn slip_episodes(time: &[f64], slide: &[f64]) -> usize {
-    let slipping = slipping_steps(time, slide);
+/// (rate above 1e-3 of the largest, as [`slip_window`]). On a plan trace (`slide_y` given)
+/// the rate is the planar one along the slip path, so an episode whose slip turns across
+/// x is one episode. Read the same way off every engine's trace; a stick shorter than one
+/// output step joins its neighbours.
+pub fn slip_episodes(time: &[f64], slide: &[f64], slide_y: Option<&[f64]>) -> usize {
+    let slipping = slipping_steps(time, slide, slide_y);
     slipping
         .iter()
         .enumerate()
@@ -222,14 +240,46 @@ mod tests {
     #[test]
     fn slip_episodes_count_runs_of_slipping_steps() {
         let t = [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6];
-        assert_eq!(slip_episodes(&t, &[0.0; 7]), 0);
+        assert_eq!(slip_episodes(&t, &[0.0; 7], None), 0);
         // slide up, stick, slide back: two episodes, 1 + 0.5 m slid, 0.5 m net
         let s = [0.0, 0.5, 1.0, 1.0, 1.0, 0.5, 0.5];
-        assert_eq!(slip_episodes(&t, &s), 2);
+        assert_eq!(slip_episodes(&t, &s, None), 2);
         assert!((total_variation(&s) - 1.5).abs() < 1e-15);
         // a step below 1e-3 of the peak rate is stuck (creep), not an episode
         let creep = [0.0, 1.0, 1.0, 1.0 + 1e-4, 1.0 + 1e-4, 2.0, 2.0];
-        assert_eq!(slip_episodes(&t, &creep), 2);
+        assert_eq!(slip_episodes(&t, &creep, None), 2);
+    }
+
+    /// Slip around a regular octagon at constant speed (a circle sampled at 8 points a
+    /// turn, vertices at 22.5° + k·45°): every step slides one chord, so the planar rate is
+    /// constant and two turns are one episode; the x component's rate is exactly zero on
+    /// the two steps a turn that cross x (from −22.5° to 22.5° and from 157.5° to 202.5°:
+    /// the same x at both ends), so x alone counts two runs a turn. Then a stick (two
+    /// steps) and half a turn more: one episode along the path, one more run of x (its
+    /// steps 0→1, 1→2, 2→3 slide, 3→4 crosses x).
+    #[test]
+    fn slip_episodes_count_along_the_slip_path_on_a_plan_trace() {
+        let (c, s) = (
+            std::f64::consts::FRAC_PI_8.cos(),
+            std::f64::consts::FRAC_PI_8.sin(),
+        );
+        let vertex_x = [c, s, -s, -c, -c, -s, s, c];
+        let vertex_y = [s, c, c, s, -s, -c, -c, -s];
+        // two turns (vertices 0..=16), a stick of two steps, then vertices 1..=4
+        let mut path: Vec<usize> = (0..=16).map(|k| k % 8).collect();
+        path.extend([0, 0, 1, 2, 3, 4]);
+        let x: Vec<f64> = path.iter().map(|&k| vertex_x[k] - c).collect();
+        let y: Vec<f64> = path.iter().map(|&k| vertex_y[k] - s).collect();
+        let t: Vec<f64> = (0..path.len()).map(|i| 0.1 * i as f64).collect();
+        assert_eq!(slip_episodes(&t, &x, Some(&y)), 2);
+        assert_eq!(slip_episodes(&t, &x, None), 5, "2 runs a turn, then 1");
+        // the planar rate of a step along x alone is |Δx|/Δt bit for bit
+        for (dx, dt) in [(0.3, 0.1), (-1e-9, 7e-4), (2.5e3, 3.0)] {
+            assert_eq!(
+                slide_rate(dt, dx, Some(0.0)).to_bits(),
+                slide_rate(dt, dx, None).to_bits()
+            );
+        }
     }
 
     #[test]

@@ -25,18 +25,24 @@ use rockslide_engine_api::{Run, StepSink};
 use rockslide_reference::ExactSolution;
 
 use super::envelope::{ENVELOPE_BUCKETS, Envelope};
+use super::metrics::slide_rate;
 use super::{Responses, responses};
 use crate::invariants::{InvariantCheck, StreamedInvariants};
 
 /// First pass: the run-wide scales of each channel — its peak |value| and its peak |rate|
-/// between rows — and the number of rows and the last time (to check the second pass saw
-/// the same run).
+/// between rows, and on a plan trace the peak planar slide rate — and the number of rows
+/// and the last time (to check the second pass saw the same run).
 #[derive(Debug, Clone, Default, PartialEq)]
 pub struct Peaks {
     /// Peak |value| of each channel (0 for none).
     pub peak_abs: Vec<f64>,
     /// Peak |Δvalue / Δt| of each channel (0 for none; NaN rates ignored).
     pub peak_rate: Vec<f64>,
+    /// Peak planar slide rate |(Δslide, Δslide_y)| / Δt of a plan trace, what slip
+    /// episodes are counted against (0 when the trace has no `slide_y`; NaN rates ignored).
+    pub peak_plan_rate: f64,
+    /// Columns of `slide` and `slide_y` on a plan trace.
+    plan_columns: Option<(usize, usize)>,
     /// Rows seen.
     pub rows: u64,
     /// Time of the last row, s.
@@ -50,10 +56,17 @@ impl StepSink for Peaks {
         self.peak_abs = vec![0.0; n];
         self.peak_rate = vec![0.0; n];
         self.previous = vec![0.0; n];
+        self.peak_plan_rate = 0.0;
+        self.plan_columns = plan_slide_columns(layout);
         self.rows = 0;
     }
 
     fn row(&mut self, t: f64, values: &[f64], _contacts: &[ContactState]) {
+        if let (Some((x, y)), true) = (self.plan_columns, self.rows > 0) {
+            let (dx, dy) = (values[x] - self.previous[x], values[y] - self.previous[y]);
+            let rate = slide_rate(t - self.last_time, dx, Some(dy));
+            self.peak_plan_rate = self.peak_plan_rate.max(rate);
+        }
         for (c, &x) in values.iter().enumerate() {
             self.peak_abs[c] = self.peak_abs[c].max(x.abs());
             if self.rows > 0 {
@@ -67,11 +80,23 @@ impl StepSink for Peaks {
     }
 }
 
+/// Columns of a plan trace's slide and its y component: the channels slip episodes read
+/// along the slip path ([`rockslide_core::response::QuantityDef::plan_partner`]); `None`
+/// when the trace lacks either.
+fn plan_slide_columns(layout: &Trace) -> Option<(usize, usize)> {
+    let d = DEFS.iter().find(|d| d.plan_partner().is_some())?;
+    let column = |key: &str| layout.channels.iter().position(|c| c.key == key);
+    Some((column(d.channel.key)?, column(d.plan_partner()?.key)?))
+}
+
 /// One response quantity read step by step.
 struct ReadingState {
     key: &'static str,
     reading: Reading,
     column: usize,
+    /// Slip episodes on a plan trace: the column of the slide's y component, read with
+    /// `column` for the planar rate.
+    partner: Option<usize>,
     /// The folded value (peak, extreme, last, sum, count).
     value: f64,
     /// Slip: the rate threshold; crossings: the floor.
@@ -90,13 +115,21 @@ struct ReadingState {
 }
 
 impl ReadingState {
-    fn new(key: &'static str, reading: Reading, column: usize, peaks: &Peaks) -> Self {
+    fn new(
+        key: &'static str,
+        reading: Reading,
+        (column, partner): (usize, Option<usize>),
+        peaks: &Peaks,
+    ) -> Self {
         let (value, threshold, applies) = match reading {
             Reading::Max => (f64::NEG_INFINITY, 0.0, true),
             Reading::Min => (f64::INFINITY, 0.0, true),
             Reading::TotalVariation => (std::iter::empty::<f64>().sum(), 0.0, true),
             Reading::SlipStart | Reading::SlipEnd | Reading::SlipEpisodes => {
-                let peak = peaks.peak_rate[column];
+                let peak = match partner {
+                    Some(_) => peaks.peak_plan_rate,
+                    None => peaks.peak_rate[column],
+                };
                 (0.0, 1e-3 * peak, !(peak.is_nan() || peak <= 0.0))
             }
             Reading::FirstCrossing | Reading::SecondCrossing => {
@@ -108,6 +141,7 @@ impl ReadingState {
             key,
             reading,
             column,
+            partner,
             value,
             threshold,
             applies,
@@ -121,8 +155,10 @@ impl ReadingState {
         }
     }
 
-    /// Row `(t, x)` after `previous` (the row before, `None` for the first).
-    fn row(&mut self, t: f64, x: f64, previous: Option<(f64, f64)>) {
+    /// Row `(t, values)` after `previous` (the row before, `None` for the first).
+    fn row(&mut self, t: f64, values: &[f64], previous_row: Option<(f64, &[f64])>) {
+        let x = values[self.column];
+        let previous = previous_row.map(|(t0, v)| (t0, v[self.column]));
         match self.reading {
             Reading::PeakAbs => self.value = self.value.max(x.abs()),
             Reading::SignedPeak => {
@@ -144,8 +180,9 @@ impl ReadingState {
                 }
             }
             Reading::SlipStart | Reading::SlipEnd | Reading::SlipEpisodes => {
-                if let (Some((t0, x0)), true) = (previous, self.applies) {
-                    self.slip_step(t0, t, ((x - x0) / (t - t0)).abs());
+                if let (Some((t0, v0)), true) = (previous_row, self.applies) {
+                    let dy = self.partner.map(|y| values[y] - v0[y]);
+                    self.slip_step(t0, t, slide_rate(t - t0, x - v0[self.column], dy));
                 }
             }
             Reading::FirstCrossing | Reading::SecondCrossing => self.crossing(t, x, previous),
@@ -371,7 +408,9 @@ impl StepSink for Summaries<'_> {
         self.readings = DEFS
             .iter()
             .filter_map(|d| {
-                column(d.channel.key).map(|c| ReadingState::new(d.key, d.reading, c, peaks))
+                let partner = d.plan_partner().and_then(|y| column(y.key));
+                column(d.channel.key)
+                    .map(|c| ReadingState::new(d.key, d.reading, (c, partner), peaks))
             })
             .collect();
         let energy_scale = column("energy_input").map_or(0.0, |c| self.peaks.peak_abs[c]);
@@ -402,9 +441,9 @@ impl StepSink for Summaries<'_> {
     fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
         let first = self.rows == 0;
         let previous_time = self.last.0;
+        let previous = (!first).then_some((previous_time, self.last.1.as_slice()));
         for r in &mut self.readings {
-            let previous = (!first).then(|| (previous_time, self.last.1[r.column]));
-            r.row(t, values[r.column], previous);
+            r.row(t, values, previous);
         }
         if let Some(i) = &mut self.invariants {
             i.row(t, values, contacts);
