@@ -8,11 +8,13 @@ use super::{Trace, q};
 use crate::error::{Error, InputError, InputErrors};
 use crate::io::write_atomically_with;
 
-/// Write `trace` to `path` atomically, streamed through a large buffer: no per-row
-/// allocation and nothing of the file held in memory beyond the buffer.
+/// Write `trace` to `path` atomically, streamed in blocks: no per-row allocation and
+/// nothing of the file held in memory beyond one block. The blocks go to the file itself,
+/// not through the atomic writer's buffer (which stays empty): one copy of every byte
+/// less.
 pub fn write_csv(trace: &Trace, path: &Path) -> Result<(), Error> {
     write_atomically_with(path, |w| {
-        write_csv_to(trace, w).map_err(|e| Error::io(path, e))
+        write_csv_to(trace, w.get_mut()).map_err(|e| Error::io(path, e))
     })
 }
 

@@ -281,6 +281,18 @@ impl<W: Write> McapWriter<W> {
     /// 1; the chunk is compressed and written once it is full. `channel_id` must be one
     /// [`Self::add_channel`] returned (an id it did not return panics: a programming error).
     pub fn message(&mut self, channel_id: u16, log_time: u64, data: &[u8]) -> io::Result<()> {
+        self.message_with(channel_id, log_time, |r| r.extend_from_slice(data))
+    }
+
+    /// [`Self::message`] whose data `encode` appends straight to the open chunk (the
+    /// message's record is patched with the length it wrote): no copy of the data from a
+    /// buffer of its own. The same bytes as [`Self::message`] with what `encode` appends.
+    pub fn message_with(
+        &mut self,
+        channel_id: u16,
+        log_time: u64,
+        encode: impl FnOnce(&mut Vec<u8>),
+    ) -> io::Result<()> {
         let ch = usize::from(channel_id);
         self.sequence[ch] += 1;
         self.counts[ch] += 1;
@@ -291,12 +303,16 @@ impl<W: Write> McapWriter<W> {
         chunk.end = chunk.end.max(log_time);
         let r = &mut chunk.records;
         r.push(op::MESSAGE);
-        r.u64le(22 + data.len() as u64);
+        let length_at = r.len();
+        r.u64le(0); // the body's length, once the data is in
         r.u16le(channel_id);
         r.u32le(self.sequence[ch]);
         r.u64le(log_time);
         r.u64le(log_time);
-        r.extend_from_slice(data);
+        let body_start = length_at + 8;
+        encode(r);
+        let body_length = (r.len() - body_start) as u64;
+        r[length_at..body_start].copy_from_slice(&body_length.to_le_bytes());
         self.message_bounds = Some(match self.message_bounds {
             None => (log_time, log_time),
             Some((a, b)) => (a.min(log_time), b.max(log_time)),
