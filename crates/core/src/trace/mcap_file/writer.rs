@@ -515,6 +515,49 @@ impl<W: Write> McapWriter<W> {
 mod tests {
     use super::*;
 
+    /// Messages of every length from 0 to 40 bytes, appended straight into the chunk by
+    /// `message_with` (in two pieces, as the state messages are), give the file `message`
+    /// gives with each whole: the length patched in is the data's, and the `mcap` crate
+    /// reads each message back with its bytes.
+    #[test]
+    fn a_message_encoded_into_the_chunk_is_the_message_given_whole() {
+        let data = |i: usize| {
+            (0..i as u8)
+                .map(|b| b.wrapping_mul(37))
+                .collect::<Vec<u8>>()
+        };
+        let file = |encoded: bool| {
+            let options = ChunkOptions {
+                chunk_bytes: 256,
+                compression: ChunkCompression::None,
+            };
+            let mut w = McapWriter::new(Vec::new(), options).unwrap();
+            let s = w
+                .add_schema("rockslide/S", "ros2msg", b"uint8[] x")
+                .unwrap();
+            let c = w.add_channel(s, "/c", "cdr", &BTreeMap::new()).unwrap();
+            for i in 0..=40 {
+                let d = data(i);
+                match encoded {
+                    true => w.message_with(c, 10 * i as u64, |r| {
+                        r.extend_from_slice(&d[..i / 2]);
+                        r.extend_from_slice(&d[i / 2..]);
+                    }),
+                    false => w.message(c, 10 * i as u64, &d),
+                }
+                .unwrap();
+            }
+            w.finish().unwrap()
+        };
+        let bytes = file(true);
+        assert_eq!(bytes, file(false));
+        let read: Vec<_> = mcap::MessageStream::new(&bytes)
+            .unwrap()
+            .map(|m| m.unwrap().data.to_vec())
+            .collect();
+        assert_eq!(read, (0..=40).map(data).collect::<Vec<_>>());
+    }
+
     /// 300 messages on two channels in chunks of ~1 KiB, zstd, lz4 or none: the `mcap`
     /// crate's linear reader (CRCs checked) and its indexed reader (summary, chunk
     /// indexes, message indexes, each message sought through its index) find every message
