@@ -100,11 +100,10 @@ fn put(buf: &mut Vec<u8>, x: f64) {
     buf.extend_from_slice(&x.to_le_bytes());
 }
 
-/// The CDR state message of row `i` of `trace`, into `buf` (no allocation once `buf` has
-/// grown to one message): `time`, every column, then each contact's four fields when the
+/// The CDR state message of row `i` of `trace`, appended to `buf` (the MCAP writer's open
+/// chunk; no allocation once `buf` has grown): `time`, every column, then each contact's four fields when the
 /// run recorded contacts (NaN for a row past the end of its contact block).
-pub fn state_message(buf: &mut Vec<u8>, trace: &Trace, i: usize) {
-    buf.clear();
+pub fn append_state_message(buf: &mut Vec<u8>, trace: &Trace, i: usize) {
     buf.extend_from_slice(&CDR_LE_HEADER);
     put(buf, trace.time[i]);
     for col in &trace.columns {
@@ -156,6 +155,12 @@ pub fn read_values(data: &[u8], count: usize, values: &mut Vec<f64>) -> Result<(
 mod tests {
     use super::*;
     use crate::trace::{ContactBlock, ContactState, q};
+
+    /// Row `i`'s message alone in `buf`.
+    fn state_message(buf: &mut Vec<u8>, trace: &Trace, i: usize) {
+        buf.clear();
+        append_state_message(buf, trace, i);
+    }
 
     #[test]
     fn a_state_message_is_the_header_and_every_value_bit_for_bit() {

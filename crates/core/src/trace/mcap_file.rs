@@ -112,7 +112,15 @@ fn mcap_error(e: std::io::Error) -> Error {
 /// Write `log` to `path` atomically, streamed: only the open chunk and the indexes are
 /// held in memory, not the file.
 pub fn write_mcap(log: &TraceLog, path: &Path) -> Result<(), Error> {
-    write_atomically_with(path, |file| write_mcap_to(log, file, CHUNKS).map(|_| ()))
+    write_atomically_with(path, |file| {
+        // the compressed chunks (hundreds of kB) straight to the file, small records
+        // gathered in a buffer below the atomic writer's (which stays empty): one copy of
+        // every byte less
+        let direct = std::io::BufWriter::with_capacity(DIRECT_BELOW, file.get_mut());
+        write_mcap_to(log, direct, CHUNKS)?
+            .flush()
+            .map_err(mcap_error)
+    })
 }
 
 /// Log time of a simulation time, ns (non-finite or negative times clamp to `floor`).
@@ -146,6 +154,10 @@ impl<W: Write> Out<W> {
         self.put(channel_id, ns, v.to_string().as_bytes())
     }
 }
+
+/// Records shorter than this are gathered before they are written; longer ones (the
+/// compressed chunks) are written as they are.
+const DIRECT_BELOW: usize = 64 << 10;
 
 /// Chunks of the file: zstd at its fast level −1 in chunks of 1 MiB, each compressed in
 /// one call. Measured on the 10⁶-step PEPO run (docs/performance.md §1, CPU of the whole
@@ -326,8 +338,9 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         let (run, ch, i) = (&log.runs[r], &channels[r], row[r]);
         let ns = ns_of(run.trace.time[i], last_ns[r]);
         last_ns[r] = ns;
-        cdr::state_message(&mut buf, run.trace, i);
-        out.put(ch.state, ns, &buf)?;
+        out.w
+            .message_with(ch.state, ns, |r| cdr::append_state_message(r, run.trace, i))
+            .map_err(mcap_error)?;
         let last_row = i + 1 == run.trace.len();
         if let (Some((_, forces, tf)), Some(g)) = (ch.view, &log.geometry)
             && (ns >= next_view[r] || last_row)

@@ -281,6 +281,18 @@ impl<W: Write> McapWriter<W> {
     /// 1; the chunk is compressed and written once it is full. `channel_id` must be one
     /// [`Self::add_channel`] returned (an id it did not return panics: a programming error).
     pub fn message(&mut self, channel_id: u16, log_time: u64, data: &[u8]) -> io::Result<()> {
+        self.message_with(channel_id, log_time, |r| r.extend_from_slice(data))
+    }
+
+    /// [`Self::message`] whose data `encode` appends straight to the open chunk (the
+    /// message's record is patched with the length it wrote): no copy of the data from a
+    /// buffer of its own. The same bytes as [`Self::message`] with what `encode` appends.
+    pub fn message_with(
+        &mut self,
+        channel_id: u16,
+        log_time: u64,
+        encode: impl FnOnce(&mut Vec<u8>),
+    ) -> io::Result<()> {
         let ch = usize::from(channel_id);
         self.sequence[ch] += 1;
         self.counts[ch] += 1;
@@ -291,12 +303,16 @@ impl<W: Write> McapWriter<W> {
         chunk.end = chunk.end.max(log_time);
         let r = &mut chunk.records;
         r.push(op::MESSAGE);
-        r.u64le(22 + data.len() as u64);
+        let length_at = r.len();
+        r.u64le(0); // the body's length, once the data is in
         r.u16le(channel_id);
         r.u32le(self.sequence[ch]);
         r.u64le(log_time);
         r.u64le(log_time);
-        r.extend_from_slice(data);
+        let body_start = length_at + 8;
+        encode(r);
+        let body_length = (r.len() - body_start) as u64;
+        r[length_at..body_start].copy_from_slice(&body_length.to_le_bytes());
         self.message_bounds = Some(match self.message_bounds {
             None => (log_time, log_time),
             Some((a, b)) => (a.min(log_time), b.max(log_time)),
@@ -498,6 +514,49 @@ impl<W: Write> McapWriter<W> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Messages of every length from 0 to 40 bytes, appended straight into the chunk by
+    /// `message_with` (in two pieces, as the state messages are), give the file `message`
+    /// gives with each whole: the length patched in is the data's, and the `mcap` crate
+    /// reads each message back with its bytes.
+    #[test]
+    fn a_message_encoded_into_the_chunk_is_the_message_given_whole() {
+        let data = |i: usize| {
+            (0..i as u8)
+                .map(|b| b.wrapping_mul(37))
+                .collect::<Vec<u8>>()
+        };
+        let file = |encoded: bool| {
+            let options = ChunkOptions {
+                chunk_bytes: 256,
+                compression: ChunkCompression::None,
+            };
+            let mut w = McapWriter::new(Vec::new(), options).unwrap();
+            let s = w
+                .add_schema("rockslide/S", "ros2msg", b"uint8[] x")
+                .unwrap();
+            let c = w.add_channel(s, "/c", "cdr", &BTreeMap::new()).unwrap();
+            for i in 0..=40 {
+                let d = data(i);
+                match encoded {
+                    true => w.message_with(c, 10 * i as u64, |r| {
+                        r.extend_from_slice(&d[..i / 2]);
+                        r.extend_from_slice(&d[i / 2..]);
+                    }),
+                    false => w.message(c, 10 * i as u64, &d),
+                }
+                .unwrap();
+            }
+            w.finish().unwrap()
+        };
+        let bytes = file(true);
+        assert_eq!(bytes, file(false));
+        let read: Vec<_> = mcap::MessageStream::new(&bytes)
+            .unwrap()
+            .map(|m| m.unwrap().data.to_vec())
+            .collect();
+        assert_eq!(read, (0..=40).map(data).collect::<Vec<_>>());
+    }
 
     /// 300 messages on two channels in chunks of ~1 KiB, zstd, lz4 or none: the `mcap`
     /// crate's linear reader (CRCs checked) and its indexed reader (summary, chunk
