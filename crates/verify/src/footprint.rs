@@ -23,7 +23,8 @@ use crate::suite::{Plan, PlannedRun};
 
 /// Default limit of the estimated memory of one case's traces: 8 GiB (a third of the
 /// machines this runs on). The estimate is about three times the measured peak (a
-/// predictor-corrector run of 10⁶ steps peaks at 0.2 GB), so runs up to ≈ 10⁷ steps pass.
+/// predictor-corrector run of 10⁶ steps that keeps every row peaks at 0.2 GB), so runs
+/// keeping up to ≈ 10⁷ rows pass; a streamed run is estimated by the rows it keeps.
 pub const DEFAULT_MEMORY_LIMIT: u64 = 8 << 30;
 /// Default limit of the estimated disk use of one case's trace files: 16 GiB.
 pub const DEFAULT_DISK_LIMIT: u64 = 16 << 30;
