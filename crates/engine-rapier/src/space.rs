@@ -524,6 +524,7 @@ pub fn run_block(
     let ground = add_ground(&mut world, pd.drive.ground_kind(), mu);
     let body = RigidBodyBuilder::dynamic()
         .translation(Vector::new(0.0, b.half_height, 0.0))
+        .enabled_rotations(false, true, false)
         .can_sleep(false);
     let collider = ColliderBuilder::cuboid(b.half_width, b.half_height, half_depth)
         .mass(b.mass)
