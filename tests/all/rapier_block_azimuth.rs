@@ -134,3 +134,28 @@ fn gate_fails_a_block_sliding_off_its_drive() {
         assert_eq!(verdict("residual_sliding_y"), Verdict::Fail, "{deg}°");
     }
 }
+
+/// With its tipping locked the block is a sliding block: valid while friction cannot tip
+/// it (μ < min(b, d)/h), and the run says so; a tall slab (h = 2.5 m: min(b, d)/h = 0.2
+/// < μ = 0.3) is stated outside the engine's validity.
+#[test]
+fn a_block_friction_could_tip_is_stated_outside_validity() {
+    let finding = |c: &Case| {
+        let r = run(c, "inertial-force");
+        r.findings
+            .iter()
+            .find(|f| f.contains("locked"))
+            .cloned()
+            .unwrap()
+    };
+    let slab = finding(&load_case(Path::new(SLAB)).unwrap());
+    assert!(
+        slab.starts_with("within") && slab.contains("2.0000"),
+        "{slab}"
+    );
+    let tall = finding(&slab_with(&[("half_height = 0.25", "half_height = 2.5")]));
+    assert!(
+        tall.starts_with("outside") && tall.contains("0.2000"),
+        "{tall}"
+    );
+}

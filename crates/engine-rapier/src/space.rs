@@ -881,7 +881,25 @@ fn block_case(
             ""
         }
     ));
+    said.findings.push(tipping_finding(b, depth));
     Ok(run_block(b, depth, settings, &pd, (dt, stride), n, sink))
+}
+
+/// Whether the block's locked tipping is its physics: friction, at most μ·M·g at the
+/// base, cannot tip a block with μ < min(b, d)/h about an edge of its footprint.
+fn tipping_finding(b: &RigidBlock, depth: f64) -> String {
+    let limit = b.half_width.min(depth) / b.half_height;
+    if b.mu < limit {
+        format!(
+            "within the engine's validity for its locked tipping: μ = {} < min(b, d)/h = {limit:.4}, so friction cannot tip the block",
+            b.mu
+        )
+    } else {
+        format!(
+            "outside the engine's validity: the block's tipping rotations are locked (a sliding block), but μ = {} ≥ min(b, d)/h = {limit:.4}: a drive above g·min(b, d)/h would tip it",
+            b.mu
+        )
+    }
 }
 
 /// The block's kinematic-ground step rule ([`block_kinematic_stride`]) with what it
