@@ -27,6 +27,7 @@ mod paper_values;
 mod plot_envelope;
 mod predictor_corrector;
 mod properties;
+mod rapier_block_azimuth;
 mod rapier_options;
 mod rapier_pepo;
 mod rapier_records;

@@ -186,6 +186,12 @@ defs![
         q::SLIDE_RESULTANT,
         Last
     ),
+    (
+        "residual_sliding_y",
+        "Residual sliding y (3D)",
+        q::SLIDE_Y,
+        Last
+    ),
 ];
 
 /// The definition of a quantity key.

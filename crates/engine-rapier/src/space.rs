@@ -2,10 +2,12 @@
 //! excitation pair drives the bodies in both horizontal directions at once.
 //!
 //! - the rigid block: a cuboid 2b × 2h × 2d on a ground slab with contact friction μ,
-//!   free in all six degrees of freedom; rapier's 3D friction is a circular cone per
-//!   friction constraint (the tangential impulse is solved as a coupled 2 × 2 system and
-//!   capped in magnitude, `simd_cap_magnitude`, in `contact_constraint_element.rs` of
-//!   rapier 0.36), so the block's friction is isotropic up to the solver's convergence;
+//!   free to slide, lift and yaw, its tipping rotations locked; rapier's 3D friction is a
+//!   circular cone per friction constraint (the tangential impulse is solved as a coupled
+//!   2 × 2 system, Δλ = −K⁻¹·Δv, and capped in magnitude, `simd_cap_magnitude`, in
+//!   `contact_constraint_element.rs` of rapier 0.36); with the tipping locked K = I/m, so
+//!   the capped impulse opposes the slip in every direction (free to tip, K holds h²/I
+//!   about each horizontal axis and a slab slid 6.6° off its drive);
 //! - the oscillator (PEPO): one body free in the horizontal plane (rotations and the
 //!   vertical locked, no collider) with its contact as an applied force the engine
 //!   computes after every rapier step: the spring Kx·(u − p) in series with a massless
@@ -521,7 +523,9 @@ pub fn run_oscillator(
 }
 
 /// Run the rigid block in plan: a cuboid 2b × 2h × 2d on the ground slab, friction μ
-/// on both colliders (rule Average → μ), restitution 0, every degree of freedom free.
+/// on both colliders (rule Average → μ), restitution 0, free in x, y, z and yaw; its
+/// tipping rotations (about the horizontal axes) are locked: the rigid-plastic block of
+/// the reference, and the friction's tangent effective mass isotropic (module docs).
 pub fn run_block(
     b: &RigidBlock,
     half_depth: f64,
@@ -537,6 +541,8 @@ pub fn run_block(
     let ground = add_ground(&mut world, pd.drive.ground_kind(), mu);
     let body = RigidBodyBuilder::dynamic()
         .translation(Vector::new(0.0, b.half_height, 0.0))
+        // rapier's axes (x, up, −y): yaw only.
+        .enabled_rotations(false, true, false)
         .can_sleep(false);
     let collider = ColliderBuilder::cuboid(b.half_width, b.half_height, half_depth)
         .mass(b.mass)
@@ -865,7 +871,7 @@ fn block_case(
     said.described.push((
         "block".into(),
         format!(
-            "uniform cuboid 2b × 2h × 2d = {} × {} × {} m (x, z, y), mass {} kg, free in six degrees of freedom on the ground slab",
+            "uniform cuboid 2b × 2h × 2d = {} × {} × {} m (x, z, y), mass {} kg, on the ground slab, free in x, y, z and yaw, its tipping rotations locked (the friction's tangent effective mass isotropic: free to tip, a 2 × 1 m slab slid 6.6° off its drive)",
             2.0 * b.half_width,
             2.0 * b.half_height,
             2.0 * depth,
@@ -883,12 +889,30 @@ fn block_case(
     said.findings.push(format!(
         "measured against the plan-motion block reference with the Simplified friction model (docs/rapier-engine.md, \"Plan motion\"): {BLOCK_MEASURED}{}",
         if settings.friction == FrictionModel::Coulomb {
-            "; outside the engine's validity with friction_model = \"coulomb\": one record along x slid 56 % too far (+14 % at 30°, exact within 0.2 % at 45° and 135°)"
+            "; outside the engine's validity with friction_model = \"coulomb\": one record along x slid 59 % too far (+16 % at 30°, within 0.01 % at 45° and 135°)"
         } else {
             ""
         }
     ));
+    said.findings.push(tipping_finding(b, depth));
     Ok(run_block(b, depth, settings, &pd, (dt, stride), n, sink))
+}
+
+/// Whether the block's locked tipping is its physics: friction, at most μ·M·g at the
+/// base, cannot tip a block with μ < min(b, d)/h about an edge of its footprint.
+fn tipping_finding(b: &RigidBlock, depth: f64) -> String {
+    let limit = b.half_width.min(depth) / b.half_height;
+    if b.mu < limit {
+        format!(
+            "within the engine's validity for its locked tipping: μ = {} < min(b, d)/h = {limit:.4}, so friction cannot tip the block",
+            b.mu
+        )
+    } else {
+        format!(
+            "outside the engine's validity: the block's tipping rotations are locked (a sliding block), but μ = {} ≥ min(b, d)/h = {limit:.4}: a drive above g·min(b, d)/h would tip it",
+            b.mu
+        )
+    }
 }
 
 /// The block's kinematic-ground step rule ([`block_kinematic_stride`]) with what it
@@ -938,4 +962,4 @@ const VERTICAL_MEASURED: &str = "; with a vertical pulse at 2/3 on its spring Kz
 
 /// The block's measured agreement, stated in its runs' findings
 /// (tests/all/rapier_space.rs).
-const BLOCK_MEASURED: &str = "record pair (block-record-pair), peak / residual resultant sliding −0.10 / −0.04 % (inertial force), −0.07 / +0.06 % (kinematic ground); one record at five azimuths, residual within 0.34 % of each other (inertial force; 1.3 % on the kinematic ground): nearly isotropic, |T| ≤ μ·N on every step to round-off";
+const BLOCK_MEASURED: &str = "record pair (block-record-pair), peak / residual resultant sliding −0.11 / −0.09 % on both routes; one record at five azimuths, residual +0.028 % at each, to 5e-14 of each other (inertial force; +0.001 % at 0° and 135° on the kinematic ground); a 2 × 1 m slab under a pulse at 30° (block-pulse-azimuth30) slides along its drive to 2e-13°: isotropic, |T| ≤ μ·N on every step to round-off";
