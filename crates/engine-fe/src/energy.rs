@@ -142,6 +142,9 @@ impl EnergyBook {
     ) -> (f64, f64) {
         let mut strain = 0.0;
         let mut ground_force = 0.0;
+        // The book's running sums in locals over the loop (the same additions in the same
+        // order), stored once after it.
+        let (mut friction, mut contact) = (self.friction, self.contact);
         for ((e, on_ground), prev) in elements.zip(self.prev.iter_mut()) {
             let st = e.state();
             let (t, n) = (e.tangential(), e.normal());
@@ -169,29 +172,24 @@ impl EnergyBook {
                     // a step is not dissipation and goes to the non-smooth part.
                     let d = 0.5 * (prev.force.x + t) * (st.slip - prev.slip);
                     if d >= 0.0 {
-                        self.friction += d;
+                        friction += d;
                     } else {
-                        self.contact += d;
+                        contact += d;
                     }
                 } else if open != prev.open {
                     // Opening or closing inside the step: the element's trapezoidal work
                     // minus its strain-energy change is what the step's kink lost.
                     let work = 0.5 * (prev.force + st.force).dot(&(st.delta - prev.delta));
-                    self.contact += work - (u - prev.strain);
+                    contact += work - (u - prev.strain);
                 }
                 if on_ground {
                     ground_force += 0.5 * (prev.force.x + t);
                 }
             }
-            *prev = ElementEnergy {
-                force: st.force,
-                delta: st.delta,
-                slip: st.slip,
-                strain: u,
-                open,
-                springs,
-            };
+            (prev.force, prev.delta, prev.slip) = (st.force, st.delta, st.slip);
+            (prev.strain, prev.open, prev.springs) = (u, open, springs);
         }
+        (self.friction, self.contact) = (friction, contact);
         (strain, ground_force)
     }
 }

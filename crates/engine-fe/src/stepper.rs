@@ -323,6 +323,10 @@ pub fn integrate(
         },
     );
 
+    // The state at n and the step's result, each written in place (no copy of the
+    // accepted state): `cur` is n's, the other is written by the step.
+    let mut states = [n, n];
+    let mut cur = 0;
     let max_depth = opts.newton.max_step_cuts;
     let units = 1u32 << max_depth;
     // The coefficients of the step size in use (recomputed when a step is cut).
@@ -351,15 +355,17 @@ pub fn integrate(
             if nm.h != h {
                 nm = Newmark::new(opts, h);
             }
+            let [s0, s1] = &mut states;
+            let (n, next) = if cur == 0 { (&*s0, s1) } else { (&*s1, s0) };
             let result = if slider {
-                slider::step(model, drive, opts, &nm, &mut w, &n, t, &mut counters)
+                slider::step(model, drive, opts, &nm, &mut w, (n, next), t, &mut counters)
             } else {
-                newton_step(model, drive, opts, &nm, &mut w, &n, t, &mut counters)
+                newton_step(model, drive, opts, &nm, &mut w, (n, next), t, &mut counters)
             };
             match result {
-                Ok(next) => {
+                Ok(()) => {
                     model.commit_step(&w.asm, &mut w.un);
-                    n = next;
+                    cur = 1 - cur;
                     w.keep_nodes(model.loop_nodes());
                     pos = end;
                     if level > 0 && pos % (2 * size) == 0 {
@@ -388,6 +394,7 @@ pub fn integrate(
             }
         }
         counters.steps += 1;
+        let n = &states[cur];
         observe(
             model,
             &Snapshot {
@@ -487,8 +494,8 @@ struct StepFailure {
 }
 
 /// One step of length `nm.h` from `n` to time `t`: Newton–Raphson with a backtracking
-/// line search on the consistent tangent. On success the elements' trial states and
-/// `w.un`, `w.asm` hold the new state (not yet committed).
+/// line search on the consistent tangent. On success `next`, the elements' trial states
+/// and `w.un`, `w.asm` hold the new state (not yet committed).
 #[allow(clippy::too_many_arguments)]
 fn newton_step(
     model: &mut Model,
@@ -496,10 +503,10 @@ fn newton_step(
     opts: &FeOptions,
     nm: &Newmark,
     w: &mut Workspace,
-    n: &StepState,
+    (n, next): (&StepState, &mut StepState),
     t: f64,
     counters: &mut Counters,
-) -> Result<StepState, StepFailure> {
+) -> Result<(), StepFailure> {
     let m = model.mass_diag();
     let c = model.body.damping;
     let Newmark {
@@ -590,7 +597,7 @@ fn newton_step(
         // iterate is accepted.
         if r2.sqrt() <= 1e-11 * fref {
             done(it, counters);
-            return Ok(StepState {
+            *next = StepState {
                 t,
                 q,
                 v,
@@ -600,7 +607,8 @@ fn newton_step(
                 pb: w.asm.pb,
                 damp,
                 g,
-            });
+            };
+            return Ok(());
         }
         if !solve(model, &sys, &mut w.asm, &rb, &w.rn, &mut dq, &mut w.dun) {
             done(it, counters);
@@ -637,7 +645,7 @@ fn newton_step(
             || d2.sqrt() <= (newton.displacement_tol * inc2.sqrt()).max(1e-12 * u2.sqrt());
         if force_ok && disp_ok() {
             done(it, counters);
-            return Ok(StepState {
+            *next = StepState {
                 t,
                 q,
                 v,
@@ -647,7 +655,8 @@ fn newton_step(
                 pb: w.asm.pb,
                 damp,
                 g,
-            });
+            };
+            return Ok(());
         }
         // Round-off floor: the residual is within the force tolerance, and a full Newton
         // iteration (with its line search) no longer halves it — the iterate is at the
@@ -655,7 +664,7 @@ fn newton_step(
         if force_ok && r_prev.is_finite() && rn > 0.5 * r_prev {
             counters.roundoff_accepted += 1;
             done(it, counters);
-            return Ok(StepState {
+            *next = StepState {
                 t,
                 q,
                 v,
@@ -665,7 +674,8 @@ fn newton_step(
                 pb: w.asm.pb,
                 damp,
                 g,
-            });
+            };
+            return Ok(());
         }
         (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
         q += dq;

@@ -112,10 +112,10 @@ pub(super) fn step(
     opts: &FeOptions,
     nm: &Newmark,
     w: &mut Workspace,
-    n: &StepState,
+    (n, next): (&StepState, &mut StepState),
     t: f64,
     counters: &mut Counters,
-) -> Result<StepState, StepFailure> {
+) -> Result<(), StepFailure> {
     let mass = model.body.mass;
     let c = model.body.damping;
     let Newmark {
@@ -168,7 +168,8 @@ pub(super) fn step(
         let damp = c * (v.x - g.1);
         if linear_step(stepped_from, &k, &q) {
             done(it, counters);
-            return Ok(accept(q, v, a, pb, damp));
+            *next = accept(q, v, a, pb, damp);
+            return Ok(());
         }
         let rx = ((f.x - pb.0) - damp) * s - start_x - mass * a.x;
         let rz = (f.y - pb.1) * s - start_z - mass * a.y;
@@ -191,7 +192,8 @@ pub(super) fn step(
         }
         if r2.sqrt() <= 1e-11 * fref {
             done(it, counters);
-            return Ok(accept(q, v, a, pb, damp));
+            *next = accept(q, v, a, pb, damp);
+            return Ok(());
         }
         let matrix = [
             (mass_c0 + k[0] * s) + damp_xx,
@@ -225,12 +227,14 @@ pub(super) fn step(
             || d2.sqrt() <= (newton.displacement_tol * inc2.sqrt()).max(1e-12 * u2.sqrt());
         if force_ok && disp_ok() {
             done(it, counters);
-            return Ok(accept(q, v, a, pb, damp));
+            *next = accept(q, v, a, pb, damp);
+            return Ok(());
         }
         if force_ok && r_prev.is_finite() && rn > 0.5 * r_prev {
             counters.roundoff_accepted += 1;
             done(it, counters);
-            return Ok(accept(q, v, a, pb, damp));
+            *next = accept(q, v, a, pb, damp);
+            return Ok(());
         }
         (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
         q += dq;
