@@ -139,33 +139,38 @@ pub(crate) fn run_model<S: StepSink + ?Sized>(
         let (mut slip_sum, mut slip_min, mut slip_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
         let (mut uplift, mut contacts) = (0.0_f64, 0.0);
         let mut node_sum = 0.0;
+        // The self-check's running maximum in a local over the loop, stored once after it.
+        let mut node_minus_slip = check.node_minus_slip;
         for (sup, c) in m.supports.iter().zip(states.iter_mut()) {
             let e = &m.links[sup.ground_link].element;
             let st = e.state();
+            // `e.tangential()` and `e.normal()`, read once.
+            let (tangential, normal_force) = (st.force.x, -st.force.y);
             *c = ContactState {
-                normal: e.normal(),
-                tangential: e.tangential(),
+                normal: normal_force,
+                tangential,
                 slip: st.slip,
                 gap: st.delta.y,
             };
-            shear += e.tangential();
-            normal += e.normal();
+            shear += tangential;
+            normal += normal_force;
             // The sliding is element 1's own accumulated slip (return-mapping state). In
             // the double arrangement the node shows it too, plus element 1's deflection.
             let slip = st.slip;
             if let Some(k) = sup.node {
                 let node = s.un[k].x - xg;
                 node_sum += node;
-                check.node_minus_slip = check.node_minus_slip.max((node - slip).abs());
+                node_minus_slip = running_max(node_minus_slip, (node - slip).abs());
             }
             slip_sum += slip;
-            slip_min = slip_min.min(slip);
-            slip_max = slip_max.max(slip);
-            uplift = uplift.max(st.delta.y);
-            if st.status != super::element::Status::Open && e.normal() > 0.0 {
+            slip_min = running_min(slip_min, slip);
+            slip_max = running_max(slip_max, slip);
+            uplift = running_max(uplift, st.delta.y);
+            if st.status != super::element::Status::Open && normal_force > 0.0 {
                 contacts += 1.0;
             }
         }
+        check.node_minus_slip = node_minus_slip;
         let slide = slip_sum / m.supports.len() as f64;
         let mut i = 0;
         let mut put = |v: f64| {
@@ -208,6 +213,21 @@ pub(crate) fn run_model<S: StepSink + ?Sized>(
         sink.row(s.t, &row[..i], &states);
     });
     (status, counters, check)
+}
+
+/// `acc.max(v)` for an accumulator `acc` that is never NaN (it starts at a number or ±∞
+/// and only ever takes one of these values): the same value, a NaN `v` left out as
+/// `f64::max` leaves it out, an equal `v` (±0) not taken, as `f64::max`'s x86 lowering
+/// does not take it; one `maxsd`, without `f64::max`'s test of `acc` for NaN.
+#[inline(always)]
+fn running_max(acc: f64, v: f64) -> f64 {
+    if v > acc { v } else { acc }
+}
+
+/// `acc.min(v)` for an accumulator `acc` that is never NaN: as [`running_max`].
+#[inline(always)]
+fn running_min(acc: f64, v: f64) -> f64 {
+    if v < acc { v } else { acc }
 }
 
 /// The sliding oscillator's row (`Model::is_slider`, not rocking): the general recorder's
