@@ -166,9 +166,9 @@ pub(crate) fn run_model<S: StepSink + ?Sized>(
             slip_min = running_min(slip_min, slip);
             slip_max = running_max(slip_max, slip);
             uplift = running_max(uplift, st.delta.y);
-            if st.status != super::element::Status::Open && normal_force > 0.0 {
-                contacts += 1.0;
-            }
+            // One for a closed element pressed, else +0 (the same sum: it is ≥ +0).
+            let pressed = (st.status != super::element::Status::Open) & (normal_force > 0.0);
+            contacts += f64::from(u8::from(pressed));
         }
         check.node_minus_slip = node_minus_slip;
         let slide = slip_sum / m.supports.len() as f64;
