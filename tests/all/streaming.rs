@@ -144,6 +144,32 @@ mod streamed_equals_whole {
     }
 
     /// The case run whole and streamed (every run) by `engines`.
+    /// The engine `id` alone.
+    fn only(id: &str) -> Vec<Box<dyn rockslide::engine::Engine>> {
+        let mut engines = rockslide::engine::all();
+        engines.retain(|e| e.id() == id);
+        engines
+    }
+
+    /// Engine `id` alone on `case`, streamed and whole: each row records the values the
+    /// engine declares before running (the estimates' count), and the two results agree bit
+    /// for bit (responses, history errors, invariants, checks, statistics, findings) with
+    /// the rows of the files.
+    fn assert_streams_as_whole(case: Case, id: &str) {
+        let output_dt = case.run.output_dt;
+        let (whole, streamed) = both_with(case.clone(), only(id));
+        assert!(!whole.runs.is_empty());
+        for r in &whole.runs {
+            let recorded = 1 + r.trace.channels.len() + 4 * r.trace.contacts.count();
+            let declared = only(id)[0].recorded_values(&case, &r.variant);
+            assert_eq!(declared, Some(recorded), "{}", r.label());
+        }
+        assert_same(&whole, &streamed, |w| match output_dt {
+            Some(o) => bits(&w.trace.at_output_step(o)),
+            None => bits(&w.trace),
+        });
+    }
+
     fn both_with(
         case: Case,
         engines: Vec<Box<dyn rockslide::engine::Engine>>,
@@ -307,11 +333,6 @@ mod streamed_equals_whole {
     /// rows of its files; each run records the values the engine declares before running.
     #[test]
     fn rapier_natively_on_each_of_its_time_loops() {
-        let rapier = || {
-            let mut engines = rockslide::engine::all();
-            engines.retain(|e| e.id() == "rapier");
-            engines
-        };
         let foot = "[engines.rapier]\ncontact_model = \"foot\"\n#";
         let joints = "[engines.rapier]\ncontact_model = \"joint-limit\"\n#";
         // every row kept: a streamed run reads the tilt after the first impact off its kept
@@ -361,19 +382,7 @@ mod streamed_equals_whole {
             edited("rpepo-mass-accel", &plan_rpepo),
         ];
         for case in cases {
-            let output_dt = case.run.output_dt;
-            let (whole, streamed) = both_with(case.clone(), rapier());
-            assert!(!whole.runs.is_empty());
-            // the values a row records, declared before the run (the estimates' count)
-            for r in &whole.runs {
-                let recorded = 1 + r.trace.channels.len() + 4 * r.trace.contacts.count();
-                let declared = rapier()[0].recorded_values(&case, &r.variant);
-                assert_eq!(declared, Some(recorded), "{}", r.label());
-            }
-            assert_same(&whole, &streamed, |w| match output_dt {
-                Some(o) => bits(&w.trace.at_output_step(o)),
-                None => bits(&w.trace),
-            });
+            assert_streams_as_whole(case, "rapier");
         }
     }
     /// fe alone, streaming natively, on each of its recorders: the sliding oscillator's
@@ -385,11 +394,6 @@ mod streamed_equals_whole {
     /// files; each run records the values the engine declares before running.
     #[test]
     fn fe_natively_on_each_of_its_recorders() {
-        let fe = || {
-            let mut engines = rockslide::engine::all();
-            engines.retain(|e| e.id() == "fe");
-            engines
-        };
         let short_rpepo = ("duration = 2.0 ", "duration = 0.7 ");
         let plan_rpepo: [(&str, &str); 3] = [
             ("[model]\n", "[model]\nhalf_depth = 0.3\nsupport_rows = 2\n"),
@@ -405,22 +409,10 @@ mod streamed_equals_whole {
             edited("rpepo-mass-accel", &plan_rpepo),
         ];
         for case in cases {
-            let output_dt = case.run.output_dt;
-            let (whole, streamed) = both_with(case.clone(), fe());
-            assert!(!whole.runs.is_empty());
-            // the values a row records, declared before the run (the estimates' count)
-            for r in &whole.runs {
-                let recorded = 1 + r.trace.channels.len() + 4 * r.trace.contacts.count();
-                let declared = fe()[0].recorded_values(&case, &r.variant);
-                assert_eq!(declared, Some(recorded), "{}", r.label());
-            }
-            assert_same(&whole, &streamed, |w| match output_dt {
-                Some(o) => bits(&w.trace.at_output_step(o)),
-                None => bits(&w.trace),
-            });
+            assert_streams_as_whole(case, "fe");
         }
         // the sensitivity findings (read as the rows go by) are among those compared
-        let (whole, _) = both_with(edited("rpepo-mass-accel", &[short_rpepo]), fe());
+        let (whole, _) = both_with(edited("rpepo-mass-accel", &[short_rpepo]), only("fe"));
         assert!(
             whole.runs[0]
                 .findings
