@@ -7,7 +7,7 @@ use rapier3d_f64::prelude::*;
 use super::contact_forces::ground_force;
 use super::ground::GroundTable;
 use super::rows::layout;
-use super::world::{FOOT_HALF, GroundKind, ROCK_FOOT_HALF, Rig, angle_z};
+use super::world::{FOOT_HALF, GroundKind, ROCK_FOOT_HALF, Rig, Support, angle_z};
 use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Signal, Vertical};
 use rockslide_core::trace::{ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{RunStatus, StepSink, step_count};
@@ -59,21 +59,28 @@ pub(crate) fn force_at(excitation: &Excitation, m: f64, t: f64) -> f64 {
 }
 
 /// Apply the step's forces (and, for the kinematic route, the ground's next position).
+/// The structure is looked up once for its own forces (rapier marks a body modified on
+/// every mutable lookup); forces are added in the same order as they always were.
 fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: usize, dt: f64) {
     let t = k as f64 * dt;
-    for &(h, _) in &rig.inertial_masses {
-        rig.world.bodies[h].reset_forces(false);
-    }
+    let body = &mut rig.world.bodies[rig.structure];
+    body.reset_forces(false);
     if rig.applied_supports {
-        apply_support_forces(rig);
+        apply_support_forces(body, &rig.supports, rig.supports_cm);
+    }
+    if drive == Drive::AppliedForce
+        && let Excitation::MassAcceleration(s) = ex
+    {
+        let f = rig.mass * mean_over_step(s, t, dt);
+        body.add_force(Vector::new(f, 0.0, 0.0), false);
+    }
+    for &(h, _) in &rig.inertial_masses {
+        if h != rig.structure {
+            rig.world.bodies[h].reset_forces(false);
+        }
     }
     match drive {
-        Drive::AppliedForce => {
-            if let Excitation::MassAcceleration(s) = ex {
-                let f = rig.mass * mean_over_step(s, t, dt);
-                rig.world.bodies[rig.structure].add_force(Vector::new(f, 0.0, 0.0), false);
-            }
-        }
+        Drive::AppliedForce => {}
         Drive::InertialForce => {
             let ag = g.mean_acceleration(k, dt);
             for &(h, m) in &rig.inertial_masses {
@@ -91,14 +98,20 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
 
 /// The applied-force supports' resultant on the structure for the next step: each
 /// support's force at its anchor (state after the last step), summed into one force at
-/// the CM and a torque about Z.
-fn apply_support_forces(rig: &mut Rig) {
-    let body = &mut rig.world.bodies[rig.structure];
-    let (cm, phi) = (body.translation(), angle_z(body));
-    let rotation = phi.sin_cos();
+/// the CM and a torque about Z. The anchors are the ones [`supports_after_step`] computed
+/// at the body's pose after the last step (`cm`), which has not moved since; before the
+/// first step they are computed from the body here.
+fn apply_support_forces(body: &mut RigidBody, supports: &[Support], cm: Option<Vector>) {
+    let (cm, rotation) = match cm {
+        Some(cm) => (cm, None),
+        None => (body.translation(), Some(angle_z(body).sin_cos())),
+    };
     let (mut fx, mut fy, mut torque) = (0.0, 0.0, 0.0);
-    for sup in &rig.supports {
-        let (ax, ay) = sup.anchor_at(cm, rotation);
+    for sup in supports {
+        let (ax, ay) = match rotation {
+            Some(rotation) => sup.anchor_at(cm, rotation),
+            None => sup.anchor,
+        };
         let (sx, sy) = sup.force_on_body();
         fx += sx;
         fy += sy;
@@ -332,8 +345,10 @@ fn supports_after_step(rig: &mut Rig, ground_height: f64) {
     let rotation = phi.sin_cos();
     let gx = rig.world.bodies[rig.ground].translation().x;
     let gy = ground_height;
+    rig.supports_cm = Some(cm);
     for sup in rig.supports.iter_mut() {
         let (ax, ay) = sup.anchor_at(cm, rotation);
+        sup.anchor = (ax, ay);
         let (s, cap) = sup.update((ax - gx - sup.x, ay - gy));
         if rig.applied_supports {
             // no joints: the engine applies the supports' forces before the next step

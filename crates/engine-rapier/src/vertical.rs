@@ -227,6 +227,7 @@ pub(crate) fn oscillator_with_supports(
             s: 0.0,
             normal,
             delta: (0.0, -preload),
+            anchor: (0.0, 0.0),
         }],
         ..Rig::single(w, ground, structure, m)
     }

@@ -56,6 +56,11 @@ pub struct Rig {
     /// Whether the supports act as forces the engine applies to the structure before
     /// each step ([`rocking_body_applied_force`]) rather than through joints.
     pub applied_supports: bool,
+    /// The structure's centre of mass at which the supports' anchors
+    /// ([`Support::anchor`]) were last computed, after the last step: the pose the
+    /// applied-force supports act at before the next one (the body does not move between
+    /// steps). `None` until the first step.
+    pub supports_cm: Option<Vector>,
 }
 
 impl Rig {
@@ -78,6 +83,7 @@ impl Rig {
             slider: None,
             supports: Vec::new(),
             applied_supports: false,
+            supports_cm: None,
         }
     }
 }
@@ -189,6 +195,7 @@ pub fn oscillator(osc: &Oscillator, s: &RapierSettings, dt: f64, kind: GroundKin
         slider: None,
         supports: Vec::new(),
         applied_supports: false,
+        supports_cm: None,
     }
 }
 
@@ -376,6 +383,7 @@ pub fn rocking_body(r: &RockingBody, s: &RapierSettings, dt: f64, kind: GroundKi
         slider: None,
         supports: Vec::new(),
         applied_supports: false,
+        supports_cm: None,
     }
 }
 
@@ -419,6 +427,8 @@ pub struct Support {
     pub normal: f64,
     /// Anchor minus ground point (δx, δz) after the last step, m.
     pub delta: (f64, f64),
+    /// The anchor's world position after the last step (x, y), m.
+    pub anchor: (f64, f64),
 }
 
 impl Support {
@@ -521,6 +531,7 @@ pub fn rocking_body_joint_limit(
             s: 0.0,
             normal,
             delta: (0.0, -preload),
+            anchor: (0.0, 0.0),
         });
     }
     Rig {
@@ -564,6 +575,11 @@ pub fn rocking_body_applied_force(
     kind: GroundKind,
 ) -> Rig {
     let mut world = new_world(s, dt, r.gravity);
+    // No joints and no contacts: rapier's stabilization (unbiased) pass has no constraint
+    // to solve, so it is skipped; the integrated motion is the same bits (docs/rapier-engine.md).
+    world
+        .integration_parameters
+        .num_internal_stabilization_iterations = 0;
     let ground_body = match kind {
         GroundKind::Fixed => RigidBodyBuilder::fixed(),
         GroundKind::Kinematic => RigidBodyBuilder::kinematic_position_based(),
@@ -587,6 +603,7 @@ pub fn rocking_body_applied_force(
             s: 0.0,
             normal: r.weight() / n as f64,
             delta: (0.0, -preload),
+            anchor: (0.0, 0.0),
         })
         .collect();
     Rig {
