@@ -63,30 +63,36 @@ pub(crate) fn force_at(excitation: &Excitation, m: f64, t: f64) -> f64 {
 /// every mutable lookup); forces are added in the same order as they always were.
 fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: usize, dt: f64) {
     let t = k as f64 * dt;
+    let ag = match drive {
+        Drive::InertialForce => g.mean_acceleration(k, dt),
+        _ => 0.0,
+    };
     let body = &mut rig.world.bodies[rig.structure];
     body.reset_forces(false);
     if rig.applied_supports {
         apply_support_forces(body, &rig.supports, rig.supports_cm);
     }
-    if drive == Drive::AppliedForce
-        && let Excitation::MassAcceleration(s) = ex
-    {
-        let f = rig.mass * mean_over_step(s, t, dt);
-        body.add_force(Vector::new(f, 0.0, 0.0), false);
+    match (drive, ex) {
+        (Drive::AppliedForce, Excitation::MassAcceleration(s)) => {
+            let f = rig.mass * mean_over_step(s, t, dt);
+            body.add_force(Vector::new(f, 0.0, 0.0), false);
+        }
+        (Drive::InertialForce, _) => {
+            body.add_force(Vector::new(-rig.mass * ag, 0.0, 0.0), false);
+        }
+        _ => {}
     }
-    for &(h, _) in &rig.inertial_masses {
+    for &(h, m) in &rig.inertial_masses {
         if h != rig.structure {
-            rig.world.bodies[h].reset_forces(false);
+            let other = &mut rig.world.bodies[h];
+            other.reset_forces(false);
+            if drive == Drive::InertialForce {
+                other.add_force(Vector::new(-m * ag, 0.0, 0.0), false);
+            }
         }
     }
     match drive {
-        Drive::AppliedForce => {}
-        Drive::InertialForce => {
-            let ag = g.mean_acceleration(k, dt);
-            for &(h, m) in &rig.inertial_masses {
-                rig.world.bodies[h].add_force(Vector::new(-m * ag, 0.0, 0.0), false);
-            }
-        }
+        Drive::AppliedForce | Drive::InertialForce => {}
         Drive::KinematicGround => {
             let ground = &mut rig.world.bodies[rig.ground];
             let y = ground.translation().y;
