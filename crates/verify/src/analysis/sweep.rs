@@ -10,7 +10,8 @@
 //! f ≈ f₁ + (f₁ − f₂)/(r^p − 1), with the Grid Convergence Index GCI = 1.25·|f₁ − f₂|/|f₁|/(r^p − 1)
 //! (Roache 1994).
 
-use rockslide_core::trace::{Trace, q};
+use rockslide_core::trace::{Quantity, Trace, q};
+use rockslide_reference::ExactSolution;
 
 use super::metrics::{Responses, history_difference};
 
@@ -93,6 +94,47 @@ pub fn resample(trace: &Trace, times: &[f64]) -> Trace {
         out.push(t, &row);
     }
     out
+}
+
+/// One channel of `trace`, linearly interpolated at `times`, as a one-column trace: the
+/// column [`resample`] would give for `key`, bit for bit (the same [`Trace::sample`]),
+/// without sampling the channels a comparison does not read. `None` when `trace` lacks
+/// the channel.
+pub fn resample_channel(trace: &Trace, key: &str, times: &[f64]) -> Option<Trace> {
+    let channel = *trace.channels.iter().find(|c| c.key == key)?;
+    let column = times
+        .iter()
+        .map(|&t| trace.sample(key, t))
+        .collect::<Option<_>>()?;
+    Some(one_column(channel, times, column))
+}
+
+/// One channel of an exact solution evaluated at `times`, as a one-column trace: the
+/// column `rockslide_reference::sample` would give for `key`, bit for bit (the same
+/// `eval`), without keeping the channels a comparison does not read. `None` when the
+/// solution lacks the channel.
+pub fn exact_channel(solution: &dyn ExactSolution, key: &str, times: &[f64]) -> Option<Trace> {
+    let channels = solution.channels();
+    let j = channels.iter().position(|c| c.key == key)?;
+    let mut row = vec![0.0; channels.len()];
+    let column = times
+        .iter()
+        .map(|&t| {
+            solution.eval(t, &mut row);
+            row[j]
+        })
+        .collect();
+    Some(one_column(channels[j], times, column))
+}
+
+/// A trace of one channel at `times`.
+fn one_column(channel: &'static Quantity, times: &[f64], column: Vec<f64>) -> Trace {
+    Trace {
+        channels: vec![channel],
+        time: times.to_vec(),
+        columns: vec![column],
+        ..Trace::default()
+    }
 }
 
 /// Observed order between consecutive rungs: p = ln(e₁/e₂)/ln(Δt₁/Δt₂), one per pair

@@ -22,14 +22,14 @@ use super::plan::{Series, applicable, characteristic_period, rapier_at_rung_step
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::stability::{Class, Criteria, classify};
-use crate::analysis::sweep::resample;
+use crate::analysis::sweep::{exact_channel, resample_channel};
 use crate::registry;
 use crate::run::{Timed, guarded};
 use rockslide_core::case::Case;
 use rockslide_core::error::{Error, InputErrors};
+use rockslide_core::trace::q;
 use rockslide_engine_api::Engine;
-
-use crate::suite::{ReferenceResult, solve_reference};
+use rockslide_reference::ExactSolution;
 
 /// Folder of the study in the output folder, and the typed result's file name in it.
 pub const DIR: &str = "stability";
@@ -201,16 +201,112 @@ impl StabilityResult {
     }
 }
 
+/// What a scene's runs are measured against when it has an exact reference: the solution,
+/// sampled at each run's rows, and the peak of its primary displacement that normalises
+/// the errors. The map reads nothing else of the reference, so it is not sampled on a fine
+/// grid as a trace, nor are its other response quantities computed.
+pub struct ExactBasis {
+    /// The solution.
+    pub solution: Box<dyn ExactSolution>,
+    /// Peak |relative displacement|, m: the solution's exact value where it knows one,
+    /// else the largest sample on the fine grid of [`fine_grid`] (`None`: the solution
+    /// has no relative displacement).
+    pub peak: Option<f64>,
+}
+
+/// Rows of the fine uniform grid over a scene's duration: one per 10 µs, within 1,000 …
+/// 200,000 (the grid `crate::suite::solve_reference` samples, so that the peak — and every
+/// normalised error — is the one the case reports measure).
+pub fn fine_grid(duration: f64) -> usize {
+    ((duration / 1e-5).ceil() as usize).clamp(1000, 200_000)
+}
+
+/// The exact basis of a case, or why there is none.
+pub fn exact_basis(case: &Case) -> Result<ExactBasis, String> {
+    let solution = rockslide_reference::for_case(case)?;
+    let key = "peak_relative_displacement";
+    let exact = solution
+        .exact_quantities()
+        .into_iter()
+        .rfind(|(k, _)| *k == key)
+        .map(|(_, v)| v);
+    let peak = exact.or_else(|| grid_peak(solution.as_ref(), case.run.duration));
+    Ok(ExactBasis { solution, peak })
+}
+
+/// Largest |relative displacement| of `solution` on the fine uniform grid over
+/// `duration`, the same times and fold as a sampled trace's peak (`None` without the
+/// channel). Nothing is kept but the running maximum.
+fn grid_peak(solution: &dyn ExactSolution, duration: f64) -> Option<f64> {
+    let channels = solution.channels();
+    let j = channels.iter().position(|c| c.key == q::REL_DISP.key)?;
+    let n = fine_grid(duration);
+    let mut row = vec![0.0; channels.len()];
+    let mut peak = 0.0_f64;
+    for i in 0..=n {
+        solution.eval(duration * i as f64 / n as f64, &mut row);
+        peak = peak.max(row[j].abs());
+    }
+    Some(peak)
+}
+
+/// What one run is classified from: its class, its error against the basis and its
+/// energy audit.
+type Classified = (Class, Option<f64>, Result<EnergySummary, String>);
+
+/// Whether one run diverged: all a bisection step needs (the error against the basis
+/// only separates accurate from inaccurate, so it is not computed).
+fn diverged(case: &Case, variant: &str, timed: &Timed, criteria: &Criteria) -> bool {
+    classify_run(case, variant, timed, None, None, criteria)
+        .0
+        .diverged()
+}
+
+/// Max error of a completed run's primary displacement against the reference (normalised
+/// by the reference's peak), else against `own` (by the peak of its samples at the run's
+/// rows); `None` without a basis or the channel.
+fn error_against(
+    trace: &rockslide_core::trace::Trace,
+    reference: Option<&ExactBasis>,
+    own: Option<&rockslide_core::trace::Trace>,
+) -> Option<f64> {
+    let key = q::REL_DISP.key;
+    match (reference, own) {
+        (Some(r), _) => {
+            let at = exact_channel(r.solution.as_ref(), key, &trace.time)?;
+            // Normalise by the reference's true peak, not by the peak of its samples at
+            // the run's rows: at Δt = T those can all sit near a zero of the response and
+            // inflate the error by orders.
+            let sampled = at
+                .column(key)
+                .map_or(0.0, |c| c.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
+            let peak = r.peak.map_or(sampled, |p| p.abs().max(sampled));
+            history_difference(trace, &at, key).map(|e| {
+                if peak > 0.0 {
+                    e.0 * sampled / peak
+                } else {
+                    e.0
+                }
+            })
+        }
+        (None, Some(b)) => {
+            let at = resample_channel(b, key, &trace.time)?;
+            history_difference(trace, &at, key).map(|e| e.0)
+        }
+        _ => None,
+    }
+}
+
 /// Classify one run of `variant` on `case` at `dt` against the reference (or `own`, the
 /// series' finest run, when there is no reference).
 fn classify_run(
     case: &Case,
     variant: &str,
     timed: &Timed,
-    reference: Option<&ReferenceResult>,
+    reference: Option<&ExactBasis>,
     own: Option<&rockslide_core::trace::Trace>,
     criteria: &Criteria,
-) -> (Class, Option<f64>, Result<EnergySummary, String>) {
+) -> Classified {
     match &timed.run {
         Err(panic) => (
             classify(
@@ -226,33 +322,7 @@ fn classify_run(
         Ok(run) => {
             let energy = audit(&run.trace, &case.scene, variant);
             let error = if run.status.completed() {
-                match (reference, own) {
-                    (Some(r), _) => {
-                        let at = rockslide_reference::sample(r.solution.as_ref(), &run.trace.time);
-                        // Normalise by the reference's true peak, not by the peak of its
-                        // samples at the run's rows: at Δt = T those can all sit near a
-                        // zero of the response and inflate the error by orders.
-                        let sampled = at
-                            .column("rel_disp")
-                            .map_or(0.0, |c| c.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
-                        let peak = r
-                            .responses
-                            .get("peak_relative_displacement")
-                            .map_or(sampled, |p| p.abs().max(sampled));
-                        history_difference(&run.trace, &at, "rel_disp").map(|e| {
-                            if peak > 0.0 {
-                                e.0 * sampled / peak
-                            } else {
-                                e.0
-                            }
-                        })
-                    }
-                    (None, Some(b)) => {
-                        let at = resample(b, &run.trace.time);
-                        history_difference(&run.trace, &at, "rel_disp").map(|e| e.0)
-                    }
-                    _ => None,
-                }
+                error_against(&run.trace, reference, own)
             } else {
                 None
             };
@@ -321,7 +391,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                     })
                     .collect::<Vec<_>>()
             },
-            || cases.par_iter().map(solve_reference).collect::<Vec<_>>(),
+            || cases.par_iter().map(exact_basis).collect::<Vec<_>>(),
         );
         (timed, references, rayon::current_num_threads())
     })?;
@@ -389,7 +459,6 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                 variant,
                 cases,
                 &periods,
-                &references,
                 &runs,
                 &criteria,
             )
@@ -434,7 +503,6 @@ fn limit_of(
     variant: &str,
     cases: &[Case],
     periods: &[f64],
-    references: &[Result<ReferenceResult, String>],
     runs: &[StabilityRun],
     criteria: &Criteria,
 ) -> Limit {
@@ -469,27 +537,22 @@ fn limit_of(
         .collect();
     let stable = DT_OVER_T.iter().copied().rfind(|&x| x < first);
     let refined = stable.and_then(|lo0| {
-        diverged_cases
-            .par_iter()
+        let scenes: Vec<(&Case, f64)> = diverged_cases
+            .iter()
             .filter_map(|name| {
                 let ci = cases.iter().position(|c| &c.name == name)?;
-                let (case, t) = (&cases[ci], periods[ci]);
-                let reference = references[ci].as_ref().ok();
-                let (mut lo, mut hi) = (lo0, first);
-                for _ in 0..BISECTIONS {
-                    let mid = 0.5 * (lo + hi);
-                    let timed = guarded(engine, case, variant, mid * t, 1).ok()?;
-                    let (class, _, _) =
-                        classify_run(case, variant, &timed, reference, None, criteria);
-                    if class.diverged() {
-                        hi = mid;
-                    } else {
-                        lo = mid;
-                    }
-                }
-                Some((lo, hi, name.clone()))
+                Some((&cases[ci], periods[ci]))
             })
-            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .collect();
+        let bisection = Bisection {
+            engine,
+            variant,
+            criteria,
+            bracket: (lo0, first),
+        };
+        bisection
+            .together(&scenes)
+            .unwrap_or_else(|| bisection.each(&scenes))
     });
     Limit {
         label: label.into(),
@@ -497,5 +560,74 @@ fn limit_of(
         stable_up_to: stable,
         refined,
         accurate_up_to,
+    }
+}
+
+/// The bisection of one engine variant's stability limit in Δt/T, from the ladder's
+/// bracket (the largest stable rung, the first diverged rung), on the scenes that
+/// diverged there. Its result is the smallest bracket [`BISECTIONS`] halvings give on any
+/// scene, and the first such scene in the scenes' order.
+struct Bisection<'a> {
+    engine: &'a dyn Engine,
+    variant: &'a str,
+    criteria: &'a Criteria,
+    bracket: (f64, f64),
+}
+
+impl Bisection<'_> {
+    /// Whether `case` (period `t`) diverges at Δt/T = `x`; `None` when the engine refuses
+    /// the input.
+    fn diverges(&self, case: &Case, t: f64, x: f64) -> Option<bool> {
+        let timed = guarded(self.engine, case, self.variant, x * t, 1).ok()?;
+        Some(diverged(case, self.variant, &timed, self.criteria))
+    }
+
+    /// Every scene bisected on its own, in parallel: each scene's own bracket, the
+    /// smallest upper end wins (the first scene on a tie). A scene whose run the engine
+    /// refuses drops out.
+    fn each(&self, scenes: &[(&Case, f64)]) -> Option<(f64, f64, String)> {
+        scenes
+            .par_iter()
+            .filter_map(|&(case, t)| {
+                let (mut lo, mut hi) = self.bracket;
+                for _ in 0..BISECTIONS {
+                    let mid = 0.5 * (lo + hi);
+                    if self.diverges(case, t, mid)? {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                Some((lo, hi, case.name.clone()))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
+    /// The result of [`Self::each`] with fewer runs: the scenes are bisected in step, one
+    /// shared bracket. At a midpoint where some scenes diverge, the others drop out: their
+    /// own brackets would stay above the midpoint while the diverged ones end at or below
+    /// it, so they cannot set the smallest bracket. `None` when the engine refuses a run
+    /// (then a dropped scene could still have won: [`Self::each`] decides).
+    fn together(&self, scenes: &[(&Case, f64)]) -> Option<Option<(f64, f64, String)>> {
+        let mut alive: Vec<(&Case, f64)> = scenes.to_vec();
+        let (mut lo, mut hi) = self.bracket;
+        for _ in 0..BISECTIONS {
+            if alive.is_empty() {
+                break;
+            }
+            let mid = 0.5 * (lo + hi);
+            let diverged: Vec<bool> = alive
+                .par_iter()
+                .map(|&(case, t)| self.diverges(case, t, mid))
+                .collect::<Option<_>>()?;
+            if diverged.contains(&true) {
+                hi = mid;
+                let mut keep = diverged.iter();
+                alive.retain(|_| *keep.next().expect("one flag a scene"));
+            } else {
+                lo = mid;
+            }
+        }
+        Some(alive.first().map(|(case, _)| (lo, hi, case.name.clone())))
     }
 }

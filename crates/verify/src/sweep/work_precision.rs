@@ -23,8 +23,8 @@ use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::responses;
 use crate::analysis::sweep::{
-    Richardson, RungError, asymptotic_order, fitted_order, ladder, local_orders, resample,
-    richardson, richardson_at_order, rung_error,
+    Richardson, RungError, asymptotic_order, exact_channel, fitted_order, ladder, local_orders,
+    resample_channel, richardson, richardson_at_order, rung_error,
 };
 use crate::registry;
 use crate::run::{Outcome, TimeStats, Timed, guarded};
@@ -486,13 +486,13 @@ fn measure_rungs(
             rung.error = if !run.status.completed() {
                 None
             } else if let Ok(r) = reference {
-                let at = rockslide_reference::sample(r.solution.as_ref(), &run.trace.time);
-                rung_error(&run.trace, &resp, &at, &r.responses)
+                exact_channel(r.solution.as_ref(), q::REL_DISP.key, &run.trace.time)
+                    .and_then(|at| rung_error(&run.trace, &resp, &at, &r.responses))
             } else {
                 match (own_basis, &own_resp) {
                     (Some(b), Some(br)) if !std::ptr::eq(b, run) => {
-                        let at = resample(&b.trace, &run.trace.time);
-                        rung_error(&run.trace, &resp, &at, br)
+                        resample_channel(&b.trace, q::REL_DISP.key, &run.trace.time)
+                            .and_then(|at| rung_error(&run.trace, &resp, &at, br))
                     }
                     _ => None,
                 }
@@ -509,8 +509,9 @@ fn measure_rungs(
             && a.status.completed()
             && b.status.completed()
         {
-            let at = resample(&b.trace, &a.trace.time);
-            rungs[i].change = history_difference(&a.trace, &at, q::REL_DISP.key).map(|e| e.0);
+            rungs[i].change = resample_channel(&b.trace, q::REL_DISP.key, &a.trace.time)
+                .and_then(|at| history_difference(&a.trace, &at, q::REL_DISP.key))
+                .map(|e| e.0);
         }
     }
     rungs
