@@ -127,6 +127,30 @@ pub fn exact_channel(solution: &dyn ExactSolution, key: &str, times: &[f64]) -> 
     Some(one_column(channels[j], times, column))
 }
 
+/// [`exact_channel`] through a cache of one: the runs of every engine variant at one
+/// rung usually share their row times, so the solution is evaluated once a rung, not once
+/// a run. The cached trace is reused when it holds `key` at the same times bit for bit,
+/// else replaced. `None` when the solution lacks the channel.
+pub fn exact_channel_cached<'c>(
+    cache: &'c mut Option<Trace>,
+    solution: &dyn ExactSolution,
+    key: &str,
+    times: &[f64],
+) -> Option<&'c Trace> {
+    let hit = cache
+        .as_ref()
+        .is_some_and(|c| c.channels[0].key == key && same_bits(&c.time, times));
+    if !hit {
+        *cache = Some(exact_channel(solution, key, times)?);
+    }
+    cache.as_ref()
+}
+
+/// Whether two series of times are the same, bit for bit.
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
 /// A trace of one channel at `times`.
 fn one_column(channel: &'static Quantity, times: &[f64], column: Vec<f64>) -> Trace {
     Trace {

@@ -22,7 +22,7 @@ use super::plan::{Series, applicable, characteristic_period, rapier_at_rung_step
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::stability::{Class, Criteria, classify};
-use crate::analysis::sweep::{exact_channel, resample_channel};
+use crate::analysis::sweep::{exact_channel_cached, resample_channel};
 use crate::registry;
 use crate::run::{Timed, guarded};
 use rockslide_core::case::Case;
@@ -257,23 +257,25 @@ type Classified = (Class, Option<f64>, Result<EnergySummary, String>);
 /// Whether one run diverged: all a bisection step needs (the error against the basis
 /// only separates accurate from inaccurate, so it is not computed).
 fn diverged(case: &Case, variant: &str, timed: &Timed, criteria: &Criteria) -> bool {
-    classify_run(case, variant, timed, None, None, criteria)
+    classify_run(case, variant, timed, None, None, criteria, &mut None)
         .0
         .diverged()
 }
 
 /// Max error of a completed run's primary displacement against the reference (normalised
 /// by the reference's peak), else against `own` (by the peak of its samples at the run's
-/// rows); `None` without a basis or the channel.
+/// rows); `None` without a basis or the channel. `sampled` keeps the reference at the
+/// last rows it was sampled at (the other runs of the rung share them).
 fn error_against(
     trace: &rockslide_core::trace::Trace,
     reference: Option<&ExactBasis>,
     own: Option<&rockslide_core::trace::Trace>,
+    sampled: &mut Option<rockslide_core::trace::Trace>,
 ) -> Option<f64> {
     let key = q::REL_DISP.key;
     match (reference, own) {
         (Some(r), _) => {
-            let at = exact_channel(r.solution.as_ref(), key, &trace.time)?;
+            let at = exact_channel_cached(sampled, r.solution.as_ref(), key, &trace.time)?;
             // Normalise by the reference's true peak, not by the peak of its samples at
             // the run's rows: at Δt = T those can all sit near a zero of the response and
             // inflate the error by orders.
@@ -281,7 +283,7 @@ fn error_against(
                 .column(key)
                 .map_or(0.0, |c| c.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
             let peak = r.peak.map_or(sampled, |p| p.abs().max(sampled));
-            history_difference(trace, &at, key).map(|e| {
+            history_difference(trace, at, key).map(|e| {
                 if peak > 0.0 {
                     e.0 * sampled / peak
                 } else {
@@ -298,7 +300,8 @@ fn error_against(
 }
 
 /// Classify one run of `variant` on `case` at `dt` against the reference (or `own`, the
-/// series' finest run, when there is no reference).
+/// series' finest run, when there is no reference); `sampled`: the reference at the rung's
+/// rows, kept between the runs of one rung ([`exact_channel_cached`]).
 fn classify_run(
     case: &Case,
     variant: &str,
@@ -306,6 +309,7 @@ fn classify_run(
     reference: Option<&ExactBasis>,
     own: Option<&rockslide_core::trace::Trace>,
     criteria: &Criteria,
+    sampled: &mut Option<rockslide_core::trace::Trace>,
 ) -> Classified {
     match &timed.run {
         Err(panic) => (
@@ -322,7 +326,7 @@ fn classify_run(
         Ok(run) => {
             let energy = audit(&run.trace, &case.scene, variant);
             let error = if run.status.completed() {
-                error_against(&run.trace, reference, own)
+                error_against(&run.trace, reference, own, sampled)
             } else {
                 None
             };
@@ -407,6 +411,8 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
     for (ci, series) in plans.iter().enumerate() {
         let case = &cases[ci];
         let reference = references[ci].as_ref().ok();
+        // The reference at each rung's rows, shared by the runs of the rung.
+        let mut sampled: Vec<Option<rockslide_core::trace::Trace>> = vec![None; DT_OVER_T.len()];
         for s in series {
             let block = &timed[k..k + DT_OVER_T.len()];
             k += DT_OVER_T.len();
@@ -419,9 +425,9 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
             } else {
                 None
             };
-            for (t, x) in block.iter().zip(DT_OVER_T) {
+            for ((t, x), at) in block.iter().zip(DT_OVER_T).zip(&mut sampled) {
                 let (class, error, energy) =
-                    classify_run(case, &s.variant, t, reference, own, &criteria);
+                    classify_run(case, &s.variant, t, reference, own, &criteria, at);
                 runs.push(StabilityRun {
                     case: case.name.clone(),
                     series: s.label(),

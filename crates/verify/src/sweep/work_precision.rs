@@ -23,15 +23,15 @@ use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::responses;
 use crate::analysis::sweep::{
-    Richardson, RungError, asymptotic_order, exact_channel, fitted_order, ladder, local_orders,
-    resample_channel, richardson, richardson_at_order, rung_error,
+    Richardson, RungError, asymptotic_order, exact_channel_cached, fitted_order, ladder,
+    local_orders, resample_channel, richardson, richardson_at_order, rung_error,
 };
 use crate::registry;
 use crate::run::{Outcome, TimeStats, Timed, guarded};
 use crate::suite::{ReferenceResult, solve_reference};
 use rockslide_core::case::{Case, Model, OptionValue};
 use rockslide_core::error::{Error, InputErrors};
-use rockslide_core::trace::q;
+use rockslide_core::trace::{Trace, q};
 use rockslide_engine_api::Run;
 use rockslide_engine_rapier::OscillatorSteps;
 
@@ -342,11 +342,17 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
             None,
         ),
     };
+    // The reference at each rung's rows, shared by the series' runs of the rung.
+    let mut sampled: Vec<Option<Trace>> = vec![None; dts.len()];
     let results = series
         .iter()
         .zip(ladder_runs.timed.iter().zip(ladder_runs.stopped))
         .map(|(s, (block, stopped))| {
-            let rungs = measure_rungs(case, &s.variant, block, &dts, period.0, &reference);
+            let basis = Basis {
+                reference: &reference,
+                sampled: &mut sampled,
+            };
+            let rungs = measure_rungs(case, &s.variant, block, &dts, period.0, basis);
             let mut r = summarise(s.label(), rungs, opts.ratio);
             r.skipped = stopped;
             r
@@ -438,6 +444,14 @@ fn run_ladder(
     })
 }
 
+/// What the rungs are measured against: the exact reference (or why there is none), and
+/// the reference at each rung's rows, shared between the series
+/// ([`exact_channel_cached`]).
+struct Basis<'a> {
+    reference: &'a Result<ReferenceResult, String>,
+    sampled: &'a mut [Option<Trace>],
+}
+
 /// The rungs of one series: each run's error against the basis (the reference, else the
 /// series' finest completed rung), its responses, energy audit and change to the next
 /// finer rung.
@@ -447,8 +461,9 @@ fn measure_rungs(
     block: &[Timed],
     dts: &[f64],
     period: f64,
-    reference: &Result<ReferenceResult, String>,
+    basis: Basis,
 ) -> Vec<Rung> {
+    let Basis { reference, sampled } = basis;
     let own_basis: Option<&Run> = if reference.is_ok() {
         None
     } else {
@@ -461,7 +476,8 @@ fn measure_rungs(
     let mut rungs: Vec<Rung> = block
         .iter()
         .zip(dts)
-        .map(|(t, &dt)| {
+        .zip(sampled.iter_mut())
+        .map(|((t, &dt), at)| {
             let mut rung = Rung {
                 dt,
                 dt_over_t: dt / period,
@@ -486,8 +502,8 @@ fn measure_rungs(
             rung.error = if !run.status.completed() {
                 None
             } else if let Ok(r) = reference {
-                exact_channel(r.solution.as_ref(), q::REL_DISP.key, &run.trace.time)
-                    .and_then(|at| rung_error(&run.trace, &resp, &at, &r.responses))
+                exact_channel_cached(at, r.solution.as_ref(), q::REL_DISP.key, &run.trace.time)
+                    .and_then(|at| rung_error(&run.trace, &resp, at, &r.responses))
             } else {
                 match (own_basis, &own_resp) {
                     (Some(b), Some(br)) if !std::ptr::eq(b, run) => {
