@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::Options;
-use super::plan::{Series, applicable, characteristic_period, rapier_at_rung_step};
+use super::plan::{Series, applicable, characteristic_period, fine_grid, rapier_at_rung_step};
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::stability::{Class, Criteria, classify};
@@ -65,9 +65,16 @@ pub struct StabilityRun {
 }
 
 impl StabilityRun {
-    /// Row label of the map: `case · engine/variant`.
+    /// Row label of the map: `case · engine/variant`. (Built by hand, not with
+    /// `format!`: the map's table asks for it once per run and row.)
     pub fn row_label(&self) -> String {
-        format!("{} · {}", self.case, self.series)
+        const SEPARATOR: &str = " · ";
+        let mut label =
+            String::with_capacity(self.case.len() + SEPARATOR.len() + self.series.len());
+        label.push_str(&self.case);
+        label.push_str(SEPARATOR);
+        label.push_str(&self.series);
+        label
     }
 }
 
@@ -212,13 +219,6 @@ pub struct ExactBasis {
     /// else the largest sample on the fine grid of [`fine_grid`] (`None`: the solution
     /// has no relative displacement).
     pub peak: Option<f64>,
-}
-
-/// Rows of the fine uniform grid over a scene's duration: one per 10 µs, within 1,000 …
-/// 200,000 (the grid `crate::suite::solve_reference` samples, so that the peak — and every
-/// normalised error — is the one the case reports measure).
-pub fn fine_grid(duration: f64) -> usize {
-    ((duration / 1e-5).ceil() as usize).clamp(1000, 200_000)
 }
 
 /// The exact basis of a case, or why there is none.

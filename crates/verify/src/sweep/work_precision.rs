@@ -16,7 +16,8 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::plan::{
-    NotApplicable, applicable, characteristic_period, rapier_at_rung_step, rapier_rule_unset,
+    NotApplicable, applicable, characteristic_period, fine_grid, rapier_at_rung_step,
+    rapier_rule_unset,
 };
 use super::{Options, Series};
 use crate::analysis::energy::{EnergySummary, audit};
@@ -28,7 +29,7 @@ use crate::analysis::sweep::{
 };
 use crate::registry;
 use crate::run::{Outcome, TimeStats, Timed, guarded};
-use crate::suite::{ReferenceResult, solve_reference};
+use crate::suite::ReferenceResult;
 use rockslide_core::case::{Case, Model, OptionValue};
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::trace::{Trace, q};
@@ -320,7 +321,7 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
     let bar = crate::progress::bar(series.len() * dts.len(), !opts.quiet, "runs", &case.name);
     let (reference, ladder_runs, threads) =
         opts.install(series.len(), || -> Result<_, InputErrors> {
-            let reference = solve_reference(case);
+            let reference = sweep_reference(case);
             let runs = run_ladder(case, &engines, &series, &dts, opts, &|| bar.inc(1))?;
             Ok((reference, runs, rayon::current_num_threads()))
         })??;
@@ -372,6 +373,40 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
         budget: opts.budget,
         overrides,
         planned_rungs: dts.len(),
+    })
+}
+
+/// The exact reference as a sweep reads it: sampled on the fine grid (the energy audit
+/// and the event times read it), with the response quantities a rung's error compares —
+/// residual sliding and the event times
+/// ([`crate::analysis::sweep::EVENT_KEYS`]) — and no others, nor a second copy of the
+/// trace for files (a sweep writes none). The values are those of
+/// `crate::suite::solve_reference`, bit for bit: the same grid, the same readings of the
+/// same columns, the solution's exact quantities over them.
+fn sweep_reference(case: &Case) -> Result<ReferenceResult, String> {
+    let solution = rockslide_reference::for_case(case)?;
+    let n = fine_grid(case.run.duration);
+    let trace = rockslide_reference::sample_uniform(solution.as_ref(), case.run.duration, n);
+    let compared = [q::SLIDE.key, q::CONTACTS.key];
+    let mut read = Trace {
+        time: trace.time.clone(),
+        ..Trace::default()
+    };
+    for (c, col) in trace.channels.iter().zip(&trace.columns) {
+        if compared.contains(&c.key) {
+            read.channels.push(c);
+            read.columns.push(col.clone());
+        }
+    }
+    let mut resp = responses(&read);
+    for (k, v) in solution.exact_quantities() {
+        resp.insert(k, v);
+    }
+    Ok(ReferenceResult {
+        solution,
+        trace,
+        output: Trace::default(),
+        responses: resp,
     })
 }
 
