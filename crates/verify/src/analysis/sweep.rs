@@ -268,6 +268,62 @@ impl Richardson {
 mod tests {
     use super::*;
 
+    /// x = sin t, v = cos t: an exact solution of two channels.
+    struct Sine;
+
+    impl ExactSolution for Sine {
+        fn name(&self) -> &'static str {
+            "sine"
+        }
+        fn method(&self) -> String {
+            "sin t".into()
+        }
+        fn channels(&self) -> Vec<&'static Quantity> {
+            vec![&q::VEL, &q::REL_DISP]
+        }
+        fn eval(&self, t: f64, out: &mut [f64]) {
+            out[0] = t.cos();
+            out[1] = t.sin();
+        }
+    }
+
+    /// One channel sampled alone is the column every channel sampled together gives, bit
+    /// for bit; the cache of one answers the same times from memory and other times anew.
+    #[test]
+    fn one_channel_is_the_column_of_all_channels() {
+        let bits = |t: &Trace| -> Vec<u64> {
+            t.column(q::REL_DISP.key)
+                .unwrap()
+                .iter()
+                .map(|v| v.to_bits())
+                .collect()
+        };
+        let fine: Vec<f64> = (0..=100).map(|i| 0.013 * i as f64).collect();
+        let coarse: Vec<f64> = (0..=40).map(|i| 0.0331 * i as f64).collect();
+        let key = q::REL_DISP.key;
+        let all = rockslide_reference::sample(&Sine, &fine);
+        let one = exact_channel(&Sine, key, &fine).unwrap();
+        assert_eq!((one.channels.len(), &one.time), (1, &fine));
+        assert_eq!(bits(&one), bits(&all));
+        assert_eq!(
+            bits(&resample_channel(&all, key, &coarse).unwrap()),
+            bits(&resample(&all, &coarse))
+        );
+        assert!(exact_channel(&Sine, q::SLIDE.key, &fine).is_none());
+        assert!(resample_channel(&all, q::SLIDE.key, &coarse).is_none());
+        let mut cache = None;
+        let first = exact_channel_cached(&mut cache, &Sine, key, &fine)
+            .unwrap()
+            .clone();
+        assert_eq!(bits(&first), bits(&all));
+        let other = exact_channel_cached(&mut cache, &Sine, key, &coarse).unwrap();
+        assert_eq!(other.time, coarse);
+        assert_eq!(
+            bits(other),
+            bits(&rockslide_reference::sample(&Sine, &coarse))
+        );
+    }
+
     #[test]
     fn ladder_halves() {
         let l = ladder(0.02, 2.0, 4);

@@ -637,3 +637,75 @@ impl Bisection<'_> {
         Some(alive.first().map(|(case, _)| (lo, hi, case.name.clone())))
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stability scenes shipped with the repository.
+    fn scenes(names: &[&str]) -> Vec<Case> {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/stability");
+        names
+            .iter()
+            .map(|n| registry::load_case(&dir.join(format!("{n}.toml"))).expect("a shipped case"))
+            .collect()
+    }
+
+    /// The map's peak is the one the case reports measure: the solution's exact value, else
+    /// the peak of the fine-grid trace `solve_reference` samples, bit for bit.
+    #[test]
+    fn the_exact_basis_peak_is_the_sampled_references_peak() {
+        let cases = scenes(&[
+            "explicit-limit",
+            "mu-large",
+            "stiff-ratio-1e4",
+            "rocking-10g",
+        ]);
+        let mut compared = 0;
+        for case in &cases {
+            let (Ok(basis), Ok(full)) = (exact_basis(case), crate::suite::solve_reference(case))
+            else {
+                continue;
+            };
+            let sampled = full.responses.get("peak_relative_displacement").copied();
+            assert_eq!(
+                basis.peak.map(f64::to_bits),
+                sampled.map(f64::to_bits),
+                "{}",
+                case.name
+            );
+            compared += 1;
+        }
+        assert!(
+            compared >= 3,
+            "only {compared} scenes have an exact reference"
+        );
+    }
+
+    /// Bisecting the scenes in step and dropping those that cannot win gives the bracket
+    /// and scene of bisecting every scene on its own: here the predictor-corrector, whose
+    /// limit 1/π is reached on the undamped `explicit-limit` and not on the others.
+    #[test]
+    fn bisecting_together_gives_the_bracket_of_bisecting_each() {
+        let cases = scenes(&["mu-large", "explicit-limit", "long-run"]);
+        let engines = registry::all();
+        let pc = engines
+            .iter()
+            .find(|e| e.id() == "predictor-corrector")
+            .expect("registered");
+        let scenes: Vec<(&Case, f64)> = cases
+            .iter()
+            .map(|c| (c, characteristic_period(c).0))
+            .collect();
+        let bisection = Bisection {
+            engine: pc.as_ref(),
+            variant: "paper",
+            criteria: &Criteria::default(),
+            bracket: (0.3, 0.4),
+        };
+        let each = bisection.each(&scenes).expect("a limit");
+        let together = bisection.together(&scenes).expect("no refused run");
+        assert_eq!(together, Some(each.clone()));
+        assert!(each.0 < 1.0 / std::f64::consts::PI && 1.0 / std::f64::consts::PI < each.1);
+    }
+}
