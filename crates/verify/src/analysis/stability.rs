@@ -96,16 +96,19 @@ impl Class {
     }
 }
 
-/// Time and channel of the first non-finite value in a trace.
+/// Time and channel of the first non-finite value in a trace: the earliest row holding
+/// one, and the first channel in column order at that row. Read column by column, each
+/// column only up to the earliest such row found so far.
 pub fn first_non_finite(trace: &Trace) -> Option<(f64, &'static str)> {
-    for i in 0..trace.len() {
-        for (c, col) in trace.channels.iter().zip(&trace.columns) {
-            if !col[i].is_finite() {
-                return Some((trace.time[i], c.key));
-            }
+    let rows = trace.len();
+    let mut first: Option<(usize, &'static str)> = None;
+    for (c, col) in trace.channels.iter().zip(&trace.columns) {
+        let end = first.map_or(rows, |(i, _)| i);
+        if let Some(i) = col[..end].iter().position(|v| !v.is_finite()) {
+            first = Some((i, c.key));
         }
     }
-    None
+    first.map(|(i, key)| (trace.time[i], key))
 }
 
 /// Classify a run. `status` is the engine's outcome, or the message of a panic caught
@@ -185,6 +188,20 @@ mod tests {
         );
         assert_eq!(c.label(), "diverged");
         assert_eq!(c.time(), Some(1.0));
+    }
+
+    /// The earliest row wins whatever its column; on one row, the first column.
+    #[test]
+    fn first_non_finite_is_the_earliest_row_then_the_first_column() {
+        let mut t = Trace::with_channels(&[&q::REL_DISP, &q::VEL], 4);
+        t.push(0.0, &[0.0, 0.0]);
+        t.push(0.5, &[0.0, f64::INFINITY]);
+        t.push(1.0, &[f64::NAN, f64::NAN]);
+        t.push(1.5, &[1.0, 1.0]);
+        assert_eq!(first_non_finite(&t), Some((0.5, q::VEL.key)));
+        t.columns[0][1] = f64::NEG_INFINITY;
+        assert_eq!(first_non_finite(&t), Some((0.5, q::REL_DISP.key)));
+        assert_eq!(first_non_finite(&trace(&[0.0, 1.0])), None);
     }
 
     #[test]

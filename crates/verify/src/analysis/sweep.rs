@@ -10,7 +10,8 @@
 //! f ≈ f₁ + (f₁ − f₂)/(r^p − 1), with the Grid Convergence Index GCI = 1.25·|f₁ − f₂|/|f₁|/(r^p − 1)
 //! (Roache 1994).
 
-use rockslide_core::trace::{Trace, q};
+use rockslide_core::trace::{Quantity, Trace, q};
+use rockslide_reference::ExactSolution;
 
 use super::metrics::{Responses, history_difference};
 
@@ -93,6 +94,71 @@ pub fn resample(trace: &Trace, times: &[f64]) -> Trace {
         out.push(t, &row);
     }
     out
+}
+
+/// One channel of `trace`, linearly interpolated at `times`, as a one-column trace: the
+/// column [`resample`] would give for `key`, bit for bit (the same [`Trace::sample`]),
+/// without sampling the channels a comparison does not read. `None` when `trace` lacks
+/// the channel.
+pub fn resample_channel(trace: &Trace, key: &str, times: &[f64]) -> Option<Trace> {
+    let channel = *trace.channels.iter().find(|c| c.key == key)?;
+    let column = times
+        .iter()
+        .map(|&t| trace.sample(key, t))
+        .collect::<Option<_>>()?;
+    Some(one_column(channel, times, column))
+}
+
+/// One channel of an exact solution evaluated at `times`, as a one-column trace: the
+/// column `rockslide_reference::sample` would give for `key`, bit for bit (the same
+/// `eval`), without keeping the channels a comparison does not read. `None` when the
+/// solution lacks the channel.
+pub fn exact_channel(solution: &dyn ExactSolution, key: &str, times: &[f64]) -> Option<Trace> {
+    let channels = solution.channels();
+    let j = channels.iter().position(|c| c.key == key)?;
+    let mut row = vec![0.0; channels.len()];
+    let column = times
+        .iter()
+        .map(|&t| {
+            solution.eval(t, &mut row);
+            row[j]
+        })
+        .collect();
+    Some(one_column(channels[j], times, column))
+}
+
+/// [`exact_channel`] through a cache of one: the runs of every engine variant at one
+/// rung usually share their row times, so the solution is evaluated once a rung, not once
+/// a run. The cached trace is reused when it holds `key` at the same times bit for bit,
+/// else replaced. `None` when the solution lacks the channel.
+pub fn exact_channel_cached<'c>(
+    cache: &'c mut Option<Trace>,
+    solution: &dyn ExactSolution,
+    key: &str,
+    times: &[f64],
+) -> Option<&'c Trace> {
+    let hit = cache
+        .as_ref()
+        .is_some_and(|c| c.channels[0].key == key && same_bits(&c.time, times));
+    if !hit {
+        *cache = Some(exact_channel(solution, key, times)?);
+    }
+    cache.as_ref()
+}
+
+/// Whether two series of times are the same, bit for bit.
+fn same_bits(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
+}
+
+/// A trace of one channel at `times`.
+fn one_column(channel: &'static Quantity, times: &[f64], column: Vec<f64>) -> Trace {
+    Trace {
+        channels: vec![channel],
+        time: times.to_vec(),
+        columns: vec![column],
+        ..Trace::default()
+    }
 }
 
 /// Observed order between consecutive rungs: p = ln(e₁/e₂)/ln(Δt₁/Δt₂), one per pair
@@ -201,6 +267,62 @@ impl Richardson {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// x = sin t, v = cos t: an exact solution of two channels.
+    struct Sine;
+
+    impl ExactSolution for Sine {
+        fn name(&self) -> &'static str {
+            "sine"
+        }
+        fn method(&self) -> String {
+            "sin t".into()
+        }
+        fn channels(&self) -> Vec<&'static Quantity> {
+            vec![&q::VEL, &q::REL_DISP]
+        }
+        fn eval(&self, t: f64, out: &mut [f64]) {
+            out[0] = t.cos();
+            out[1] = t.sin();
+        }
+    }
+
+    /// One channel sampled alone is the column every channel sampled together gives, bit
+    /// for bit; the cache of one answers the same times from memory and other times anew.
+    #[test]
+    fn one_channel_is_the_column_of_all_channels() {
+        let bits = |t: &Trace| -> Vec<u64> {
+            t.column(q::REL_DISP.key)
+                .unwrap()
+                .iter()
+                .map(|v| v.to_bits())
+                .collect()
+        };
+        let fine: Vec<f64> = (0..=100).map(|i| 0.013 * i as f64).collect();
+        let coarse: Vec<f64> = (0..=40).map(|i| 0.0331 * i as f64).collect();
+        let key = q::REL_DISP.key;
+        let all = rockslide_reference::sample(&Sine, &fine);
+        let one = exact_channel(&Sine, key, &fine).unwrap();
+        assert_eq!((one.channels.len(), &one.time), (1, &fine));
+        assert_eq!(bits(&one), bits(&all));
+        assert_eq!(
+            bits(&resample_channel(&all, key, &coarse).unwrap()),
+            bits(&resample(&all, &coarse))
+        );
+        assert!(exact_channel(&Sine, q::SLIDE.key, &fine).is_none());
+        assert!(resample_channel(&all, q::SLIDE.key, &coarse).is_none());
+        let mut cache = None;
+        let first = exact_channel_cached(&mut cache, &Sine, key, &fine)
+            .unwrap()
+            .clone();
+        assert_eq!(bits(&first), bits(&all));
+        let other = exact_channel_cached(&mut cache, &Sine, key, &coarse).unwrap();
+        assert_eq!(other.time, coarse);
+        assert_eq!(
+            bits(other),
+            bits(&rockslide_reference::sample(&Sine, &coarse))
+        );
+    }
 
     #[test]
     fn ladder_halves() {

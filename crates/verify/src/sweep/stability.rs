@@ -18,18 +18,18 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::Options;
-use super::plan::{Series, applicable, characteristic_period, rapier_at_rung_step};
+use super::plan::{Series, applicable, characteristic_period, fine_grid, rapier_at_rung_step};
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::stability::{Class, Criteria, classify};
-use crate::analysis::sweep::resample;
+use crate::analysis::sweep::{exact_channel_cached, resample_channel};
 use crate::registry;
 use crate::run::{Timed, guarded};
 use rockslide_core::case::Case;
 use rockslide_core::error::{Error, InputErrors};
+use rockslide_core::trace::q;
 use rockslide_engine_api::Engine;
-
-use crate::suite::{ReferenceResult, solve_reference};
+use rockslide_reference::ExactSolution;
 
 /// Folder of the study in the output folder, and the typed result's file name in it.
 pub const DIR: &str = "stability";
@@ -65,9 +65,16 @@ pub struct StabilityRun {
 }
 
 impl StabilityRun {
-    /// Row label of the map: `case · engine/variant`.
+    /// Row label of the map: `case · engine/variant`. (Built by hand, not with
+    /// `format!`: the map's table asks for it once per run and row.)
     pub fn row_label(&self) -> String {
-        format!("{} · {}", self.case, self.series)
+        const SEPARATOR: &str = " · ";
+        let mut label =
+            String::with_capacity(self.case.len() + SEPARATOR.len() + self.series.len());
+        label.push_str(&self.case);
+        label.push_str(SEPARATOR);
+        label.push_str(&self.series);
+        label
     }
 }
 
@@ -201,16 +208,109 @@ impl StabilityResult {
     }
 }
 
+/// What a scene's runs are measured against when it has an exact reference: the solution,
+/// sampled at each run's rows, and the peak of its primary displacement that normalises
+/// the errors. The map reads nothing else of the reference, so it is not sampled on a fine
+/// grid as a trace, nor are its other response quantities computed.
+pub struct ExactBasis {
+    /// The solution.
+    pub solution: Box<dyn ExactSolution>,
+    /// Peak |relative displacement|, m: the solution's exact value where it knows one,
+    /// else the largest sample on the fine grid of [`fine_grid`] (`None`: the solution
+    /// has no relative displacement).
+    pub peak: Option<f64>,
+}
+
+/// The exact basis of a case, or why there is none.
+pub fn exact_basis(case: &Case) -> Result<ExactBasis, String> {
+    let solution = rockslide_reference::for_case(case)?;
+    let key = "peak_relative_displacement";
+    let exact = solution
+        .exact_quantities()
+        .into_iter()
+        .rfind(|(k, _)| *k == key)
+        .map(|(_, v)| v);
+    let peak = exact.or_else(|| grid_peak(solution.as_ref(), case.run.duration));
+    Ok(ExactBasis { solution, peak })
+}
+
+/// Largest |relative displacement| of `solution` on the fine uniform grid over
+/// `duration`, the same times and fold as a sampled trace's peak (`None` without the
+/// channel). Nothing is kept but the running maximum.
+fn grid_peak(solution: &dyn ExactSolution, duration: f64) -> Option<f64> {
+    let channels = solution.channels();
+    let j = channels.iter().position(|c| c.key == q::REL_DISP.key)?;
+    let n = fine_grid(duration);
+    let mut row = vec![0.0; channels.len()];
+    let mut peak = 0.0_f64;
+    for i in 0..=n {
+        solution.eval(duration * i as f64 / n as f64, &mut row);
+        peak = peak.max(row[j].abs());
+    }
+    Some(peak)
+}
+
+/// What one run is classified from: its class, its error against the basis and its
+/// energy audit.
+type Classified = (Class, Option<f64>, Result<EnergySummary, String>);
+
+/// Whether one run diverged: all a bisection step needs (the error against the basis
+/// only separates accurate from inaccurate, so it is not computed).
+fn diverged(case: &Case, variant: &str, timed: &Timed, criteria: &Criteria) -> bool {
+    classify_run(case, variant, timed, None, None, criteria, &mut None)
+        .0
+        .diverged()
+}
+
+/// Max error of a completed run's primary displacement against the reference (normalised
+/// by the reference's peak), else against `own` (by the peak of its samples at the run's
+/// rows); `None` without a basis or the channel. `sampled` keeps the reference at the
+/// last rows it was sampled at (the other runs of the rung share them).
+fn error_against(
+    trace: &rockslide_core::trace::Trace,
+    reference: Option<&ExactBasis>,
+    own: Option<&rockslide_core::trace::Trace>,
+    sampled: &mut Option<rockslide_core::trace::Trace>,
+) -> Option<f64> {
+    let key = q::REL_DISP.key;
+    match (reference, own) {
+        (Some(r), _) => {
+            let at = exact_channel_cached(sampled, r.solution.as_ref(), key, &trace.time)?;
+            // Normalise by the reference's true peak, not by the peak of its samples at
+            // the run's rows: at Δt = T those can all sit near a zero of the response and
+            // inflate the error by orders.
+            let sampled = at
+                .column(key)
+                .map_or(0.0, |c| c.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
+            let peak = r.peak.map_or(sampled, |p| p.abs().max(sampled));
+            history_difference(trace, at, key).map(|e| {
+                if peak > 0.0 {
+                    e.0 * sampled / peak
+                } else {
+                    e.0
+                }
+            })
+        }
+        (None, Some(b)) => {
+            let at = resample_channel(b, key, &trace.time)?;
+            history_difference(trace, &at, key).map(|e| e.0)
+        }
+        _ => None,
+    }
+}
+
 /// Classify one run of `variant` on `case` at `dt` against the reference (or `own`, the
-/// series' finest run, when there is no reference).
+/// series' finest run, when there is no reference); `sampled`: the reference at the rung's
+/// rows, kept between the runs of one rung ([`exact_channel_cached`]).
 fn classify_run(
     case: &Case,
     variant: &str,
     timed: &Timed,
-    reference: Option<&ReferenceResult>,
+    reference: Option<&ExactBasis>,
     own: Option<&rockslide_core::trace::Trace>,
     criteria: &Criteria,
-) -> (Class, Option<f64>, Result<EnergySummary, String>) {
+    sampled: &mut Option<rockslide_core::trace::Trace>,
+) -> Classified {
     match &timed.run {
         Err(panic) => (
             classify(
@@ -226,33 +326,7 @@ fn classify_run(
         Ok(run) => {
             let energy = audit(&run.trace, &case.scene, variant);
             let error = if run.status.completed() {
-                match (reference, own) {
-                    (Some(r), _) => {
-                        let at = rockslide_reference::sample(r.solution.as_ref(), &run.trace.time);
-                        // Normalise by the reference's true peak, not by the peak of its
-                        // samples at the run's rows: at Δt = T those can all sit near a
-                        // zero of the response and inflate the error by orders.
-                        let sampled = at
-                            .column("rel_disp")
-                            .map_or(0.0, |c| c.iter().fold(0.0_f64, |m, v| m.max(v.abs())));
-                        let peak = r
-                            .responses
-                            .get("peak_relative_displacement")
-                            .map_or(sampled, |p| p.abs().max(sampled));
-                        history_difference(&run.trace, &at, "rel_disp").map(|e| {
-                            if peak > 0.0 {
-                                e.0 * sampled / peak
-                            } else {
-                                e.0
-                            }
-                        })
-                    }
-                    (None, Some(b)) => {
-                        let at = resample(b, &run.trace.time);
-                        history_difference(&run.trace, &at, "rel_disp").map(|e| e.0)
-                    }
-                    _ => None,
-                }
+                error_against(&run.trace, reference, own, sampled)
             } else {
                 None
             };
@@ -321,7 +395,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                     })
                     .collect::<Vec<_>>()
             },
-            || cases.par_iter().map(solve_reference).collect::<Vec<_>>(),
+            || cases.par_iter().map(exact_basis).collect::<Vec<_>>(),
         );
         (timed, references, rayon::current_num_threads())
     })?;
@@ -337,6 +411,8 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
     for (ci, series) in plans.iter().enumerate() {
         let case = &cases[ci];
         let reference = references[ci].as_ref().ok();
+        // The reference at each rung's rows, shared by the runs of the rung.
+        let mut sampled: Vec<Option<rockslide_core::trace::Trace>> = vec![None; DT_OVER_T.len()];
         for s in series {
             let block = &timed[k..k + DT_OVER_T.len()];
             k += DT_OVER_T.len();
@@ -349,9 +425,9 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
             } else {
                 None
             };
-            for (t, x) in block.iter().zip(DT_OVER_T) {
+            for ((t, x), at) in block.iter().zip(DT_OVER_T).zip(&mut sampled) {
                 let (class, error, energy) =
-                    classify_run(case, &s.variant, t, reference, own, &criteria);
+                    classify_run(case, &s.variant, t, reference, own, &criteria, at);
                 runs.push(StabilityRun {
                     case: case.name.clone(),
                     series: s.label(),
@@ -389,7 +465,6 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                 variant,
                 cases,
                 &periods,
-                &references,
                 &runs,
                 &criteria,
             )
@@ -434,7 +509,6 @@ fn limit_of(
     variant: &str,
     cases: &[Case],
     periods: &[f64],
-    references: &[Result<ReferenceResult, String>],
     runs: &[StabilityRun],
     criteria: &Criteria,
 ) -> Limit {
@@ -469,27 +543,22 @@ fn limit_of(
         .collect();
     let stable = DT_OVER_T.iter().copied().rfind(|&x| x < first);
     let refined = stable.and_then(|lo0| {
-        diverged_cases
-            .par_iter()
+        let scenes: Vec<(&Case, f64)> = diverged_cases
+            .iter()
             .filter_map(|name| {
                 let ci = cases.iter().position(|c| &c.name == name)?;
-                let (case, t) = (&cases[ci], periods[ci]);
-                let reference = references[ci].as_ref().ok();
-                let (mut lo, mut hi) = (lo0, first);
-                for _ in 0..BISECTIONS {
-                    let mid = 0.5 * (lo + hi);
-                    let timed = guarded(engine, case, variant, mid * t, 1).ok()?;
-                    let (class, _, _) =
-                        classify_run(case, variant, &timed, reference, None, criteria);
-                    if class.diverged() {
-                        hi = mid;
-                    } else {
-                        lo = mid;
-                    }
-                }
-                Some((lo, hi, name.clone()))
+                Some((&cases[ci], periods[ci]))
             })
-            .min_by(|a, b| a.1.total_cmp(&b.1))
+            .collect();
+        let bisection = Bisection {
+            engine,
+            variant,
+            criteria,
+            bracket: (lo0, first),
+        };
+        bisection
+            .together(&scenes)
+            .unwrap_or_else(|| bisection.each(&scenes))
     });
     Limit {
         label: label.into(),
@@ -497,5 +566,146 @@ fn limit_of(
         stable_up_to: stable,
         refined,
         accurate_up_to,
+    }
+}
+
+/// The bisection of one engine variant's stability limit in Δt/T, from the ladder's
+/// bracket (the largest stable rung, the first diverged rung), on the scenes that
+/// diverged there. Its result is the smallest bracket [`BISECTIONS`] halvings give on any
+/// scene, and the first such scene in the scenes' order.
+struct Bisection<'a> {
+    engine: &'a dyn Engine,
+    variant: &'a str,
+    criteria: &'a Criteria,
+    bracket: (f64, f64),
+}
+
+impl Bisection<'_> {
+    /// Whether `case` (period `t`) diverges at Δt/T = `x`; `None` when the engine refuses
+    /// the input.
+    fn diverges(&self, case: &Case, t: f64, x: f64) -> Option<bool> {
+        let timed = guarded(self.engine, case, self.variant, x * t, 1).ok()?;
+        Some(diverged(case, self.variant, &timed, self.criteria))
+    }
+
+    /// Every scene bisected on its own, in parallel: each scene's own bracket, the
+    /// smallest upper end wins (the first scene on a tie). A scene whose run the engine
+    /// refuses drops out.
+    fn each(&self, scenes: &[(&Case, f64)]) -> Option<(f64, f64, String)> {
+        scenes
+            .par_iter()
+            .filter_map(|&(case, t)| {
+                let (mut lo, mut hi) = self.bracket;
+                for _ in 0..BISECTIONS {
+                    let mid = 0.5 * (lo + hi);
+                    if self.diverges(case, t, mid)? {
+                        hi = mid;
+                    } else {
+                        lo = mid;
+                    }
+                }
+                Some((lo, hi, case.name.clone()))
+            })
+            .min_by(|a, b| a.1.total_cmp(&b.1))
+    }
+
+    /// The result of [`Self::each`] with fewer runs: the scenes are bisected in step, one
+    /// shared bracket. At a midpoint where some scenes diverge, the others drop out: their
+    /// own brackets would stay above the midpoint while the diverged ones end at or below
+    /// it, so they cannot set the smallest bracket. `None` when the engine refuses a run
+    /// (then a dropped scene could still have won: [`Self::each`] decides).
+    fn together(&self, scenes: &[(&Case, f64)]) -> Option<Option<(f64, f64, String)>> {
+        let mut alive: Vec<(&Case, f64)> = scenes.to_vec();
+        let (mut lo, mut hi) = self.bracket;
+        for _ in 0..BISECTIONS {
+            if alive.is_empty() {
+                break;
+            }
+            let mid = 0.5 * (lo + hi);
+            let diverged: Vec<bool> = alive
+                .par_iter()
+                .map(|&(case, t)| self.diverges(case, t, mid))
+                .collect::<Option<_>>()?;
+            if diverged.contains(&true) {
+                hi = mid;
+                let mut keep = diverged.iter();
+                alive.retain(|_| *keep.next().expect("one flag a scene"));
+            } else {
+                lo = mid;
+            }
+        }
+        Some(alive.first().map(|(case, _)| (lo, hi, case.name.clone())))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The stability scenes shipped with the repository.
+    fn scenes(names: &[&str]) -> Vec<Case> {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../cases/stability");
+        names
+            .iter()
+            .map(|n| registry::load_case(&dir.join(format!("{n}.toml"))).expect("a shipped case"))
+            .collect()
+    }
+
+    /// The map's peak is the one the case reports measure: the solution's exact value, else
+    /// the peak of the fine-grid trace `solve_reference` samples, bit for bit.
+    #[test]
+    fn the_exact_basis_peak_is_the_sampled_references_peak() {
+        let cases = scenes(&[
+            "explicit-limit",
+            "mu-large",
+            "stiff-ratio-1e4",
+            "rocking-10g",
+        ]);
+        let mut compared = 0;
+        for case in &cases {
+            let (Ok(basis), Ok(full)) = (exact_basis(case), crate::suite::solve_reference(case))
+            else {
+                continue;
+            };
+            let sampled = full.responses.get("peak_relative_displacement").copied();
+            assert_eq!(
+                basis.peak.map(f64::to_bits),
+                sampled.map(f64::to_bits),
+                "{}",
+                case.name
+            );
+            compared += 1;
+        }
+        assert!(
+            compared >= 3,
+            "only {compared} scenes have an exact reference"
+        );
+    }
+
+    /// Bisecting the scenes in step and dropping those that cannot win gives the bracket
+    /// and scene of bisecting every scene on its own: here the predictor-corrector, whose
+    /// limit 1/π is reached on the undamped `explicit-limit` and not on the others.
+    #[test]
+    fn bisecting_together_gives_the_bracket_of_bisecting_each() {
+        let cases = scenes(&["mu-large", "explicit-limit", "long-run"]);
+        let engines = registry::all();
+        let pc = engines
+            .iter()
+            .find(|e| e.id() == "predictor-corrector")
+            .expect("registered");
+        let scenes: Vec<(&Case, f64)> = cases
+            .iter()
+            .map(|c| (c, characteristic_period(c).0))
+            .collect();
+        let bisection = Bisection {
+            engine: pc.as_ref(),
+            variant: "paper",
+            criteria: &Criteria::default(),
+            bracket: (0.3, 0.4),
+        };
+        let each = bisection.each(&scenes).expect("a limit");
+        let together = bisection.together(&scenes).expect("no refused run");
+        assert_eq!(together, Some(each.clone()));
+        assert!(each.0 < 1.0 / std::f64::consts::PI && 1.0 / std::f64::consts::PI < each.1);
     }
 }

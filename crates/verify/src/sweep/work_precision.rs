@@ -16,22 +16,23 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::plan::{
-    NotApplicable, applicable, characteristic_period, rapier_at_rung_step, rapier_rule_unset,
+    NotApplicable, applicable, characteristic_period, fine_grid, rapier_at_rung_step,
+    rapier_rule_unset,
 };
 use super::{Options, Series};
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::responses;
 use crate::analysis::sweep::{
-    Richardson, RungError, asymptotic_order, fitted_order, ladder, local_orders, resample,
-    richardson, richardson_at_order, rung_error,
+    Richardson, RungError, asymptotic_order, exact_channel_cached, fitted_order, ladder,
+    local_orders, resample_channel, richardson, richardson_at_order, rung_error,
 };
 use crate::registry;
 use crate::run::{Outcome, TimeStats, Timed, guarded};
-use crate::suite::{ReferenceResult, solve_reference};
+use crate::suite::ReferenceResult;
 use rockslide_core::case::{Case, Model, OptionValue};
 use rockslide_core::error::{Error, InputErrors};
-use rockslide_core::trace::q;
+use rockslide_core::trace::{Trace, q};
 use rockslide_engine_api::Run;
 use rockslide_engine_rapier::OscillatorSteps;
 
@@ -320,7 +321,7 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
     let bar = crate::progress::bar(series.len() * dts.len(), !opts.quiet, "runs", &case.name);
     let (reference, ladder_runs, threads) =
         opts.install(series.len(), || -> Result<_, InputErrors> {
-            let reference = solve_reference(case);
+            let reference = sweep_reference(case);
             let runs = run_ladder(case, &engines, &series, &dts, opts, &|| bar.inc(1))?;
             Ok((reference, runs, rayon::current_num_threads()))
         })??;
@@ -342,11 +343,17 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
             None,
         ),
     };
+    // The reference at each rung's rows, shared by the series' runs of the rung.
+    let mut sampled: Vec<Option<Trace>> = vec![None; dts.len()];
     let results = series
         .iter()
         .zip(ladder_runs.timed.iter().zip(ladder_runs.stopped))
         .map(|(s, (block, stopped))| {
-            let rungs = measure_rungs(case, &s.variant, block, &dts, period.0, &reference);
+            let basis = Basis {
+                reference: &reference,
+                sampled: &mut sampled,
+            };
+            let rungs = measure_rungs(case, &s.variant, block, &dts, period.0, basis);
             let mut r = summarise(s.label(), rungs, opts.ratio);
             r.skipped = stopped;
             r
@@ -366,6 +373,40 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
         budget: opts.budget,
         overrides,
         planned_rungs: dts.len(),
+    })
+}
+
+/// The exact reference as a sweep reads it: sampled on the fine grid (the energy audit
+/// and the event times read it), with the response quantities a rung's error compares —
+/// residual sliding and the event times
+/// ([`crate::analysis::sweep::EVENT_KEYS`]) — and no others, nor a second copy of the
+/// trace for files (a sweep writes none). The values are those of
+/// `crate::suite::solve_reference`, bit for bit: the same grid, the same readings of the
+/// same columns, the solution's exact quantities over them.
+fn sweep_reference(case: &Case) -> Result<ReferenceResult, String> {
+    let solution = rockslide_reference::for_case(case)?;
+    let n = fine_grid(case.run.duration);
+    let trace = rockslide_reference::sample_uniform(solution.as_ref(), case.run.duration, n);
+    let compared = [q::SLIDE.key, q::CONTACTS.key];
+    let mut read = Trace {
+        time: trace.time.clone(),
+        ..Trace::default()
+    };
+    for (c, col) in trace.channels.iter().zip(&trace.columns) {
+        if compared.contains(&c.key) {
+            read.channels.push(c);
+            read.columns.push(col.clone());
+        }
+    }
+    let mut resp = responses(&read);
+    for (k, v) in solution.exact_quantities() {
+        resp.insert(k, v);
+    }
+    Ok(ReferenceResult {
+        solution,
+        trace,
+        output: Trace::default(),
+        responses: resp,
     })
 }
 
@@ -438,6 +479,14 @@ fn run_ladder(
     })
 }
 
+/// What the rungs are measured against: the exact reference (or why there is none), and
+/// the reference at each rung's rows, shared between the series
+/// ([`exact_channel_cached`]).
+struct Basis<'a> {
+    reference: &'a Result<ReferenceResult, String>,
+    sampled: &'a mut [Option<Trace>],
+}
+
 /// The rungs of one series: each run's error against the basis (the reference, else the
 /// series' finest completed rung), its responses, energy audit and change to the next
 /// finer rung.
@@ -447,8 +496,9 @@ fn measure_rungs(
     block: &[Timed],
     dts: &[f64],
     period: f64,
-    reference: &Result<ReferenceResult, String>,
+    basis: Basis,
 ) -> Vec<Rung> {
+    let Basis { reference, sampled } = basis;
     let own_basis: Option<&Run> = if reference.is_ok() {
         None
     } else {
@@ -461,7 +511,8 @@ fn measure_rungs(
     let mut rungs: Vec<Rung> = block
         .iter()
         .zip(dts)
-        .map(|(t, &dt)| {
+        .zip(sampled.iter_mut())
+        .map(|((t, &dt), at)| {
             let mut rung = Rung {
                 dt,
                 dt_over_t: dt / period,
@@ -486,13 +537,13 @@ fn measure_rungs(
             rung.error = if !run.status.completed() {
                 None
             } else if let Ok(r) = reference {
-                let at = rockslide_reference::sample(r.solution.as_ref(), &run.trace.time);
-                rung_error(&run.trace, &resp, &at, &r.responses)
+                exact_channel_cached(at, r.solution.as_ref(), q::REL_DISP.key, &run.trace.time)
+                    .and_then(|at| rung_error(&run.trace, &resp, at, &r.responses))
             } else {
                 match (own_basis, &own_resp) {
                     (Some(b), Some(br)) if !std::ptr::eq(b, run) => {
-                        let at = resample(&b.trace, &run.trace.time);
-                        rung_error(&run.trace, &resp, &at, br)
+                        resample_channel(&b.trace, q::REL_DISP.key, &run.trace.time)
+                            .and_then(|at| rung_error(&run.trace, &resp, &at, br))
                     }
                     _ => None,
                 }
@@ -509,8 +560,9 @@ fn measure_rungs(
             && a.status.completed()
             && b.status.completed()
         {
-            let at = resample(&b.trace, &a.trace.time);
-            rungs[i].change = history_difference(&a.trace, &at, q::REL_DISP.key).map(|e| e.0);
+            rungs[i].change = resample_channel(&b.trace, q::REL_DISP.key, &a.trace.time)
+                .and_then(|at| history_difference(&a.trace, &at, q::REL_DISP.key))
+                .map(|e| e.0);
         }
     }
     rungs
