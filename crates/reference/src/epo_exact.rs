@@ -269,8 +269,28 @@ impl EpoExact {
 
     /// The segment containing `t` (the last one from its end on).
     fn segment_at(&self, t: f64) -> &Segment {
-        let i = self.segments.partition_point(|s| s.t0 <= t);
+        self.segment_from(self.segments.partition_point(|s| s.t0 <= t))
+    }
+
+    /// The segment before partition point `i` of the segments' starts (the first).
+    fn segment_from(&self, i: usize) -> &Segment {
         &self.segments[i.saturating_sub(1)]
+    }
+
+    /// The channels at `t` in `seg` (the segment holding `t`), in
+    /// [`ExactSolution::channels`] order.
+    fn write(&self, seg: &Segment, t: f64, out: &mut [f64]) {
+        let (u, v, r, up) = self.state_in(seg, t);
+        let p = self.forcing.at(t);
+        out[0] = p;
+        out[1] = r;
+        out[2] = u;
+        out[3] = up;
+        out[4] = v;
+        out[5] = (p - r) / self.m;
+        if let Some(g) = self.forcing.ground(t) {
+            out[6] = g;
+        }
     }
 
     /// (u, v, R, up) at `t`.
@@ -307,17 +327,15 @@ impl ExactSolution for EpoExact {
     }
 
     fn eval(&self, t: f64, out: &mut [f64]) {
-        let (u, v, r, up) = self.state(t);
-        let p = self.forcing.at(t);
-        out[0] = p;
-        out[1] = r;
-        out[2] = u;
-        out[3] = up;
-        out[4] = v;
-        out[5] = (p - r) / self.m;
-        if let Some(g) = self.forcing.ground(t) {
-            out[6] = g;
-        }
+        self.write(self.segment_at(t), t, out);
+    }
+
+    fn sample_into(&self, times: &[f64], trace: &mut rockslide_core::trace::Trace) {
+        let mut cursor = crate::cursor::Cursor::default();
+        crate::each_row(trace, times, |t, out| {
+            let i = cursor.partition_point(&self.segments, |s| s.t0 <= t);
+            self.write(self.segment_from(i), t, out);
+        });
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {
