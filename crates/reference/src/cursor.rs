@@ -1,9 +1,11 @@
 //! A cursor for sampling at ascending times: the index a binary search would give
-//! (`partition_point`), found by walking on from the last one when the times ascend, so a
-//! solution sampled at n ascending times pays O(n + pieces) instead of O(n·log pieces) —
-//! the same index, hence the same values bit for bit, whatever order the times come in.
+//! (`partition_point`), found by walking on from the last one when the times ascend (a
+//! few steps, then strides that double, then a binary search inside the last stride), so
+//! a solution sampled at n ascending times pays O(n + pieces) at most and O(n·log gap)
+//! for times far apart — the same index, hence the same values bit for bit, whatever
+//! order the times come in.
 
-/// Steps walked forward before the cursor falls back to a binary search of the rest.
+/// Steps walked forward one at a time before the strides double.
 const WALK: usize = 8;
 
 /// The last partition point found.
@@ -25,7 +27,7 @@ impl Cursor {
                 i += 1;
                 steps += 1;
                 if steps == WALK {
-                    i += items[i..].partition_point(&below);
+                    i = gallop(items, i, &below);
                     break;
                 }
             }
@@ -34,6 +36,25 @@ impl Cursor {
         self.0 = i;
         i
     }
+}
+
+/// The partition point of `items` at or after `from` (every item before `from` is
+/// below): strides of 1, 2, 4, … until one ends past it, then a binary search inside it.
+fn gallop<T>(items: &[T], from: usize, below: &impl Fn(&T) -> bool) -> usize {
+    let (mut low, mut stride) = (from, 1);
+    let high = loop {
+        let probe = low + stride;
+        if probe > items.len() {
+            break items.len();
+        }
+        if below(&items[probe - 1]) {
+            low = probe;
+            stride *= 2;
+        } else {
+            break probe - 1;
+        }
+    };
+    low + items[low..high].partition_point(below)
 }
 
 #[cfg(test)]
@@ -58,16 +79,28 @@ mod tests {
                 "t = {t}"
             );
         }
-        // a walk longer than WALK steps: the binary search of the rest
+        // walks longer than WALK steps: strides that double, then a binary search
         let many: Vec<f64> = (0..100).map(f64::from).collect();
         let mut cursor = Cursor::default();
-        for t in [0.5, 57.5, 57.5, 99.0, 120.0] {
+        for t in [
+            0.5, 57.5, 57.5, 60.0, 61.0, 63.0, 70.5, 99.0, 120.0, 3.0, 98.5,
+        ] {
             let expected = many.partition_point(|&s| s <= t);
             assert_eq!(
                 cursor.partition_point(&many, |&s| s <= t),
                 expected,
                 "t = {t}"
             );
+        }
+        // every pair (from, to) of times on a half-unit grid past both ends
+        let half = |k: i32| 0.5 * f64::from(k) - 5.0;
+        for a in 0..=220 {
+            for b in 0..=220 {
+                let mut cursor = Cursor::default();
+                cursor.partition_point(&many, |&s| s <= half(a));
+                let expected = many.partition_point(|&s| s <= half(b));
+                assert_eq!(cursor.partition_point(&many, |&s| s <= half(b)), expected);
+            }
         }
     }
 }
