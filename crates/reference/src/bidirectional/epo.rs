@@ -244,8 +244,9 @@ impl EpoLaw {
         phase: PlanEpoPhase,
         inside: f64,
     ) -> impl Fn(f64, &[f64; STATE]) -> [f64; STATE] + '_ {
+        let drive = self.drive.remembered();
         move |t, y| {
-            let d = self.drive.at(t);
+            let d = drive.at(t);
             let f = [self.k * (y[0] - y[4]), self.k * (y[1] - y[5])];
             let pdot = match phase {
                 PlanEpoPhase::Elastic => [0.0, 0.0],

@@ -192,12 +192,14 @@ fn slipping_steps(time: &[f64], slide: &[f64], slide_y: Option<&[f64]>) -> Vec<b
         let dy = slide_y.map(|y| y[i] - y[i - 1]);
         slide_rate(time[i] - time[i - 1], slide[i] - slide[i - 1], dy)
     };
-    let peak = (1..slide.len()).map(rate).fold(0.0_f64, f64::max);
+    // each step's rate once: the peak and the comparisons read the same numbers
+    let rates: Vec<f64> = (1..slide.len()).map(rate).collect();
+    let peak = rates.iter().copied().fold(0.0_f64, f64::max);
     if peak.is_nan() || peak <= 0.0 {
         return Vec::new();
     }
     let threshold = 1e-3 * peak;
-    (1..slide.len()).map(|i| rate(i) > threshold).collect()
+    rates.iter().map(|&r| r > threshold).collect()
 }
 
 /// Number of slip episodes read off a slide history: maximal runs of slipping steps
