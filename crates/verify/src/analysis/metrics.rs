@@ -24,10 +24,10 @@ pub fn responses(trace: &Trace) -> Responses {
             continue;
         }
         let value = match d.reading {
-            Reading::PeakAbs => Some(col.iter().fold(0.0_f64, |m, x| m.max(x.abs()))),
-            Reading::SignedPeak => Some(signed_peak(col)),
-            Reading::Max => Some(col.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
-            Reading::Min => Some(col.iter().copied().fold(f64::INFINITY, f64::min)),
+            Reading::PeakAbs => Some(passes.extremes(d.channel.key, col).peak_abs),
+            Reading::SignedPeak => Some(passes.extremes(d.channel.key, col).signed_peak),
+            Reading::Max => Some(passes.extremes(d.channel.key, col).max),
+            Reading::Min => Some(passes.extremes(d.channel.key, col).min),
             Reading::Last => col.last().copied(),
             Reading::SlipStart => passes
                 .slip_window(&trace.time, d.channel.key, col)
@@ -71,7 +71,7 @@ pub fn responses(trace: &Trace) -> Responses {
 }
 
 /// The passes over a column that several response quantities read, each made once per
-/// column: the slipping steps (slip episodes, and the slip window, which is the first and
+/// column: its extremes ([`Extremes`], one loop for the four), the slipping steps (slip episodes, and the slip window, which is the first and
 /// last of the slipping steps of the slide alone) and the sign changes (first and second
 /// crossings, the peak between them). The same numbers as a pass per quantity, bit for
 /// bit (the direct definitions `slip_episodes` and `slip_window` are kept for the tests
@@ -82,9 +82,52 @@ struct Passes {
     slipping: Vec<((&'static str, bool), Vec<bool>)>,
     /// Column key, its sign changes.
     crossings: Vec<(&'static str, Vec<f64>)>,
+    /// Column key, its extremes.
+    extremes: Vec<(&'static str, Extremes)>,
+}
+
+/// A column's smallest and largest value, largest magnitude, and the value of largest
+/// magnitude with its sign (the first one on a tie; 0 for an all-zero or empty column):
+/// four folds in one loop, each the fold a pass of its own would make, in the same order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Extremes {
+    min: f64,
+    max: f64,
+    peak_abs: f64,
+    signed_peak: f64,
+}
+
+impl Extremes {
+    fn of(col: &[f64]) -> Self {
+        let mut e = Extremes {
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            peak_abs: 0.0,
+            signed_peak: 0.0,
+        };
+        for &x in col {
+            e.min = e.min.min(x);
+            e.max = e.max.max(x);
+            e.peak_abs = e.peak_abs.max(x.abs());
+            if x.abs() > e.signed_peak.abs() {
+                e.signed_peak = x;
+            }
+        }
+        e
+    }
 }
 
 impl Passes {
+    /// [`Extremes`] of column `key`, computed once.
+    fn extremes(&mut self, key: &'static str, col: &[f64]) -> Extremes {
+        if let Some((_, e)) = self.extremes.iter().find(|(k, _)| *k == key) {
+            return *e;
+        }
+        let e = Extremes::of(col);
+        self.extremes.push((key, e));
+        e
+    }
+
     /// [`slipping_steps`] of column `key` (planar with `slide_y`), computed once.
     fn slipping(
         &mut self,
@@ -152,7 +195,8 @@ fn episodes(slipping: &[bool]) -> usize {
 
 /// The value with the largest magnitude, with its sign (the first one on a tie; 0 for an
 /// all-zero or empty column).
-pub fn signed_peak(col: &[f64]) -> f64 {
+#[cfg(test)]
+fn signed_peak(col: &[f64]) -> f64 {
     col.iter()
         .copied()
         .fold(0.0_f64, |m, x| if x.abs() > m.abs() { x } else { m })
@@ -399,6 +443,31 @@ mod tests {
                 episodes(passes.slipping(&t, "slide", &s, None)),
                 slip_episodes(&t, &s, None)
             );
+        }
+    }
+
+    /// The four extremes of one loop are the folds of a pass each, bit for bit, with
+    /// ties, signed zeros, a NaN and infinities among the values.
+    #[test]
+    fn the_extremes_of_one_loop_are_the_four_folds() {
+        let columns: [&[f64]; 6] = [
+            &[],
+            &[0.0, -0.0, 0.0],
+            &[1.0, -3.0, 3.0, 2.5, -3.0],
+            &[-1e-300, 5e-324, -7.25, 7.0],
+            &[1.0, f64::NAN, -2.0, 0.5],
+            &[f64::NEG_INFINITY, 4.0, f64::INFINITY],
+        ];
+        for col in columns {
+            let e = Extremes::of(col);
+            let bits = |x: f64| x.to_bits();
+            let peak = col.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+            let max = col.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let min = col.iter().copied().fold(f64::INFINITY, f64::min);
+            assert_eq!(bits(e.peak_abs), bits(peak), "{col:?}");
+            assert_eq!(bits(e.max), bits(max), "{col:?}");
+            assert_eq!(bits(e.min), bits(min), "{col:?}");
+            assert_eq!(bits(e.signed_peak), bits(signed_peak(col)), "{col:?}");
         }
     }
 
