@@ -235,17 +235,48 @@ impl EpoExact {
 
     /// (u, v, R, up) at `t` within `seg`.
     fn state_in(&self, seg: &Segment, t: f64) -> State {
+        self.state_with(seg, self.segment_constants(seg), t)
+    }
+
+    /// The stick forcing's amplitude p/(K − Mθ²) on `seg` (0 without forcing).
+    fn stick_amplitude(&self, seg: &Segment) -> f64 {
+        let p = self.piece_p(seg);
+        let (m, k, th) = (self.m, self.k, self.forcing.theta);
+        if p != 0.0 { p / (k - m * th * th) } else { 0.0 }
+    }
+
+    /// What every time in `seg` shares: the stick's (c1, c2), or the slip's
+    /// (cos θt0, sin θt0) under forcing — computed once a segment when sampling.
+    fn segment_constants(&self, seg: &Segment) -> (f64, f64) {
+        let th = self.forcing.theta;
+        match seg.phase {
+            Phase::Stick => {
+                let amp = self.stick_amplitude(seg);
+                let ep = |t: f64| amp * (th * t).sin();
+                let ep_dot = |t: f64| amp * th * (th * t).cos();
+                let c1 = (seg.u0 - seg.up0) - ep(seg.t0);
+                let c2 = (seg.v0 - ep_dot(seg.t0)) / self.omega;
+                (c1, c2)
+            }
+            Phase::Slip(_) if self.piece_p(seg) != 0.0 => {
+                ((th * seg.t0).cos(), (th * seg.t0).sin())
+            }
+            Phase::Slip(_) => (0.0, 0.0),
+        }
+    }
+
+    /// [`Self::state_in`] with the segment's constants ([`Self::segment_constants`]).
+    fn state_with(&self, seg: &Segment, (ca, cb): (f64, f64), t: f64) -> State {
         let p = self.piece_p(seg);
         let (m, k, th, w) = (self.m, self.k, self.forcing.theta, self.omega);
         let tau = t - seg.t0;
         match seg.phase {
             Phase::Stick => {
                 // e = ep + c1 cos ωτ + c2 sin ωτ, ep = p/(K − Mθ²)·sin θt
-                let amp = if p != 0.0 { p / (k - m * th * th) } else { 0.0 };
+                let amp = self.stick_amplitude(seg);
                 let ep = |t: f64| amp * (th * t).sin();
                 let ep_dot = |t: f64| amp * th * (th * t).cos();
-                let c1 = (seg.u0 - seg.up0) - ep(seg.t0);
-                let c2 = (seg.v0 - ep_dot(seg.t0)) / w;
+                let (c1, c2) = (ca, cb);
                 let (sn, cs) = (w * tau).sin_cos();
                 let e = ep(t) + c1 * cs + c2 * sn;
                 let v = ep_dot(t) - c1 * w * sn + c2 * w * cs;
@@ -256,7 +287,7 @@ impl EpoExact {
                 let (mut dv, mut du) =
                     (-s * self.ru * tau / m, -s * self.ru * tau * tau / (2.0 * m));
                 if p != 0.0 {
-                    let (c0, s0) = ((th * seg.t0).cos(), (th * seg.t0).sin());
+                    let (c0, s0) = (ca, cb);
                     dv += p / (m * th) * (c0 - (th * t).cos());
                     du += p / (m * th) * (c0 * tau - ((th * t).sin() - s0) / th);
                 }
@@ -269,8 +300,28 @@ impl EpoExact {
 
     /// The segment containing `t` (the last one from its end on).
     fn segment_at(&self, t: f64) -> &Segment {
-        let i = self.segments.partition_point(|s| s.t0 <= t);
+        self.segment_from(self.segments.partition_point(|s| s.t0 <= t))
+    }
+
+    /// The segment before partition point `i` of the segments' starts (the first).
+    fn segment_from(&self, i: usize) -> &Segment {
         &self.segments[i.saturating_sub(1)]
+    }
+
+    /// The channels at `t` in `seg` (the segment holding `t`), in
+    /// [`ExactSolution::channels`] order.
+    fn write(&self, seg: &Segment, constants: (f64, f64), t: f64, out: &mut [f64]) {
+        let (u, v, r, up) = self.state_with(seg, constants, t);
+        let p = self.forcing.at(t);
+        out[0] = p;
+        out[1] = r;
+        out[2] = u;
+        out[3] = up;
+        out[4] = v;
+        out[5] = (p - r) / self.m;
+        if let Some(g) = self.forcing.ground(t) {
+            out[6] = g;
+        }
     }
 
     /// (u, v, R, up) at `t`.
@@ -307,17 +358,24 @@ impl ExactSolution for EpoExact {
     }
 
     fn eval(&self, t: f64, out: &mut [f64]) {
-        let (u, v, r, up) = self.state(t);
-        let p = self.forcing.at(t);
-        out[0] = p;
-        out[1] = r;
-        out[2] = u;
-        out[3] = up;
-        out[4] = v;
-        out[5] = (p - r) / self.m;
-        if let Some(g) = self.forcing.ground(t) {
-            out[6] = g;
-        }
+        let seg = self.segment_at(t);
+        self.write(seg, self.segment_constants(seg), t, out);
+    }
+
+    fn sample_into(&self, times: &[f64], trace: &mut rockslide_core::trace::Trace) {
+        let mut cursor = crate::cursor::Cursor::default();
+        // the segment's constants, kept while the times stay in it
+        let mut constants: Option<(usize, (f64, f64))> = None;
+        crate::each_row(trace, times, |t, out| {
+            let i = cursor.partition_point(&self.segments, |s| s.t0 <= t);
+            let seg = self.segment_from(i);
+            let c = match constants {
+                Some((j, c)) if j == i => c,
+                _ => self.segment_constants(seg),
+            };
+            constants = Some((i, c));
+            self.write(seg, c, t, out);
+        });
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {

@@ -393,8 +393,25 @@ impl EpoRecord {
     }
 
     fn segment_at(&self, t: f64) -> &Segment {
-        let i = self.segments.partition_point(|s| s.t0 <= t);
+        self.segment_from(self.segments.partition_point(|s| s.t0 <= t))
+    }
+
+    /// The segment before partition point `i` of the segments' starts (the first).
+    fn segment_from(&self, i: usize) -> &Segment {
         &self.segments[i.saturating_sub(1)]
+    }
+
+    /// The channels at `t` in `seg` (the segment holding `t`), in
+    /// [`ExactSolution::channels`] order.
+    fn write(&self, seg: &Segment, t: f64, out: &mut [f64]) {
+        let (u, v, r, up) = self.state_in(seg, t);
+        let p = -self.m * (seg.a0 + seg.beta * (t - seg.t0));
+        out[0] = p;
+        out[1] = r;
+        out[2] = u;
+        out[3] = up;
+        out[4] = v;
+        out[5] = (p - r) / self.m;
     }
 
     /// (u, v, R, up) at `t`.
@@ -484,14 +501,15 @@ impl ExactSolution for EpoRecord {
     }
 
     fn eval(&self, t: f64, out: &mut [f64]) {
-        let (u, v, r, up) = self.state(t);
-        let p = -self.m * self.ground_acceleration(t);
-        out[0] = p;
-        out[1] = r;
-        out[2] = u;
-        out[3] = up;
-        out[4] = v;
-        out[5] = (p - r) / self.m;
+        self.write(self.segment_at(t), t, out);
+    }
+
+    fn sample_into(&self, times: &[f64], trace: &mut rockslide_core::trace::Trace) {
+        let mut cursor = crate::cursor::Cursor::default();
+        crate::each_row(trace, times, |t, out| {
+            let i = cursor.partition_point(&self.segments, |s| s.t0 <= t);
+            self.write(self.segment_from(i), t, out);
+        });
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {

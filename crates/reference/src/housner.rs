@@ -154,7 +154,11 @@ impl HousnerRocking {
 
     /// (φ, φ') at `t` (cubic Hermite between stored samples; right-continuous at impacts).
     pub fn state(&self, t: f64) -> (f64, f64) {
-        let i = self.samples.partition_point(|s| s.0 <= t);
+        self.state_at(self.samples.partition_point(|s| s.0 <= t), t)
+    }
+
+    /// [`Self::state`] with the samples' partition point at `t` already found.
+    fn state_at(&self, i: usize, t: f64) -> (f64, f64) {
         if i == 0 {
             return (self.samples[0].1, self.samples[0].2);
         }
@@ -177,6 +181,24 @@ impl HousnerRocking {
         );
         let phi = h00 * p0 + h10 * h * w0 + h01 * p1 + h11 * h * w1;
         (phi, w0 + x * (w1 - w0))
+    }
+
+    /// The channels at rotation φ (pivot, centre of mass, uplift, base centre), in
+    /// [`ExactSolution::channels`] order.
+    fn write(&self, phi: f64, out: &mut [f64]) {
+        let (b, h) = (self.b, self.hh);
+        let s = if phi >= 0.0 { 1.0 } else { -1.0 };
+        // Pivot corner at (−s·b, 0); CM = pivot + R(φ)·(s·b, h); base centre O likewise.
+        let (sn, cs) = phi.sin_cos();
+        let pivot = -s * b;
+        let cm_x = pivot + cs * s * b - sn * h;
+        let cm_z = sn * s * b + cs * h;
+        let o_x = pivot + cs * s * b;
+        out[0] = phi;
+        out[1] = cm_x;
+        out[2] = cm_z - h;
+        out[3] = 2.0 * b * sn.abs();
+        out[4] = o_x;
     }
 
     /// Largest |φ| between consecutive impacts: [before the first, after the first, …].
@@ -213,20 +235,15 @@ impl ExactSolution for HousnerRocking {
     }
 
     fn eval(&self, t: f64, out: &mut [f64]) {
-        let (phi, _) = self.state(t);
-        let (b, h) = (self.b, self.hh);
-        let s = if phi >= 0.0 { 1.0 } else { -1.0 };
-        // Pivot corner at (−s·b, 0); CM = pivot + R(φ)·(s·b, h); base centre O likewise.
-        let (sn, cs) = phi.sin_cos();
-        let pivot = -s * b;
-        let cm_x = pivot + cs * s * b - sn * h;
-        let cm_z = sn * s * b + cs * h;
-        let o_x = pivot + cs * s * b;
-        out[0] = phi;
-        out[1] = cm_x;
-        out[2] = cm_z - h;
-        out[3] = 2.0 * b * sn.abs();
-        out[4] = o_x;
+        self.write(self.state(t).0, out);
+    }
+
+    fn sample_into(&self, times: &[f64], trace: &mut rockslide_core::trace::Trace) {
+        let mut cursor = crate::cursor::Cursor::default();
+        crate::each_row(trace, times, |t, out| {
+            let i = cursor.partition_point(&self.samples, |s| s.0 <= t);
+            self.write(self.state_at(i, t).0, out);
+        });
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {

@@ -7,6 +7,7 @@
 pub mod bidirectional;
 mod block_case;
 pub mod block_record;
+mod cursor;
 mod duhamel;
 mod epo_exact;
 mod epo_record;
@@ -39,6 +40,22 @@ pub trait ExactSolution: Send + Sync {
     /// Quantities known exactly rather than by sampling (event times), by quantity key.
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {
         Vec::new()
+    }
+    /// Append the values at each of `times` to `trace` (whose channels are
+    /// [`ExactSolution::channels`]): [`ExactSolution::eval`] at each time, bit for bit. A
+    /// solution stored in pieces overrides it to find each time's piece by walking on
+    /// from the last one when the times ascend, instead of a binary search per time.
+    fn sample_into(&self, times: &[f64], trace: &mut Trace) {
+        each_row(trace, times, |t, out| self.eval(t, out));
+    }
+}
+
+/// Push one row a time to `trace`, its values written by `eval(t, row)`.
+fn each_row(trace: &mut Trace, times: &[f64], mut eval: impl FnMut(f64, &mut [f64])) {
+    let mut row = vec![0.0; trace.channels.len()];
+    for &t in times {
+        eval(t, &mut row);
+        trace.push(t, &row);
     }
 }
 
@@ -93,11 +110,7 @@ fn is_record(excitation: &Excitation) -> bool {
 pub fn sample(solution: &dyn ExactSolution, times: &[f64]) -> Trace {
     let channels = solution.channels();
     let mut trace = Trace::with_channels(&channels, times.len());
-    let mut row = vec![0.0; channels.len()];
-    for &t in times {
-        solution.eval(t, &mut row);
-        trace.push(t, &row);
-    }
+    solution.sample_into(times, &mut trace);
     trace
 }
 

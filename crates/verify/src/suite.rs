@@ -105,29 +105,70 @@ pub struct ReferenceResult {
     /// audit and history differences read it.
     pub trace: Trace,
     /// Sampled where it is compared — every run's output times and the exact event times —
-    /// for the files and figures ([`ReferenceResult::at_compared_times`]); until then, the
-    /// fine trace.
+    /// for the files and figures ([`ReferenceResult::at_compared_times`]); until then, no
+    /// rows (the solution's channels).
     pub output: Trace,
     /// Response quantities (exact event times where the solution knows them).
     pub responses: Responses,
+    /// The exact instants the solution knows (slip start and end, lift-off, impacts),
+    /// read once off [`ExactSolution::exact_quantities`].
+    event_times: Vec<f64>,
 }
 
 impl ReferenceResult {
-    /// Resample the output trace at the union of the runs' output times and the exact
+    /// Sample the output trace at the union of the runs' output times and the exact
     /// event times (what the CSV, the MCAP file and the figures show): no fixed fine grid.
+    /// A time that is also a row of the fine trace (the same bits) takes that row — the
+    /// solution is evaluated pointwise, so the same values — and only the others are
+    /// evaluated. Without any such time (no run), the fine trace.
     pub fn at_compared_times(&mut self, runs: &[Run]) {
         let mut times: Vec<f64> = runs
             .iter()
             .flat_map(|r| r.trace.time.iter().copied())
-            .chain(self.event_times())
+            .chain(self.event_times.iter().copied())
             .filter(|t| t.is_finite())
             .collect();
         if times.is_empty() {
+            self.output = self.trace.clone();
             return;
         }
         times.sort_by(f64::total_cmp);
         times.dedup();
-        self.output = rockslide_reference::sample(self.solution.as_ref(), &times);
+        self.output = self.sampled_reusing_fine_rows(&times);
+    }
+
+    /// The solution at `times` (ascending): the fine trace's row where a time is one of
+    /// its rows bit for bit, the solution evaluated at the others.
+    fn sampled_reusing_fine_rows(&self, times: &[f64]) -> Trace {
+        let fine = &self.trace;
+        let rows = rows_of(&fine.time, times);
+        let missing: Vec<f64> = times
+            .iter()
+            .zip(&rows)
+            .filter(|(_, row)| row.is_none())
+            .map(|(&t, _)| t)
+            .collect();
+        let fresh = rockslide_reference::sample(self.solution.as_ref(), &missing);
+        if fresh.channels != fine.channels {
+            // (every solution samples the same channels at any time)
+            return rockslide_reference::sample(self.solution.as_ref(), times);
+        }
+        let mut out = Trace::with_channels(&fine.channels, times.len());
+        out.time.extend_from_slice(times);
+        let mut next_fresh = 0;
+        for row in rows {
+            let (source, i) = match row {
+                Some(i) => (fine, i),
+                None => {
+                    next_fresh += 1;
+                    (&fresh, next_fresh - 1)
+                }
+            };
+            for (column, from) in out.columns.iter_mut().zip(&source.columns) {
+                column.push(from[i]);
+            }
+        }
+        out
     }
 
     /// The reference at `times` (a run's output times): the rows of the output trace,
@@ -145,15 +186,23 @@ impl ReferenceResult {
             rows_at(&all, times, channels).unwrap_or(all)
         })
     }
+}
 
-    /// The exact instants the solution knows (slip start and end, lift-off, impacts).
-    fn event_times(&self) -> impl Iterator<Item = f64> + '_ {
-        self.solution
-            .exact_quantities()
-            .into_iter()
-            .filter(|(k, _)| quantity_def(k).is_some_and(|d| d.is_time()))
-            .map(|(_, t)| t)
-    }
+/// For each of `times` (ascending), the index of the row of `rows` (ascending) with the
+/// same bits, if any: one walk over both.
+fn rows_of(rows: &[f64], times: &[f64]) -> Vec<Option<usize>> {
+    let mut at = 0;
+    times
+        .iter()
+        .map(|&t| {
+            while rows.get(at).is_some_and(|&x| x < t) {
+                at += 1;
+            }
+            rows.get(at)
+                .filter(|x| x.to_bits() == t.to_bits())
+                .map(|_| at)
+        })
+        .collect()
 }
 
 /// The rows of `trace` at `times` (ascending) in its columns of `channels` (those it has,
@@ -340,14 +389,19 @@ pub fn solve_reference(case: &Case) -> Result<ReferenceResult, String> {
     let n = ((case.run.duration / 1e-5).ceil() as usize).clamp(1000, 200_000);
     let trace = rockslide_reference::sample_uniform(solution.as_ref(), case.run.duration, n);
     let mut resp = responses(&trace);
+    let mut event_times = Vec::new();
     for (k, v) in solution.exact_quantities() {
+        if quantity_def(k).is_some_and(|d| d.is_time()) {
+            event_times.push(v);
+        }
         resp.insert(k, v);
     }
     Ok(ReferenceResult {
         solution,
-        output: trace.clone(),
+        output: Trace::with_channels(&trace.channels, 0),
         trace,
         responses: resp,
+        event_times,
     })
 }
 
@@ -538,6 +592,17 @@ mod tests {
         assert_eq!(rows_at(&full, &[2.0], &both), None);
         assert_eq!(rows_at(&full, &[0.5, 0.25], &both), None);
         assert_eq!(rows_at(&full, &[f64::NAN], &both), None);
+    }
+
+    #[test]
+    fn rows_of_finds_each_time_s_row_by_its_bits_and_nothing_else() {
+        let rows = [0.0, 0.25, 0.5, 0.75, 1.0];
+        let times = [-0.0, 0.0, 0.1, 0.25, 0.5 + f64::EPSILON, 1.0, 2.0];
+        let found = rows_of(&rows, &times);
+        // −0.0 is not the row 0.0 (another bit pattern): sampled anew, as are the times
+        // between rows or past the end
+        assert_eq!(found, [None, Some(0), None, Some(1), None, Some(4), None]);
+        assert_eq!(rows_of(&[], &[0.0]), [None]);
     }
 
     #[test]

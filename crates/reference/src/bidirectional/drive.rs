@@ -1,5 +1,7 @@
 //! The horizontal drive of a 3D scene as a 2-vector function of time, with its kinks.
 
+use std::cell::Cell;
+
 use rockslide_core::case::{Excitation, NormalForce, Scene, Signal};
 
 /// The force per unit mass d(t) on the body (relative coordinates), in (x, y), and the
@@ -93,6 +95,15 @@ impl PlanDrive {
         ]
     }
 
+    /// d(t) remembered at two times ([`DriveAt`]), for one integration step's stages.
+    pub(crate) fn remembered(&self) -> DriveAt<'_> {
+        DriveAt {
+            drive: self,
+            first: Cell::new(None),
+            last: Cell::new(None),
+        }
+    }
+
     /// The vertical ground acceleration a_v(t), m/s² (0 without one).
     pub fn vertical(&self, t: f64) -> f64 {
         self.vertical.as_ref().map_or(0.0, |s| s.value(t))
@@ -132,5 +143,68 @@ impl PlanDrive {
         k.sort_by(f64::total_cmp);
         k.dedup_by(|a, b| (*a - *b).abs() <= 1e-12 * end);
         k
+    }
+}
+
+/// [`PlanDrive::at`] remembered at the first time asked and at the last one: a
+/// Runge–Kutta step asks twice at its midpoint, and the bisection of an event asks at the
+/// step's start once per trial length. The values are those of [`PlanDrive::at`] (a
+/// function of the time's bits alone), only not evaluated again.
+pub(crate) struct DriveAt<'a> {
+    drive: &'a PlanDrive,
+    /// (time's bits, d) of the first time asked.
+    first: Cell<Option<(u64, [f64; 2])>>,
+    /// (time's bits, d) of the last time asked that was not the first.
+    last: Cell<Option<(u64, [f64; 2])>>,
+}
+
+impl DriveAt<'_> {
+    /// d(t), m/s².
+    pub(crate) fn at(&self, t: f64) -> [f64; 2] {
+        let bits = t.to_bits();
+        for kept in [&self.first, &self.last] {
+            if let Some((b, d)) = kept.get()
+                && b == bits
+            {
+                return d;
+            }
+        }
+        let d = self.drive.at(t);
+        let slot = if self.first.get().is_none() {
+            &self.first
+        } else {
+            &self.last
+        };
+        slot.set(Some((bits, d)));
+        d
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_remembered_drive_is_the_drive_bit_for_bit() {
+        let record = |samples: Vec<f64>| Signal::Record {
+            dt: 0.01,
+            samples: samples.into(),
+            label: String::new(),
+        };
+        let drive = PlanDrive::new(
+            Some(record(vec![0.0, 1.0, -2.0, 0.5, 3.0])),
+            [0.6, 0.8],
+            Some(record(vec![0.3, -0.1, 0.7, 0.0, -1.0])),
+            [-0.8, 0.6],
+            -1.0,
+        );
+        let memo = drive.remembered();
+        // a step's stages, a bisection's repeated start, -0.0 beside 0.0, past the end
+        for t in [
+            0.0, 0.005, 0.005, 0.01, 0.0, 0.0025, 0.0, -0.0, 0.013, 0.0, 0.07, 0.013,
+        ] {
+            let (a, b) = (memo.at(t), drive.at(t));
+            assert_eq!(a.map(f64::to_bits), b.map(f64::to_bits), "t = {t}");
+        }
     }
 }

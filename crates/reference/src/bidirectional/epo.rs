@@ -21,10 +21,11 @@
 
 use super::block::{SLIP_EPISODES_RESPONSE, peak_resultant, plan_channels, write_plan};
 use super::drive::PlanDrive;
-use super::integrate::{Sample, dot, grid, hermite, locate, march, norm, rk4};
+use super::integrate::{Sample, dot, grid, hermite, hermite_at, locate, march, norm, rk4};
 use crate::ExactSolution;
+use crate::cursor::Cursor;
 use rockslide_core::case::{NormalForce, Oscillator};
-use rockslide_core::trace::Quantity;
+use rockslide_core::trace::{Quantity, Trace};
 
 /// Elastic or yielding.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -243,8 +244,9 @@ impl EpoLaw {
         phase: PlanEpoPhase,
         inside: f64,
     ) -> impl Fn(f64, &[f64; STATE]) -> [f64; STATE] + '_ {
+        let drive = self.drive.remembered();
         move |t, y| {
-            let d = self.drive.at(t);
+            let d = drive.at(t);
             let f = [self.k * (y[0] - y[4]), self.k * (y[1] - y[5])];
             let pdot = match phase {
                 PlanEpoPhase::Elastic => [0.0, 0.0],
@@ -366,6 +368,15 @@ impl ExactSolution for PlanEpo {
     fn eval(&self, t: f64, out: &mut [f64]) {
         let (u, v, p) = self.state(t);
         write_plan(out, u, p, v);
+    }
+
+    fn sample_into(&self, times: &[f64], trace: &mut Trace) {
+        let mut cursor = Cursor::default();
+        crate::each_row(trace, times, |t, out| {
+            let i = cursor.partition_point(&self.samples, |s| s.t <= t);
+            let (u, v, p) = hermite_at(&self.samples, i, t);
+            write_plan(out, u, p, v);
+        });
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {

@@ -130,7 +130,12 @@ pub fn grid(kinks: &[f64], end: f64, h: f64) -> Vec<f64> {
 /// (position from the velocities, velocity from the accelerations, slip from the slip
 /// rates): O(h⁴) and O(h³) between nodes.
 pub fn hermite(samples: &[Sample], t: f64) -> ([f64; 2], [f64; 2], [f64; 2]) {
-    let i = samples.partition_point(|s| s.t <= t);
+    hermite_at(samples, samples.partition_point(|s| s.t <= t), t)
+}
+
+/// [`hermite`] with the samples' partition point at `t` (the first sample after `t`)
+/// already found, e.g. by a [`crate::cursor::Cursor`].
+pub(crate) fn hermite_at(samples: &[Sample], i: usize, t: f64) -> ([f64; 2], [f64; 2], [f64; 2]) {
     if i == 0 || i == samples.len() {
         let s = samples[i.saturating_sub(1)];
         return (s.pos, s.vel, s.slip);

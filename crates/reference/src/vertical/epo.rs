@@ -45,11 +45,11 @@ pub struct NormalLaw {
 impl NormalLaw {
     /// N at τ.
     pub fn at(&self, t: f64) -> f64 {
-        let (s, c) = (self.wz * t).sin_cos();
+        let (s, c) = sin_cos(self.wz * t);
         self.n0 + self.n1 * t + self.a * c + self.b * s
     }
     fn rate(&self, t: f64) -> f64 {
-        let (s, c) = (self.wz * t).sin_cos();
+        let (s, c) = sin_cos(self.wz * t);
         self.n1 + self.wz * (-self.a * s + self.b * c)
     }
     /// ∫₀^τ N.
@@ -76,7 +76,7 @@ impl NormalLaw {
     }
     /// The same law with its origin moved to τ = `s`.
     fn shifted(&self, s: f64) -> NormalLaw {
-        let (sn, cs) = (self.wz * s).sin_cos();
+        let (sn, cs) = sin_cos(self.wz * s);
         NormalLaw {
             n0: self.n0 + self.n1 * s,
             n1: self.n1,
@@ -85,6 +85,12 @@ impl NormalLaw {
             wz: self.wz,
         }
     }
+}
+
+/// (sin x, cos x); at x = ±0 (a rigid vertical contact, ωz = 0) the exact (x, 1) without
+/// the library call — the values `sin_cos` gives there, bit for bit.
+fn sin_cos(x: f64) -> (f64, f64) {
+    if x == 0.0 { (x, 1.0) } else { x.sin_cos() }
 }
 
 /// Contact phase.
@@ -422,4 +428,19 @@ pub fn solve_epo(inputs: &LinearInputs, c: EpoConstants) -> Result<EpoHistory, S
         slips: walker.slips,
         flights: walker.flights,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_shortcut_at_zero_is_the_library_s_value() {
+        for x in [0.0_f64, -0.0, 1e-300, -2.5, f64::NAN] {
+            let (a, b) = (super::sin_cos(x), x.sin_cos());
+            assert_eq!(
+                (a.0.to_bits(), a.1.to_bits()),
+                (b.0.to_bits(), b.1.to_bits()),
+                "{x}"
+            );
+        }
+    }
 }

@@ -213,14 +213,18 @@ impl VerticalEpo {
 
     /// The state at `t` and the normal force there.
     pub fn state(&self, t: f64) -> (EpoState, f64) {
+        self.state_with(t, self.inputs.at(t))
+    }
+
+    /// [`Self::state`] with the inputs at `t` (drive, a_v) already interpolated.
+    fn state_with(&self, t: f64, (d1, av1): (f64, f64)) -> (EpoState, f64) {
         let (i, ti) = grid_interval(&self.inputs, t);
         let start = self.history.states[i];
-        let (_, av) = self.inputs.at(t);
+        let av = av1;
         let mut state = start;
         let h = t - ti;
         if h > 0.0 && i < self.inputs.intervals() {
             let mut w = EpoWalker::new(self.c, start);
-            let (d1, av1) = self.inputs.at(t);
             let d = (self.inputs.drive[i], d1);
             let avs = (self.inputs.vertical[i], av1);
             state = match w.interval(ti, h, d, avs) {
@@ -265,8 +269,9 @@ impl ExactSolution for VerticalEpo {
     }
 
     fn eval(&self, t: f64, out: &mut [f64]) {
-        let (s, normal) = self.state(t);
-        let (d, _) = self.inputs.at(t);
+        let inputs = self.inputs.at(t);
+        let (s, normal) = self.state_with(t, inputs);
+        let (d, _) = inputs;
         let resistance = match s.phase {
             EpoPhase::Stuck => self.c.k * (s.u - s.up),
             EpoPhase::Slipping(dir) => dir * self.c.mu * normal,

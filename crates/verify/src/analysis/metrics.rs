@@ -10,9 +10,12 @@ use rockslide_core::trace::Trace;
 /// Response quantities of one trace, by key (only those its channels allow).
 pub type Responses = BTreeMap<&'static str, f64>;
 
-/// Read every applicable response quantity off `trace`.
+/// Read every applicable response quantity off `trace`: one pass of the slide rates per
+/// slide column and one search of sign changes per column, whatever number of quantities
+/// read them ([`Passes`]).
 pub fn responses(trace: &Trace) -> Responses {
     let mut out = Responses::new();
+    let mut passes = Passes::default();
     for d in DEFS {
         let Some(col) = trace.column(d.channel.key) else {
             continue;
@@ -21,23 +24,34 @@ pub fn responses(trace: &Trace) -> Responses {
             continue;
         }
         let value = match d.reading {
-            Reading::PeakAbs => Some(col.iter().fold(0.0_f64, |m, x| m.max(x.abs()))),
-            Reading::SignedPeak => Some(signed_peak(col)),
-            Reading::Max => Some(col.iter().copied().fold(f64::NEG_INFINITY, f64::max)),
-            Reading::Min => Some(col.iter().copied().fold(f64::INFINITY, f64::min)),
+            Reading::PeakAbs => Some(passes.extremes(d.channel.key, col).peak_abs),
+            Reading::SignedPeak => Some(passes.extremes(d.channel.key, col).signed_peak),
+            Reading::Max => Some(passes.extremes(d.channel.key, col).max),
+            Reading::Min => Some(passes.extremes(d.channel.key, col).min),
             Reading::Last => col.last().copied(),
-            Reading::SlipStart => slip_window(&trace.time, col).map(|w| w.0),
-            Reading::SlipEnd => slip_window(&trace.time, col).map(|w| w.1),
+            Reading::SlipStart => passes
+                .slip_window(&trace.time, d.channel.key, col)
+                .map(|w| w.0),
+            Reading::SlipEnd => passes
+                .slip_window(&trace.time, d.channel.key, col)
+                .map(|w| w.1),
             Reading::TotalVariation => Some(total_variation(col)),
             Reading::SlipEpisodes => {
                 let y = d.plan_partner().and_then(|y| trace.column(y.key));
-                Some(slip_episodes(&trace.time, col, y) as f64)
+                let slipping = passes.slipping(&trace.time, d.channel.key, col, y);
+                Some(episodes(slipping) as f64)
             }
             Reading::FirstZero => col.iter().position(|&c| c <= 0.0).map(|i| trace.time[i]),
-            Reading::FirstCrossing => sign_changes(&trace.time, col).first().copied(),
-            Reading::SecondCrossing => sign_changes(&trace.time, col).get(1).copied(),
+            Reading::FirstCrossing => passes
+                .sign_changes(&trace.time, d.channel.key, col)
+                .first()
+                .copied(),
+            Reading::SecondCrossing => passes
+                .sign_changes(&trace.time, d.channel.key, col)
+                .get(1)
+                .copied(),
             Reading::PeakAbsAfterFirstCrossing => {
-                let c = sign_changes(&trace.time, col);
+                let c = passes.sign_changes(&trace.time, d.channel.key, col);
                 c.first().map(|&t0| {
                     let t1 = c.get(1).copied().unwrap_or(f64::INFINITY);
                     trace
@@ -56,20 +70,143 @@ pub fn responses(trace: &Trace) -> Responses {
     out
 }
 
+/// The passes over a column that several response quantities read, each made once per
+/// column: its extremes ([`Extremes`], one loop for the four), the slipping steps (slip episodes, and the slip window, which is the first and
+/// last of the slipping steps of the slide alone) and the sign changes (first and second
+/// crossings, the peak between them). The same numbers as a pass per quantity, bit for
+/// bit (the direct definitions `slip_episodes` and `slip_window` are kept for the tests
+/// below that pin them).
+#[derive(Default)]
+struct Passes {
+    /// (column key, planar), the slipping steps.
+    slipping: Vec<((&'static str, bool), Vec<bool>)>,
+    /// Column key, its sign changes.
+    crossings: Vec<(&'static str, Vec<f64>)>,
+    /// Column key, its extremes.
+    extremes: Vec<(&'static str, Extremes)>,
+}
+
+/// A column's smallest and largest value, largest magnitude, and the value of largest
+/// magnitude with its sign (the first one on a tie; 0 for an all-zero or empty column):
+/// four folds in one loop, each the fold a pass of its own would make, in the same order.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Extremes {
+    min: f64,
+    max: f64,
+    peak_abs: f64,
+    signed_peak: f64,
+}
+
+impl Extremes {
+    fn of(col: &[f64]) -> Self {
+        let mut e = Extremes {
+            min: f64::INFINITY,
+            max: f64::NEG_INFINITY,
+            peak_abs: 0.0,
+            signed_peak: 0.0,
+        };
+        for &x in col {
+            e.min = e.min.min(x);
+            e.max = e.max.max(x);
+            e.peak_abs = e.peak_abs.max(x.abs());
+            if x.abs() > e.signed_peak.abs() {
+                e.signed_peak = x;
+            }
+        }
+        e
+    }
+}
+
+impl Passes {
+    /// [`Extremes`] of column `key`, computed once.
+    fn extremes(&mut self, key: &'static str, col: &[f64]) -> Extremes {
+        if let Some((_, e)) = self.extremes.iter().find(|(k, _)| *k == key) {
+            return *e;
+        }
+        let e = Extremes::of(col);
+        self.extremes.push((key, e));
+        e
+    }
+
+    /// [`slipping_steps`] of column `key` (planar with `slide_y`), computed once.
+    fn slipping(
+        &mut self,
+        time: &[f64],
+        key: &'static str,
+        slide: &[f64],
+        slide_y: Option<&[f64]>,
+    ) -> &[bool] {
+        let id = (key, slide_y.is_some());
+        let at = match self.slipping.iter().position(|(k, _)| *k == id) {
+            Some(at) => at,
+            None => {
+                self.slipping
+                    .push((id, slipping_steps(time, slide, slide_y)));
+                self.slipping.len() - 1
+            }
+        };
+        &self.slipping[at].1
+    }
+
+    /// The slip window of column `key` ([`window`]), off its (non-planar) slipping steps.
+    fn slip_window(
+        &mut self,
+        time: &[f64],
+        key: &'static str,
+        slide: &[f64],
+    ) -> Option<(f64, f64)> {
+        window(time, self.slipping(time, key, slide, None))
+    }
+
+    /// [`sign_changes`] of column `key`, computed once.
+    fn sign_changes(&mut self, time: &[f64], key: &'static str, col: &[f64]) -> &[f64] {
+        let at = match self.crossings.iter().position(|(k, _)| *k == key) {
+            Some(at) => at,
+            None => {
+                self.crossings.push((key, sign_changes(time, col)));
+                self.crossings.len() - 1
+            }
+        };
+        &self.crossings[at].1
+    }
+}
+
+/// First and last instants of slipping, detected from the slip *rate* (never from
+/// |R| = Ru: an undamped oscillator that stopped sliding touches the limit every half
+/// period), off the slipping steps of the slide alone ([`slipping_steps`] without
+/// `slide_y`): the start of the first slipping step, the end of the last.
+fn window(time: &[f64], slipping: &[bool]) -> Option<(f64, f64)> {
+    let first = slipping.iter().position(|&s| s)?;
+    let last = slipping.iter().rposition(|&s| s)?;
+    Some((time[first], time[last + 1]))
+}
+
+/// Number of slip episodes: maximal runs of slipping steps ([`slipping_steps`]; on a plan
+/// trace the planar rate along the slip path, so an episode whose slip turns across x is
+/// one episode). Read the same way off every engine's trace; a stick shorter than one
+/// output step joins its neighbours.
+fn episodes(slipping: &[bool]) -> usize {
+    slipping
+        .iter()
+        .enumerate()
+        .filter(|&(i, &s)| s && (i == 0 || !slipping[i - 1]))
+        .count()
+}
+
 /// The value with the largest magnitude, with its sign (the first one on a tie; 0 for an
 /// all-zero or empty column).
-pub fn signed_peak(col: &[f64]) -> f64 {
+#[cfg(test)]
+fn signed_peak(col: &[f64]) -> f64 {
     col.iter()
         .copied()
         .fold(0.0_f64, |m, x| if x.abs() > m.abs() { x } else { m })
 }
 
-/// First and last instants of slipping, detected from the slip *rate* (never from
-/// |R| = Ru: an undamped oscillator that stopped sliding touches the limit every half
-/// period). A step slips when its slide increment exceeds 1e-3 of the largest increment
-/// of the run; the start is the beginning of the first slipping step, the end the end of
-/// the last.
-pub fn slip_window(time: &[f64], slide: &[f64]) -> Option<(f64, f64)> {
+/// The slip window ([`window`]) read directly: a step slips when its slide increment
+/// exceeds 1e-3 of the largest increment of the run; the start is the beginning of the
+/// first slipping step, the end the end of the last.
+#[cfg(test)]
+fn slip_window(time: &[f64], slide: &[f64]) -> Option<(f64, f64)> {
     let rate = |i: usize| ((slide[i] - slide[i - 1]) / (time[i] - time[i - 1])).abs();
     let peak = (1..slide.len()).map(rate).fold(0.0_f64, f64::max);
     if peak.is_nan() || peak <= 0.0 {
@@ -93,32 +230,30 @@ pub(super) fn slide_rate(dt: f64, dx: f64, dy: Option<f64>) -> f64 {
 
 /// Whether each step `i` (from sample i − 1 to i, `i ≥ 1`) slips: its slide rate
 /// ([`slide_rate`], planar when `slide_y` is given) exceeds 1e-3 of the run's largest, the
-/// threshold [`slip_window`] uses. Empty when the slide never changes.
+/// threshold of the slip window ([`window`]). Empty when the slide never changes.
 fn slipping_steps(time: &[f64], slide: &[f64], slide_y: Option<&[f64]>) -> Vec<bool> {
     let rate = |i: usize| {
         let dy = slide_y.map(|y| y[i] - y[i - 1]);
         slide_rate(time[i] - time[i - 1], slide[i] - slide[i - 1], dy)
     };
-    let peak = (1..slide.len()).map(rate).fold(0.0_f64, f64::max);
+    // each step's rate once: the peak and the comparisons read the same numbers
+    let rates: Vec<f64> = (1..slide.len()).map(rate).collect();
+    let peak = rates.iter().copied().fold(0.0_f64, f64::max);
     if peak.is_nan() || peak <= 0.0 {
         return Vec::new();
     }
     let threshold = 1e-3 * peak;
-    (1..slide.len()).map(|i| rate(i) > threshold).collect()
+    rates.iter().map(|&r| r > threshold).collect()
 }
 
 /// Number of slip episodes read off a slide history: maximal runs of slipping steps
-/// (rate above 1e-3 of the largest, as [`slip_window`]). On a plan trace (`slide_y` given)
+/// (rate above 1e-3 of the largest, as for the slip window). On a plan trace (`slide_y` given)
 /// the rate is the planar one along the slip path, so an episode whose slip turns across
 /// x is one episode. Read the same way off every engine's trace; a stick shorter than one
 /// output step joins its neighbours.
-pub fn slip_episodes(time: &[f64], slide: &[f64], slide_y: Option<&[f64]>) -> usize {
-    let slipping = slipping_steps(time, slide, slide_y);
-    slipping
-        .iter()
-        .enumerate()
-        .filter(|&(i, &s)| s && (i == 0 || !slipping[i - 1]))
-        .count()
+#[cfg(test)]
+fn slip_episodes(time: &[f64], slide: &[f64], slide_y: Option<&[f64]>) -> usize {
+    episodes(&slipping_steps(time, slide, slide_y))
 }
 
 /// Sum of |increments| of a channel: on the slide, the total distance slid both ways.
@@ -279,6 +414,60 @@ mod tests {
                 slide_rate(dt, dx, Some(0.0)).to_bits(),
                 slide_rate(dt, dx, None).to_bits()
             );
+        }
+    }
+
+    /// The slip window off the slipping steps equals [`slip_window`]'s own passes, bit for
+    /// bit, on slides that stick, creep, slip once or twice, and never move.
+    #[test]
+    fn the_window_off_the_slipping_steps_is_slip_window() {
+        let t: Vec<f64> = (0..9)
+            .map(|i| 0.1 * f64::from(i) + 1e-3 * f64::from(i * i))
+            .collect();
+        let slides: [[f64; 9]; 5] = [
+            [0.0; 9],
+            [0.0, 0.0, 1.0, 2.0, 2.0, 2.0, 2.0, 2.0, 2.0],
+            [0.0, 0.5, 1.0, 1.0, 1.0, 0.5, 0.5, 0.5, 0.25],
+            [0.0, 1.0, 1.0, 1.0 + 1e-4, 1.0 + 1e-4, 2.0, 2.0, 2.0, 2.0],
+            [3.0, 3.0, 3.0, 3.0, 3.0, 3.0, 3.0, 3.0, 3.5],
+        ];
+        for s in slides {
+            let mut passes = Passes::default();
+            let w = passes.slip_window(&t, "slide", &s);
+            assert_eq!(w, slip_window(&t, &s), "{s:?}");
+            let bits = |w: Option<(f64, f64)>| w.map(|(a, b)| (a.to_bits(), b.to_bits()));
+            assert_eq!(bits(w), bits(slip_window(&t, &s)));
+            // the same pass read again, and the episodes off it
+            assert_eq!(passes.slip_window(&t, "slide", &s), w);
+            assert_eq!(
+                episodes(passes.slipping(&t, "slide", &s, None)),
+                slip_episodes(&t, &s, None)
+            );
+        }
+    }
+
+    /// The four extremes of one loop are the folds of a pass each, bit for bit, with
+    /// ties, signed zeros, a NaN and infinities among the values.
+    #[test]
+    fn the_extremes_of_one_loop_are_the_four_folds() {
+        let columns: [&[f64]; 6] = [
+            &[],
+            &[0.0, -0.0, 0.0],
+            &[1.0, -3.0, 3.0, 2.5, -3.0],
+            &[-1e-300, 5e-324, -7.25, 7.0],
+            &[1.0, f64::NAN, -2.0, 0.5],
+            &[f64::NEG_INFINITY, 4.0, f64::INFINITY],
+        ];
+        for col in columns {
+            let e = Extremes::of(col);
+            let bits = |x: f64| x.to_bits();
+            let peak = col.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+            let max = col.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+            let min = col.iter().copied().fold(f64::INFINITY, f64::min);
+            assert_eq!(bits(e.peak_abs), bits(peak), "{col:?}");
+            assert_eq!(bits(e.max), bits(max), "{col:?}");
+            assert_eq!(bits(e.min), bits(min), "{col:?}");
+            assert_eq!(bits(e.signed_peak), bits(signed_peak(col)), "{col:?}");
         }
     }
 
