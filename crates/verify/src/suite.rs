@@ -116,6 +116,28 @@ pub struct ReferenceResult {
 }
 
 impl ReferenceResult {
+    /// A reference from its solution, fine trace and response quantities, with no output
+    /// rows yet; the event times are read off the solution's exact quantities.
+    pub(crate) fn from_parts(
+        solution: Box<dyn ExactSolution>,
+        trace: Trace,
+        responses: Responses,
+    ) -> Self {
+        let event_times = solution
+            .exact_quantities()
+            .into_iter()
+            .filter(|(k, _)| quantity_def(k).is_some_and(|d| d.is_time()))
+            .map(|(_, v)| v)
+            .collect();
+        ReferenceResult {
+            solution,
+            output: Trace::with_channels(&trace.channels, 0),
+            trace,
+            responses,
+            event_times,
+        }
+    }
+
     /// Sample the output trace at the union of the runs' output times and the exact
     /// event times (what the CSV, the MCAP file and the figures show): no fixed fine grid.
     /// A time that is also a row of the fine trace (the same bits) takes that row — the

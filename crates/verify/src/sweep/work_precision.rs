@@ -402,12 +402,7 @@ fn sweep_reference(case: &Case) -> Result<ReferenceResult, String> {
     for (k, v) in solution.exact_quantities() {
         resp.insert(k, v);
     }
-    Ok(ReferenceResult {
-        solution,
-        trace,
-        output: Trace::default(),
-        responses: resp,
-    })
+    Ok(ReferenceResult::from_parts(solution, trace, resp))
 }
 
 /// Run every series down the ladder in waves, within the cost budget.
