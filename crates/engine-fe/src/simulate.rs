@@ -7,7 +7,7 @@
 use super::findings::{Findings, Summarised, findings};
 use super::model::{Model, default_rotational_inertia};
 use super::options::{FeOptions, Integrator};
-use super::recording::run_model;
+use super::recording::{RowSink, Rows, run_model};
 use super::variant;
 use super::whole_run::WholeRun;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
@@ -18,7 +18,7 @@ use rockslide_engine_api::{Run, SolverStats, StepSink, step_count};
 /// trace sized for the run up front.
 pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result<Run, InputError> {
     let mut rows = WholeRun::sized(step_count(case.run.duration, dt) + 1);
-    let mut run = simulate_into(case, variant, dt, opts, &mut rows)?;
+    let mut run = simulate_with(case, variant, dt, opts, &mut rows)?;
     run.trace = rows.into_trace();
     Ok(run)
 }
@@ -27,6 +27,18 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
 /// and every recorded row to `sink`: the returned run's trace is the layout (channels,
 /// contact names and compliances) without rows.
 pub fn simulate_into<S: StepSink + ?Sized>(
+    case: &Case,
+    variant: &str,
+    dt: f64,
+    opts: &FeOptions,
+    sink: &mut S,
+) -> Result<Run, InputError> {
+    simulate_with(case, variant, dt, opts, &mut Rows::new(sink))
+}
+
+/// [`simulate_into`] for the recorder's own sink: the whole run's, or any [`StepSink`]
+/// through [`Rows`].
+fn simulate_with<S: RowSink + ?Sized>(
     case: &Case,
     variant: &str,
     dt: f64,

@@ -1,40 +1,43 @@
 //! The sink of a whole run ([`super::simulate`], the 3D model's `simulate_space`): every
 //! row kept in a trace sized for the run up front, as engine-api's `TraceSink` keeps it,
-//! at about half the instructions a row.
+//! at fewer instructions a row.
 //!
 //! A trace stores one `Vec` per channel, so pushing a row into it costs a length,
 //! capacity and pointer per channel (≈ 12 instructions each, ≈ 300 a step on a rocking
-//! body's 25 channels). This sink copies each row into a small row-major block of
-//! [`BLOCK_ROWS`] rows (one copy a row) and moves a full block into the columns a channel
-//! at a time ([`BLOCK_ROWS`] values with one capacity check). The contact block is
-//! row-major already and filled as it is; the trace's times are its times. The values are
-//! the ones handed over, so the trace is the same bit for bit as `TraceSink`'s.
+//! body's 25 channels), and the contact block checks its capacity once per contact. This
+//! sink gathers [`BLOCK_ROWS`] rows in a block (the 2D recorder writes each row's values
+//! and contact fields straight into it, [`RowSink`]) and moves a full block into the trace
+//! at once: [`BLOCK_ROWS`] values a channel with one capacity check, the contact fields
+//! and times with one copy each. The values are the ones recorded, so the trace is the
+//! same bit for bit as `TraceSink`'s.
 
-use rockslide_core::trace::{ContactBlock, ContactState, Trace};
+use super::recording::{ROW_VALUES, RowSink};
+use rockslide_core::trace::{CONTACT_FIELDS, ContactBlock, ContactState, Trace};
 use rockslide_engine_api::StepSink;
 
-/// Rows gathered in the block before they are moved into the columns.
+/// Rows gathered in the block before they are moved into the trace.
 const BLOCK_ROWS: usize = 8;
-
-/// Channels the block holds (a 2D rocking body records 25, a 3D one more); a trace with
-/// more is pushed a row at a time instead.
-const BLOCK_CHANNELS: usize = 48;
 
 /// Keeps every row of a run of at most `rows` rows without reallocating in the time loop.
 #[derive(Debug)]
 pub(crate) struct WholeRun {
     /// Rows the trace is sized for.
     rows: usize,
-    /// The rows so far, under the run's layout: the columns up to the last full block
-    /// (every row when `blocked` is false), the contact block with every row; the times
-    /// are taken from the contact block at the end.
+    /// The rows moved so far, under the run's layout; its times are its contact block's,
+    /// copied once at the end.
     trace: Trace,
-    /// Whether the rows go through `block` (the layout has at most [`BLOCK_CHANNELS`]
-    /// channels).
+    /// Whether the channel values go through `values` (at most [`ROW_VALUES`] channels;
+    /// else, only from the 3D model's [`StepSink`] rows, they are pushed a row at a time).
     blocked: bool,
-    /// The rows not yet in the columns, row-major.
-    block: [[f64; BLOCK_CHANNELS]; BLOCK_ROWS],
-    /// Rows in `block`.
+    /// The channel values of the rows in the block, row-major.
+    values: [[f64; ROW_VALUES]; BLOCK_ROWS],
+    /// The times of the rows in the block.
+    times: [f64; BLOCK_ROWS],
+    /// The contact fields of the rows in the block, row × contact × `CONTACT_FIELDS`.
+    contact_fields: Vec<f64>,
+    /// Contact fields a row.
+    row_fields: usize,
+    /// Rows in the block (the row being recorded is the next).
     filled: usize,
 }
 
@@ -45,49 +48,66 @@ impl WholeRun {
             rows,
             trace: Trace::default(),
             blocked: false,
-            block: [[0.0; BLOCK_CHANNELS]; BLOCK_ROWS],
+            values: [[0.0; ROW_VALUES]; BLOCK_ROWS],
+            times: [0.0; BLOCK_ROWS],
+            contact_fields: Vec::new(),
+            row_fields: 0,
             filled: 0,
         }
     }
 
     /// The run's trace.
     pub(crate) fn into_trace(mut self) -> Trace {
-        if self.blocked {
-            self.move_block();
-            self.trace.time = self.trace.contacts.time.clone();
-        }
+        self.move_block();
+        self.trace.time = self.trace.contacts.time.clone();
         self.trace
     }
 
-    /// Move the rows of the block into the columns: a full block a channel at a time,
-    /// the last, partial one a row at a time.
+    /// Move the rows of the block into the trace: a full block's values a channel at a
+    /// time, the last, partial one's a row at a time; the contact fields and times at once.
     fn move_block(&mut self) {
-        let block = &self.block;
-        if self.filled == BLOCK_ROWS {
-            for (column, c) in self.trace.columns.iter_mut().zip(0..BLOCK_CHANNELS) {
-                let values: [f64; BLOCK_ROWS] = std::array::from_fn(|k| block[k][c]);
-                column.extend_from_slice(&values);
-            }
-        } else {
-            for row in &block[..self.filled] {
-                for (column, v) in self.trace.columns.iter_mut().zip(row) {
-                    column.push(*v);
+        let rows = self.filled;
+        if self.blocked {
+            let values = &self.values;
+            if rows == BLOCK_ROWS {
+                for (column, c) in self.trace.columns.iter_mut().zip(0..ROW_VALUES) {
+                    let column_values: [f64; BLOCK_ROWS] = std::array::from_fn(|k| values[k][c]);
+                    column.extend_from_slice(&column_values);
+                }
+            } else {
+                for row in &values[..rows] {
+                    for (column, v) in self.trace.columns.iter_mut().zip(row) {
+                        column.push(*v);
+                    }
                 }
             }
         }
+        let contacts = &mut self.trace.contacts;
+        contacts
+            .values
+            .extend_from_slice(&self.contact_fields[..rows * self.row_fields]);
+        contacts.time.extend_from_slice(&self.times[..rows]);
         self.filled = 0;
+    }
+
+    /// Close the row being recorded at time `t`.
+    #[inline]
+    fn close_row(&mut self, t: f64) {
+        self.times[self.filled] = t;
+        self.filled += 1;
+        if self.filled == BLOCK_ROWS {
+            self.move_block();
+        }
     }
 }
 
-impl StepSink for WholeRun {
-    fn begin(&mut self, layout: &Trace) {
-        self.blocked = layout.channels.len() <= BLOCK_CHANNELS;
+impl RowSink for WholeRun {
+    fn start(&mut self, layout: &Trace) {
+        self.blocked = layout.channels.len() <= ROW_VALUES;
         self.filled = 0;
-        // Blocked, the times are the contact block's, copied once at the end.
-        let time_rows = if self.blocked { 0 } else { self.rows };
         self.trace = Trace {
             channels: layout.channels.clone(),
-            time: Vec::with_capacity(time_rows),
+            time: Vec::new(),
             columns: layout
                 .channels
                 .iter()
@@ -98,20 +118,52 @@ impl StepSink for WholeRun {
         let names: Vec<&str> = layout.contacts.names.iter().map(String::as_str).collect();
         self.trace.contacts =
             ContactBlock::with_contacts(&names, &layout.contacts.compliance, self.rows);
+        self.row_fields = names.len() * CONTACT_FIELDS.len();
+        self.contact_fields = vec![0.0; BLOCK_ROWS * self.row_fields];
     }
 
     #[inline]
+    fn contact(&mut self, i: usize, state: ContactState) {
+        let at = self.filled * self.row_fields + i * CONTACT_FIELDS.len();
+        self.contact_fields[at..at + CONTACT_FIELDS.len()].copy_from_slice(&[
+            state.normal,
+            state.tangential,
+            state.slip,
+            state.gap,
+        ]);
+    }
+
+    #[inline]
+    fn values(&mut self) -> &mut [f64; ROW_VALUES] {
+        &mut self.values[self.filled]
+    }
+
+    #[inline]
+    fn end_row(&mut self, t: f64, count: usize) {
+        debug_assert_eq!(count, self.trace.channels.len());
+        debug_assert!(self.blocked, "a recorder's row holds at most ROW_VALUES channels");
+        self.close_row(t);
+    }
+}
+
+/// The 3D model's recorder hands its rows to a [`StepSink`].
+impl StepSink for WholeRun {
+    fn begin(&mut self, layout: &Trace) {
+        self.start(layout);
+    }
+
     fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
         debug_assert_eq!(values.len(), self.trace.channels.len());
-        self.trace.contacts.push(t, contacts);
-        if self.blocked {
-            self.block[self.filled][..values.len()].copy_from_slice(values);
-            self.filled += 1;
-            if self.filled == BLOCK_ROWS {
-                self.move_block();
-            }
-        } else {
-            self.trace.push(t, values);
+        for (i, state) in contacts.iter().enumerate() {
+            self.contact(i, *state);
         }
+        if self.blocked {
+            self.values[self.filled][..values.len()].copy_from_slice(values);
+        } else {
+            for (column, v) in self.trace.columns.iter_mut().zip(values) {
+                column.push(*v);
+            }
+        }
+        self.close_row(t);
     }
 }

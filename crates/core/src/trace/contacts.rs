@@ -162,6 +162,7 @@ impl ContactBlock {
 
     /// Append one row given flat: `values` holds every contact's fields in order
     /// (contact × [`CONTACT_FIELDS`]).
+    #[inline]
     pub fn push_values(&mut self, t: f64, values: &[f64]) {
         debug_assert_eq!(values.len(), self.names.len() * CONTACT_FIELDS.len());
         self.time.push(t);
