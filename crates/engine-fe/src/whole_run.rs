@@ -18,6 +18,9 @@ use rockslide_engine_api::StepSink;
 /// Rows gathered in the block before they are moved into the trace.
 const BLOCK_ROWS: usize = 8;
 
+/// Fields a contact records.
+const FIELDS: usize = CONTACT_FIELDS.len();
+
 /// Keeps every row of a run of at most `rows` rows without reallocating in the time loop.
 #[derive(Debug)]
 pub(crate) struct WholeRun {
@@ -33,10 +36,12 @@ pub(crate) struct WholeRun {
     values: [[f64; ROW_VALUES]; BLOCK_ROWS],
     /// The times of the rows in the block.
     times: [f64; BLOCK_ROWS],
-    /// The contact fields of the rows in the block, row × contact × `CONTACT_FIELDS`.
-    contact_fields: Vec<f64>,
-    /// Contact fields a row.
-    row_fields: usize,
+    /// The contact fields of the rows in the block, row × contact.
+    contact_fields: Vec<[f64; FIELDS]>,
+    /// Contacts a row.
+    row_contacts: usize,
+    /// Where the row being recorded starts in `contact_fields`.
+    row_at: usize,
     /// Rows in the block (the row being recorded is the next).
     filled: usize,
 }
@@ -51,7 +56,8 @@ impl WholeRun {
             values: [[0.0; ROW_VALUES]; BLOCK_ROWS],
             times: [0.0; BLOCK_ROWS],
             contact_fields: Vec::new(),
-            row_fields: 0,
+            row_contacts: 0,
+            row_at: 0,
             filled: 0,
         }
     }
@@ -85,9 +91,10 @@ impl WholeRun {
         let contacts = &mut self.trace.contacts;
         contacts
             .values
-            .extend_from_slice(&self.contact_fields[..rows * self.row_fields]);
+            .extend_from_slice(self.contact_fields[..self.row_at].as_flattened());
         contacts.time.extend_from_slice(&self.times[..rows]);
         self.filled = 0;
+        self.row_at = 0;
     }
 
     /// Close the row being recorded at time `t`.
@@ -95,6 +102,7 @@ impl WholeRun {
     fn close_row(&mut self, t: f64) {
         self.times[self.filled] = t;
         self.filled += 1;
+        self.row_at += self.row_contacts;
         if self.filled == BLOCK_ROWS {
             self.move_block();
         }
@@ -105,6 +113,7 @@ impl RowSink for WholeRun {
     fn start(&mut self, layout: &Trace) {
         self.blocked = layout.channels.len() <= ROW_VALUES;
         self.filled = 0;
+        self.row_at = 0;
         self.trace = Trace {
             channels: layout.channels.clone(),
             time: Vec::new(),
@@ -118,19 +127,14 @@ impl RowSink for WholeRun {
         let names: Vec<&str> = layout.contacts.names.iter().map(String::as_str).collect();
         self.trace.contacts =
             ContactBlock::with_contacts(&names, &layout.contacts.compliance, self.rows);
-        self.row_fields = names.len() * CONTACT_FIELDS.len();
-        self.contact_fields = vec![0.0; BLOCK_ROWS * self.row_fields];
+        self.row_contacts = names.len();
+        self.contact_fields = vec![[0.0; FIELDS]; BLOCK_ROWS * self.row_contacts];
     }
 
     #[inline]
     fn contact(&mut self, i: usize, state: ContactState) {
-        let at = self.filled * self.row_fields + i * CONTACT_FIELDS.len();
-        self.contact_fields[at..at + CONTACT_FIELDS.len()].copy_from_slice(&[
-            state.normal,
-            state.tangential,
-            state.slip,
-            state.gap,
-        ]);
+        self.contact_fields[self.row_at + i] =
+            [state.normal, state.tangential, state.slip, state.gap];
     }
 
     #[inline]
@@ -141,7 +145,10 @@ impl RowSink for WholeRun {
     #[inline]
     fn end_row(&mut self, t: f64, count: usize) {
         debug_assert_eq!(count, self.trace.channels.len());
-        debug_assert!(self.blocked, "a recorder's row holds at most ROW_VALUES channels");
+        debug_assert!(
+            self.blocked,
+            "a recorder's row holds at most ROW_VALUES channels"
+        );
         self.close_row(t);
     }
 }
