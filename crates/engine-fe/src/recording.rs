@@ -1,8 +1,9 @@
 //! The time loop's recorder: which channels a scene's trace has, and the row handed to a
-//! [`StepSink`] at every converged step (relative quantities: mass or base point O against
+//! [`RowSink`] at every converged step (relative quantities: mass or base point O against
 //! the ground; energy terms for rocking bodies). The recorder holds no rows: a whole run
-//! hands them to engine-api's `TraceSink` sized up front, a streamed run
-//! to the caller's sink, so a streamed run's memory does not grow with its length.
+//! writes them into its own sink sized up front (`WholeRun`), a streamed run hands them
+//! to the caller's [`StepSink`] ([`Rows`]), so a streamed run's memory does not grow with
+//! its length.
 
 use nalgebra::Vector2;
 
