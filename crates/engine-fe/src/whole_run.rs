@@ -16,7 +16,7 @@ use rockslide_core::trace::{CONTACT_FIELDS, ContactBlock, ContactState, Trace};
 use rockslide_engine_api::StepSink;
 
 /// Rows gathered in the block before they are moved into the trace.
-const BLOCK_ROWS: usize = 8;
+const BLOCK_ROWS: usize = 16;
 
 /// Fields a contact records.
 const FIELDS: usize = CONTACT_FIELDS.len();
