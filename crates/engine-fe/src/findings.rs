@@ -8,7 +8,7 @@
 use super::model::Model;
 use super::modes::eigenfrequencies;
 use super::options::{FeOptions, Kinematics};
-use super::recording::{SelfCheck, run_model};
+use super::recording::{ROW_VALUES, RowSink, Rows, SelfCheck, run_model};
 use super::stepper::Counters;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
 use rockslide_core::trace::{ContactState, Trace};
@@ -132,7 +132,7 @@ pub(crate) fn findings(run: &Findings) -> Vec<String> {
         }
         for (label, m) in alternatives {
             let mut alternative = Summary::default();
-            let (st, _, _) = run_model(case, m, dt, opts, &mut alternative);
+            let (st, _, _) = run_model(case, m, dt, opts, &mut Rows::new(&mut alternative));
             if st.completed() {
                 findings.push(format!("sensitivity — {label}: {}", alternative.describe()));
             } else {
@@ -199,15 +199,16 @@ impl StepSink for Summary {
     }
 }
 
-/// A sink that reads a [`Summary`] of every row it hands on to another sink.
-pub(crate) struct Summarised<'a, S: StepSink + ?Sized> {
+/// A sink that reads a [`Summary`] of every row it hands on to another sink (the summary
+/// reads channels only).
+pub(crate) struct Summarised<'a, S: RowSink + ?Sized> {
     /// The run's summary so far.
     pub summary: Summary,
     /// Where the rows go.
     sink: &'a mut S,
 }
 
-impl<'a, S: StepSink + ?Sized> Summarised<'a, S> {
+impl<'a, S: RowSink + ?Sized> Summarised<'a, S> {
     /// Summarise the rows handed on to `sink`.
     pub fn new(sink: &'a mut S) -> Self {
         Self {
@@ -217,15 +218,26 @@ impl<'a, S: StepSink + ?Sized> Summarised<'a, S> {
     }
 }
 
-impl<S: StepSink + ?Sized> StepSink for Summarised<'_, S> {
-    fn begin(&mut self, layout: &Trace) {
+impl<S: RowSink + ?Sized> RowSink for Summarised<'_, S> {
+    fn start(&mut self, layout: &Trace) {
         self.summary.begin(layout);
-        self.sink.begin(layout);
+        self.sink.start(layout);
     }
 
-    fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
-        self.summary.row(t, values, contacts);
-        self.sink.row(t, values, contacts);
+    #[inline]
+    fn contact(&mut self, i: usize, state: ContactState) {
+        self.sink.contact(i, state);
+    }
+
+    #[inline]
+    fn values(&mut self) -> &mut [f64; ROW_VALUES] {
+        self.sink.values()
+    }
+
+    fn end_row(&mut self, t: f64, count: usize) {
+        let values = self.sink.values();
+        self.summary.row(t, &values[..count], &[]);
+        self.sink.end_row(t, count);
     }
 }
 

@@ -18,6 +18,7 @@
 //! - `energy`: the energy bookkeeping of rocking runs.
 //! - `findings`: eigenfrequencies, self-checks and sensitivity reported as findings.
 //! - `vertical`: vertical ground motion as an inertial load (issue 15).
+//! - `whole_run`: the sink of a whole run (rows kept row-major, split into columns once).
 
 #![warn(missing_docs)]
 
@@ -32,6 +33,7 @@ mod simulate;
 pub mod space;
 mod stepper;
 mod vertical;
+mod whole_run;
 
 pub use element::{Contact178, ContactState, Element, Status};
 pub use model::{Model, default_rotational_inertia};

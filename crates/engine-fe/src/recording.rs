@@ -1,8 +1,9 @@
 //! The time loop's recorder: which channels a scene's trace has, and the row handed to a
-//! [`StepSink`] at every converged step (relative quantities: mass or base point O against
+//! [`RowSink`] at every converged step (relative quantities: mass or base point O against
 //! the ground; energy terms for rocking bodies). The recorder holds no rows: a whole run
-//! hands them to engine-api's `TraceSink` sized up front, a streamed run
-//! to the caller's sink, so a streamed run's memory does not grow with its length.
+//! writes them into its own sink sized up front (`WholeRun`), a streamed run hands them
+//! to the caller's [`StepSink`] ([`Rows`]), so a streamed run's memory does not grow with
+//! its length.
 
 use nalgebra::Vector2;
 
@@ -13,6 +14,66 @@ use super::stepper::{Counters, Drive, Snapshot, integrate};
 use rockslide_core::case::{Case, Model as SceneModel};
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{RunStatus, StepSink, step_count};
+
+/// Channel values a recorded row holds at most (a 2D scene records at most 24).
+pub(crate) const ROW_VALUES: usize = 32;
+
+/// Where the recorder hands each row: the contacts' states one at a time as its loop over
+/// the supports finds them, the channel values written into the sink's row, then the
+/// row's time. A whole run ([`super::whole_run::WholeRun`]) keeps both where the row is
+/// stored; any [`StepSink`] takes the rows through [`Rows`].
+pub(crate) trait RowSink {
+    /// Before the first row: the run's layout (channels, contact names and compliances).
+    fn start(&mut self, layout: &Trace);
+    /// Contact `i`'s state in the row being recorded.
+    fn contact(&mut self, i: usize, state: ContactState);
+    /// The channel values of the row being recorded, to write in channel order.
+    fn values(&mut self) -> &mut [f64; ROW_VALUES];
+    /// The row being recorded is complete: its time, s, and how many channel values it
+    /// has (the layout's channels).
+    fn end_row(&mut self, t: f64, count: usize);
+}
+
+/// A [`StepSink`] as a [`RowSink`]: a row's contact states and values gathered, then
+/// handed on.
+pub(crate) struct Rows<'a, S: StepSink + ?Sized> {
+    sink: &'a mut S,
+    states: Vec<ContactState>,
+    values: [f64; ROW_VALUES],
+}
+
+impl<'a, S: StepSink + ?Sized> Rows<'a, S> {
+    /// Rows handed on to `sink`.
+    pub(crate) fn new(sink: &'a mut S) -> Self {
+        Self {
+            sink,
+            states: Vec::new(),
+            values: [0.0; ROW_VALUES],
+        }
+    }
+}
+
+impl<S: StepSink + ?Sized> RowSink for Rows<'_, S> {
+    fn start(&mut self, layout: &Trace) {
+        self.states = vec![ContactState::default(); layout.contacts.count()];
+        self.sink.begin(layout);
+    }
+
+    #[inline]
+    fn contact(&mut self, i: usize, state: ContactState) {
+        self.states[i] = state;
+    }
+
+    #[inline]
+    fn values(&mut self) -> &mut [f64; ROW_VALUES] {
+        &mut self.values
+    }
+
+    #[inline]
+    fn end_row(&mut self, t: f64, count: usize) {
+        self.sink.row(t, &self.values[..count], &self.states);
+    }
+}
 
 /// Self-checks gathered while recording.
 #[derive(Debug, Clone, Copy, Default)]
@@ -94,13 +155,13 @@ pub(crate) fn run_whole(
     opts: &FeOptions,
 ) -> (Trace, RunStatus, Counters, SelfCheck) {
     let mut sink = rockslide_engine_api::TraceSink::sized(step_count(case.run.duration, dt) + 1);
-    let (status, counters, check) = run_model(case, model, dt, opts, &mut sink);
+    let (status, counters, check) = run_model(case, model, dt, opts, &mut Rows::new(&mut sink));
     (sink.trace, status, counters, check)
 }
 
 /// Run a built model, handing its layout and then every recorded row to `sink`: generic
-/// over the sink, so that the whole run (engine-api's `TraceSink`) is compiled for its own sink.
-pub(crate) fn run_model<S: StepSink + ?Sized>(
+/// over the sink, so that the whole run (`WholeRun`) is compiled for its own sink.
+pub(crate) fn run_model<S: RowSink + ?Sized>(
     case: &Case,
     mut model: Model,
     dt: f64,
@@ -115,8 +176,7 @@ pub(crate) fn run_model<S: StepSink + ?Sized>(
     let rocking = model.body.rotation;
     let double = model.nodes > 0;
     let steps = step_count(case.run.duration, dt);
-    sink.begin(&layout_of_model(case, &model));
-    let mut states = vec![ContactState::default(); model.supports.len()];
+    sink.start(&layout_of_model(case, &model));
     let drive = Drive::new(excitation, model.body.mass)
         .with_vertical(case.scene.vertical().map(|v| &v.signal));
     let o_offset = match &case.scene.model {
@@ -125,11 +185,12 @@ pub(crate) fn run_model<S: StepSink + ?Sized>(
     };
     let mut check = SelfCheck::default();
     let mut book = EnergyBook::new(model.links.len());
-    let mut row = [0.0_f64; 24];
     if model.is_slider() && !rocking {
         let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
-            let (values, contact) = slider_row(m, s, &drive, moves_ground, &mut check, &mut row);
-            sink.row(s.t, values, &[contact]);
+            let (count, contact) =
+                slider_row(m, s, &drive, moves_ground, &mut check, sink.values());
+            sink.contact(0, contact);
+            sink.end_row(s.t, count);
         });
         return (status, counters, check);
     }
@@ -141,17 +202,20 @@ pub(crate) fn run_model<S: StepSink + ?Sized>(
         let mut node_sum = 0.0;
         // The self-check's running maximum in a local over the loop, stored once after it.
         let mut node_minus_slip = check.node_minus_slip;
-        for (sup, c) in m.supports.iter().zip(states.iter_mut()) {
+        for (c, sup) in m.supports.iter().enumerate() {
             let e = &m.links[sup.ground_link].element;
             let st = e.state();
             // `e.tangential()` and `e.normal()`, read once.
             let (tangential, normal_force) = (st.force.x, -st.force.y);
-            *c = ContactState {
-                normal: normal_force,
-                tangential,
-                slip: st.slip,
-                gap: st.delta.y,
-            };
+            sink.contact(
+                c,
+                ContactState {
+                    normal: normal_force,
+                    tangential,
+                    slip: st.slip,
+                    gap: st.delta.y,
+                },
+            );
             shear += tangential;
             normal += normal_force;
             // The sliding is element 1's own accumulated slip (return-mapping state). In
@@ -172,6 +236,7 @@ pub(crate) fn run_model<S: StepSink + ?Sized>(
         }
         check.node_minus_slip = node_minus_slip;
         let slide = slip_sum / m.supports.len() as f64;
+        let row = sink.values();
         let mut i = 0;
         let mut put = |v: f64| {
             row[i] = v;
@@ -210,7 +275,7 @@ pub(crate) fn run_model<S: StepSink + ?Sized>(
                 put(v);
             }
         }
-        sink.row(s.t, &row[..i], &states);
+        sink.end_row(s.t, i);
     });
     (status, counters, check)
 }
@@ -235,14 +300,14 @@ fn running_min(acc: f64, v: f64) -> f64 {
 /// the slide and node over one support divided by 1, so the same bits), and the support's
 /// contact state.
 #[inline(always)]
-fn slider_row<'r>(
+fn slider_row(
     m: &Model,
     s: &Snapshot,
     drive: &Drive,
     moves_ground: bool,
     check: &mut SelfCheck,
-    row: &'r mut [f64; 24],
-) -> (&'r [f64], ContactState) {
+    row: &mut [f64; ROW_VALUES],
+) -> (usize, ContactState) {
     let (xg, vg, ag) = s.ground;
     let sup = &m.supports[0];
     let e = &m.links[sup.ground_link].element;
@@ -273,5 +338,5 @@ fn slider_row<'r>(
         row[i] = (0.0 + node) / 1.0;
         i += 1;
     }
-    (&row[..i], contact)
+    (i, contact)
 }

@@ -1,24 +1,25 @@
 //! Running one variant of a scene: build the model from the scene, integrate it
 //! (`recording`), and gather what the run used and found (`findings`) into a [`Run`].
 //! The rows go to a [`StepSink`] as they are recorded: a whole run ([`simulate`]) keeps
-//! them in a [`TraceSink`] sized up front, a streamed run ([`simulate_into`]) hands them
+//! them in a `WholeRun` sized up front (`whole_run`), a streamed run ([`simulate_into`]) hands them
 //! on and holds none (what the findings read of the rows is a running summary).
 
 use super::findings::{Findings, Summarised, findings};
 use super::model::{Model, default_rotational_inertia};
 use super::options::{FeOptions, Integrator};
-use super::recording::run_model;
+use super::recording::{RowSink, Rows, run_model};
 use super::variant;
+use super::whole_run::WholeRun;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Run, SolverStats, StepSink, TraceSink, step_count};
+use rockslide_engine_api::{Run, SolverStats, StepSink, step_count};
 
 /// Run `variant` of the case's scene at time step `dt` with `opts`: the whole run, its
 /// trace sized for the run up front.
 pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result<Run, InputError> {
-    let mut rows = TraceSink::sized(step_count(case.run.duration, dt) + 1);
-    let mut run = simulate_into(case, variant, dt, opts, &mut rows)?;
-    run.trace = rows.trace;
+    let mut rows = WholeRun::sized(step_count(case.run.duration, dt) + 1);
+    let mut run = simulate_with(case, variant, dt, opts, &mut rows)?;
+    run.trace = rows.into_trace();
     Ok(run)
 }
 
@@ -26,6 +27,18 @@ pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result
 /// and every recorded row to `sink`: the returned run's trace is the layout (channels,
 /// contact names and compliances) without rows.
 pub fn simulate_into<S: StepSink + ?Sized>(
+    case: &Case,
+    variant: &str,
+    dt: f64,
+    opts: &FeOptions,
+    sink: &mut S,
+) -> Result<Run, InputError> {
+    simulate_with(case, variant, dt, opts, &mut Rows::new(sink))
+}
+
+/// [`simulate_into`] for the recorder's own sink: the whole run's, or any [`StepSink`]
+/// through [`Rows`].
+fn simulate_with<S: RowSink + ?Sized>(
     case: &Case,
     variant: &str,
     dt: f64,

@@ -3,7 +3,7 @@
 //! `supports` × `support_rows` grid), driven by the excitation pair, recorded as a trace
 //! whose x channels keep the 2D keys and whose y channels are added (`*_y`), with the
 //! per-contact block giving |T|, the slip accumulated along the friction force (Σ T̂·Δs) and the gap.
-//! The rows go to a [`StepSink`] as they are recorded (a whole run: a `TraceSink` sized up
+//! The rows go to a [`StepSink`] as they are recorded (a whole run: a `WholeRun` sized up
 //! front; a streamed run: the caller's sink, no rows held).
 
 use nalgebra::{Matrix3, Vector2, Vector3};
@@ -14,10 +14,11 @@ use super::stepper::{SpaceDrive, integrate};
 use crate::model::default_rotational_inertia;
 use crate::options::{FeOptions, Integrator};
 use crate::variant;
+use crate::whole_run::WholeRun;
 use rockslide_core::case::{Case, Excitation, Model as SceneModel, Scene, Spatial};
 use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, plan_slip_increment, q};
-use rockslide_engine_api::{NotApplicable, Run, SolverStats, StepSink, TraceSink, step_count};
+use rockslide_engine_api::{NotApplicable, Run, SolverStats, StepSink, step_count};
 
 /// The variants of a 3D scene, or why fe does not run it.
 pub fn variants(scene: &Scene, spatial: &Spatial) -> Result<Vec<&'static str>, NotApplicable> {
@@ -135,9 +136,9 @@ pub fn simulate_space(
     dt: f64,
     opts: &FeOptions,
 ) -> Result<Run, InputError> {
-    let mut rows = TraceSink::sized(step_count(case.run.duration, dt) + 1);
+    let mut rows = WholeRun::sized(step_count(case.run.duration, dt) + 1);
     let mut run = simulate_space_into(case, spatial, variant, dt, opts, &mut rows)?;
-    run.trace = rows.trace;
+    run.trace = rows.into_trace();
     Ok(run)
 }
 
