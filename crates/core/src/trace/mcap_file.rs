@@ -322,6 +322,11 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
     }
 
     // Interleave the runs' rows in time order (ties: run order).
+    let frame_names: Vec<(String, String)> = log
+        .runs
+        .iter()
+        .map(|run| scene3d::frames(&run.label))
+        .collect();
     let mut row = vec![0usize; log.runs.len()];
     let mut last_ns = vec![0u64; log.runs.len()];
     let mut next_view = vec![0u64; log.runs.len()];
@@ -347,11 +352,11 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             && let Some(p) = Pose::at(run.trace, i, g)
         {
             let lane_y = r as f64 * g.lane_spacing();
-            let tfs = scene3d::frame_transforms(ns, run.trace, i, lane_y, &p, &run.label);
-            scene3d::encode(&scene3d::FRAME_TRANSFORMS, &tfs, &mut buf);
+            let (ground, body) = &frame_names[r];
+            let frames = (ground.as_str(), body.as_str());
+            scene3d::encode_frame_transforms(ns, run.trace, i, lane_y, &p, frames, &mut buf);
             out.put(tf, ns, &buf)?;
-            let f = scene3d::forces(run.trace, i, ns, g, &p, &run.label);
-            scene3d::encode(&scene3d::SCENE_UPDATE, &f, &mut buf);
+            scene3d::encode_forces(run.trace, i, ns, g, &p, ground, &mut buf);
             out.put(forces, ns, &buf)?;
             next_view[r] = ns + view_period[r];
         }
