@@ -321,14 +321,20 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         }
     }
 
-    // Interleave the runs' rows in time order (ties: run order).
+    // Interleave the runs' rows in time order (ties: run order). Each run's next log
+    // time is computed once, when the run moves on (its rows' times never go back: each
+    // is clamped to the one before).
     let frame_names: Vec<(String, String)> = log
         .runs
         .iter()
         .map(|run| scene3d::frames(&run.label))
         .collect();
     let mut row = vec![0usize; log.runs.len()];
-    let mut last_ns = vec![0u64; log.runs.len()];
+    let mut next_ns: Vec<Option<u64>> = log
+        .runs
+        .iter()
+        .map(|run| run.trace.time.first().map(|&t| ns_of(t, 0)))
+        .collect();
     let mut next_view = vec![0u64; log.runs.len()];
     let view_period: Vec<u64> = log
         .runs
@@ -336,13 +342,16 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         .map(|run| scene_period_ns(run.trace.end_time()))
         .collect();
     loop {
-        let next = (0..log.runs.len())
-            .filter(|&r| row[r] < log.runs[r].trace.len())
-            .min_by_key(|&r| ns_of(log.runs[r].trace.time[row[r]], last_ns[r]));
-        let Some(r) = next else { break };
+        let mut next: Option<(usize, u64)> = None;
+        for (r, ns) in next_ns.iter().enumerate() {
+            if let Some(ns) = *ns
+                && next.is_none_or(|(_, earliest)| ns < earliest)
+            {
+                next = Some((r, ns));
+            }
+        }
+        let Some((r, ns)) = next else { break };
         let (run, ch, i) = (&log.runs[r], &channels[r], row[r]);
-        let ns = ns_of(run.trace.time[i], last_ns[r]);
-        last_ns[r] = ns;
         out.w
             .message_with(ch.state, ns, |r| cdr::append_state_message(r, run.trace, i))
             .map_err(mcap_error)?;
@@ -372,6 +381,7 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             out.put_json(log_channel, at, &scene3d::log(at, level, &run.label, &text))?;
         }
         row[r] += 1;
+        next_ns[r] = run.trace.time.get(row[r]).map(|&t| ns_of(t, ns));
     }
     out.w.finish().map_err(mcap_error)
 }
