@@ -19,7 +19,7 @@
 //!
 //! Message log time = publish time = simulation time in nanoseconds; messages of all
 //! channels are interleaved in time order so chunks are time-local. The file is written
-//! in zstd chunks (fast level −1, measured: see [`CHUNKS`]) of 1 MiB, each compressed whole by
+//! in zstd chunks (fast level −3, measured: see [`CHUNKS`]) of 1 MiB, each compressed whole by
 //! our own writer ([`writer`]),
 //! with message, chunk, attachment and metadata indexes, statistics, summary and CRCs, streamed
 //! to a temporary sibling, then atomically renamed.
@@ -159,15 +159,18 @@ impl<W: Write> Out<W> {
 /// compressed chunks) are written as they are.
 const DIRECT_BELOW: usize = 64 << 10;
 
-/// Chunks of the file: zstd at its fast level −1 in chunks of 1 MiB, each compressed in
+/// Chunks of the file: zstd at its fast level −3 in chunks of 1 MiB, each compressed in
 /// one call. Measured on the 10⁶-step PEPO run (docs/performance.md §1, CPU of the whole
 /// `rockslide run`, MCAP size): level 1 2.00 s, 139.6 MB; −1 1.88 s, 141.4 MB; −3 1.78 s,
 /// 146.1 MB; −7 1.80 s, 176.2 MB; none 1.58 s, 313.1 MB. Full-precision doubles barely
 /// compress: what zstd takes out is the framing, index entries and near-constant fields,
-/// which its fastest levels find as well as level 1 does, until −3.
+/// which its fastest levels find as well as level 1 does, until −3. With the contacts in
+/// the state message (callgrind, 10⁵ − 10³ steps): −1 13,520 instructions a step, −3
+/// 12,256, −5 12,016; the MCAP task, the longest of the file stage, −20 % at −3; the
+/// default run's MCAP 13.73 → 14.51 MB (−5: 15.50 MB).
 pub const CHUNKS: ChunkOptions = ChunkOptions {
     chunk_bytes: 1 << 20,
-    compression: ChunkCompression::Zstd(-1),
+    compression: ChunkCompression::Zstd(-3),
 };
 
 /// The MCAP bytes of `log`.
@@ -1105,6 +1108,7 @@ mod tests {
         };
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         for compression in [
+            CHUNKS.compression,
             ChunkCompression::Zstd(-1),
             ChunkCompression::Lz4(0),
             ChunkCompression::None,
