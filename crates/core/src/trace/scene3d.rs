@@ -24,7 +24,10 @@
 //! schemas (foxglove_msgs); the 3D panel recognises the messages by schema *name*
 //! (`foxglove_msgs/msg/…`, as it does `foxglove.…`) and decodes them with the definition
 //! the file carries. The messages are built as JSON values with the definitions' field
-//! names ([`encode`] writes them in CDR, [`decode`] reads them back).
+//! names ([`encode`] writes them in CDR, [`decode`] reads them back); the two written at
+//! every frame, the transforms and the force arrows, are also written straight in CDR
+//! ([`encode_frame_transforms`], [`encode_forces`]: the same bytes without a JSON value
+//! between, which cost most of the trace files' time).
 
 use serde_json::{Value, json};
 
