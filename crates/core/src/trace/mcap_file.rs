@@ -19,7 +19,7 @@
 //!
 //! Message log time = publish time = simulation time in nanoseconds; messages of all
 //! channels are interleaved in time order so chunks are time-local. The file is written
-//! in zstd chunks (fast level −1, measured: see [`CHUNKS`]) of 1 MiB, each compressed whole by
+//! in zstd chunks (fast level −3, measured: see [`CHUNKS`]) of 1 MiB, each compressed whole by
 //! our own writer ([`writer`]),
 //! with message, chunk, attachment and metadata indexes, statistics, summary and CRCs, streamed
 //! to a temporary sibling, then atomically renamed.
@@ -159,15 +159,18 @@ impl<W: Write> Out<W> {
 /// compressed chunks) are written as they are.
 const DIRECT_BELOW: usize = 64 << 10;
 
-/// Chunks of the file: zstd at its fast level −1 in chunks of 1 MiB, each compressed in
+/// Chunks of the file: zstd at its fast level −3 in chunks of 1 MiB, each compressed in
 /// one call. Measured on the 10⁶-step PEPO run (docs/performance.md §1, CPU of the whole
 /// `rockslide run`, MCAP size): level 1 2.00 s, 139.6 MB; −1 1.88 s, 141.4 MB; −3 1.78 s,
 /// 146.1 MB; −7 1.80 s, 176.2 MB; none 1.58 s, 313.1 MB. Full-precision doubles barely
 /// compress: what zstd takes out is the framing, index entries and near-constant fields,
-/// which its fastest levels find as well as level 1 does, until −3.
+/// which its fastest levels find as well as level 1 does, until −3. With the contacts in
+/// the state message (callgrind, 10⁵ − 10³ steps): −1 13,520 instructions a step, −3
+/// 12,256, −5 12,016; the MCAP task, the longest of the file stage, −20 % at −3; the
+/// default run's MCAP 13.73 → 14.51 MB (−5: 15.50 MB).
 pub const CHUNKS: ChunkOptions = ChunkOptions {
     chunk_bytes: 1 << 20,
-    compression: ChunkCompression::Zstd(-1),
+    compression: ChunkCompression::Zstd(-3),
 };
 
 /// The MCAP bytes of `log`.
@@ -321,9 +324,20 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         }
     }
 
-    // Interleave the runs' rows in time order (ties: run order).
+    // Interleave the runs' rows in time order (ties: run order). Each run's next log
+    // time is computed once, when the run moves on (its rows' times never go back: each
+    // is clamped to the one before).
+    let frame_names: Vec<(String, String)> = log
+        .runs
+        .iter()
+        .map(|run| scene3d::frames(&run.label))
+        .collect();
     let mut row = vec![0usize; log.runs.len()];
-    let mut last_ns = vec![0u64; log.runs.len()];
+    let mut next_ns: Vec<Option<u64>> = log
+        .runs
+        .iter()
+        .map(|run| run.trace.time.first().map(|&t| ns_of(t, 0)))
+        .collect();
     let mut next_view = vec![0u64; log.runs.len()];
     let view_period: Vec<u64> = log
         .runs
@@ -331,13 +345,16 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         .map(|run| scene_period_ns(run.trace.end_time()))
         .collect();
     loop {
-        let next = (0..log.runs.len())
-            .filter(|&r| row[r] < log.runs[r].trace.len())
-            .min_by_key(|&r| ns_of(log.runs[r].trace.time[row[r]], last_ns[r]));
-        let Some(r) = next else { break };
+        let mut next: Option<(usize, u64)> = None;
+        for (r, ns) in next_ns.iter().enumerate() {
+            if let Some(ns) = *ns
+                && next.is_none_or(|(_, earliest)| ns < earliest)
+            {
+                next = Some((r, ns));
+            }
+        }
+        let Some((r, ns)) = next else { break };
         let (run, ch, i) = (&log.runs[r], &channels[r], row[r]);
-        let ns = ns_of(run.trace.time[i], last_ns[r]);
-        last_ns[r] = ns;
         out.w
             .message_with(ch.state, ns, |r| cdr::append_state_message(r, run.trace, i))
             .map_err(mcap_error)?;
@@ -347,11 +364,11 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             && let Some(p) = Pose::at(run.trace, i, g)
         {
             let lane_y = r as f64 * g.lane_spacing();
-            let tfs = scene3d::frame_transforms(ns, run.trace, i, lane_y, &p, &run.label);
-            scene3d::encode(&scene3d::FRAME_TRANSFORMS, &tfs, &mut buf);
+            let (ground, body) = &frame_names[r];
+            let frames = (ground.as_str(), body.as_str());
+            scene3d::encode_frame_transforms(ns, run.trace, i, lane_y, &p, frames, &mut buf);
             out.put(tf, ns, &buf)?;
-            let f = scene3d::forces(run.trace, i, ns, g, &p, &run.label);
-            scene3d::encode(&scene3d::SCENE_UPDATE, &f, &mut buf);
+            scene3d::encode_forces(run.trace, i, ns, g, &p, ground, &mut buf);
             out.put(forces, ns, &buf)?;
             next_view[r] = ns + view_period[r];
         }
@@ -367,6 +384,7 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             out.put_json(log_channel, at, &scene3d::log(at, level, &run.label, &text))?;
         }
         row[r] += 1;
+        next_ns[r] = run.trace.time.get(row[r]).map(|&t| ns_of(t, ns));
     }
     out.w.finish().map_err(mcap_error)
 }
@@ -1090,6 +1108,7 @@ mod tests {
         };
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         for compression in [
+            CHUNKS.compression,
             ChunkCompression::Zstd(-1),
             ChunkCompression::Lz4(0),
             ChunkCompression::None,

@@ -24,7 +24,10 @@
 //! schemas (foxglove_msgs); the 3D panel recognises the messages by schema *name*
 //! (`foxglove_msgs/msg/…`, as it does `foxglove.…`) and decodes them with the definition
 //! the file carries. The messages are built as JSON values with the definitions' field
-//! names ([`encode`] writes them in CDR, [`decode`] reads them back).
+//! names ([`encode`] writes them in CDR, [`decode`] reads them back); the two written at
+//! every frame, the transforms and the force arrows, are also written straight in CDR
+//! ([`encode_frame_transforms`], [`encode_forces`]: the same bytes without a JSON value
+//! between, which cost most of the trace files' time).
 
 use serde_json::{Value, json};
 
@@ -500,25 +503,37 @@ fn tangential_force(trace: &Trace, i: usize) -> (Option<f64>, Option<f64>) {
     (fx, fy)
 }
 
-/// The support-force arrows at one row, in the ground frame, drawn ending at the base
-/// centre O: the total normal force (`normal`) upward and the total tangential force
-/// on the body (`base_shear`, else −`resistance`, along x; −`resistance_y` along y in a
-/// 3D scene: one arrow along the horizontal resultant), length |F|·`arrow_scale`.
-pub fn forces(trace: &Trace, i: usize, ns: u64, g: &Geometry, p: &Pose, label: &str) -> Value {
-    let (ground, _) = frames(label);
+/// One force arrow: its tail in the ground frame, its orientation, its length and colour.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct Arrow {
+    tail: (f64, f64, f64),
+    q: [f64; 4],
+    len: f64,
+    color: [f64; 4],
+}
+
+/// The support-force arrows at row `i` (at most two: normal, then tangential), as
+/// [`forces`] describes them; an arrow too short to see is left out.
+fn force_arrows(trace: &Trace, i: usize, g: &Geometry, p: &Pose) -> ([Arrow; 2], usize) {
     let [ox, oy, oz] = p.base_point(g);
     let s = g.arrow_scale();
-    let mut arrows = Vec::new();
-    let mut arrow = |tail: (f64, f64, f64), q: [f64; 4], len: f64, c: [f64; 4]| {
+    let none = Arrow {
+        tail: (0.0, 0.0, 0.0),
+        q: IDENTITY,
+        len: 0.0,
+        color: [0.0; 4],
+    };
+    let mut arrows = [none; 2];
+    let mut n_arrows = 0;
+    let mut arrow = |tail: (f64, f64, f64), q: [f64; 4], len: f64, color: [f64; 4]| {
         if len.is_finite() && len > 1e-9 * g.cm_height {
-            arrows.push(json!({
-                "pose": pose(tail, q),
-                "shaft_length": 0.8 * len,
-                "shaft_diameter": 0.04 * g.half_width,
-                "head_length": 0.2 * len,
-                "head_diameter": 0.1 * g.half_width,
-                "color": color(c)
-            }));
+            arrows[n_arrows] = Arrow {
+                tail,
+                q,
+                len,
+                color,
+            };
+            n_arrows += 1;
         }
     };
     if let Some(n) = trace.column("normal").map(|c| c[i]) {
@@ -552,10 +567,133 @@ pub fn forces(trace: &Trace, i: usize, ns: u64, g: &Geometry, p: &Pose, label: &
         }
         (None, None) => {}
     }
+    (arrows, n_arrows)
+}
+
+/// The support-force arrows at one row, in the ground frame, drawn ending at the base
+/// centre O: the total normal force (`normal`) upward and the total tangential force
+/// on the body (`base_shear`, else −`resistance`, along x; −`resistance_y` along y in a
+/// 3D scene: one arrow along the horizontal resultant), length |F|·`arrow_scale`. As a
+/// JSON value; [`encode_forces`] writes the same message's CDR bytes directly.
+pub fn forces(trace: &Trace, i: usize, ns: u64, g: &Geometry, p: &Pose, label: &str) -> Value {
+    let (ground, _) = frames(label);
+    let (arrows, n) = force_arrows(trace, i, g, p);
+    let arrows: Vec<Value> = arrows[..n]
+        .iter()
+        .map(|a| {
+            json!({
+                "pose": pose(a.tail, a.q),
+                "shaft_length": 0.8 * a.len,
+                "shaft_diameter": 0.04 * g.half_width,
+                "head_length": 0.2 * a.len,
+                "head_diameter": 0.1 * g.half_width,
+                "color": color(a.color)
+            })
+        })
+        .collect();
     json!({
         "deletions": [],
         "entities": [entity(ns, &ground, "forces", false, json!({ "arrows": arrows }))]
     })
+}
+
+/// A CDR message written field by field into a buffer, with the alignment [`encode`]
+/// gives each type (counted past the 4-byte encapsulation header): the per-frame
+/// messages of the 3D view without building a JSON value first.
+struct CdrOut<'a>(&'a mut Vec<u8>);
+
+impl CdrOut<'_> {
+    /// Start a message: clear the buffer, write the little-endian header.
+    fn start(buf: &mut Vec<u8>) -> CdrOut<'_> {
+        buf.clear();
+        buf.extend_from_slice(&super::CDR_LE_HEADER);
+        CdrOut(buf)
+    }
+
+    fn align(&mut self, n: usize) {
+        align(self.0, n);
+    }
+
+    /// A `float64`; a value that is not finite is written as NaN, as a JSON `null` is.
+    fn f64(&mut self, x: f64) {
+        self.align(8);
+        let x = if x.is_finite() { x } else { f64::NAN };
+        self.0.extend_from_slice(&x.to_le_bytes());
+    }
+
+    fn u32(&mut self, x: u32) {
+        self.align(4);
+        self.0.extend_from_slice(&x.to_le_bytes());
+    }
+
+    fn str(&mut self, text: &str) {
+        self.u32(text.len() as u32 + 1);
+        self.0.extend_from_slice(text.as_bytes());
+        self.0.push(0);
+    }
+
+    /// A `builtin_interfaces/Time` of `ns` (as [`ros_time`]).
+    fn time(&mut self, ns: u64) {
+        self.u32((ns / 1_000_000_000) as i64 as i32 as u32);
+        self.u32((ns % 1_000_000_000) as u32);
+    }
+
+    fn xyz(&mut self, (x, y, z): (f64, f64, f64)) {
+        self.f64(x);
+        self.f64(y);
+        self.f64(z);
+    }
+
+    fn four(&mut self, v: [f64; 4]) {
+        for x in v {
+            self.f64(x);
+        }
+    }
+}
+
+/// The CDR bytes of [`forces`] (`foxglove_msgs/msg/SceneUpdate`) into `buf`, built
+/// without a JSON value; `ground` is the run's ground frame ([`frames`]). The same bytes
+/// as [`encode`] of the JSON message (test `direct_encodings_equal_the_json_messages`).
+pub fn encode_forces(
+    trace: &Trace,
+    i: usize,
+    ns: u64,
+    g: &Geometry,
+    p: &Pose,
+    ground: &str,
+    buf: &mut Vec<u8>,
+) {
+    let (arrows, n) = force_arrows(trace, i, g, p);
+    let mut out = CdrOut::start(buf);
+    out.u32(0); // deletions
+    out.u32(1); // entities
+    out.time(ns);
+    out.str(ground);
+    out.str("forces");
+    out.time(0); // lifetime
+    out.0.push(0); // frame_locked
+    out.u32(0); // metadata
+    out.u32(n as u32);
+    for a in &arrows[..n] {
+        out.xyz(a.tail);
+        out.four(a.q);
+        out.f64(0.8 * a.len);
+        out.f64(0.04 * g.half_width);
+        out.f64(0.2 * a.len);
+        out.f64(0.1 * g.half_width);
+        out.four(a.color);
+    }
+    for _ in [
+        "cubes",
+        "spheres",
+        "cylinders",
+        "lines",
+        "triangles",
+        "texts",
+        "models",
+    ] {
+        out.u32(0);
+    }
 }
 
 /// One `FrameTransform` (an element of a `FrameTransforms` message).
@@ -575,10 +713,9 @@ pub fn body_transform(ns: u64, p: &Pose, label: &str) -> Value {
     transform(ns, &ground, &body, (p.x, p.y, p.z), p.quaternion())
 }
 
-/// The ground's transform: its displacement (`ground_disp`, `ground_disp_y`; 0 where
-/// the trace has none) and the lane.
-pub fn ground_transform(ns: u64, trace: &Trace, i: usize, lane_y: f64, label: &str) -> Value {
-    let (ground, _) = frames(label);
+/// The ground's translation at row `i`: its displacement (`ground_disp`,
+/// `ground_disp_y`; 0 where the trace has none or it is not finite) and the lane.
+fn ground_translation(trace: &Trace, i: usize, lane_y: f64) -> (f64, f64, f64) {
     let disp = |key: &str| {
         trace
             .column(key)
@@ -587,7 +724,20 @@ pub fn ground_transform(ns: u64, trace: &Trace, i: usize, lane_y: f64, label: &s
             .unwrap_or(0.0)
     };
     let (xg, yg) = (disp("ground_disp"), disp("ground_disp_y"));
-    transform(ns, "world", &ground, (xg, lane_y + yg, 0.0), IDENTITY)
+    (xg, lane_y + yg, 0.0)
+}
+
+/// The ground's transform: its displacement (`ground_disp`, `ground_disp_y`; 0 where
+/// the trace has none) and the lane.
+pub fn ground_transform(ns: u64, trace: &Trace, i: usize, lane_y: f64, label: &str) -> Value {
+    let (ground, _) = frames(label);
+    transform(
+        ns,
+        "world",
+        &ground,
+        ground_translation(trace, i, lane_y),
+        IDENTITY,
+    )
 }
 
 /// One frame of a run's transforms at row `i`, as one `FrameTransforms` message: the
@@ -604,6 +754,36 @@ pub fn frame_transforms(
         ground_transform(ns, trace, i, lane_y, label),
         body_transform(ns, p, label),
     ] })
+}
+
+/// The CDR bytes of [`frame_transforms`] (`foxglove_msgs/msg/FrameTransforms`) into
+/// `buf`, built without a JSON value; `(ground, body)` are the run's frames
+/// ([`frames`]). The same bytes as [`encode`] of the JSON message.
+pub fn encode_frame_transforms(
+    ns: u64,
+    trace: &Trace,
+    i: usize,
+    lane_y: f64,
+    p: &Pose,
+    (ground, body): (&str, &str),
+    buf: &mut Vec<u8>,
+) {
+    let mut out = CdrOut::start(buf);
+    out.u32(2);
+    let mut one = |parent: &str, child: &str, t: (f64, f64, f64), q: [f64; 4]| {
+        out.time(ns);
+        out.str(parent);
+        out.str(child);
+        out.xyz(t);
+        out.four(q);
+    };
+    one(
+        "world",
+        ground,
+        ground_translation(trace, i, lane_y),
+        IDENTITY,
+    );
+    one(ground, body, (p.x, p.y, p.z), p.quaternion());
 }
 
 /// A `foxglove.Log` message (levels: 2 info, 3 warning, 4 error).
@@ -1101,6 +1281,117 @@ mod tests {
         let mut longer = buf.clone();
         longer.push(0);
         assert!(decode(&FRAME_TRANSFORMS, &longer).is_err());
+    }
+
+    /// A trace of `keys` with rows from `rows` (time = row index · 0.01 s).
+    fn trace_of(keys: &[&str], rows: &[&[f64]]) -> Trace {
+        let channels: Vec<_> = keys
+            .iter()
+            .map(|k| crate::trace::q::by_key(k).unwrap())
+            .collect();
+        let mut t = Trace::with_channels(&channels, rows.len());
+        for (i, r) in rows.iter().enumerate() {
+            t.push(i as f64 * 0.01, r);
+        }
+        t
+    }
+
+    #[test]
+    fn direct_encodings_equal_the_json_messages() {
+        let planar = Geometry {
+            kind: "rocking-body",
+            cm_height: 1.25,
+            half_width: 0.3,
+            half_height: 1.25,
+            half_depth: None,
+            supports: vec![[-0.3, 0.0], [0.3, 0.0]],
+            weight: 9810.0,
+        };
+        let spatial = Geometry {
+            kind: "rigid-block",
+            half_depth: Some(0.2),
+            ..planar.clone()
+        };
+        let (nan, inf) = (f64::NAN, f64::INFINITY);
+        // rel_disp, rotation, ground_disp, normal, base_shear: both signs of each force,
+        // forces too small to draw, a ground displacement that is not finite
+        let rocking = trace_of(
+            &[
+                "rel_disp",
+                "rotation",
+                "ground_disp",
+                "normal",
+                "base_shear",
+            ],
+            &[
+                &[0.0, 0.0, 0.0, 9810.0, 0.0],
+                &[0.1 + 0.2, -0.013, 0.02, 9000.5, 123.25],
+                &[-0.7, 0.25, nan, -5.0, -4000.0],
+                &[1e-3, 1e-7, inf, 1e-12, 1e-13],
+                &[2.5, -0.4, -1.5, nan, inf],
+            ],
+        );
+        // a sliding block without base shear: −resistance along x
+        let sliding = trace_of(
+            &["rel_disp", "ground_disp", "normal", "resistance"],
+            &[&[0.0, 0.0, 9810.0, 0.0], &[0.5, -0.25, 9810.0, -3000.0]],
+        );
+        // a 3D scene: the resultant of base shear and −resistance_y, a rotation vector
+        let plan = trace_of(
+            &[
+                "rel_disp",
+                "rel_disp_y",
+                "cm_z",
+                "rotation_x",
+                "rotation",
+                "rotation_z",
+                "ground_disp",
+                "ground_disp_y",
+                "normal",
+                "base_shear",
+                "resistance_y",
+            ],
+            &[
+                &[0.0; 11],
+                &[
+                    0.1, -0.2, 1e-3, 0.01, 0.02, -0.03, 0.4, -0.5, 9000.0, 100.0, 200.0,
+                ],
+                &[
+                    -0.3, 0.6, 0.0, 1e-6, 0.0, 2e-5, nan, 0.1, 9810.0, -700.0, 0.0,
+                ],
+                &[0.2, 0.1, 0.0, 0.0, 0.3, 0.0, 0.0, 0.0, 9810.0, 0.0, -50.0],
+            ],
+        );
+        let cases = [
+            (&rocking, &planar, "fe/double"),
+            (&sliding, &planar, "predictor-corrector/default"),
+            (&plan, &spatial, "rapier/plan"),
+        ];
+        let (mut json_bytes, mut direct) = (Vec::new(), Vec::new());
+        let mut compared = 0;
+        for (trace, g, label) in cases {
+            let (ground, body) = frames(label);
+            for i in 0..trace.len() {
+                let Some(p) = Pose::at(trace, i, g) else {
+                    continue;
+                };
+                let ns = 1_000_000_000 * i as u64 + 7;
+                let lane_y = 0.75 * i as f64;
+                let tfs = frame_transforms(ns, trace, i, lane_y, &p, label);
+                encode(&FRAME_TRANSFORMS, &tfs, &mut json_bytes);
+                encode_frame_transforms(ns, trace, i, lane_y, &p, (&ground, &body), &mut direct);
+                assert_eq!(direct, json_bytes, "{label} row {i}: transforms");
+                encode(
+                    &SCENE_UPDATE,
+                    &forces(trace, i, ns, g, &p, label),
+                    &mut json_bytes,
+                );
+                encode_forces(trace, i, ns, g, &p, &ground, &mut direct);
+                assert_eq!(direct, json_bytes, "{label} row {i}: forces");
+                compared += 1;
+            }
+        }
+        assert_eq!(compared, 5 + 2 + 4);
     }
 
     #[test]

@@ -271,12 +271,33 @@ fn relative_d(points: &[(i64, i64)]) -> String {
 
 /// Numbers separated by a space, or by nothing before a minus sign.
 fn push_numbers(d: &mut String, numbers: &[i64]) {
-    use std::fmt::Write;
-    for (k, n) in numbers.iter().enumerate() {
-        if k > 0 && *n >= 0 {
+    for (k, &n) in numbers.iter().enumerate() {
+        if k > 0 && n >= 0 {
             d.push(' ');
         }
-        let _ = write!(d, "{n}");
+        push_integer(d, n);
+    }
+}
+
+/// An integer in decimal, as `{n}` formats it, without the formatting machinery (a
+/// figure's paths are thousands of them).
+fn push_integer(d: &mut String, n: i64) {
+    let mut digits = [0u8; 20];
+    let mut start = digits.len();
+    let mut rest = n.unsigned_abs();
+    loop {
+        start -= 1;
+        digits[start] = b'0' + (rest % 10) as u8;
+        rest /= 10;
+        if rest == 0 {
+            break;
+        }
+    }
+    if n < 0 {
+        d.push('-');
+    }
+    for &b in &digits[start..] {
+        d.push(char::from(b));
     }
 }
 
@@ -410,6 +431,17 @@ mod tests {
             out.push(at);
         }
         out
+    }
+
+    #[test]
+    fn integers_are_written_as_formatting_writes_them() {
+        let mut values = vec![0, 1, -1, 9, 10, -10, 99, 100, 12345, i64::MAX, i64::MIN];
+        values.extend((-1200..1200).map(|k| k * 7));
+        for n in values {
+            let mut d = String::new();
+            push_integer(&mut d, n);
+            assert_eq!(d, n.to_string());
+        }
     }
 
     #[test]
