@@ -499,10 +499,13 @@ fn run_everything(out: &Path, quiet: bool, set: OutputSet) -> Result<ExitCode, E
             s.spawn_fifo(move |_| {
                 let Some(case) = case else { return };
                 let write_now = !swept.contains(&case.name.as_str());
-                let outcome = run_case(case).map_err(Error::from).and_then(|result| {
+                let outcome = run_case(case).map_err(Error::from).and_then(|mut result| {
                     let written = write_now
                         .then(|| write_case_outputs_with(&result, out, set))
                         .transpose()?;
+                    if written.is_some() {
+                        result.release_histories();
+                    }
                     Ok((result, written))
                 });
                 fill(slot, outcome);
@@ -701,8 +704,10 @@ fn run_and_write_all(
     cases
         .into_par_iter()
         .map(|case| {
-            let result = run_case(case)?;
+            let mut result = run_case(case)?;
             let written = write_case_outputs_with(&result, out, set)?;
+            // the suite's pages and the gate read no history: hold only the cases in flight
+            result.release_histories();
             Ok((result, written))
         })
         .collect()

@@ -172,3 +172,79 @@ fn summary_csv_is_consistent() {
     let case = read(&dir.path().join("too-tight/summary.csv"));
     assert_eq!(case, read(&dir.path().join("summary.csv")));
 }
+
+/// Issue 18 item 2: a run of many cases releases each case's time histories once its own
+/// files are written (`CaseResult::release_histories`), so it holds the histories of the
+/// cases in flight, not of every case. What the suite's outputs read stays: the summary
+/// CSV, the gate's failures and informative findings, the verdict warnings and the JUnit
+/// XML of the released results are those of the whole results, byte for byte — on a case
+/// that fails its tolerance, a rocking body with per-contact blocks and a Housner case with
+/// an exact reference — and every trace is cut to its last row.
+#[test]
+fn the_suite_outputs_read_nothing_a_released_case_gave_up() {
+    use rockslide::gate;
+    use rockslide::report::summary_csv;
+    use rockslide::suite::{CaseResult, run_case};
+    use rockslide::verdict::warnings;
+
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let results: Vec<CaseResult> = [
+        "tests/data/too-tight.toml",
+        "cases/rpepo-mass-accel.toml",
+        "cases/housner-pulse.toml",
+    ]
+    .iter()
+    .map(|p| run_case(rockslide::case::load_case(&root.join(p)).unwrap()).unwrap())
+    .collect();
+    let outputs = |results: &[CaseResult], junit: &Path| {
+        gate::write_junit(results, junit).unwrap();
+        (
+            summary_csv(results).unwrap(),
+            gate::failures(results)
+                .iter()
+                .map(|f| f.to_string())
+                .collect::<Vec<_>>(),
+            gate::informative(results)
+                .iter()
+                .map(|f| f.to_string())
+                .collect::<Vec<_>>(),
+            warnings(results),
+            without_timestamp(&std::fs::read_to_string(junit).unwrap()),
+        )
+    };
+    let dir = tempfile::tempdir().unwrap();
+    let whole = outputs(&results, &dir.path().join("whole.xml"));
+    assert!(!whole.1.is_empty(), "the too-tight case fails its gate");
+    let rows_before: Vec<usize> = results
+        .iter()
+        .flat_map(|r| r.runs.iter().map(|run| run.trace.len()))
+        .collect();
+    assert!(rows_before.iter().all(|&n| n > 1), "{rows_before:?}");
+    let mut released = results;
+    for r in &mut released {
+        r.release_histories();
+    }
+    for r in &released {
+        for run in &r.runs {
+            assert_eq!(run.trace.len(), 1, "{}: the last row stays", run.label());
+            assert!(run.trace.contacts.len() <= 1);
+        }
+        if let Ok(reference) = &r.reference {
+            assert!(reference.trace.len() <= 1 && reference.output.len() <= 1);
+        }
+    }
+    let after = outputs(&released, &dir.path().join("released.xml"));
+    assert!(
+        after == whole,
+        "the suite's outputs changed with the histories released"
+    );
+}
+
+/// JUnit XML without the `timestamp` attribute of its root (the clock when it was written).
+fn without_timestamp(xml: &str) -> String {
+    let start = xml
+        .find(" timestamp=\"")
+        .expect("the root carries a timestamp");
+    let end = start + 12 + xml[start + 12..].find('"').unwrap() + 1;
+    format!("{}{}", &xml[..start], &xml[end..])
+}

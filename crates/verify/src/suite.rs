@@ -293,10 +293,48 @@ impl CaseResult {
         self.envelopes.get(i).and_then(Option::as_ref)
     }
 
+    /// Release the time histories once the case's own files are written: every run's
+    /// trace and per-contact block, the reference's sampled traces and the streamed runs'
+    /// envelopes, down to each trace's last row (its end time and final values). What the
+    /// suite's pages, the gate and the JUnit XML read — checks, responses, invariants,
+    /// statuses, solver statistics — stays. A run of many cases then holds the histories
+    /// of the cases in flight, not of every case at once.
+    pub fn release_histories(&mut self) {
+        for run in &mut self.runs {
+            keep_last_row(&mut run.trace);
+        }
+        if let Ok(reference) = &mut self.reference {
+            keep_last_row(&mut reference.trace);
+            keep_last_row(&mut reference.output);
+        }
+        self.envelopes.clear();
+    }
+
     /// Whether the case passes the gate (as `rockslide check` decides it).
     pub fn gate_passed(&self) -> bool {
         // one truth with `check`: failed gated checks and gated tolerances that check nothing
         crate::verdict::failures(std::slice::from_ref(self)).is_empty()
+    }
+}
+
+/// Cut a trace to its last row (none when it has none), its memory returned.
+fn keep_last_row(trace: &mut Trace) {
+    let n = trace.time.len();
+    let keep = |v: &mut Vec<f64>, from: usize| {
+        let tail = v.get(from..).map(<[f64]>::to_vec).unwrap_or_default();
+        *v = tail;
+    };
+    let from = n.saturating_sub(1);
+    keep(&mut trace.time, from);
+    for column in &mut trace.columns {
+        keep(column, from);
+    }
+    let contacts = &mut trace.contacts;
+    let rows = contacts.time.len();
+    if rows > 0 {
+        let width = contacts.values.len() / rows;
+        keep(&mut contacts.time, rows - 1);
+        keep(&mut contacts.values, (rows - 1) * width);
     }
 }
 
