@@ -331,8 +331,7 @@ fn keep_last_row(trace: &mut Trace) {
     }
     let contacts = &mut trace.contacts;
     let rows = contacts.time.len();
-    if rows > 0 {
-        let width = contacts.values.len() / rows;
+    if let Some(width) = contacts.values.len().checked_div(rows) {
         keep(&mut contacts.time, rows - 1);
         keep(&mut contacts.values, (rows - 1) * width);
     }
