@@ -54,7 +54,8 @@ pub(crate) struct EnergyBook {
 #[derive(Debug, Clone, Copy)]
 struct ElementEnergy {
     /// The element's committed state (force on the upper end (T, −N), relative
-    /// displacement δ, slip), kept whole: one copy of the state a step.
+    /// displacement δ, slip, and its status: gap open or not), kept whole: one copy of
+    /// the state a step.
     state: ContactState,
     /// Strain energy, J.
     strain: f64,
