@@ -2,7 +2,7 @@
 
 use nalgebra::Vector2;
 
-use super::element::Contact178;
+use super::element::{Contact178, ContactState, Status};
 use super::model::Model;
 use super::stepper::Snapshot;
 
@@ -51,18 +51,14 @@ pub(crate) struct EnergyBook {
 }
 
 /// What the energy book keeps of one element between steps.
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 struct ElementEnergy {
-    /// Force on the upper end (T, −N), N.
-    force: Vector2<f64>,
-    /// Relative displacement δ, m.
-    delta: Vector2<f64>,
-    /// Slip, m.
-    slip: f64,
+    /// The element's committed state (force on the upper end (T, −N), relative
+    /// displacement δ, slip, and its status: gap open or not), kept whole: one copy of
+    /// the state a step.
+    state: ContactState,
     /// Strain energy, J.
     strain: f64,
-    /// Gap open.
-    open: bool,
     /// Whether the element's tangential and normal stiffnesses are finite and positive
     /// (a strain term is booked for them): found at the first step, kept after.
     springs: (bool, bool),
@@ -71,7 +67,19 @@ struct ElementEnergy {
 impl EnergyBook {
     pub(crate) fn new(links: usize) -> Self {
         Self {
-            prev: vec![ElementEnergy::default(); links],
+            prev: vec![
+                ElementEnergy {
+                    state: ContactState {
+                        slip: 0.0,
+                        delta: Vector2::zeros(),
+                        force: Vector2::zeros(),
+                        status: Status::Stick,
+                    },
+                    strain: 0.0,
+                    springs: (false, false),
+                };
+                links
+            ],
             last: (0.0, 0.0, 0.0, 0.0, 0.0),
             initial: 0.0,
             input: 0.0,
@@ -146,9 +154,10 @@ impl EnergyBook {
         // order), stored once after it.
         let (mut friction, mut contact) = (self.friction, self.contact);
         for ((e, on_ground), prev) in elements.zip(self.prev.iter_mut()) {
+            let prev_open = prev.state.status == Status::Open;
             let st = e.state();
             let (t, n) = (e.tangential(), e.normal());
-            let open = st.status == super::element::Status::Open;
+            let open = st.status == Status::Open;
             let springs = if STARTED {
                 prev.springs
             } else {
@@ -166,28 +175,29 @@ impl EnergyBook {
             }
             strain += u;
             if STARTED {
-                if !open && !prev.open {
+                if !open && !prev_open {
                     // Trapezoidal, as Newmark's work: ½(Tₙ + Tₙ₊₁)·Δs. It is ≥ 0 unless
                     // T reverses inside the step (|Tₙ| > |Tₙ₊₁|, opposite signs); such
                     // a step is not dissipation and goes to the non-smooth part.
-                    let d = 0.5 * (prev.force.x + t) * (st.slip - prev.slip);
+                    let d = 0.5 * (prev.state.force.x + t) * (st.slip - prev.state.slip);
                     if d >= 0.0 {
                         friction += d;
                     } else {
                         contact += d;
                     }
-                } else if open != prev.open {
+                } else if open != prev_open {
                     // Opening or closing inside the step: the element's trapezoidal work
                     // minus its strain-energy change is what the step's kink lost.
-                    let work = 0.5 * (prev.force + st.force).dot(&(st.delta - prev.delta));
+                    let work =
+                        0.5 * (prev.state.force + st.force).dot(&(st.delta - prev.state.delta));
                     contact += work - (u - prev.strain);
                 }
                 if on_ground {
-                    ground_force += 0.5 * (prev.force.x + t);
+                    ground_force += 0.5 * (prev.state.force.x + t);
                 }
             }
-            (prev.force, prev.delta, prev.slip) = (st.force, st.delta, st.slip);
-            (prev.strain, prev.open, prev.springs) = (u, open, springs);
+            prev.state = *st;
+            (prev.strain, prev.springs) = (u, springs);
         }
         (self.friction, self.contact) = (friction, contact);
         (strain, ground_force)

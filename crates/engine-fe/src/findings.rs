@@ -8,7 +8,7 @@
 use super::model::Model;
 use super::modes::eigenfrequencies;
 use super::options::{FeOptions, Kinematics};
-use super::recording::{ROW_VALUES, RowSink, Rows, SelfCheck, run_model};
+use super::recording::{FIELDS, ROW_VALUES, RowSink, Rows, SelfCheck, run_model};
 use super::stepper::Counters;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
 use rockslide_core::trace::{ContactState, Trace};
@@ -225,8 +225,8 @@ impl<S: RowSink + ?Sized> RowSink for Summarised<'_, S> {
     }
 
     #[inline]
-    fn contact(&mut self, i: usize, state: ContactState) {
-        self.sink.contact(i, state);
+    fn contacts(&mut self) -> &mut [[f64; FIELDS]] {
+        self.sink.contacts()
     }
 
     #[inline]

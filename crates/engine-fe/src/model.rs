@@ -167,7 +167,10 @@ impl Lu3 {
                 continue;
             }
             swaps[i] = piv;
-            a.swap(i, piv);
+            // A row swapped with itself is left alone (no copy): the same factors.
+            if piv != i {
+                a.swap(i, piv);
+            }
             let inv = 1.0 / diag;
             let pivot_row = a[i];
             for row in a.iter_mut().skip(i + 1) {
@@ -184,7 +187,9 @@ impl Lu3 {
     pub fn solve(&self, b: &Vector3<f64>) -> Option<Vector3<f64>> {
         let mut x = [b.x, b.y, b.z];
         for (i, &p) in self.swaps.iter().enumerate() {
-            x.swap(i, p);
+            if p != i {
+                x.swap(i, p);
+            }
         }
         let a = &self.lu;
         for i in 0..2 {

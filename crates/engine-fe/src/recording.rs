@@ -12,21 +12,33 @@ use super::model::Model;
 use super::options::FeOptions;
 use super::stepper::{Counters, Drive, Snapshot, integrate};
 use rockslide_core::case::{Case, Model as SceneModel};
-use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, q};
+use rockslide_core::trace::{CONTACT_FIELDS, ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{RunStatus, StepSink, step_count};
 
 /// Channel values a recorded row holds at most (a 2D scene records at most 24).
 pub(crate) const ROW_VALUES: usize = 32;
 
-/// Where the recorder hands each row: the contacts' states one at a time as its loop over
-/// the supports finds them, the channel values written into the sink's row, then the
-/// row's time. A whole run ([`super::whole_run::WholeRun`]) keeps both where the row is
+/// Fields a contact records (`CONTACT_FIELDS`).
+pub(crate) const FIELDS: usize = CONTACT_FIELDS.len();
+
+/// A contact's state as the fields a row records, in `CONTACT_FIELDS`' order.
+#[inline(always)]
+pub(crate) fn contact_fields(state: ContactState) -> [f64; FIELDS] {
+    [state.normal, state.tangential, state.slip, state.gap]
+}
+
+/// Where the recorder hands each row: the contacts' fields written into the sink's row as
+/// its loop over the supports finds them, the channel values written into the sink's
+/// row, then the row's time. A whole run ([`super::whole_run::WholeRun`]) keeps both where the row is
 /// stored; any [`StepSink`] takes the rows through [`Rows`].
 pub(crate) trait RowSink {
     /// Before the first row: the run's layout (channels, contact names and compliances).
     fn start(&mut self, layout: &Trace);
-    /// Contact `i`'s state in the row being recorded.
-    fn contact(&mut self, i: usize, state: ContactState);
+    /// The contact fields of the row being recorded, one `[f64; FIELDS]` per contact in
+    /// `CONTACT_FIELDS`' order (normal, tangential, slip, gap), to write: a slice of the
+    /// layout's contact count, so a loop over the supports zips with it (no index to check
+    /// per contact).
+    fn contacts(&mut self) -> &mut [[f64; FIELDS]];
     /// The channel values of the row being recorded, to write in channel order.
     fn values(&mut self) -> &mut [f64; ROW_VALUES];
     /// The row being recorded is complete: its time, s, and how many channel values it
@@ -34,10 +46,11 @@ pub(crate) trait RowSink {
     fn end_row(&mut self, t: f64, count: usize);
 }
 
-/// A [`StepSink`] as a [`RowSink`]: a row's contact states and values gathered, then
-/// handed on.
+/// A [`StepSink`] as a [`RowSink`]: a row's contact fields and values gathered, then
+/// handed on (the fields as contact states).
 pub(crate) struct Rows<'a, S: StepSink + ?Sized> {
     sink: &'a mut S,
+    fields: Vec<[f64; FIELDS]>,
     states: Vec<ContactState>,
     values: [f64; ROW_VALUES],
 }
@@ -47,6 +60,7 @@ impl<'a, S: StepSink + ?Sized> Rows<'a, S> {
     pub(crate) fn new(sink: &'a mut S) -> Self {
         Self {
             sink,
+            fields: Vec::new(),
             states: Vec::new(),
             values: [0.0; ROW_VALUES],
         }
@@ -55,13 +69,14 @@ impl<'a, S: StepSink + ?Sized> Rows<'a, S> {
 
 impl<S: StepSink + ?Sized> RowSink for Rows<'_, S> {
     fn start(&mut self, layout: &Trace) {
+        self.fields = vec![[0.0; FIELDS]; layout.contacts.count()];
         self.states = vec![ContactState::default(); layout.contacts.count()];
         self.sink.begin(layout);
     }
 
     #[inline]
-    fn contact(&mut self, i: usize, state: ContactState) {
-        self.states[i] = state;
+    fn contacts(&mut self) -> &mut [[f64; FIELDS]] {
+        &mut self.fields
     }
 
     #[inline]
@@ -71,6 +86,14 @@ impl<S: StepSink + ?Sized> RowSink for Rows<'_, S> {
 
     #[inline]
     fn end_row(&mut self, t: f64, count: usize) {
+        for (state, &[normal, tangential, slip, gap]) in self.states.iter_mut().zip(&self.fields) {
+            *state = ContactState {
+                normal,
+                tangential,
+                slip,
+                gap,
+            };
+        }
         self.sink.row(t, &self.values[..count], &self.states);
     }
 }
@@ -185,55 +208,54 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
     };
     let mut check = SelfCheck::default();
     let mut book = EnergyBook::new(model.links.len());
+    let layout = support_layout(&model);
     if model.is_slider() && !rocking {
         let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
             let (count, contact) =
                 slider_row(m, s, &drive, moves_ground, &mut check, sink.values());
-            sink.contact(0, contact);
+            if let Some(fields) = sink.contacts().first_mut() {
+                *fields = contact_fields(contact);
+            }
             sink.end_row(s.t, count);
         });
         return (status, counters, check);
     }
     let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s: &Snapshot| {
         let (xg, vg, ag) = s.ground;
-        let (mut shear, mut normal) = (0.0, 0.0);
-        let (mut slip_sum, mut slip_min, mut slip_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
-        let (mut uplift, mut contacts) = (0.0_f64, 0.0);
-        let mut node_sum = 0.0;
         // The self-check's running maximum in a local over the loop, stored once after it.
-        let mut node_minus_slip = check.node_minus_slip;
-        for (c, sup) in m.supports.iter().enumerate() {
-            let e = &m.links[sup.ground_link].element;
-            let st = e.state();
-            // `e.tangential()` and `e.normal()`, read once.
-            let (tangential, normal_force) = (st.force.x, -st.force.y);
-            sink.contact(
-                c,
-                ContactState {
-                    normal: normal_force,
-                    tangential,
-                    slip: st.slip,
-                    gap: st.delta.y,
-                },
-            );
-            shear += tangential;
-            normal += normal_force;
-            // The sliding is element 1's own accumulated slip (return-mapping state). In
-            // the double arrangement the node shows it too, plus element 1's deflection.
-            let slip = st.slip;
-            if let Some(k) = sup.node {
-                let node = s.un[k].x - xg;
-                node_sum += node;
-                node_minus_slip = running_max(node_minus_slip, (node - slip).abs());
+        let mut sums = SupportSums::new(check.node_minus_slip);
+        let fields = sink.contacts();
+        // The links (and nodes) walked in step with the supports where the layout allows.
+        match layout {
+            SupportLayout::Single => {
+                for (l, field) in m.links.iter().zip(fields) {
+                    *field = sums.add(l.element.state(), None);
+                }
             }
-            slip_sum += slip;
-            slip_min = running_min(slip_min, slip);
-            slip_max = running_max(slip_max, slip);
-            uplift = running_max(uplift, st.delta.y);
-            // One for a closed element pressed, else +0 (the same sum: it is ≥ +0).
-            let pressed = (st.status != super::element::Status::Open) & (normal_force > 0.0);
-            contacts += f64::from(u8::from(pressed));
+            SupportLayout::Paired => {
+                let pairs = m.links.chunks_exact(2).zip(s.un);
+                for ((pair, node), field) in pairs.zip(fields) {
+                    *field = sums.add(pair[0].element.state(), Some(node.x - xg));
+                }
+            }
+            SupportLayout::General => {
+                for (sup, field) in m.supports.iter().zip(fields) {
+                    let node = sup.node.map(|k| s.un[k].x - xg);
+                    *field = sums.add(m.links[sup.ground_link].element.state(), node);
+                }
+            }
         }
+        let SupportSums {
+            shear,
+            normal,
+            slip_sum,
+            slip_min,
+            slip_max,
+            uplift,
+            contacts,
+            node_sum,
+            node_minus_slip,
+        } = sums;
         check.node_minus_slip = node_minus_slip;
         let slide = slip_sum / m.supports.len() as f64;
         let row = sink.values();
@@ -278,6 +300,95 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
         sink.end_row(s.t, i);
     });
     (status, counters, check)
+}
+
+/// How a model's supports map onto its links and nodes, found once per run, so the
+/// recorder's loop over the supports walks the links (and nodes) in step with them: no
+/// index to check, no `Option` to test per support.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum SupportLayout {
+    /// Support i is link i, without a node (the single arrangement, `supports_for`).
+    Single,
+    /// Support i is links 2i (its ground element) and 2i + 1, with node i (the double
+    /// arrangement).
+    Paired,
+    /// Any other: read through each `Support`.
+    General,
+}
+
+/// The layout of `m`'s supports.
+fn support_layout(m: &Model) -> SupportLayout {
+    let sups = &m.supports;
+    let each = |f: &dyn Fn(usize, &super::model::Support) -> bool| {
+        sups.iter().enumerate().all(|(i, sup)| f(i, sup))
+    };
+    if m.links.len() == sups.len() && each(&|i, sup| sup.ground_link == i && sup.node.is_none()) {
+        SupportLayout::Single
+    } else if m.links.len() == 2 * sups.len()
+        && m.nodes == sups.len()
+        && each(&|i, sup| sup.ground_link == 2 * i && sup.node == Some(i))
+    {
+        SupportLayout::Paired
+    } else {
+        SupportLayout::General
+    }
+}
+
+/// The sums and extrema of a row over the supports (each in support order, so the same
+/// bits whichever loop feeds them).
+#[derive(Debug, Clone, Copy)]
+struct SupportSums {
+    shear: f64,
+    normal: f64,
+    slip_sum: f64,
+    slip_min: f64,
+    slip_max: f64,
+    uplift: f64,
+    contacts: f64,
+    node_sum: f64,
+    /// The self-check's running maximum (started from the run's so far).
+    node_minus_slip: f64,
+}
+
+impl SupportSums {
+    fn new(node_minus_slip: f64) -> Self {
+        Self {
+            shear: 0.0,
+            normal: 0.0,
+            slip_sum: 0.0,
+            slip_min: f64::INFINITY,
+            slip_max: f64::NEG_INFINITY,
+            uplift: 0.0,
+            contacts: 0.0,
+            node_sum: 0.0,
+            node_minus_slip,
+        }
+    }
+
+    /// Add a support whose ground element has the committed state `st` and whose node, if
+    /// any, is at `node` from the ground; returns the support's contact fields.
+    #[inline(always)]
+    fn add(&mut self, st: &super::element::ContactState, node: Option<f64>) -> [f64; FIELDS] {
+        // The element's `tangential()` and `normal()`, read once.
+        let (tangential, normal_force) = (st.force.x, -st.force.y);
+        self.shear += tangential;
+        self.normal += normal_force;
+        // The sliding is element 1's own accumulated slip (return-mapping state). In the
+        // double arrangement the node shows it too, plus element 1's deflection.
+        let slip = st.slip;
+        if let Some(node) = node {
+            self.node_sum += node;
+            self.node_minus_slip = running_max(self.node_minus_slip, (node - slip).abs());
+        }
+        self.slip_sum += slip;
+        self.slip_min = running_min(self.slip_min, slip);
+        self.slip_max = running_max(self.slip_max, slip);
+        self.uplift = running_max(self.uplift, st.delta.y);
+        // One for a closed element pressed, else +0 (the same sum: it is ≥ +0).
+        let pressed = (st.status != super::element::Status::Open) & (normal_force > 0.0);
+        self.contacts += f64::from(u8::from(pressed));
+        [normal_force, tangential, slip, st.delta.y]
+    }
 }
 
 /// `acc.max(v)` for an accumulator `acc` that is never NaN (it starts at a number or ±∞

@@ -11,15 +11,12 @@
 //! and times with one copy each. The values are the ones recorded, so the trace is the
 //! same bit for bit as `TraceSink`'s.
 
-use super::recording::{ROW_VALUES, RowSink};
-use rockslide_core::trace::{CONTACT_FIELDS, ContactBlock, ContactState, Trace};
+use super::recording::{FIELDS, ROW_VALUES, RowSink, contact_fields};
+use rockslide_core::trace::{ContactBlock, ContactState, Trace};
 use rockslide_engine_api::StepSink;
 
 /// Rows gathered in the block before they are moved into the trace.
 const BLOCK_ROWS: usize = 16;
-
-/// Fields a contact records.
-const FIELDS: usize = CONTACT_FIELDS.len();
 
 /// Keeps every row of a run of at most `rows` rows without reallocating in the time loop.
 #[derive(Debug)]
@@ -132,9 +129,8 @@ impl RowSink for WholeRun {
     }
 
     #[inline]
-    fn contact(&mut self, i: usize, state: ContactState) {
-        self.contact_fields[self.row_at + i] =
-            [state.normal, state.tangential, state.slip, state.gap];
+    fn contacts(&mut self) -> &mut [[f64; FIELDS]] {
+        &mut self.contact_fields[self.row_at..self.row_at + self.row_contacts]
     }
 
     #[inline]
@@ -161,8 +157,8 @@ impl StepSink for WholeRun {
 
     fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
         debug_assert_eq!(values.len(), self.trace.channels.len());
-        for (i, state) in contacts.iter().enumerate() {
-            self.contact(i, *state);
+        for (fields, state) in self.contacts().iter_mut().zip(contacts) {
+            *fields = contact_fields(*state);
         }
         if self.blocked {
             self.values[self.filled][..values.len()].copy_from_slice(values);
