@@ -207,21 +207,28 @@ impl Rapier {
                 )
             }
             Model::RigidBlock(b) => {
-                let stride = if drive == Drive::KinematicGround
+                let ruled = drive == Drive::KinematicGround
                     && settings.step_rule == StepRule::Scene
-                {
+                    && matches!(
+                        ex,
+                        Excitation::GroundAcceleration(rockslide_core::case::Signal::Record { .. })
+                    );
+                let stride = if ruled {
                     block_kinematic_stride(case, b, &settings, dt, &mut described, &mut findings)
                 } else {
                     1
                 };
                 let dt_in = dt / stride as f64;
-                if stride > 1 {
-                    settings.substeps = block_substeps(settings.substeps, stride);
+                if ruled {
+                    kinematic_block_solver(&mut settings);
+                    let solver = settings.describe(dt);
+                    described.splice(0..solver.len(), solver);
                     described.push((
-                        "substeps per rapier step (block step rule)".into(),
+                        "solver (block on a kinematic ground under a record)".into(),
                         format!(
-                            "{}: the substeps divided among the {stride} rapier steps of an output step (at least 1), so the solver's substep stays as fine as at the output step",
-                            settings.substeps
+                            "{} substep(s) per rapier step, contacts at {} Hz unless the case sets them: the ground's velocity changes once a step and friction takes only μ·N·Δt/substeps of it in the first substep, so more substeps let the stuck block slip; a stiffer contact than rapier's 30 Hz keeps the block from tilting under the friction's moment (docs/rapier-engine.md)",
+                            settings.substeps,
+                            settings.contact_hz.unwrap_or(KINEMATIC_BLOCK_CONTACT_HZ)
                         ),
                     ));
                 }
@@ -596,38 +603,54 @@ fn describe_joint_limit(
     }
 }
 
-/// ∫|ag|dt over a recorded ground acceleration (piecewise linear between samples,
-/// integrated by the trapezoid of |a|, exact where a keeps its sign), m/s; `None` for
-/// any other excitation.
-fn record_abs_acceleration_integral(ex: &Excitation) -> Option<f64> {
-    use rockslide_core::case::Signal;
-    match ex {
-        Excitation::GroundAcceleration(Signal::Record {
-            dt: rdt, samples, ..
-        }) => Some(
-            rdt * samples
-                .windows(2)
-                .map(|w| 0.5 * (w[0].abs() + w[1].abs()))
-                .sum::<f64>(),
-        ),
-        _ => None,
-    }
-}
-
 /// Most rapier steps a rigid block on a kinematic ground runs: the block's step rule
 /// ([`block_kinematic_stride`]) stops here (about 10 s of CPU at ≈ 10 µs a step); a
 /// finer step than this allows is outside the engine's validity.
 pub const MAX_BLOCK_STEPS: usize = 1_000_000;
 
+/// Error constant of the rigid block on a moving kinematic ground under a record, at one
+/// substep per rapier step and a [`KINEMATIC_BLOCK_CONTACT_HZ`] contact: the total
+/// distance slid is off by E ≈ K·PGA·Δt² (second order in Δt). Measured against the
+/// exact block reference on the five shipped records (Northridge, Loma Prieta, Imperial
+/// Valley, Chino Hills 090° and 360°), μ = 0.08, 0.12 and 0.185 at PGA 0.3 g and three of
+/// them at 0.15 and 0.6 g, at Δt = 0.25, 0.5 and 1 ms: E/(PGA·Δt²) from 0.8 to 90.4
+/// (docs/rapier-engine.md, "Rigid block on a kinematic ground"); K is the largest with
+/// a margin.
+pub const KINEMATIC_BLOCK_K: f64 = 100.0;
+
+/// Contact natural frequency of the rigid block on a moving kinematic ground under a
+/// record, Hz (rapier's default for a contact with a moving body is 30 Hz). The soft
+/// contact lets the block sink g/ω² (0.28 mm at 30 Hz) and tilt under the friction's
+/// moment, and the tilt's back and forth counts as sliding: measured on the Northridge
+/// block at 1 ms and one substep, residual −0.85 % at 30 Hz, −0.12 % at 120 Hz, −0.07 %
+/// at 240 Hz, −0.06 % at 1000 Hz (total slid +1.05, +0.83, +0.84, +0.85 %); at 0.5 ms
+/// 240 and 480 Hz agree within 0.04 % of the slid on all fifteen record runs.
+pub const KINEMATIC_BLOCK_CONTACT_HZ: f64 = 240.0;
+
+/// The rapier solver of the rigid block on a moving kinematic ground under a record,
+/// unless the case sets it: one substep per rapier step and a
+/// [`KINEMATIC_BLOCK_CONTACT_HZ`] contact. A kinematic ground's velocity changes once
+/// per step, and friction can absorb only μ·N·Δt/substeps of that change in the first
+/// substep: with several substeps the stuck block slips behind the ground every step
+/// (measured on the Northridge block at 1 ms: total slid +1.05 % at 1 substep, +1.83 %
+/// at 2, +2.87 % at 4, +3.74 % at 8).
+fn kinematic_block_solver(settings: &mut RapierSettings) {
+    if !settings.substeps_given {
+        settings.substeps = 1;
+    }
+    if settings.contact_hz.is_none() {
+        settings.contact_hz = Some(KINEMATIC_BLOCK_CONTACT_HZ);
+    }
+}
+
 /// The rigid block's step rule on a moving kinematic ground under a recorded ground
-/// acceleration: a stuck block slips on the moving ground by about ½·Δt·∫|ag|dt over
-/// the record (first order in Δt, docs/rapier-engine.md), so Δt is chosen with that
-/// estimate within the accuracy target of the total distance slid, Δt ≤ 2·ε·S/∫|ag|dt.
-/// S is measured by a pilot run on the inertial-force route at the output step (no such
-/// slip: +0.10 % at 5 ms). Returns rapier steps per output step, capped so that the run
-/// takes at most [`MAX_BLOCK_STEPS`]; beyond it the run says it is outside the engine's
-/// validity, with the estimate. Other excitations: 1 (no rule needed: the ground's
-/// acceleration enters the contact smoothly).
+/// acceleration: at one substep and a stiff contact ([`kinematic_block_solver`]) the
+/// total distance slid is off by about K·PGA·Δt² ([`KINEMATIC_BLOCK_K`]), so Δt is
+/// chosen with that estimate within the accuracy target of the total slid S,
+/// Δt ≤ √(ε·S/(K·PGA)). S is measured by a pilot run on the inertial-force route at the
+/// output step (+0.17 % on the Northridge block at 1 ms). Returns rapier steps per output
+/// step, capped so that the run takes at most [`MAX_BLOCK_STEPS`]; beyond it the run says
+/// it is outside the engine's validity, with the estimate.
 fn block_kinematic_stride(
     case: &Case,
     b: &rockslide_core::case::RigidBlock,
@@ -637,9 +660,6 @@ fn block_kinematic_stride(
     findings: &mut Vec<String>,
 ) -> usize {
     let ex = &case.scene.excitation;
-    let Some(abs_ag) = record_abs_acceleration_integral(ex) else {
-        return 1;
-    };
     let duration = case.run.duration;
     let pilot_rig = world::rigid_block(b, settings, dt, world::GroundKind::Fixed);
     let mut path = rows::PathLength::of(rockslide_core::trace::q::SLIDE.key, None);
@@ -653,12 +673,13 @@ fn block_kinematic_stride(
         &mut path,
     );
     let slid = path.sum;
+    let pga = peak_ground_acceleration(ex);
     let eps = settings.accuracy;
-    let dt_max = 2.0 * eps * slid / abs_ag;
+    let dt_max = (eps * slid / (KINEMATIC_BLOCK_K * pga)).sqrt();
     let n = rockslide_engine_api::step_count(duration, dt);
     let stride = block_stride(dt, dt_max, n);
     let dt_in = dt / stride as f64;
-    let estimate = 0.5 * dt_in * abs_ag;
+    let estimate = KINEMATIC_BLOCK_K * pga * dt_in * dt_in;
     described.push(("accuracy target (relative)".into(), format!("{eps}")));
     described.push((
         "rapier step [s] (output step / stride)".into(),
@@ -667,27 +688,29 @@ fn block_kinematic_stride(
     described.push((
         "step rule".into(),
         format!(
-            "Δt ≤ 2·accuracy·S/∫|ag|dt = {dt_max:.4e} s: the kinematic ground's slip estimate ½·Δt·∫|ag|dt within the accuracy of the total slid S = {slid:.4e} m (pilot run: inertial force at the output step), ∫|ag|dt = {abs_ag:.4} m/s; at most {MAX_BLOCK_STEPS} rapier steps"
+            "Δt ≤ √(accuracy·S/(K·PGA)) = {dt_max:.4e} s: the kinematic ground's error of the total slid K·PGA·Δt² (K = {KINEMATIC_BLOCK_K}, measured) within the accuracy of the total slid S = {slid:.4e} m (pilot run: inertial force at the output step), PGA = {pga:.4} m/s²; at most {MAX_BLOCK_STEPS} rapier steps"
         ),
     ));
     if dt_in <= dt_max * (1.0 + 1e-12) {
         findings.push(format!(
-            "within the engine's validity for the total distance slid: the kinematic ground's slip estimate ½·Δt·∫|ag|dt = {estimate:.3e} m is {:.3} % of the total slid {slid:.4e} m (target {} %; measured on the shipped Northridge block against the exact reference at this rule: total slid +0.39 %, residual −0.76 %; docs/rapier-engine.md)",
+            "within the engine's validity for the total distance slid: the kinematic ground's error estimate K·PGA·Δt² = {estimate:.3e} m is {:.3} % of the total slid {slid:.4e} m (target {} %; measured on the five shipped records, μ 0.08–0.185, against the exact reference at 0.5 ms: total slid within 0.50 %, residual within 0.34 % for slides ≥ 1 cm; docs/rapier-engine.md)",
             100.0 * estimate / slid,
             100.0 * eps
         ));
     } else {
         findings.push(format!(
-            "outside the engine's validity for the total distance slid: the moving kinematic ground lets the stuck block slip about ½·Δt·∫|ag|dt = {estimate:.3e} m in all at the largest run of {MAX_BLOCK_STEPS} rapier steps (Δt = {dt_in:.3e} s), against a total slid of {slid:.3e} m and an accuracy target of {} %; the inertial-force route has no such slip (docs/rapier-engine.md)",
+            "outside the engine's validity for the total distance slid: the moving kinematic ground's error of the total slid, about K·PGA·Δt² = {estimate:.3e} m at the largest run of {MAX_BLOCK_STEPS} rapier steps (Δt = {dt_in:.3e} s), against a total slid of {slid:.3e} m and an accuracy target of {} %; the inertial-force route has no such error (docs/rapier-engine.md)",
             100.0 * eps
         ));
     }
     stride
 }
 
-/// Substeps of each rapier step when the rigid block's step rule splits the output step
-/// into `stride` rapier steps: the output step's substeps shared among them, at least 1
-/// (the solver's substep no coarser than at the output step). Measured on
+/// Substeps of each rapier step when the 3D block's step rule (`space.rs`, the plane
+/// block's first-order rule kept in plan) splits the output step into `stride` rapier
+/// steps: the output step's substeps shared among them, at least 1 (the solver's substep
+/// no coarser than at the output step). Measured in the plane, before the plane block took
+/// [`kinematic_block_solver`], on
 /// `cases/records/block-northridge.toml` (13 steps of 76.9 µs, kinematic ground, against
 /// the exact block reference): 1 substep gives total slid +0.39 %, residual −0.76 %, peak
 /// |sliding| −0.76 %, stop −0.25 ms, 2 episodes as the reference, in 1.49 s of CPU; 4

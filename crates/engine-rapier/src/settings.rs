@@ -42,6 +42,9 @@ pub struct RapierSettings {
     /// `substeps`: solver substeps per step (rapier's `num_solver_iterations`), 1…1000,
     /// default 4 (rapier's default).
     pub substeps: usize,
+    /// Whether the case sets `substeps` itself (a scene's rule may otherwise choose them:
+    /// the rigid block on a kinematic ground under a record takes one).
+    pub substeps_given: bool,
     /// `pgs_iterations`: Gauss–Seidel sweeps per substep (`num_internal_pgs_iterations`),
     /// 1…1000, default 1 (8 for a rocking body on feet, [`FOOT_ROCKING_SWEEPS`]).
     pub pgs_iterations: usize,
@@ -178,6 +181,7 @@ impl Default for RapierSettings {
     fn default() -> Self {
         Self {
             substeps: 4,
+            substeps_given: false,
             pgs_iterations: 1,
             friction: FrictionModel::Simplified,
             foot_mass_ratio: 1e-2,
@@ -346,8 +350,12 @@ impl RapierSettings {
         if !errors.is_empty() {
             return Err(errors);
         }
+        let substeps_given = case
+            .engine(ID)
+            .is_some_and(|r| r.options.contains_key("substeps"));
         Ok(Self {
             substeps: substeps as usize,
+            substeps_given,
             pgs_iterations: pgs as usize,
             friction,
             foot_mass_ratio: foot,
