@@ -207,19 +207,21 @@ impl Rapier {
                 )
             }
             Model::RigidBlock(b) => {
-                let ruled = drive == Drive::KinematicGround
-                    && settings.step_rule == StepRule::Scene
+                // On a kinematic ground under a record the solver is the block's own
+                // (also with `step_rule = "none"`, so a sweep's rungs converge as the
+                // case's run does); the step rule only with `step_rule = "scene"`.
+                let on_record = drive == Drive::KinematicGround
                     && matches!(
                         ex,
                         Excitation::GroundAcceleration(rockslide_core::case::Signal::Record { .. })
                     );
-                let stride = if ruled {
+                let stride = if on_record && settings.step_rule == StepRule::Scene {
                     block_kinematic_stride(case, b, &settings, dt, &mut described, &mut findings)
                 } else {
                     1
                 };
                 let dt_in = dt / stride as f64;
-                if ruled {
+                if on_record {
                     kinematic_block_solver(&mut settings);
                     let solver = settings.describe(dt);
                     described.splice(0..solver.len(), solver);
