@@ -67,15 +67,20 @@ pub struct Contact178 {
     trial: ContactState,
 }
 
+impl ContactState {
+    /// A closed, unstressed element's state: no slip, no displacement, no force.
+    pub const AT_REST: ContactState = ContactState {
+        slip: 0.0,
+        delta: Vector2::new(0.0, 0.0),
+        force: Vector2::new(0.0, 0.0),
+        status: Status::Stick,
+    };
+}
+
 impl Contact178 {
     /// A closed, unstressed element.
     pub fn new(kx: f64, kz: f64, mu: f64, bonded: bool) -> Self {
-        let s = ContactState {
-            slip: 0.0,
-            delta: Vector2::zeros(),
-            force: Vector2::zeros(),
-            status: Status::Stick,
-        };
+        let s = ContactState::AT_REST;
         Self {
             kx,
             kz,

@@ -1,7 +1,5 @@
 //! Energy bookkeeping of a rocking run from the engine's own element states.
 
-use nalgebra::Vector2;
-
 use super::element::{Contact178, ContactState, Status};
 use super::model::Model;
 use super::stepper::Snapshot;
@@ -69,12 +67,7 @@ impl EnergyBook {
         Self {
             prev: vec![
                 ElementEnergy {
-                    state: ContactState {
-                        slip: 0.0,
-                        delta: Vector2::zeros(),
-                        force: Vector2::zeros(),
-                        status: Status::Stick,
-                    },
+                    state: ContactState::AT_REST,
                     strain: 0.0,
                     springs: (false, false),
                 };

@@ -21,12 +21,6 @@ pub(crate) const ROW_VALUES: usize = 32;
 /// Fields a contact records (`CONTACT_FIELDS`).
 pub(crate) const FIELDS: usize = CONTACT_FIELDS.len();
 
-/// A contact's state as the fields a row records, in `CONTACT_FIELDS`' order.
-#[inline(always)]
-pub(crate) fn contact_fields(state: ContactState) -> [f64; FIELDS] {
-    [state.normal, state.tangential, state.slip, state.gap]
-}
-
 /// Where the recorder hands each row: the contacts' fields written into the sink's row as
 /// its loop over the supports finds them, the channel values written into the sink's
 /// row, then the row's time. A whole run ([`super::whole_run::WholeRun`]) keeps both where the row is
@@ -86,13 +80,8 @@ impl<S: StepSink + ?Sized> RowSink for Rows<'_, S> {
 
     #[inline]
     fn end_row(&mut self, t: f64, count: usize) {
-        for (state, &[normal, tangential, slip, gap]) in self.states.iter_mut().zip(&self.fields) {
-            *state = ContactState {
-                normal,
-                tangential,
-                slip,
-                gap,
-            };
+        for (state, &fields) in self.states.iter_mut().zip(&self.fields) {
+            *state = ContactState::from_fields(fields);
         }
         self.sink.row(t, &self.values[..count], &self.states);
     }
@@ -214,7 +203,7 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
             let (count, contact) =
                 slider_row(m, s, &drive, moves_ground, &mut check, sink.values());
             if let Some(fields) = sink.contacts().first_mut() {
-                *fields = contact_fields(contact);
+                *fields = contact.fields();
             }
             sink.end_row(s.t, count);
         });

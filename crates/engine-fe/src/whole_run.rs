@@ -11,7 +11,7 @@
 //! and times with one copy each. The values are the ones recorded, so the trace is the
 //! same bit for bit as `TraceSink`'s.
 
-use super::recording::{FIELDS, ROW_VALUES, RowSink, contact_fields};
+use super::recording::{FIELDS, ROW_VALUES, RowSink};
 use rockslide_core::trace::{ContactBlock, ContactState, Trace};
 use rockslide_engine_api::StepSink;
 
@@ -158,7 +158,7 @@ impl StepSink for WholeRun {
     fn row(&mut self, t: f64, values: &[f64], contacts: &[ContactState]) {
         debug_assert_eq!(values.len(), self.trace.channels.len());
         for (fields, state) in self.contacts().iter_mut().zip(contacts) {
-            *fields = contact_fields(*state);
+            *fields = state.fields();
         }
         if self.blocked {
             self.values[self.filled][..values.len()].copy_from_slice(values);

@@ -71,8 +71,21 @@ pub struct ContactState {
 }
 
 impl ContactState {
-    fn fields(&self) -> [f64; 4] {
+    /// The state as the fields a row records, in [`CONTACT_FIELDS`]' order.
+    #[inline(always)]
+    pub fn fields(&self) -> [f64; CONTACT_FIELDS.len()] {
         [self.normal, self.tangential, self.slip, self.gap]
+    }
+
+    /// The state from a row's fields, in [`CONTACT_FIELDS`]' order.
+    #[inline(always)]
+    pub fn from_fields([normal, tangential, slip, gap]: [f64; CONTACT_FIELDS.len()]) -> Self {
+        Self {
+            normal,
+            tangential,
+            slip,
+            gap,
+        }
     }
 }
 
