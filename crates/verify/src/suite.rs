@@ -116,19 +116,22 @@ pub struct ReferenceResult {
 }
 
 impl ReferenceResult {
-    /// A reference from its solution, fine trace and response quantities, with no output
-    /// rows yet; the event times are read off the solution's exact quantities.
+    /// A reference from its solution, fine trace and the response quantities read off
+    /// that trace, with no output rows yet: the solution's exact quantities, read once,
+    /// replace the readings they also give, and its exact instants are kept as the event
+    /// times.
     pub(crate) fn from_parts(
         solution: Box<dyn ExactSolution>,
         trace: Trace,
-        responses: Responses,
+        mut responses: Responses,
     ) -> Self {
-        let event_times = solution
-            .exact_quantities()
-            .into_iter()
-            .filter(|(k, _)| quantity_def(k).is_some_and(|d| d.is_time()))
-            .map(|(_, v)| v)
-            .collect();
+        let mut event_times = Vec::new();
+        for (k, v) in solution.exact_quantities() {
+            if quantity_def(k).is_some_and(|d| d.is_time()) {
+                event_times.push(v);
+            }
+            responses.insert(k, v);
+        }
         ReferenceResult {
             solution,
             output: Trace::with_channels(&trace.channels, 0),
@@ -170,11 +173,8 @@ impl ReferenceResult {
             .filter(|(_, row)| row.is_none())
             .map(|(&t, _)| t)
             .collect();
+        // (a solution samples the same channels at any time: the fine trace's)
         let fresh = rockslide_reference::sample(self.solution.as_ref(), &missing);
-        if fresh.channels != fine.channels {
-            // (every solution samples the same channels at any time)
-            return rockslide_reference::sample(self.solution.as_ref(), times);
-        }
         let mut out = Trace::with_channels(&fine.channels, times.len());
         out.time.extend_from_slice(times);
         let mut next_fresh = 0;
@@ -237,15 +237,9 @@ fn rows_at(trace: &Trace, times: &[f64], channels: &[&'static Quantity]) -> Opti
     let kept_channels: Vec<&'static Quantity> = kept.iter().map(|(c, _)| *c).collect();
     let mut out = Trace::with_channels(&kept_channels, times.len());
     let mut row = vec![0.0; kept.len()];
-    let mut at = 0;
-    for &t in times {
-        // times ascend: walk forward from the last row (O(rows + times) in all)
-        while trace.time.get(at).is_some_and(|&x| x < t) {
-            at += 1;
-        }
-        if trace.time.get(at).map(|x| x.to_bits()) != Some(t.to_bits()) {
-            return None;
-        }
+    // times ascend: one walk over both (O(rows + times) in all)
+    for (&t, at) in times.iter().zip(rows_of(&trace.time, times)) {
+        let at = at?;
         for (v, (_, column)) in row.iter_mut().zip(&kept) {
             *v = column[at];
         }
@@ -445,23 +439,10 @@ pub fn execute_streamed(
 /// Solve and sample the reference of a case.
 pub fn solve_reference(case: &Case) -> Result<ReferenceResult, String> {
     let solution = rockslide_reference::for_case(case)?;
-    let n = ((case.run.duration / 1e-5).ceil() as usize).clamp(1000, 200_000);
+    let n = crate::sweep::plan::fine_grid(case.run.duration);
     let trace = rockslide_reference::sample_uniform(solution.as_ref(), case.run.duration, n);
-    let mut resp = responses(&trace);
-    let mut event_times = Vec::new();
-    for (k, v) in solution.exact_quantities() {
-        if quantity_def(k).is_some_and(|d| d.is_time()) {
-            event_times.push(v);
-        }
-        resp.insert(k, v);
-    }
-    Ok(ReferenceResult {
-        solution,
-        output: Trace::with_channels(&trace.channels, 0),
-        trace,
-        responses: resp,
-        event_times,
-    })
+    let resp = responses(&trace);
+    Ok(ReferenceResult::from_parts(solution, trace, resp))
 }
 
 /// Run a whole case: plan, run engines in parallel, reference, responses, checks.

@@ -398,10 +398,7 @@ fn sweep_reference(case: &Case) -> Result<ReferenceResult, String> {
             read.columns.push(col.clone());
         }
     }
-    let mut resp = responses(&read);
-    for (k, v) in solution.exact_quantities() {
-        resp.insert(k, v);
-    }
+    let resp = responses(&read);
     Ok(ReferenceResult::from_parts(solution, trace, resp))
 }
 
