@@ -93,10 +93,7 @@ fn map_table(st: &StabilityResult) -> Table {
     for l in st.rows() {
         let mut row: Vec<Cell> = vec![l.clone().into()];
         for &x in &dts {
-            let hit = st
-                .runs
-                .iter()
-                .find(|r| r.row_label() == l && r.dt_over_t == x);
+            let hit = st.runs.iter().find(|r| r.is_row(&l) && r.dt_over_t == x);
             row.push(hit.map_or(Cell::plain(""), map_cell));
         }
         t.rows.push(row);

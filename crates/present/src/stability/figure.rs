@@ -70,7 +70,7 @@ pub(crate) fn figure(st: &StabilityResult) -> Option<String> {
                 .light_line_style(GRID)
                 .draw()?;
             for r in &st.runs {
-                let Some(i) = rows.iter().position(|x| *x == r.row_label()) else {
+                let Some(i) = rows.iter().position(|x| r.is_row(x)) else {
                     continue;
                 };
                 let y = (n - 1 - i) as f64;

@@ -31,6 +31,9 @@ use rockslide_core::trace::q;
 use rockslide_engine_api::Engine;
 use rockslide_reference::ExactSolution;
 
+/// Between a row label's case and series ([`StabilityRun::row_label`]).
+const ROW_SEPARATOR: &str = " · ";
+
 /// Folder of the study in the output folder, and the typed result's file name in it.
 pub const DIR: &str = "stability";
 /// File name of the typed result in [`DIR`].
@@ -65,16 +68,18 @@ pub struct StabilityRun {
 }
 
 impl StabilityRun {
-    /// Row label of the map: `case · engine/variant`. (Built by hand, not with
-    /// `format!`: the map's table asks for it once per run and row.)
+    /// Row label of the map: `case · engine/variant`.
     pub fn row_label(&self) -> String {
-        const SEPARATOR: &str = " · ";
-        let mut label =
-            String::with_capacity(self.case.len() + SEPARATOR.len() + self.series.len());
-        label.push_str(&self.case);
-        label.push_str(SEPARATOR);
-        label.push_str(&self.series);
+        format!("{}{ROW_SEPARATOR}{}", self.case, self.series)
+    }
+
+    /// Whether this run belongs to the map's row `label` ([`Self::row_label`]), compared
+    /// without building the label: the map's table and figure ask once per run and row.
+    pub fn is_row(&self, label: &str) -> bool {
         label
+            .strip_prefix(self.case.as_str())
+            .and_then(|rest| rest.strip_prefix(ROW_SEPARATOR))
+            == Some(self.series.as_str())
     }
 }
 
@@ -641,6 +646,32 @@ impl Bisection<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A run belongs to the row its label names and to no other, the label never built.
+    #[test]
+    fn a_run_is_in_the_row_of_its_label_only() {
+        let run = StabilityRun {
+            case: "mu-large".into(),
+            series: "fe/single".into(),
+            dt: 0.01,
+            dt_over_t: 0.05,
+            class: Class::Accurate,
+            error: None,
+            energy: Err(String::new()),
+        };
+        assert!(run.is_row(&run.row_label()));
+        assert!(run.is_row("mu-large · fe/single"));
+        for other in [
+            "mu-large · fe/double",
+            "mu-large · fe/single ",
+            "mu-larg · fe/single",
+            "mu-large  fe/single",
+            "mu-large · ",
+            "",
+        ] {
+            assert!(!run.is_row(other), "{other:?}");
+        }
+    }
 
     /// The stability scenes shipped with the repository.
     fn scenes(names: &[&str]) -> Vec<Case> {
