@@ -120,12 +120,7 @@ impl Extremes {
 impl Passes {
     /// [`Extremes`] of column `key`, computed once.
     fn extremes(&mut self, key: &'static str, col: &[f64]) -> Extremes {
-        if let Some((_, e)) = self.extremes.iter().find(|(k, _)| *k == key) {
-            return *e;
-        }
-        let e = Extremes::of(col);
-        self.extremes.push((key, e));
-        e
+        *once(&mut self.extremes, key, || Extremes::of(col))
     }
 
     /// [`slipping_steps`] of column `key` (planar with `slide_y`), computed once.
@@ -136,16 +131,10 @@ impl Passes {
         slide: &[f64],
         slide_y: Option<&[f64]>,
     ) -> &[bool] {
-        let id = (key, slide_y.is_some());
-        let at = match self.slipping.iter().position(|(k, _)| *k == id) {
-            Some(at) => at,
-            None => {
-                self.slipping
-                    .push((id, slipping_steps(time, slide, slide_y)));
-                self.slipping.len() - 1
-            }
-        };
-        &self.slipping[at].1
+        once(&mut self.slipping, (key, slide_y.is_some()), || {
+            slipping_steps(time, slide, slide_y)
+        })
+        .as_slice()
     }
 
     /// The slip window of column `key` ([`window`]), off its (non-planar) slipping steps.
@@ -160,15 +149,20 @@ impl Passes {
 
     /// [`sign_changes`] of column `key`, computed once.
     fn sign_changes(&mut self, time: &[f64], key: &'static str, col: &[f64]) -> &[f64] {
-        let at = match self.crossings.iter().position(|(k, _)| *k == key) {
-            Some(at) => at,
-            None => {
-                self.crossings.push((key, sign_changes(time, col)));
-                self.crossings.len() - 1
-            }
-        };
-        &self.crossings[at].1
+        once(&mut self.crossings, key, || sign_changes(time, col)).as_slice()
     }
+}
+
+/// The value `kept` holds for `key`, made by `make` and kept the first time it is asked.
+fn once<K: PartialEq, V>(kept: &mut Vec<(K, V)>, key: K, make: impl FnOnce() -> V) -> &V {
+    let at = match kept.iter().position(|(k, _)| *k == key) {
+        Some(at) => at,
+        None => {
+            kept.push((key, make()));
+            kept.len() - 1
+        }
+    };
+    &kept[at].1
 }
 
 /// First and last instants of slipping, detected from the slip *rate* (never from
