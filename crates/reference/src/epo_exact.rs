@@ -363,19 +363,24 @@ impl ExactSolution for EpoExact {
     }
 
     fn sample_into(&self, times: &[f64], trace: &mut rockslide_core::trace::Trace) {
-        let mut cursor = crate::cursor::Cursor::default();
         // the segment's constants, kept while the times stay in it
         let mut constants: Option<(usize, (f64, f64))> = None;
-        crate::each_row(trace, times, |t, out| {
-            let i = cursor.partition_point(&self.segments, |s| s.t0 <= t);
-            let seg = self.segment_from(i);
-            let c = match constants {
-                Some((j, c)) if j == i => c,
-                _ => self.segment_constants(seg),
-            };
-            constants = Some((i, c));
-            self.write(seg, c, t, out);
-        });
+        let segments = &self.segments;
+        crate::each_row_by_piece(
+            trace,
+            times,
+            segments,
+            |s, t| s.t0 <= t,
+            |i, t, out| {
+                let seg = self.segment_from(i);
+                let c = match constants {
+                    Some((j, c)) if j == i => c,
+                    _ => self.segment_constants(seg),
+                };
+                constants = Some((i, c));
+                self.write(seg, c, t, out);
+            },
+        );
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {

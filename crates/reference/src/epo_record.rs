@@ -505,11 +505,15 @@ impl ExactSolution for EpoRecord {
     }
 
     fn sample_into(&self, times: &[f64], trace: &mut rockslide_core::trace::Trace) {
-        let mut cursor = crate::cursor::Cursor::default();
-        crate::each_row(trace, times, |t, out| {
-            let i = cursor.partition_point(&self.segments, |s| s.t0 <= t);
-            self.write(self.segment_from(i), t, out);
-        });
+        crate::each_row_by_piece(
+            trace,
+            times,
+            &self.segments,
+            |s, t| s.t0 <= t,
+            |i, t, out| {
+                self.write(self.segment_from(i), t, out);
+            },
+        );
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {

@@ -239,11 +239,15 @@ impl ExactSolution for HousnerRocking {
     }
 
     fn sample_into(&self, times: &[f64], trace: &mut rockslide_core::trace::Trace) {
-        let mut cursor = crate::cursor::Cursor::default();
-        crate::each_row(trace, times, |t, out| {
-            let i = cursor.partition_point(&self.samples, |s| s.0 <= t);
-            self.write(self.state_at(i, t).0, out);
-        });
+        crate::each_row_by_piece(
+            trace,
+            times,
+            &self.samples,
+            |s, t| s.0 <= t,
+            |i, t, out| {
+                self.write(self.state_at(i, t).0, out);
+            },
+        );
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {

@@ -50,6 +50,24 @@ pub trait ExactSolution: Send + Sync {
     }
 }
 
+/// Push one row a time to `trace` at ascending `times`, as [`each_row`], for a solution
+/// stored in pieces: `write(i, t, row)` gets `i`, the partition point of `pieces` at `t`
+/// (`starts_by(piece, t)` is true on the pieces that start at or before `t`), found by a
+/// [`cursor::Cursor`] walking on from the last one — the index a binary search gives.
+fn each_row_by_piece<T>(
+    trace: &mut Trace,
+    times: &[f64],
+    pieces: &[T],
+    starts_by: impl Fn(&T, f64) -> bool,
+    mut write: impl FnMut(usize, f64, &mut [f64]),
+) {
+    let mut cursor = cursor::Cursor::default();
+    each_row(trace, times, |t, out| {
+        let i = cursor.partition_point(pieces, |p| starts_by(p, t));
+        write(i, t, out);
+    });
+}
+
 /// Push one row a time to `trace`, its values written by `eval(t, row)`.
 fn each_row(trace: &mut Trace, times: &[f64], mut eval: impl FnMut(f64, &mut [f64])) {
     let mut row = vec![0.0; trace.channels.len()];

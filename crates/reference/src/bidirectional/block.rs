@@ -303,12 +303,17 @@ impl ExactSolution for PlanBlock {
     }
 
     fn sample_into(&self, times: &[f64], trace: &mut rockslide_core::trace::Trace) {
-        let mut cursor = crate::cursor::Cursor::default();
-        crate::each_row(trace, times, |t, out| {
-            let i = cursor.partition_point(&self.samples, |s| s.t <= t);
-            let (s, v, _) = super::integrate::hermite_at(&self.samples, i, t);
-            write_plan(out, s, s, v);
-        });
+        let samples = &self.samples;
+        crate::each_row_by_piece(
+            trace,
+            times,
+            samples,
+            |s, t| s.t <= t,
+            |i, t, out| {
+                let (s, v, _) = super::integrate::hermite_at(samples, i, t);
+                write_plan(out, s, s, v);
+            },
+        );
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {

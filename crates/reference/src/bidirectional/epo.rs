@@ -23,7 +23,6 @@ use super::block::{SLIP_EPISODES_RESPONSE, peak_resultant, plan_channels, write_
 use super::drive::PlanDrive;
 use super::integrate::{Sample, dot, grid, hermite, hermite_at, locate, march, norm, rk4};
 use crate::ExactSolution;
-use crate::cursor::Cursor;
 use rockslide_core::case::{NormalForce, Oscillator};
 use rockslide_core::trace::{Quantity, Trace};
 
@@ -371,12 +370,17 @@ impl ExactSolution for PlanEpo {
     }
 
     fn sample_into(&self, times: &[f64], trace: &mut Trace) {
-        let mut cursor = Cursor::default();
-        crate::each_row(trace, times, |t, out| {
-            let i = cursor.partition_point(&self.samples, |s| s.t <= t);
-            let (u, v, p) = hermite_at(&self.samples, i, t);
-            write_plan(out, u, p, v);
-        });
+        let samples = &self.samples;
+        crate::each_row_by_piece(
+            trace,
+            times,
+            samples,
+            |s, t| s.t <= t,
+            |i, t, out| {
+                let (u, v, p) = hermite_at(samples, i, t);
+                write_plan(out, u, p, v);
+            },
+        );
     }
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {

@@ -220,7 +220,6 @@ impl VerticalEpo {
     fn state_with(&self, t: f64, (d1, av1): (f64, f64)) -> (EpoState, f64) {
         let (i, ti) = grid_interval(&self.inputs, t);
         let start = self.history.states[i];
-        let av = av1;
         let mut state = start;
         let h = t - ti;
         if h > 0.0 && i < self.inputs.intervals() {
@@ -237,7 +236,7 @@ impl VerticalEpo {
         }
         let normal = match self.c.kz {
             Some(kz) => kz * state.dz.max(0.0),
-            None => self.c.m * (self.c.g + av),
+            None => self.c.m * (self.c.g + av1),
         };
         (state, normal)
     }
