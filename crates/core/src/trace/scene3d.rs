@@ -597,9 +597,9 @@ pub fn forces(trace: &Trace, i: usize, ns: u64, g: &Geometry, p: &Pose, label: &
     })
 }
 
-/// A CDR message written field by field into a buffer, with the alignment [`encode`]
-/// gives each type (counted past the 4-byte encapsulation header): the per-frame
-/// messages of the 3D view without building a JSON value first.
+/// A CDR message written field by field into a buffer, each type at its alignment
+/// (counted past the 4-byte encapsulation header): the primitives of [`encode`], and of
+/// the per-frame messages of the 3D view written without a JSON value first.
 struct CdrOut<'a>(&'a mut Vec<u8>);
 
 impl CdrOut<'_> {
@@ -1134,37 +1134,22 @@ fn put_msg(m: &Msg, v: &Value, buf: &mut Vec<u8>) {
 
 fn put_field(ty: &Ty, v: Option<&Value>, buf: &mut Vec<u8>) {
     let int = |v: Option<&Value>| v.and_then(Value::as_i64).unwrap_or(0);
+    let mut out = CdrOut(buf);
     match ty {
-        Ty::F64 => {
-            align(buf, 8);
-            let x = match v {
-                Some(Value::Null) => f64::NAN,
-                v => v.and_then(Value::as_f64).unwrap_or(0.0),
-            };
-            buf.extend_from_slice(&x.to_le_bytes());
-        }
-        Ty::U8 => buf.push(int(v) as u8),
-        Ty::Bool => buf.push(u8::from(v.and_then(Value::as_bool).unwrap_or(false))),
-        Ty::I32 => {
-            align(buf, 4);
-            buf.extend_from_slice(&(int(v) as i32).to_le_bytes());
-        }
-        Ty::U32 => {
-            align(buf, 4);
-            buf.extend_from_slice(&(int(v) as u32).to_le_bytes());
-        }
-        Ty::Str => {
-            let text = v.and_then(Value::as_str).unwrap_or("");
-            align(buf, 4);
-            buf.extend_from_slice(&(text.len() as u32 + 1).to_le_bytes());
-            buf.extend_from_slice(text.as_bytes());
-            buf.push(0);
-        }
+        // a JSON number is finite, and `null` is NaN: what `CdrOut::f64` writes
+        Ty::F64 => out.f64(match v {
+            Some(Value::Null) => f64::NAN,
+            v => v.and_then(Value::as_f64).unwrap_or(0.0),
+        }),
+        Ty::U8 => out.0.push(int(v) as u8),
+        Ty::Bool => out.0.push(u8::from(v.and_then(Value::as_bool).unwrap_or(false))),
+        Ty::I32 => out.u32(int(v) as i32 as u32),
+        Ty::U32 => out.u32(int(v) as u32),
+        Ty::Str => out.str(v.and_then(Value::as_str).unwrap_or("")),
         Ty::Msg(m) => put_msg(m, v.unwrap_or(&Value::Null), buf),
         Ty::Seq(t) => {
             let items = v.and_then(Value::as_array).map_or(&[][..], Vec::as_slice);
-            align(buf, 4);
-            buf.extend_from_slice(&(items.len() as u32).to_le_bytes());
+            out.u32(items.len() as u32);
             for item in items {
                 put_field(t, Some(item), buf);
             }
