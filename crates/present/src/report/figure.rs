@@ -269,35 +269,16 @@ fn relative_d(points: &[(i64, i64)]) -> String {
     d
 }
 
-/// Numbers separated by a space, or by nothing before a minus sign.
+/// Numbers separated by a space, or by nothing before a minus sign; each in decimal as
+/// `{n}` writes it (`itoa`, without the formatting machinery: a figure's paths are
+/// thousands of them).
 fn push_numbers(d: &mut String, numbers: &[i64]) {
+    let mut digits = itoa::Buffer::new();
     for (k, &n) in numbers.iter().enumerate() {
         if k > 0 && n >= 0 {
             d.push(' ');
         }
-        push_integer(d, n);
-    }
-}
-
-/// An integer in decimal, as `{n}` formats it, without the formatting machinery (a
-/// figure's paths are thousands of them).
-fn push_integer(d: &mut String, n: i64) {
-    let mut digits = [0u8; 20];
-    let mut start = digits.len();
-    let mut rest = n.unsigned_abs();
-    loop {
-        start -= 1;
-        digits[start] = b'0' + (rest % 10) as u8;
-        rest /= 10;
-        if rest == 0 {
-            break;
-        }
-    }
-    if n < 0 {
-        d.push('-');
-    }
-    for &b in &digits[start..] {
-        d.push(char::from(b));
+        d.push_str(digits.format(n));
     }
 }
 
@@ -434,14 +415,19 @@ mod tests {
     }
 
     #[test]
-    fn integers_are_written_as_formatting_writes_them() {
+    fn numbers_are_written_as_formatting_writes_them() {
         let mut values = vec![0, 1, -1, 9, 10, -10, 99, 100, 12345, i64::MAX, i64::MIN];
         values.extend((-1200..1200).map(|k| k * 7));
-        for n in values {
-            let mut d = String::new();
-            push_integer(&mut d, n);
-            assert_eq!(d, n.to_string());
+        let mut d = String::new();
+        push_numbers(&mut d, &values);
+        let mut expected = String::new();
+        for (k, n) in values.iter().enumerate() {
+            if k > 0 && *n >= 0 {
+                expected.push(' ');
+            }
+            expected.push_str(&format!("{n}"));
         }
+        assert_eq!(d, expected);
     }
 
     #[test]
