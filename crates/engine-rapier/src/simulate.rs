@@ -70,7 +70,7 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
     let body = &mut rig.world.bodies[rig.structure];
     body.reset_forces(false);
     if rig.applied_supports {
-        apply_support_forces(body, &rig.supports, rig.supports_cm);
+        apply_support_forces(body, &rig.supports);
     }
     match (drive, ex) {
         (Drive::AppliedForce, Excitation::MassAcceleration(s)) => {
@@ -105,19 +105,13 @@ fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: 
 /// The applied-force supports' resultant on the structure for the next step: each
 /// support's force at its anchor (state after the last step), summed into one force at
 /// the CM and a torque about Z. The anchors are the ones [`supports_after_step`] computed
-/// at the body's pose after the last step (`cm`), which has not moved since; before the
-/// first step they are computed from the body here.
-fn apply_support_forces(body: &mut RigidBody, supports: &[Support], cm: Option<Vector>) {
-    let (cm, rotation) = match cm {
-        Some(cm) => (cm, None),
-        None => (body.translation(), Some(angle_z(body).sin_cos())),
-    };
+/// at the body's pose after the last step (before the first, the ones the rig was built
+/// with at its initial pose): the body has not moved since.
+fn apply_support_forces(body: &mut RigidBody, supports: &[Support]) {
+    let cm = body.translation();
     let (mut fx, mut fy, mut torque) = (0.0, 0.0, 0.0);
     for sup in supports {
-        let (ax, ay) = match rotation {
-            Some(rotation) => sup.anchor_at(cm, rotation),
-            None => sup.anchor,
-        };
+        let (ax, ay) = sup.anchor;
         let (sx, sy) = sup.force_on_body();
         fx += sx;
         fy += sy;
@@ -351,7 +345,6 @@ fn supports_after_step(rig: &mut Rig, ground_height: f64) {
     let rotation = phi.sin_cos();
     let gx = rig.world.bodies[rig.ground].translation().x;
     let gy = ground_height;
-    rig.supports_cm = Some(cm);
     for sup in rig.supports.iter_mut() {
         let (ax, ay) = sup.anchor_at(cm, rotation);
         sup.anchor = (ax, ay);

@@ -56,11 +56,6 @@ pub struct Rig {
     /// Whether the supports act as forces the engine applies to the structure before
     /// each step ([`rocking_body_applied_force`]) rather than through joints.
     pub applied_supports: bool,
-    /// The structure's centre of mass at which the supports' anchors
-    /// ([`Support::anchor`]) were last computed, after the last step: the pose the
-    /// applied-force supports act at before the next one (the body does not move between
-    /// steps). `None` until the first step.
-    pub supports_cm: Option<Vector>,
 }
 
 impl Rig {
@@ -83,7 +78,6 @@ impl Rig {
             slider: None,
             supports: Vec::new(),
             applied_supports: false,
-            supports_cm: None,
         }
     }
 }
@@ -195,7 +189,6 @@ pub fn oscillator(osc: &Oscillator, s: &RapierSettings, dt: f64, kind: GroundKin
         slider: None,
         supports: Vec::new(),
         applied_supports: false,
-        supports_cm: None,
     }
 }
 
@@ -383,7 +376,6 @@ pub fn rocking_body(r: &RockingBody, s: &RapierSettings, dt: f64, kind: GroundKi
         slider: None,
         supports: Vec::new(),
         applied_supports: false,
-        supports_cm: None,
     }
 }
 
@@ -427,7 +419,8 @@ pub struct Support {
     pub normal: f64,
     /// Anchor minus ground point (δx, δz) after the last step, m.
     pub delta: (f64, f64),
-    /// The anchor's world position after the last step (x, y), m.
+    /// The anchor's world position after the last step (x, y), m (at the start, at the
+    /// body's initial pose for the applied-force supports, which act there).
     pub anchor: (f64, f64),
 }
 
@@ -588,6 +581,8 @@ pub fn rocking_body_applied_force(
     let n = r.supports;
     let preload = r.weight() / (n as f64 * r.contact.kz);
     let structure = insert_rocking_structure(&mut world, r, preload);
+    let body = &world.bodies[structure];
+    let (cm, rotation) = (body.translation(), angle_z(body).sin_cos());
     let supports = r
         .support_positions()
         .into_iter()
@@ -604,6 +599,10 @@ pub fn rocking_body_applied_force(
             normal: r.weight() / n as f64,
             delta: (0.0, -preload),
             anchor: (0.0, 0.0),
+        })
+        .map(|sup| Support {
+            anchor: sup.anchor_at(cm, rotation),
+            ..sup
         })
         .collect();
     Rig {

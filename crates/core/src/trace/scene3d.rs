@@ -1142,7 +1142,9 @@ fn put_field(ty: &Ty, v: Option<&Value>, buf: &mut Vec<u8>) {
             v => v.and_then(Value::as_f64).unwrap_or(0.0),
         }),
         Ty::U8 => out.0.push(int(v) as u8),
-        Ty::Bool => out.0.push(u8::from(v.and_then(Value::as_bool).unwrap_or(false))),
+        Ty::Bool => out
+            .0
+            .push(u8::from(v.and_then(Value::as_bool).unwrap_or(false))),
         Ty::I32 => out.u32(int(v) as i32 as u32),
         Ty::U32 => out.u32(int(v) as u32),
         Ty::Str => out.str(v.and_then(Value::as_str).unwrap_or("")),
