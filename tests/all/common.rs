@@ -5,6 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
 use rockslide::case::{Case, load_case, parse_case};
+use rockslide::engine::Run;
 
 /// Path of a file in the repository.
 pub fn repo(rel: &str) -> PathBuf {
@@ -18,10 +19,26 @@ pub fn case(name: &str) -> Case {
 
 /// A shipped case with text replaced (`from` must occur).
 pub fn case_with(name: &str, from: &str, to: &str) -> Case {
+    case_edited(name, &[(from, to)])
+}
+
+/// A shipped case with each `(from, to)` replaced in turn (each `from` must occur).
+pub fn case_edited(name: &str, edits: &[(&str, &str)]) -> Case {
     let path = repo(&format!("cases/{name}.toml"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    assert!(text.contains(from), "{from:?} not in {name}");
-    parse_case(&path, &text.replace(from, to)).expect("modified case loads")
+    let mut text = std::fs::read_to_string(&path).unwrap();
+    for (from, to) in edits {
+        assert!(text.contains(from), "{from:?} not in {name}");
+        text = text.replace(from, to);
+    }
+    parse_case(&path, &text).expect("modified case loads")
+}
+
+/// The value of the first of a run's stated settings whose name starts with `key`.
+pub fn setting<'r>(run: &'r Run, key: &str) -> Option<&'r str> {
+    run.settings
+        .iter()
+        .find(|(name, _)| name.starts_with(key))
+        .map(|(_, value)| value.as_str())
 }
 
 /// Observed order of accuracy between two errors at steps dt1 > dt2.

@@ -53,13 +53,7 @@ fn runs_record_their_settings() {
     let c = with_options("contact_hz = 120.0\npgs_iterations = 3");
     assert!(Rapier.check_options(&c).is_empty());
     let run = Rapier.run(&c, "fixed-ground", 0.01).unwrap();
-    let get = |k: &str| {
-        run.settings
-            .iter()
-            .find(|(n, _)| n.starts_with(k))
-            .map(|(_, v)| v.clone())
-            .unwrap_or_default()
-    };
+    let get = |k: &str| crate::common::setting(&run, k).unwrap_or_default();
     assert_eq!(get("dt"), "0.01");
     assert_eq!(get("substeps"), "16");
     assert_eq!(get("solver iterations"), "3");

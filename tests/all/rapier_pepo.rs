@@ -116,10 +116,7 @@ fn settings_and_validity_are_stated() {
     let c = case("pepo-mass-accel");
     let run = Rapier.run(&c, "applied-force", 0.01).unwrap();
     let setting = |key: &str| {
-        run.settings
-            .iter()
-            .find(|(k, _)| k.starts_with(key))
-            .map(|(_, v)| v.clone())
+        crate::common::setting(&run, key)
             .unwrap_or_else(|| panic!("setting {key} missing: {:?}", run.settings))
     };
     assert_eq!(setting("accuracy target"), "0.01");

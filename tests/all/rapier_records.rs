@@ -14,6 +14,8 @@ use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
 use rockslide::suite::solve_reference;
 
+use crate::common::{case_edited, setting};
+
 /// (case, residual tolerance as (relative, absolute m), peak |u| relative tolerance).
 /// Measured (kinematic / inertial): Loma Prieta (residual 28.8 mm) +0.011 / +0.013 %,
 /// peak −0.000 / +0.004 %; Northridge (4.35 mm) −0.060 / −0.056 %, peak −0.030 / −0.032 %;
@@ -90,21 +92,14 @@ fn block_on_kinematic_ground_meets_the_target_with_its_step_rule() {
     );
     assert!(slid.abs() < 0.0025, "total slid {slid}");
     assert!(residual.abs() < 0.0003, "residual {residual}");
-    let setting = |key: &str| {
-        run.settings
-            .iter()
-            .find(|(k, _)| k.starts_with(key))
-            .map(|(_, v)| v.clone())
-            .unwrap_or_default()
-    };
     // Δt ≤ √(0.01·S/(K·PGA)) = √(0.01·13.644 mm / (100·2.942 m/s²)) = 681 µs → 2 steps
     // per 1 ms, each of one substep at 240 Hz.
-    assert_eq!(setting("substeps"), "1");
-    assert!(setting("contact softness (moving body)").starts_with("240,"));
+    assert_eq!(setting(&run, "substeps"), Some("1"));
+    assert!(setting(&run, "contact softness (moving body)").is_some_and(|v| v.starts_with("240,")));
     assert!(
-        setting("rapier step").contains("(stride 2)"),
-        "{run:?}",
-        run = run.settings
+        setting(&run, "rapier step").is_some_and(|v| v.contains("(stride 2)")),
+        "{:?}",
+        run.settings
     );
     assert!(
         run.findings
@@ -119,22 +114,18 @@ fn block_on_kinematic_ground_meets_the_target_with_its_step_rule() {
 /// Δt ≤ √(1e-4·S/(K·PGA)) = 6.0 µs, beyond the budget's 22.2 µs.
 #[test]
 fn block_step_rule_beyond_its_budget_says_outside_validity() {
-    let path = Path::new("cases/records/block-northridge.toml");
-    let text = std::fs::read_to_string(path)
-        .unwrap()
-        .replace("[engines.rapier]", "[engines.rapier]\naccuracy = 1e-4")
-        .replace("\nmu = 0.185", "\nmu = 0.28");
-    let c = rockslide::case::parse_case(path, &text).unwrap();
+    let c = case_edited(
+        "records/block-northridge",
+        &[
+            ("[engines.rapier]", "[engines.rapier]\naccuracy = 1e-4"),
+            ("\nmu = 0.185", "\nmu = 0.28"),
+        ],
+    );
     let run = Rapier
         .run(&c, "kinematic-ground", c.dt_for("rapier"))
         .unwrap();
     // 10^6 rapier steps over 22 s of 1 ms output steps: 45 per output step.
-    let step = run
-        .settings
-        .iter()
-        .find(|(k, _)| k.starts_with("rapier step"))
-        .map(|(_, v)| v.clone())
-        .unwrap();
+    let step = setting(&run, "rapier step").unwrap();
     assert!(step.contains("(stride 45)"), "{step}");
     assert!(run.findings.iter().any(|f| f.starts_with(
         "outside the engine's validity for the total distance slid: the moving kinematic ground's error of the total slid, about"
@@ -148,46 +139,29 @@ fn block_step_rule_beyond_its_budget_says_outside_validity() {
 /// `substeps` or `contact_hz` keeps its own.
 #[test]
 fn block_solver_on_a_kinematic_ground_holds_without_the_step_rule() {
-    let path = Path::new("cases/records/block-northridge.toml");
-    let text = std::fs::read_to_string(path)
-        .unwrap()
-        .replace("[engines.rapier]", "[engines.rapier]\nstep_rule = \"none\"");
-    let c = rockslide::case::parse_case(path, &text.replace("duration = 22.0", "duration = 0.1"))
-        .unwrap();
+    let no_rule = ("[engines.rapier]", "[engines.rapier]\nstep_rule = \"none\"");
+    let short = ("duration = 22.0", "duration = 0.1");
+    let c = case_edited("records/block-northridge", &[no_rule, short]);
     let run = Rapier
         .run(&c, "kinematic-ground", c.dt_for("rapier"))
         .unwrap();
-    let setting = |key: &str| {
-        run.settings
-            .iter()
-            .find(|(k, _)| k.starts_with(key))
-            .map(|(_, v)| v.clone())
-            .unwrap_or_default()
-    };
-    assert_eq!(setting("substeps"), "1");
-    assert!(setting("contact softness (moving body)").starts_with("240,"));
+    assert_eq!(setting(&run, "substeps"), Some("1"));
+    assert!(setting(&run, "contact softness (moving body)").is_some_and(|v| v.starts_with("240,")));
     assert_eq!(
-        setting("rapier step"),
-        "",
+        setting(&run, "rapier step"),
+        None,
         "no step rule: {:?}",
         run.settings
     );
-    let own = text
-        .replace(
-            "[engines.rapier]",
-            "[engines.rapier]\nsubsteps = 4\ncontact_hz = 30",
-        )
-        .replace("duration = 22.0", "duration = 0.1");
-    let c = rockslide::case::parse_case(path, &own).unwrap();
+    let own = (
+        "[engines.rapier]",
+        "[engines.rapier]\nsubsteps = 4\ncontact_hz = 30",
+    );
+    let c = case_edited("records/block-northridge", &[no_rule, own, short]);
     let run = Rapier
         .run(&c, "kinematic-ground", c.dt_for("rapier"))
         .unwrap();
-    let substeps = run.settings.iter().find(|(k, _)| k == "substeps").unwrap();
-    assert_eq!(substeps.1, "4");
-    let hz = run
-        .settings
-        .iter()
-        .find(|(k, _)| k.starts_with("contact softness (moving body)"))
-        .unwrap();
-    assert!(hz.1.starts_with("30,"), "{hz:?}");
+    assert_eq!(setting(&run, "substeps"), Some("4"));
+    let hz = setting(&run, "contact softness (moving body)");
+    assert!(hz.is_some_and(|v| v.starts_with("30,")), "{hz:?}");
 }
