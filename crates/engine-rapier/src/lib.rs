@@ -130,12 +130,13 @@ impl Rapier {
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
-        let mut settings = RapierSettings::from_case(case).map_err(|mut e| e.remove(0))?;
         let drive = match variant {
             variant::KINEMATIC_GROUND => Drive::KinematicGround,
             variant::INERTIAL_FORCE => Drive::InertialForce,
             _ => Drive::AppliedForce,
         };
+        let kinematic = drive == Drive::KinematicGround;
+        let settings = RapierSettings::for_run(case, kinematic).map_err(|mut e| e.remove(0))?;
         if let Some(spatial) = case.scene.spatial() {
             return space::run(case, spatial, drive, (variant, dt), settings, None, sink);
         }
@@ -208,29 +209,27 @@ impl Rapier {
             }
             Model::RigidBlock(b) => {
                 // On a kinematic ground under a record the solver is the block's own
-                // (also with `step_rule = "none"`, so a sweep's rungs converge as the
-                // case's run does); the step rule only with `step_rule = "scene"`.
-                let on_record = drive == Drive::KinematicGround
-                    && matches!(
-                        ex,
-                        Excitation::GroundAcceleration(rockslide_core::case::Signal::Record { .. })
-                    );
+                // (`RapierSettings::for_run`, also with `step_rule = "none"`, so a sweep's
+                // rungs converge as the case's run does); the step rule only with
+                // `step_rule = "scene"`.
+                let on_record = settings::kinematic_block_on_record(case, kinematic);
                 let stride = if on_record && settings.step_rule == StepRule::Scene {
-                    block_kinematic_stride(case, b, &settings, dt, &mut described, &mut findings)
+                    // the pilot runs on the inertial-force route, with that route's settings
+                    let pilot =
+                        RapierSettings::for_run(case, false).map_err(|mut e| e.remove(0))?;
+                    let ruled = (&settings, &pilot);
+                    block_kinematic_stride(case, b, ruled, dt, &mut described, &mut findings)
                 } else {
                     1
                 };
                 let dt_in = dt / stride as f64;
                 if on_record {
-                    kinematic_block_solver(&mut settings);
-                    let solver = settings.describe(dt);
-                    described.splice(0..solver.len(), solver);
                     described.push((
                         "solver (block on a kinematic ground under a record)".into(),
                         format!(
                             "{} substep(s) per rapier step, contacts at {} Hz unless the case sets them: the ground's velocity changes once a step and friction takes only μ·N·Δt/substeps of it in the first substep, so more substeps let the stuck block slip; a stiffer contact than rapier's 30 Hz keeps the block from tilting under the friction's moment (docs/rapier-engine.md)",
                             settings.substeps,
-                            settings.contact_hz.unwrap_or(KINEMATIC_BLOCK_CONTACT_HZ)
+                            settings.contact_hz.unwrap_or(settings::KINEMATIC_BLOCK_CONTACT_HZ)
                         ),
                     ));
                 }
@@ -620,50 +619,26 @@ pub const MAX_BLOCK_STEPS: usize = 1_000_000;
 /// a margin.
 pub const KINEMATIC_BLOCK_K: f64 = 100.0;
 
-/// Contact natural frequency of the rigid block on a moving kinematic ground under a
-/// record, Hz (rapier's default for a contact with a moving body is 30 Hz). The soft
-/// contact lets the block sink g/ω² (0.28 mm at 30 Hz) and tilt under the friction's
-/// moment, and the tilt's back and forth counts as sliding: measured on the Northridge
-/// block at 1 ms and one substep, residual −0.85 % at 30 Hz, −0.12 % at 120 Hz, −0.07 %
-/// at 240 Hz, −0.06 % at 1000 Hz (total slid +1.05, +0.83, +0.84, +0.85 %); at 0.5 ms
-/// 240 and 480 Hz agree within 0.04 % of the slid on all fifteen record runs.
-pub const KINEMATIC_BLOCK_CONTACT_HZ: f64 = 240.0;
-
-/// The rapier solver of the rigid block on a moving kinematic ground under a record,
-/// unless the case sets it: one substep per rapier step and a
-/// [`KINEMATIC_BLOCK_CONTACT_HZ`] contact. A kinematic ground's velocity changes once
-/// per step, and friction can absorb only μ·N·Δt/substeps of that change in the first
-/// substep: with several substeps the stuck block slips behind the ground every step
-/// (measured on the Northridge block at 1 ms: total slid +1.05 % at 1 substep, +1.83 %
-/// at 2, +2.87 % at 4, +3.74 % at 8).
-fn kinematic_block_solver(settings: &mut RapierSettings) {
-    if !settings.substeps_given {
-        settings.substeps = 1;
-    }
-    if settings.contact_hz.is_none() {
-        settings.contact_hz = Some(KINEMATIC_BLOCK_CONTACT_HZ);
-    }
-}
-
 /// The rigid block's step rule on a moving kinematic ground under a recorded ground
-/// acceleration: at one substep and a stiff contact ([`kinematic_block_solver`]) the
+/// acceleration: at one substep and a stiff contact ([`RapierSettings::for_run`]) the
 /// total distance slid is off by about K·PGA·Δt² ([`KINEMATIC_BLOCK_K`]), so Δt is
 /// chosen with that estimate within the accuracy target of the total slid S,
 /// Δt ≤ √(ε·S/(K·PGA)). S is measured by a pilot run on the inertial-force route at the
-/// output step (+0.17 % on the Northridge block at 1 ms). Returns rapier steps per output
+/// output step, with that route's settings (`pilot`; +0.17 % on the Northridge block at
+/// 1 ms). Returns rapier steps per output
 /// step, capped so that the run takes at most [`MAX_BLOCK_STEPS`]; beyond it the run says
 /// it is outside the engine's validity, with the estimate.
 fn block_kinematic_stride(
     case: &Case,
     b: &rockslide_core::case::RigidBlock,
-    settings: &RapierSettings,
+    (settings, pilot): (&RapierSettings, &RapierSettings),
     dt: f64,
     described: &mut Vec<(String, String)>,
     findings: &mut Vec<String>,
 ) -> usize {
     let ex = &case.scene.excitation;
     let duration = case.run.duration;
-    let pilot_rig = world::rigid_block(b, settings, dt, world::GroundKind::Fixed);
+    let pilot_rig = world::rigid_block(b, pilot, dt, world::GroundKind::Fixed);
     let mut path = rows::PathLength::of(rockslide_core::trace::q::SLIDE.key, None);
     simulate::run_block(
         pilot_rig,
@@ -712,7 +687,7 @@ fn block_kinematic_stride(
 /// block's first-order rule kept in plan) splits the output step into `stride` rapier
 /// steps: the output step's substeps shared among them, at least 1 (the solver's substep
 /// no coarser than at the output step). Measured in the plane, before the plane block took
-/// [`kinematic_block_solver`], on
+/// its own solver ([`RapierSettings::for_run`]), on
 /// `cases/records/block-northridge.toml` (13 steps of 76.9 µs, kinematic ground, against
 /// the exact block reference): 1 substep gives total slid +0.39 %, residual −0.76 %, peak
 /// |sliding| −0.76 %, stop −0.25 ms, 2 episodes as the reference, in 1.49 s of CPU; 4
