@@ -90,8 +90,8 @@ fn block_on_kinematic_ground_meets_the_target_with_its_step_rule() {
         100.0 * slid,
         100.0 * residual
     );
-    assert!(slid.abs() < 0.0025, "total slid {slid}");
-    assert!(residual.abs() < 0.0003, "residual {residual}");
+    assert!(slid.abs() < 0.002, "total slid {slid}");
+    assert!(residual.abs() < 0.00015, "residual {residual}");
     // Δt ≤ √(0.01·S/(K·PGA)) = √(0.01·13.644 mm / (100·2.942 m/s²)) = 681 µs → 2 steps
     // per 1 ms, each of one substep at 240 Hz.
     assert_eq!(setting(&run, "substeps"), Some("1"));
