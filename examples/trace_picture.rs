@@ -132,6 +132,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let run = Run {
         engine: "fe",
         variant: "exact".into(),
+        arrangement: Default::default(),
         dt: 1e-3,
         settings: Vec::new(),
         stats: rockslide::engine::SolverStats::default(),

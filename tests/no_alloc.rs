@@ -126,9 +126,9 @@ fn measured_on(id: &str, name: &str, case: &Case) -> Vec<(String, u64, u64, u64)
         .into_iter()
         .map(|variant| {
             // A first run warms whatever is set up once per process (lazy tables).
-            allocations(engine.as_ref(), case, variant, t);
-            let (short, steps) = allocations(engine.as_ref(), case, variant, t);
-            let (long, steps_long) = allocations(engine.as_ref(), case, variant, 2.0 * t);
+            allocations(engine.as_ref(), case, variant.name, t);
+            let (short, steps) = allocations(engine.as_ref(), case, variant.name, t);
+            let (long, steps_long) = allocations(engine.as_ref(), case, variant.name, 2.0 * t);
             assert_eq!(steps_long, 2 * steps, "{id}/{variant}: the long run is twice as long");
             eprintln!("{id}/{variant} on {name}: {short} allocations in {steps} steps, {long} in {steps_long}");
             (variant.to_string(), short, long, steps)
@@ -290,9 +290,9 @@ fn assert_streamed_memory_bounded(id: &str, name: &str, case: &Case, duration: f
     assert!(engine.streams_natively(), "{id}");
     for variant in engine.variants(&case.scene).expect("runs the case") {
         // A first run warms whatever is set up once per process (lazy tables).
-        streamed_peak(engine.as_ref(), case, variant, duration);
-        let (short, rows) = streamed_peak(engine.as_ref(), case, variant, duration);
-        let (long, rows_long) = streamed_peak(engine.as_ref(), case, variant, 10.0 * duration);
+        streamed_peak(engine.as_ref(), case, variant.name, duration);
+        let (short, rows) = streamed_peak(engine.as_ref(), case, variant.name, duration);
+        let (long, rows_long) = streamed_peak(engine.as_ref(), case, variant.name, 10.0 * duration);
         eprintln!(
             "{id}/{variant} on {name} streamed: peak {short} bytes for {rows} rows, {long} for {rows_long}"
         );

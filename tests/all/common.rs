@@ -34,11 +34,11 @@ pub fn case_edited(name: &str, edits: &[(&str, &str)]) -> Case {
 }
 
 /// The value of the first of a run's stated settings whose name starts with `key`.
-pub fn setting<'r>(run: &'r Run, key: &str) -> Option<&'r str> {
+pub fn setting(run: &Run, key: &str) -> Option<String> {
     run.settings
         .iter()
-        .find(|(name, _)| name.starts_with(key))
-        .map(|(_, value)| value.as_str())
+        .find(|s| s.label().starts_with(key))
+        .map(|s| s.value_text())
 }
 
 /// Observed order of accuracy between two errors at steps dt1 > dt2.

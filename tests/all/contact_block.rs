@@ -118,6 +118,7 @@ fn run_with(states: &[ContactState]) -> Run {
     Run {
         engine: "fe",
         variant: "v".into(),
+        arrangement: Default::default(),
         dt: 0.1,
         settings: Vec::new(),
         stats: SolverStats::default(),

@@ -58,7 +58,7 @@ fn newmark_balance_closes_to_round_off_apart_from_contact_kinks() {
         let c = rpepo(name, Some(lines));
         for v in VARIANTS {
             let r = run(&c, v);
-            let h = audit(&r.trace, &c.scene, v).unwrap();
+            let h = audit(&r.trace, &c.scene, r.arrangement).unwrap();
             let s = h.summary();
             let (err, kink) = (
                 col(&r, q::ENERGY_ERROR.key),
@@ -96,7 +96,7 @@ fn hht_audit_shows_a_small_loss() {
         let c = rpepo(name, None);
         for v in VARIANTS {
             let r = run(&c, v);
-            let s = audit(&r.trace, &c.scene, v).unwrap().summary();
+            let s = audit(&r.trace, &c.scene, r.arrangement).unwrap().summary();
             let (err, kink) = (
                 col(&r, q::ENERGY_ERROR.key),
                 col(&r, q::ENERGY_NONSMOOTH.key),

@@ -23,8 +23,8 @@ impl Engine for Panicky {
     fn description(&self) -> &'static str {
         "panics on every run (test double)"
     }
-    fn variants(&self, _: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
-        Ok(vec!["only"])
+    fn variants(&self, _: &Scene) -> Result<Vec<engine::Variant>, NotApplicable> {
+        Ok(vec![engine::Variant::single("only")])
     }
     fn run(&self, _: &rockslide::case::Case, _: &str, dt: f64) -> Result<engine::Run, InputError> {
         panic!("element stiffness singular at dt = {dt}");

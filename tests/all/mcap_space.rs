@@ -279,6 +279,7 @@ fn grid_result(trace: Trace) -> CaseResult {
     let run = Run {
         engine: "fe",
         variant: "exact".into(),
+        arrangement: Default::default(),
         dt: 0.0005,
         settings: Vec::new(),
         stats: rockslide::engine::SolverStats::steps(trace.len() as u64),

@@ -462,8 +462,8 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
         let run = &m.metadata[&format!("run {}", r.label())];
         assert_eq!(run["status"], "completed");
         assert_eq!(run["dt_s"], format!("{:?}", r.dt));
-        for (k, v) in &r.settings {
-            assert_eq!(&run[&format!("setting.{k}")], v);
+        for s in &r.settings {
+            assert_eq!(run[&format!("setting.{}", s.label())], s.value_text());
         }
     }
     assert_eq!(
@@ -557,8 +557,9 @@ fn run(engine: &'static str, variant: &str, trace: Trace, status: RunStatus) -> 
     Run {
         engine,
         variant: variant.into(),
+        arrangement: Default::default(),
         dt: 0.0005,
-        settings: vec![("integrator".into(), "test".into())],
+        settings: vec![rockslide::engine::Setting::text("integrator", "test")],
         stats: rockslide::engine::SolverStats::steps(trace.len() as u64),
         findings: Vec::new(),
         trace,

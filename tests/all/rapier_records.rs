@@ -94,7 +94,7 @@ fn block_on_kinematic_ground_meets_the_target_with_its_step_rule() {
     assert!(residual.abs() < 0.00015, "residual {residual}");
     // Δt ≤ √(0.01·S/(K·PGA)) = √(0.01·13.644 mm / (100·2.942 m/s²)) = 681 µs → 2 steps
     // per 1 ms, each of one substep at 240 Hz.
-    assert_eq!(setting(&run, "substeps"), Some("1"));
+    assert_eq!(setting(&run, "substeps").as_deref(), Some("1"));
     assert!(setting(&run, "contact softness (moving body)").is_some_and(|v| v.starts_with("240,")));
     assert!(
         setting(&run, "rapier step").is_some_and(|v| v.contains("(stride 2)")),
@@ -145,7 +145,7 @@ fn block_solver_on_a_kinematic_ground_holds_without_the_step_rule() {
     let run = Rapier
         .run(&c, "kinematic-ground", c.dt_for("rapier"))
         .unwrap();
-    assert_eq!(setting(&run, "substeps"), Some("1"));
+    assert_eq!(setting(&run, "substeps").as_deref(), Some("1"));
     assert!(setting(&run, "contact softness (moving body)").is_some_and(|v| v.starts_with("240,")));
     assert_eq!(
         setting(&run, "rapier step"),
@@ -161,7 +161,10 @@ fn block_solver_on_a_kinematic_ground_holds_without_the_step_rule() {
     let run = Rapier
         .run(&c, "kinematic-ground", c.dt_for("rapier"))
         .unwrap();
-    assert_eq!(setting(&run, "substeps"), Some("4"));
+    assert_eq!(setting(&run, "substeps").as_deref(), Some("4"));
     let hz = setting(&run, "contact softness (moving body)");
-    assert!(hz.is_some_and(|v| v.starts_with("30,")), "{hz:?}");
+    assert!(
+        hz.as_deref().is_some_and(|v| v.starts_with("30,")),
+        "{hz:?}"
+    );
 }

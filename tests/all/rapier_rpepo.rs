@@ -187,8 +187,8 @@ cycles = 0.5"#,
     let h: f64 = run
         .settings
         .iter()
-        .find(|(k, _)| k.starts_with("rapier step"))
-        .and_then(|(_, v)| v.split_whitespace().next()?.parse().ok())
+        .find(|s| s.label().starts_with("rapier step"))
+        .and_then(|s| s.value_text().split_whitespace().next()?.parse().ok())
         .expect("the run states its rapier step");
     let omega_h = 2.0 * std::f64::consts::PI * f_pdelta * h;
     let predicted = 2.0 * (omega_h / 2.0).asin() / omega_h - 1.0;

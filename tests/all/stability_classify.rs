@@ -13,7 +13,7 @@ use rockslide::analysis::energy::audit;
 use rockslide::analysis::history_difference;
 use rockslide::analysis::stability::{Class, Criteria, classify};
 use rockslide::case::{Case, Scene, load_case};
-use rockslide::engine::{self, Engine, NotApplicable, Run};
+use rockslide::engine::{self, Arrangement, Engine, NotApplicable, Run};
 use rockslide::error::InputError;
 use rockslide::reference;
 use rockslide::run::guarded;
@@ -31,7 +31,7 @@ fn pc() -> Box<dyn Engine> {
 fn class_at(case: &Case, ratio: f64) -> Class {
     let t = characteristic_period(case).0;
     let run = pc().run(case, "paper", ratio * t).unwrap();
-    let energy = audit(&run.trace, &case.scene, "paper").unwrap();
+    let energy = audit(&run.trace, &case.scene, Arrangement::Single).unwrap();
     let exact = reference::for_case(case).unwrap();
     let at = reference::sample(exact.as_ref(), &run.trace.time);
     let error = history_difference(&run.trace, &at, "rel_disp").map(|e| e.0);
@@ -107,8 +107,8 @@ impl Engine for Panicky {
     fn description(&self) -> &'static str {
         "panics on every run (test double)"
     }
-    fn variants(&self, _: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
-        Ok(vec!["only"])
+    fn variants(&self, _: &Scene) -> Result<Vec<engine::Variant>, NotApplicable> {
+        Ok(vec![engine::Variant::single("only")])
     }
     fn run(&self, _: &Case, _: &str, dt: f64) -> Result<Run, InputError> {
         panic!("step matrix singular at dt = {dt}");

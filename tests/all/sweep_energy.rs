@@ -8,7 +8,7 @@ use std::path::Path;
 
 use rockslide::analysis::energy::audit;
 use rockslide::case::{Model, load_case};
-use rockslide::engine;
+use rockslide::engine::{self, Arrangement};
 use rockslide::suite::solve_reference;
 
 /// The exact references sampled every 1e-5 s: the audit's trapezoidal ∫F dx is the only
@@ -24,7 +24,9 @@ fn audit_closes_on_the_exact_references() {
     ] {
         let case = load_case(Path::new(file)).unwrap();
         let r = solve_reference(&case).unwrap();
-        let s = audit(&r.trace, &case.scene, "reference").unwrap().summary();
+        let s = audit(&r.trace, &case.scene, Arrangement::Single)
+            .unwrap()
+            .summary();
         assert!(s.relative_error < tol, "{file}: {}", s.relative_error);
     }
 }
@@ -35,7 +37,7 @@ fn audit_closes_on_the_exact_references() {
 fn friction_work_is_ru_times_the_slip_path() {
     let case = load_case(Path::new("cases/pepo-mass-accel.toml")).unwrap();
     let r = solve_reference(&case).unwrap();
-    let h = audit(&r.trace, &case.scene, "reference").unwrap();
+    let h = audit(&r.trace, &case.scene, Arrangement::Single).unwrap();
     let slide = r.trace.column("slide").unwrap();
     let path: f64 = slide.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
     let Model::Oscillator(o) = &case.scene.model else {
@@ -63,7 +65,9 @@ fn audit_closes_on_the_predictor_corrector_at_third_order() {
         .unwrap();
     let rel = |dt: f64| {
         let run = pc.run(&case, "paper", dt).unwrap();
-        let s = audit(&run.trace, &case.scene, "paper").unwrap().summary();
+        let s = audit(&run.trace, &case.scene, Arrangement::Single)
+            .unwrap()
+            .summary();
         // Energy is lost, never created, by this dissipative scheme.
         assert!(s.end_error >= 0.0, "created energy at Δt = {dt}");
         s.relative_error
@@ -80,7 +84,7 @@ fn audit_closes_on_the_predictor_corrector_at_third_order() {
 fn audit_names_what_it_lacks() {
     let case = load_case(Path::new("cases/pepo-mass-accel.toml")).unwrap();
     let t = rockslide::trace::Trace::with_channels(&[&rockslide::trace::q::REL_DISP], 0);
-    let why = audit(&t, &case.scene, "paper").unwrap_err();
+    let why = audit(&t, &case.scene, Arrangement::Single).unwrap_err();
     assert!(why.contains("force") && why.contains("resistance"), "{why}");
 }
 
@@ -99,13 +103,17 @@ fn audit_closes_on_the_rigid_block_references() {
     ] {
         let case = load_case(Path::new(file)).unwrap();
         let r = solve_reference(&case).unwrap();
-        let s = audit(&r.trace, &case.scene, "reference").unwrap().summary();
+        let s = audit(&r.trace, &case.scene, Arrangement::Single)
+            .unwrap()
+            .summary();
         assert!(s.relative_error < tol, "{file}: {}", s.relative_error);
     }
     // Newmark: no rocking, so no impact; the friction work is μ·M·g times the slip path.
     let case = load_case(Path::new("cases/rigid-sliding-block.toml")).unwrap();
     let r = solve_reference(&case).unwrap();
-    let s = audit(&r.trace, &case.scene, "reference").unwrap().summary();
+    let s = audit(&r.trace, &case.scene, Arrangement::Single)
+        .unwrap()
+        .summary();
     let slide = r.trace.column("slide").unwrap();
     let path: f64 = slide.windows(2).map(|w| (w[1] - w[0]).abs()).sum();
     let Model::RigidBlock(b) = &case.scene.model else {
@@ -117,7 +125,9 @@ fn audit_closes_on_the_rigid_block_references() {
     // Housner free rocking: the energy lost in impacts is what the potential lost.
     let case = load_case(Path::new("cases/housner-free-rocking.toml")).unwrap();
     let r = solve_reference(&case).unwrap();
-    let s = audit(&r.trace, &case.scene, "reference").unwrap().summary();
+    let s = audit(&r.trace, &case.scene, Arrangement::Single)
+        .unwrap()
+        .summary();
     assert!(
         s.impact > 0.25 * s.supplied,
         "impact {} of {}",
@@ -132,7 +142,7 @@ fn audit_closes_on_the_rigid_block_references() {
 fn rocking_body_audit_names_the_missing_channels() {
     let case = load_case(Path::new("cases/rpepo-mass-accel.toml")).unwrap();
     let t = rockslide::trace::Trace::default();
-    let why = audit(&t, &case.scene, "single").unwrap_err();
+    let why = audit(&t, &case.scene, Arrangement::Single).unwrap_err();
     assert!(
         why.contains("tangential force") && why.contains("energy_error"),
         "{why}"

@@ -7,7 +7,7 @@
 
 #![warn(missing_docs)]
 
-use rockslide_core::case::{Case, Scene};
+use rockslide_core::case::{Case, Invariant, Scene};
 use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactBlock, ContactState, Trace};
 use serde::{Deserialize, Serialize};
@@ -118,6 +118,161 @@ impl SolverStats {
     }
 }
 
+/// How a run's supports carry the base reaction: through one contact element, or through
+/// the double element's two in series (its intermediate node between them).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Arrangement {
+    /// One contact element per support.
+    #[default]
+    Single,
+    /// The double element: two contact elements in series per support.
+    Double,
+}
+
+/// One way an engine runs a scene: its name (as in case files, trace channels and
+/// reports: `single`, `kinematic-ground`, …) and what it models.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub struct Variant {
+    /// Name, unique within its engine.
+    pub name: &'static str,
+    /// How its supports carry the base reaction.
+    pub arrangement: Arrangement,
+}
+
+impl Variant {
+    /// A variant on single contact elements.
+    pub const fn single(name: &'static str) -> Variant {
+        Variant {
+            name,
+            arrangement: Arrangement::Single,
+        }
+    }
+    /// A variant on the double element.
+    pub const fn double(name: &'static str) -> Variant {
+        Variant {
+            name,
+            arrangement: Arrangement::Double,
+        }
+    }
+}
+
+impl std::fmt::Display for Variant {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name)
+    }
+}
+
+impl PartialEq<&str> for Variant {
+    fn eq(&self, other: &&str) -> bool {
+        self.name == *other
+    }
+}
+
+/// One setting that shaped a run, as its engine states it: a name, the unit its value is in,
+/// and a typed value, which the report renders ([`Setting::label`], [`Setting::value_text`]).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Setting {
+    /// What it is (`dt`, `integrator`, `substeps`, …).
+    pub name: String,
+    /// The unit of a numeric value (`s`, `N·s/m`), `None` where it has none.
+    pub unit: Option<&'static str>,
+    /// Its value.
+    pub value: SettingValue,
+}
+
+/// The value of a [`Setting`].
+#[derive(Debug, Clone, PartialEq)]
+pub enum SettingValue {
+    /// A number, shown in its shortest round-trip form.
+    Number(f64),
+    /// A number shown to a fixed number of decimals.
+    Rounded {
+        /// The value.
+        value: f64,
+        /// Decimals shown.
+        decimals: usize,
+    },
+    /// Several numbers of one kind (a tuple of parameters), shown `a, b, c`.
+    Numbers(Vec<f64>),
+    /// A count.
+    Count(u64),
+    /// A switch: `on` or `off`.
+    Switch(bool),
+    /// One of the values an option can take, or a named model.
+    Choice(&'static str),
+    /// A model or a rule described in words.
+    Text(String),
+}
+
+impl Setting {
+    /// A number in `unit`.
+    pub fn number(name: &str, unit: &'static str, value: f64) -> Setting {
+        Setting::new(name, Some(unit), SettingValue::Number(value))
+    }
+    /// A dimensionless number shown to `decimals` decimals.
+    pub fn rounded(name: &str, value: f64, decimals: usize) -> Setting {
+        Setting::new(name, None, SettingValue::Rounded { value, decimals })
+    }
+    /// A count.
+    pub fn count(name: &str, value: u64) -> Setting {
+        Setting::new(name, None, SettingValue::Count(value))
+    }
+    /// A switch.
+    pub fn switch(name: &str, on: bool) -> Setting {
+        Setting::new(name, None, SettingValue::Switch(on))
+    }
+    /// One of an option's values, or a named model.
+    pub fn choice(name: &str, value: &'static str) -> Setting {
+        Setting::new(name, None, SettingValue::Choice(value))
+    }
+    /// Words.
+    pub fn text(name: &str, value: impl Into<String>) -> Setting {
+        Setting::new(name, None, SettingValue::Text(value.into()))
+    }
+    /// A setting of any value.
+    pub fn new(name: &str, unit: Option<&'static str>, value: SettingValue) -> Setting {
+        Setting {
+            name: name.to_string(),
+            unit,
+            value,
+        }
+    }
+    /// Its name with its unit, as a table shows it: `dt [s]`.
+    pub fn label(&self) -> String {
+        match self.unit {
+            Some(u) => format!("{} [{u}]", self.name),
+            None => self.name.clone(),
+        }
+    }
+    /// Its value as a table shows it.
+    pub fn value_text(&self) -> String {
+        match &self.value {
+            SettingValue::Number(x) => format!("{x}"),
+            SettingValue::Rounded { value, decimals } => format!("{value:.decimals$}"),
+            SettingValue::Numbers(xs) => {
+                let shown: Vec<String> = xs.iter().map(|x| format!("{x}")).collect();
+                shown.join(", ")
+            }
+            SettingValue::Count(n) => n.to_string(),
+            SettingValue::Switch(on) => if *on { "on" } else { "off" }.into(),
+            SettingValue::Choice(c) => (*c).into(),
+            SettingValue::Text(t) => t.clone(),
+        }
+    }
+}
+
+impl From<(String, String)> for Setting {
+    /// A setting stated in words: (name with its unit, value).
+    fn from((name, value): (String, String)) -> Setting {
+        Setting {
+            name,
+            unit: None,
+            value: SettingValue::Text(value),
+        }
+    }
+}
+
 /// The outcome of one engine run: its trace, how it ended, and what it ran with.
 #[derive(Debug, Clone)]
 pub struct Run {
@@ -125,10 +280,12 @@ pub struct Run {
     pub engine: &'static str,
     /// Variant name.
     pub variant: String,
+    /// How the run's supports carry the base reaction (its variant's).
+    pub arrangement: Arrangement,
     /// Time step, s.
     pub dt: f64,
-    /// Every setting that shaped the result, as (name, value) — recorded in all outputs.
-    pub settings: Vec<(String, String)>,
+    /// Every setting that shaped the result — recorded in all outputs.
+    pub settings: Vec<Setting>,
     /// What the solver did, counted deterministically (steps, iterations, substeps).
     pub stats: SolverStats,
     /// Things the engine measured about itself worth reporting (Eq. 9 change, eigenfrequencies).
@@ -155,7 +312,7 @@ pub trait Engine: Send + Sync {
     /// One line saying what it is.
     fn description(&self) -> &'static str;
     /// The variants this engine can run for a scene, or why it cannot run it at all.
-    fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable>;
+    fn variants(&self, scene: &Scene) -> Result<Vec<Variant>, NotApplicable>;
     /// Problems with this engine's options in the case (located), checked at load time.
     fn check_options(&self, case: &Case) -> Vec<InputError> {
         let _ = case;
@@ -166,6 +323,38 @@ pub trait Engine: Send + Sync {
     /// 2D engine silently runs the planar part of a 3D scene.
     fn models_plan_motion(&self) -> bool {
         false
+    }
+    /// This engine's tolerance on a physical invariant, in the invariant's own measure
+    /// (measured on the shipped cases, with margin). By default the contact law held to
+    /// round-off ([`Invariant::round_off_limit`]).
+    fn invariant_limit(&self, invariant: Invariant) -> f64 {
+        invariant.round_off_limit()
+    }
+    /// Relative CPU cost of one time step of `variant` on `scene`, in units of 0.1 µs of
+    /// single-thread CPU: what the default run's scheduler orders cases by (costliest
+    /// first). An estimate, measured once; by default 1.
+    fn step_cost(&self, scene: &Scene, variant: &str) -> f64 {
+        let _ = (scene, variant);
+        1.0
+    }
+    /// The case as a work-precision sweep runs it: what the engine sets for itself where
+    /// the case is silent (so that a rung's run time is the method's own), each change
+    /// stated in words for the sweep's report. By default nothing.
+    fn for_sweep(&self, case: &mut Case) -> Vec<String> {
+        let _ = case;
+        Vec::new()
+    }
+    /// The case one rung of a sweep runs at time step `dt`, where it differs from the case
+    /// as the sweep runs it (e.g. the engine's own step made `dt`); `None`: unchanged.
+    fn at_rung(&self, case: &Case, dt: f64) -> Option<Case> {
+        let _ = (case, dt);
+        None
+    }
+    /// The case as the stability map runs it: the engine stepping at the map's time step,
+    /// so that its rows show the method's own stability limit, not a step rule's. By
+    /// default unchanged.
+    fn for_stability(&self, case: &mut Case) {
+        let _ = case;
     }
     /// Run one variant at time step `dt`. Divergence is a [`RunStatus`], never a panic.
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError>;

@@ -41,9 +41,10 @@ pub use modes::{Modes, eigenfrequencies};
 pub use options::{FeOptions, Integrator, Kinematics, Newton, OPTION_KEYS};
 pub use simulate::{simulate, simulate_into};
 
+use rockslide_core::case::OptionValue;
 use rockslide_core::case::{Case, Model as SceneModel, Scene};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink};
+use rockslide_engine_api::{Arrangement, Engine, NotApplicable, Run, StepSink, Variant};
 
 /// Variant names.
 pub mod variant {
@@ -65,29 +66,44 @@ impl Engine for Fe {
         "implicit penalty FE model: CONTA178-like contact elements, rigid body, Newmark/HHT with Newton–Raphson"
     }
 
-    fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+    fn variants(&self, scene: &Scene) -> Result<Vec<Variant>, NotApplicable> {
         vertical::check(scene)?;
-        if let Some(s) = scene.spatial() {
-            return space::variants(scene, s);
-        }
-        let double = match &scene.model {
-            SceneModel::Oscillator(o) => o.double.is_some(),
-            SceneModel::RockingBody(r) => r.double.is_some(),
-            SceneModel::RigidBlock(_) => {
-                return Err(NotApplicable(
-                    "the penalty FE model needs contact stiffnesses, and a rigid block on a rigid ground has none (penalty stiffness would be a modelling choice, not the scene)".into(),
-                ));
-            }
+        let names = match scene.spatial() {
+            Some(s) => space::variants(scene, s)?,
+            None => planar_variants(scene)?,
         };
-        Ok(if double {
-            vec![variant::SINGLE, variant::DOUBLE]
-        } else {
-            vec![variant::SINGLE]
-        })
+        Ok(names
+            .into_iter()
+            .map(|name| Variant {
+                name,
+                arrangement: arrangement(name),
+            })
+            .collect())
     }
 
     fn check_options(&self, case: &Case) -> Vec<InputError> {
         FeOptions::parse(case).1
+    }
+
+    /// Newton on a small system: 0.2–1.1 µs a step on the default run's cases.
+    fn step_cost(&self, _scene: &Scene, _variant: &str) -> f64 {
+        6.0
+    }
+
+    /// The rotational-inertia and P-Delta sensitivity reruns (four extra runs of a rocking
+    /// body) only feed the report: a sweep switches them off unless the case sets them.
+    fn for_sweep(&self, case: &mut Case) -> Vec<String> {
+        let section = case.engines.entry(self.id().to_string()).or_default();
+        if section.options.contains_key(options::SENSITIVITY) {
+            return Vec::new();
+        }
+        section
+            .options
+            .insert(options::SENSITIVITY.into(), OptionValue::Bool(false));
+        vec![format!(
+            "`[engines.fe] {} = false`: the FE engine's rotational-inertia and P-Delta sensitivity reruns (four extra runs of a rocking body) are not part of the method's cost",
+            options::SENSITIVITY
+        )]
     }
 
     fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
@@ -126,6 +142,33 @@ impl Engine for Fe {
 
     fn models_plan_motion(&self) -> bool {
         true
+    }
+}
+
+/// The variants of a planar scene: single, and double where the scene has the double element.
+fn planar_variants(scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+    let double = match &scene.model {
+        SceneModel::Oscillator(o) => o.double.is_some(),
+        SceneModel::RockingBody(r) => r.double.is_some(),
+        SceneModel::RigidBlock(_) => {
+            return Err(NotApplicable(
+            "the penalty FE model needs contact stiffnesses, and a rigid block on a rigid ground has none (penalty stiffness would be a modelling choice, not the scene)".into(),
+        ));
+        }
+    };
+    Ok(if double {
+        vec![variant::SINGLE, variant::DOUBLE]
+    } else {
+        vec![variant::SINGLE]
+    })
+}
+
+/// How a variant's supports carry the base reaction.
+fn arrangement(variant: &str) -> Arrangement {
+    if variant == variant::DOUBLE {
+        Arrangement::Double
+    } else {
+        Arrangement::Single
     }
 }
 

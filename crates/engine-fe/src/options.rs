@@ -7,6 +7,9 @@ use rockslide_core::error::InputError;
 
 const ID: &str = "fe";
 
+/// The option that switches the rotational-inertia and P-Delta sensitivity reruns.
+pub(crate) const SENSITIVITY: &str = "sensitivity";
+
 /// Every option key the engine understands.
 pub const OPTION_KEYS: &[&str] = &[
     "integrator",
@@ -17,7 +20,7 @@ pub const OPTION_KEYS: &[&str] = &[
     "kinematics",
     "p_delta",
     "rotational_inertia",
-    "sensitivity",
+    SENSITIVITY,
 ];
 
 /// Time integrator.
@@ -241,7 +244,7 @@ impl FeOptions {
                 }
                 o.rotational_inertia = Some(i);
             }
-            o.sensitivity = case.engine_bool(ID, "sensitivity", true)?;
+            o.sensitivity = case.engine_bool(ID, SENSITIVITY, true)?;
             Ok(())
         })());
         (o, errors)

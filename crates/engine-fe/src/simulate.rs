@@ -72,8 +72,9 @@ fn simulate_with<S: RowSink + ?Sized>(
     Ok(Run {
         engine: "fe",
         variant: variant.to_string(),
+        arrangement: crate::arrangement(variant),
         dt,
-        settings,
+        settings: settings.into_iter().map(Into::into).collect(),
         stats: SolverStats {
             steps: counters.steps,
             substeps_per_step: None,

@@ -17,7 +17,7 @@ pub use vertical::NormalStepper;
 
 use rockslide_core::case::{Case, Excitation, Model, Scene};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink};
+use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink, Variant};
 
 /// The paper's spreadsheet method.
 pub struct PredictorCorrector;
@@ -46,7 +46,7 @@ impl Engine for PredictorCorrector {
         "the paper's predictor-corrector SDOF method (average acceleration, one predicting and one correcting pass)"
     }
 
-    fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+    fn variants(&self, scene: &Scene) -> Result<Vec<Variant>, NotApplicable> {
         match &scene.model {
             Model::Oscillator(_) => {}
             other => {
@@ -64,7 +64,10 @@ impl Engine for PredictorCorrector {
                 variant::GROUND_ACCEL,
             ],
             Excitation::GroundAcceleration(_) => vec![variant::GROUND_ACCEL],
-        })
+        }
+        .into_iter()
+        .map(Variant::single)
+        .collect())
     }
 
     fn check_options(&self, case: &Case) -> Vec<InputError> {

@@ -4,7 +4,9 @@ use super::resistance::resistance;
 use crate::vertical::NormalStepper;
 use rockslide_core::case::{Excitation, Jump, Oscillator, Vertical};
 use rockslide_core::trace::{ContactBlock, ContactState, Trace, q};
-use rockslide_engine_api::{Run, RunStatus, SolverStats, StepSink, TraceSink, step_count};
+use rockslide_engine_api::{
+    Arrangement, Run, RunStatus, Setting, SolverStats, StepSink, TraceSink, step_count,
+};
 
 /// How support motion enters the equation of motion (paper Eqs 10–12).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -291,22 +293,20 @@ fn integrate<S: StepSink + ?Sized>(
             "ground acceleration, velocity jumps as impulses"
         }
     };
-    let mut settings: Vec<(String, String)> = vec![
-        ("dt [s]".into(), format!("{dt}")),
-        ("dt/T".into(), format!("{:.4}", dt / osc.period())),
-        (
-            "passes".into(),
-            "1 predicting + 1 correcting (paper steps 1–6)".into(),
-        ),
-        ("damping C [N·s/m]".into(), format!("{c}")),
-        ("support route".into(), route.into()),
+    let mut settings = vec![
+        Setting::number("dt", "s", dt),
+        Setting::rounded("dt/T", dt / osc.period(), 4),
+        Setting::text("passes", "1 predicting + 1 correcting (paper steps 1–6)"),
+        Setting::number("damping C", "N·s/m", c),
+        Setting::choice("support route", route),
     ];
     if let Some(ns) = &normal_stepper {
-        settings.push(("normal force".into(), ns.describe()));
+        settings.push(Setting::text("normal force", ns.describe()));
     }
     Run {
         engine: "predictor-corrector",
         variant: variant.to_string(),
+        arrangement: Arrangement::Single,
         dt,
         settings,
         stats: SolverStats::steps(rows - 1),

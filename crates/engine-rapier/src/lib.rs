@@ -17,6 +17,7 @@
 
 mod contact_forces;
 mod ground;
+mod ladder;
 mod rows;
 mod settings;
 mod simulate;
@@ -33,9 +34,11 @@ pub use simulate::Drive;
 pub use space_rocking::RockingGrid;
 pub use world::{SUPPORT_DAMPING_SHARE, Support};
 
-use rockslide_core::case::{Case, Excitation, Model, Scene};
+use rockslide_core::case::{Case, Excitation, Invariant, Model, Scene};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Engine, NotApplicable, Run, SolverStats, StepSink, step_count};
+use rockslide_engine_api::{
+    Arrangement, Engine, NotApplicable, Run, SolverStats, StepSink, Variant, step_count,
+};
 
 /// The rapier rigid-body engine.
 pub struct Rapier;
@@ -61,7 +64,7 @@ impl Engine for Rapier {
         "rigid bodies with Coulomb contact (rapier3d-f64); elastic-plastic supports as capped spring joints (oscillator) or engine-computed support forces (rocking body)"
     }
 
-    fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+    fn variants(&self, scene: &Scene) -> Result<Vec<Variant>, NotApplicable> {
         if scene.spatial().is_some() {
             space::check(scene)?;
         } else {
@@ -82,7 +85,30 @@ impl Engine for Rapier {
             Excitation::GroundDisplacement(_) | Excitation::GroundAcceleration(_) => {
                 vec![variant::KINEMATIC_GROUND, variant::INERTIAL_FORCE]
             }
-        })
+        }
+        .into_iter()
+        .map(Variant::single)
+        .collect())
+    }
+
+    fn invariant_limit(&self, invariant: Invariant) -> f64 {
+        ladder::invariant_limit(invariant)
+    }
+
+    fn step_cost(&self, scene: &Scene, variant: &str) -> f64 {
+        ladder::step_cost(scene, variant)
+    }
+
+    fn for_sweep(&self, case: &mut Case) -> Vec<String> {
+        ladder::sweep_notes(case)
+    }
+
+    fn at_rung(&self, case: &Case, dt: f64) -> Option<Case> {
+        ladder::at_rung(case, dt)
+    }
+
+    fn for_stability(&self, case: &mut Case) {
+        ladder::at_own_step(case)
     }
 
     fn check_options(&self, case: &Case) -> Vec<InputError> {
@@ -361,8 +387,9 @@ impl Rapier {
         Ok(Run {
             engine: "rapier",
             variant: variant.to_string(),
+            arrangement: Arrangement::Single,
             dt,
-            settings: described,
+            settings: described.into_iter().map(Into::into).collect(),
             stats: SolverStats {
                 substeps_per_step: Some(settings.substeps as u64),
                 ..SolverStats::steps(outcome.steps)

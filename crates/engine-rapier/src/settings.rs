@@ -7,7 +7,8 @@ use rapier3d_f64::prelude::{FrictionModel, IntegrationParameters, SpringCoeffici
 use rockslide_core::case::{Case, Excitation, Model, Oscillator, Signal};
 use rockslide_core::error::InputError;
 
-const ID: &str = "rapier";
+/// The engine's id, as in `[engines.rapier]`.
+pub(crate) const ID: &str = "rapier";
 
 /// How an oscillator's elastic-plastic contact is built.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -767,8 +767,9 @@ pub fn run(
     Ok(Run {
         engine: "rapier",
         variant: variant.to_string(),
+        arrangement: rockslide_engine_api::Arrangement::Single,
         dt,
-        settings: said.described,
+        settings: said.described.into_iter().map(Into::into).collect(),
         stats: SolverStats {
             substeps_per_step: Some(settings.substeps as u64),
             ..SolverStats::steps(outcome.steps)

@@ -25,7 +25,7 @@ use std::sync::Mutex;
 use rockslide_core::case::{Case, EXTERNAL_VARIANT, External, read_external_participant};
 use rockslide_core::error::{InputError, InputErrors};
 use rockslide_core::response::quantity_def;
-use rockslide_engine_api::{Run, RunStatus, SolverStats};
+use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
 
 use crate::analysis::{Check, QUANTITY_KEYS, Responses, Verdict, discrepancy_percent};
 use crate::invariants::InvariantCheck;
@@ -121,24 +121,22 @@ fn external_run(case: &Case, e: &External) -> Run {
     Run {
         engine: intern(&e.label),
         variant: EXTERNAL_VARIANT.to_string(),
+        arrangement: Arrangement::Single,
         dt: step,
         settings: vec![
-            ("program".into(), e.program.clone()),
-            ("element".into(), e.element.clone()),
-            ("file".into(), e.file.display().to_string()),
-            (
-                "time grid".into(),
+            Setting::text("program", e.program.clone()),
+            Setting::text("element", e.element.clone()),
+            Setting::text("file", e.file.display().to_string()),
+            Setting::text(
+                "time grid",
                 format!(
                     "{} samples from {t0} s to {t1} s, largest output step {step} s",
                     trace.len()
                 ),
             ),
-            ("channels".into(), channels.join(", ")),
-            ("comparison".into(), INTERPOLATION.into()),
-            (
-                "solver statistics".into(),
-                "not known (steps: output intervals)".into(),
-            ),
+            Setting::text("channels", channels.join(", ")),
+            Setting::text("comparison", INTERPOLATION),
+            Setting::text("solver statistics", "not known (steps: output intervals)"),
         ],
         stats: SolverStats::steps(trace.len().saturating_sub(1) as u64),
         findings,
@@ -204,7 +202,7 @@ fn default_basis<'a>(
     }
     runs.iter()
         .zip(run_responses)
-        .find(|(r, _)| r.engine == "fe" && r.status.completed())
+        .find(|(r, _)| r.engine == crate::registry::EXTERNAL_BASIS_ENGINE && r.status.completed())
         .map(|(r, resp)| (r.label(), resp))
 }
 

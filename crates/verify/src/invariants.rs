@@ -26,11 +26,11 @@
 //! A trace without a contact block (a run recorded before it existed) falls back to the
 //! trace's sums; stick/slip and dissipation are then measured on one-contact scenes only.
 //!
-//! Each is gated with a tolerance per engine ([`limit`]), measured on the shipped cases
+//! Each is gated with a tolerance per engine (`Engine::invariant_limit`), measured on the shipped cases
 //! (docs in `cases/README.md`); an engine's known violation on a case is declared there as
 //! `[[expected_violation]]` and is then reported with its size but does not fail the gate.
 
-use rockslide_core::case::{Case, Model};
+use rockslide_core::case::{Case, Invariant, Model};
 use rockslide_core::trace::{ContactBlock, ContactState, Trace};
 use rockslide_engine_api::Run;
 
@@ -38,14 +38,12 @@ use rockslide_engine_api::Run;
 const STUCK_MARGIN: f64 = 1e-3;
 /// Floor of the slip path in `stick_slip` and `dissipation`, m.
 const SLIP_FLOOR: f64 = 1e-3;
-/// rapier's tolerance on penetration, m (measured: see `cases/README.md`).
-const RAPIER_PENETRATION: f64 = 1e-3;
 
 /// One invariant measured on one run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct InvariantCheck {
-    /// Invariant key (`friction_bound`, ...).
-    pub invariant: &'static str,
+    /// The invariant.
+    pub invariant: Invariant,
     /// The run, `engine/variant`.
     pub run: String,
     /// The worst measured value (the invariant's own dimensionless measure).
@@ -80,48 +78,21 @@ impl InvariantCheck {
     }
 }
 
-/// The invariant keys, in report order.
-pub const INVARIANTS: &[&str] = &[
-    "friction_bound",
-    "compression",
-    "stick_slip",
-    "dissipation",
-    "energy_balance",
-    "penetration",
-];
-
 /// What each invariant means, in one line (for reports).
-pub fn meaning(invariant: &str) -> &'static str {
+pub fn meaning(invariant: Invariant) -> &'static str {
     match invariant {
-        "friction_bound" => {
+        Invariant::FrictionBound => {
             "max (|T| − μN) / (μ·M·g): the tangential force within the friction cone"
         }
-        "compression" => "max (−N) / (M·g): compression-only contact",
-        "stick_slip" => "slip while |T| < μN (stuck) / slip path: no creep while stuck",
-        "dissipation" => "negative friction work / |friction work|: friction dissipates",
-        "energy_balance" => "max |energy error| / peak input work: the energy balance closes",
-        "penetration" => {
+        Invariant::Compression => "max (−N) / (M·g): compression-only contact",
+        Invariant::StickSlip => "slip while |T| < μN (stuck) / slip path: no creep while stuck",
+        Invariant::Dissipation => "negative friction work / |friction work|: friction dissipates",
+        Invariant::EnergyBalance => {
+            "max |energy error| / peak input work: the energy balance closes"
+        }
+        Invariant::Penetration => {
             "max (−gap − compliance·N) per contact, m: no penetration beyond the contact model"
         }
-        _ => "",
-    }
-}
-
-/// The tolerance of an engine on an invariant, measured on every shipped case with margin:
-/// the predictor-corrector and fe hold the contact law to round-off; rapier's
-/// velocity-level solver with warm-starting and substeps to a few per cent, and its soft
-/// rigid contacts sink into the ground by up to half a millimetre (see `cases/README.md`).
-pub fn limit(engine: &str, invariant: &str) -> f64 {
-    match (engine, invariant) {
-        ("rapier", "penetration") => RAPIER_PENETRATION,
-        (_, "penetration") => 1e-9,
-        ("rapier", "friction_bound") => 0.05,
-        ("rapier", "compression") => 0.05,
-        ("rapier", "stick_slip") => 0.05,
-        ("rapier", "dissipation") => 0.02,
-        ("rapier", "energy_balance") => 0.05,
-        (_, "energy_balance") => 1e-2,
-        _ => 1e-9,
     }
 }
 
@@ -203,8 +174,8 @@ pub fn check_run(case: &Case, run: &Run) -> Vec<InvariantCheck> {
     let per_contact = !block.is_empty();
     let summed = contact_series(case, &run.trace);
     let time = &run.trace.time;
-    let mut found: Vec<(&'static str, Measure)> = Vec::new();
-    let mut put = |key: &'static str, m: Option<Measure>| {
+    let mut found: Vec<(Invariant, Measure)> = Vec::new();
+    let mut put = |key: Invariant, m: Option<Measure>| {
         if let Some(m) = m {
             found.push((key, m));
         }
@@ -215,7 +186,7 @@ pub fn check_run(case: &Case, run: &Run) -> Vec<InvariantCheck> {
             let (w, at) = friction_bound(c, mu, weight, time);
             (w, Some(at))
         });
-        put("friction_bound", worse(from_contacts, from_sums));
+        put(Invariant::FrictionBound, worse(from_contacts, from_sums));
     }
     let from_contacts = per_contact.then(|| {
         let n = (0..block.len()).map(|i| {
@@ -233,32 +204,38 @@ pub fn check_run(case: &Case, run: &Run) -> Vec<InvariantCheck> {
         }
         _ => None,
     };
-    put("compression", worse(from_contacts, from_sums));
+    put(Invariant::Compression, worse(from_contacts, from_sums));
     if frictional {
         if per_contact {
-            put("stick_slip", Some((block_stick_slip(block, mu), None)));
             put(
-                "dissipation",
+                Invariant::StickSlip,
+                Some((block_stick_slip(block, mu), None)),
+            );
+            put(
+                Invariant::Dissipation,
                 Some((block_dissipation(block, mu, weight), None)),
             );
         } else if let (Some(c), true) = (&summed, single_contact(case)) {
-            put("stick_slip", Some((stick_slip(c, mu), None)));
-            put("dissipation", Some((dissipation(c, mu, weight), None)));
+            put(Invariant::StickSlip, Some((stick_slip(c, mu), None)));
+            put(
+                Invariant::Dissipation,
+                Some((dissipation(c, mu, weight), None)),
+            );
         }
     }
     if per_contact {
         let (w, at) = penetration(block);
-        put("penetration", Some((w, Some(at))));
+        put(Invariant::Penetration, Some((w, Some(at))));
     }
     if let Some(b) = energy_balance(&run.trace) {
-        put("energy_balance", Some((b.0, Some(b.1))));
+        put(Invariant::EnergyBalance, Some((b.0, Some(b.1))));
     }
     checks_of(case, run, found)
 }
 
 /// The checks of the measures `found` on `run`: each with the engine's tolerance and the
 /// case's declared violation.
-fn checks_of(case: &Case, run: &Run, found: Vec<(&'static str, Measure)>) -> Vec<InvariantCheck> {
+fn checks_of(case: &Case, run: &Run, found: Vec<(Invariant, Measure)>) -> Vec<InvariantCheck> {
     found
         .into_iter()
         .map(|(invariant, (worst, at))| InvariantCheck {
@@ -266,11 +243,11 @@ fn checks_of(case: &Case, run: &Run, found: Vec<(&'static str, Measure)>) -> Vec
             run: run.label(),
             worst,
             at,
-            limit: limit(run.engine, invariant),
+            limit: crate::registry::invariant_limit(run.engine, invariant),
             expected: case
                 .expected_violations
                 .iter()
-                .find(|v| v.engine == run.engine && v.invariant == invariant)
+                .find(|v| v.engine == run.engine && invariant == v.invariant.as_str())
                 .map(|v| (v.field.clone(), v.reason.clone())),
         })
         .collect()
@@ -611,7 +588,7 @@ impl StreamedInvariants {
         let (mu, weight) = (self.mu, self.weight);
         let per_contact = self.block_rows > 0;
         let sums = self.has_sums();
-        let mut found: Vec<(&'static str, Measure)> = Vec::new();
+        let mut found: Vec<(Invariant, Measure)> = Vec::new();
         let at = |m: (f64, f64)| Some((m.0, Some(m.1)));
         if self.frictional {
             let from_contacts = if per_contact {
@@ -621,7 +598,7 @@ impl StreamedInvariants {
             };
             let from_sums = if sums { at(self.sum_friction) } else { None };
             if let Some(m) = worse(from_contacts, from_sums) {
-                found.push(("friction_bound", m));
+                found.push((Invariant::FrictionBound, m));
             }
         }
         let from_contacts = if per_contact {
@@ -635,31 +612,34 @@ impl StreamedInvariants {
             None
         };
         if let Some(m) = worse(from_contacts, from_sums) {
-            found.push(("compression", m));
+            found.push((Invariant::Compression, m));
         }
         if self.frictional {
             let total = |k: usize| self.block_sums.iter().map(|s| s[k]).fold(0.0, |a, b| a + b);
             if per_contact {
                 let stick = total(0) / total(1).max(SLIP_FLOOR);
                 let dissipation = total(2) / total(3).max(mu * weight * SLIP_FLOOR);
-                found.push(("stick_slip", (stick, None)));
-                found.push(("dissipation", (dissipation, None)));
+                found.push((Invariant::StickSlip, (stick, None)));
+                found.push((Invariant::Dissipation, (dissipation, None)));
             } else if sums && self.single_contact {
                 let s = &self.sums;
-                found.push(("stick_slip", (s[0] / s[1].max(SLIP_FLOOR), None)));
+                found.push((Invariant::StickSlip, (s[0] / s[1].max(SLIP_FLOOR), None)));
                 let d = s[2] / s[3].max(mu * weight * SLIP_FLOOR);
-                found.push(("dissipation", (d, None)));
+                found.push((Invariant::Dissipation, (d, None)));
             }
         }
         if per_contact {
             found.push((
-                "penetration",
+                Invariant::Penetration,
                 (self.penetration.0, Some(self.penetration.1)),
             ));
         }
         let no_energy_scale = self.energy_scale <= 0.0; // NaN: measured, as check_run does
         if self.energy_error.is_some() && !no_energy_scale {
-            found.push(("energy_balance", (self.energy.0, Some(self.energy.1))));
+            found.push((
+                Invariant::EnergyBalance,
+                (self.energy.0, Some(self.energy.1)),
+            ));
         }
         checks_of(case, run, found)
     }

@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 use rockslide_core::case::{Case, EXTERNAL_VARIANT, External};
 use rockslide_core::error::InputErrors;
 use rockslide_core::trace::{ExternalFormat, MAX_EXTERNAL_BYTES, Trace, read_external_csv};
-use rockslide_engine_api::{Run, RunStatus, SolverStats};
+use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
 use rockslide_export::opensees::{self as export, SECTION, Samples, Settings};
 
 /// The participant's label (its run is `opensees/external`).
@@ -158,8 +158,9 @@ fn failed(settings: &Settings, reason: String, stderr: Vec<String>) -> Run {
     Run {
         engine: LABEL,
         variant: EXTERNAL_VARIANT.to_string(),
+        arrangement: Arrangement::Single,
         dt: settings.dt,
-        settings: vec![("program".into(), "OpenSeesPy (live)".into())],
+        settings: vec![Setting::text("program", "OpenSeesPy (live)")],
         stats: SolverStats::default(),
         findings,
         trace: Trace::default(),

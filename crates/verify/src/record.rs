@@ -81,7 +81,11 @@ impl RunRecord {
             variant: run.variant.clone(),
             dt: run.dt,
             outcome: Outcome::from(&run.status),
-            settings: run.settings.clone(),
+            settings: run
+                .settings
+                .iter()
+                .map(|s| (s.label(), s.value_text()))
+                .collect(),
             stats: run.stats,
             findings: run.findings.clone(),
             wall_seconds: run.wall_seconds,

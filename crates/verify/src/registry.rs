@@ -6,9 +6,9 @@
 
 use std::path::Path;
 
-use rockslide_core::case::{Case, Scene};
+use rockslide_core::case::{Case, Invariant, Scene};
 use rockslide_core::error::{InputError, InputErrors};
-use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink};
+use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink, Variant};
 
 /// Ids of every engine, as written in case files (`[engines.<id>]`), in report column order.
 pub const ENGINE_IDS: &[&str] = &["predictor-corrector", "fe", "rapier"];
@@ -55,7 +55,7 @@ impl<E: Engine> Engine for PlanGate<E> {
     fn description(&self) -> &'static str {
         self.0.description()
     }
-    fn variants(&self, scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
+    fn variants(&self, scene: &Scene) -> Result<Vec<Variant>, NotApplicable> {
         if scene.spatial.is_some() && !self.0.models_plan_motion() {
             return Err(plan_motion_refusal(self.0.id()));
         }
@@ -87,20 +87,97 @@ impl<E: Engine> Engine for PlanGate<E> {
     fn recorded_values(&self, case: &Case, variant: &str) -> Option<usize> {
         self.0.recorded_values(case, variant)
     }
+    fn invariant_limit(&self, invariant: Invariant) -> f64 {
+        self.0.invariant_limit(invariant)
+    }
+    fn step_cost(&self, scene: &Scene, variant: &str) -> f64 {
+        self.0.step_cost(scene, variant)
+    }
+    fn for_sweep(&self, case: &mut Case) -> Vec<String> {
+        self.0.for_sweep(case)
+    }
+    fn at_rung(&self, case: &Case, dt: f64) -> Option<Case> {
+        self.0.at_rung(case, dt)
+    }
+    fn for_stability(&self, case: &mut Case) {
+        self.0.for_stability(case)
+    }
 }
 
-/// Read and validate a case file against the registry's engines.
+/// The registered engine with this id.
+pub fn engine(id: &str) -> Option<Box<dyn Engine>> {
+    all().into_iter().find(|e| e.id() == id)
+}
+
+/// The engine whose completed run is the basis of another program's default checks when a
+/// case has no reference: the penalty FE model, the contact model those programs share.
+pub const EXTERNAL_BASIS_ENGINE: &str = "fe";
+
+/// The tolerance on `invariant` of the run of engine `id`: the engine's own
+/// ([`Engine::invariant_limit`]), or round-off for a run no registered engine made
+/// (another program's results).
+pub fn invariant_limit(id: &str, invariant: Invariant) -> f64 {
+    engine(id).map_or(invariant.round_off_limit(), |e| {
+        e.invariant_limit(invariant)
+    })
+}
+
+/// The case as a work-precision sweep runs it: every engine's own changes
+/// ([`Engine::for_sweep`]), in registry order, with each stated in words.
+pub fn for_sweep(case: &Case) -> (Case, Vec<String>) {
+    let mut case = case.clone();
+    let notes = all().iter().flat_map(|e| e.for_sweep(&mut case)).collect();
+    (case, notes)
+}
+
+/// The case as the stability map runs it: every engine stepping at the map's time step
+/// ([`Engine::for_stability`]).
+pub fn for_stability(case: &Case) -> Case {
+    let mut case = case.clone();
+    for e in all() {
+        e.for_stability(&mut case);
+    }
+    case
+}
+
+/// Read and validate a case file against the registry's engines: its sections and each
+/// engine's options ([`Engine::check_options`]), every error located.
 pub fn load_case(path: &Path) -> Result<Case, InputErrors> {
-    rockslide_core::case::load_case(path, CASE_SECTION_IDS)
+    rockslide_core::case::load_case(path, CASE_SECTION_IDS).and_then(with_valid_options)
 }
 
 /// Validate a case from its text against the registry's engines.
 pub fn parse_case(path: &Path, text: &str) -> Result<Case, InputErrors> {
-    rockslide_core::case::parse_case(path, text, CASE_SECTION_IDS)
+    rockslide_core::case::parse_case(path, text, CASE_SECTION_IDS).and_then(with_valid_options)
+}
+
+/// The case, or every problem the engines find with their options in it.
+fn with_valid_options(case: Case) -> Result<Case, InputErrors> {
+    let errors: Vec<InputError> = all().iter().flat_map(|e| e.check_options(&case)).collect();
+    if errors.is_empty() {
+        Ok(case)
+    } else {
+        Err(InputErrors(errors))
+    }
 }
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
+    /// An engine option out of its range is refused when the case is read, located, not
+    /// when a command plans its runs.
+    #[test]
+    fn engine_options_are_checked_at_load() {
+        let text = "[model]\nkind = \"oscillator\"\nmass = 1000.0\ngravity = 10.0\n[model.contact]\nkx = 1.0e6\nkz = 4.0e6\nmu = 0.5\n[excitation]\nkind = \"mass-acceleration\"\nshape = \"sine-pulse\"\namplitude = 1.0\nomega = 10.0\ncycles = 0.5\n[run]\nduration = 1.0\ndt = 0.01\n[engines.rapier]\nstep_rule = \"sometimes\"\n";
+        let err = parse_case(Path::new("t.toml"), text)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.starts_with("t.toml:19:13: engines.rapier.step_rule"),
+            "{err}"
+        );
+    }
     #[test]
     fn the_ids_are_the_engines_in_order() {
         let ids: Vec<&str> = super::all().iter().map(|e| e.id()).collect();

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use rockslide_core::case::Case;
 use rockslide_core::error::InputError;
 use rockslide_core::trace::Trace;
-use rockslide_engine_api::{Engine, Run, RunStatus, SolverStats};
+use rockslide_engine_api::{Arrangement, Engine, Run, RunStatus, SolverStats};
 
 /// Run `f`, catching a panic as its message.
 pub fn guard<T>(f: impl FnOnce() -> T) -> Result<T, String> {
@@ -83,6 +83,7 @@ impl Timed {
             Err(message) => Run {
                 engine,
                 variant: variant.to_string(),
+                arrangement: Arrangement::default(),
                 dt,
                 settings: Vec::new(),
                 stats: SolverStats::default(),

@@ -65,16 +65,20 @@ pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputError
         };
         let wanted: Vec<String> = match request.and_then(|r| r.variants.clone()) {
             Some(v) => v,
-            None => available.iter().map(|s| s.to_string()).collect(),
+            None => available.iter().map(|v| v.name.to_string()).collect(),
         };
         for (i, v) in wanted.iter().enumerate() {
-            if !available.contains(&v.as_str()) {
+            if !available.iter().any(|a| a.name == v.as_str()) {
                 errors.push(case.field_error(
                     &format!("engines.{}.variants[{i}]", e.id()),
                     format!(
                         "\"{v}\" is not a variant of {} for this scene; available: {}",
                         e.id(),
-                        available.join(", ")
+                        available
+                            .iter()
+                            .map(|a| a.name)
+                            .collect::<Vec<_>>()
+                            .join(", ")
                     ),
                 ));
                 continue;

@@ -300,7 +300,7 @@ fn invariant_failure(r: &CaseResult, i: &InvariantCheck) -> Failure {
             .unwrap_or_default();
     case_failure(
         r,
-        i.invariant,
+        i.invariant.key(),
         &i.run,
         format!("invariant broken: {:.3e}{at}", i.worst),
         format!(
@@ -369,6 +369,7 @@ fn disagreement(c: &Check, percent: f64) -> String {
 mod tests {
     use super::*;
     use crate::invariants::check_run;
+    use rockslide_core::case::Invariant;
     use rockslide_core::trace::{Trace, q};
     use rockslide_engine_api::{Run, RunStatus};
 
@@ -408,6 +409,7 @@ dt = 0.1
         Run {
             engine,
             variant: "v".into(),
+            arrangement: Default::default(),
             dt: 0.1,
             settings: Vec::new(),
             stats: rockslide_engine_api::SolverStats::default(),
@@ -483,7 +485,7 @@ dt = 0.1
         let bound = &plain.invariants[0];
         assert_eq!(
             (bound.invariant, bound.worst, bound.at),
-            ("friction_bound", 0.2, Some(0.1))
+            (Invariant::FrictionBound, 0.2, Some(0.1))
         );
         // The declared outcome did not happen (one failure) and the bound is broken (another).
         let f = failures(std::slice::from_ref(&plain));

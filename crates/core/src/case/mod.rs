@@ -3,6 +3,7 @@
 //! (`record`), bidirectional (3D) scenes (`spatial`), and loading with located errors
 //! (`load`). Engines never see TOML: they see [`Case`] and [`Scene`].
 
+mod invariant;
 pub mod limits;
 mod load;
 mod locate;
@@ -13,6 +14,7 @@ mod signal;
 pub mod slug;
 mod spatial;
 
+pub use invariant::Invariant;
 pub use load::{
     MAX_CASE_BYTES, discover, load_case, parse_case, read_external_participant, read_input_text,
 };

@@ -1,6 +1,7 @@
 //! The validated case: SI units, every field present and in range, the scene saying what
 //! it needs. This is what engines, references and reports read.
 
+pub use super::invariant::INVARIANT_KEYS;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
@@ -388,16 +389,6 @@ pub struct ExpectedViolation {
 
 /// Run statuses an `[[expected_outcome]]` may name.
 pub const EXPECTED_STATUSES: &[&str] = &["diverged", "not converged"];
-
-/// Invariant keys an `[[expected_violation]]` may name.
-pub const INVARIANT_KEYS: &[&str] = &[
-    "friction_bound",
-    "compression",
-    "stick_slip",
-    "dissipation",
-    "energy_balance",
-    "penetration",
-];
 
 /// A validated case file.
 #[derive(Debug, Clone)]

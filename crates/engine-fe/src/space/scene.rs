@@ -245,11 +245,12 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
     Ok(Run {
         engine: "fe",
         variant: variant.to_string(),
+        arrangement: crate::arrangement(variant),
         dt,
         settings: {
             let mut s = settings(spatial, dt, opts, &body, inertia_note);
             s.extend(crate::vertical::describe(&case.scene));
-            s
+            s.into_iter().map(Into::into).collect()
         },
         stats: SolverStats {
             steps: counters.steps,

@@ -14,6 +14,7 @@ use super::provenance::Provenance;
 use super::sections;
 use super::table::{Column, paper_table};
 use crate::gate;
+use rockslide_core::case::Invariant;
 use rockslide_verify::analysis::{Verdict, quantity_def};
 use rockslide_verify::suite::CaseResult;
 
@@ -110,13 +111,7 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
             }
         }
         cells.push(row.tolerance.clone().into());
-        let tone = match row.result.as_str() {
-            "PASS" | "info: PASS" => Tone::Pass,
-            s if s.starts_with("FAIL") || s.starts_with("MISSING") => Tone::Fail,
-            s if s.starts_with("PASS (info: ") || s.starts_with("info: ") => Tone::Warn,
-            _ => Tone::Plain,
-        };
-        cells.push(Cell::toned(row.result.clone(), tone));
+        cells.push(Cell::toned(row.result.label(), row.result.tone()));
         rows.push(cells);
     }
     (
@@ -503,9 +498,9 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
         ));
         b.push(Block::Table(invariants_table(r)));
         b.push(Block::List(
-            rockslide_verify::invariants::INVARIANTS
+            Invariant::ALL
                 .iter()
-                .map(|k| format!("{k}: {}", rockslide_verify::invariants::meaning(k)))
+                .map(|&k| format!("{k}: {}", rockslide_verify::invariants::meaning(k)))
                 .collect(),
         ));
     }
@@ -542,7 +537,7 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     for run in &r.runs {
         b.push(Block::Heading(3, run.label()));
         let mut facts = vec![("status".to_string(), run.status.to_string())];
-        facts.extend(run.settings.iter().cloned());
+        facts.extend(run.settings.iter().map(|s| (s.label(), s.value_text())));
         facts.extend(
             run.stats
                 .entries()
@@ -584,7 +579,7 @@ fn invariants_table(r: &CaseResult) -> Table {
             (false, None) => Cell::toned("FAIL", Tone::Fail),
         };
         t.rows.push(vec![
-            Cell::plain(i.invariant),
+            Cell::plain(i.invariant.key()),
             Cell::plain(i.run.clone()),
             Cell::plain(format!("{:.3e}", i.worst)),
             Cell::plain(i.at.map_or("—".into(), |t| format!("{t:.4}"))),

@@ -89,8 +89,8 @@ pub fn case_trace_log_of<'a>(
             ]);
             // no wall time here: a trace is byte-identical across reruns (the timing is in
             // the report and result.json only)
-            for (k, v) in &run.settings {
-                m.insert(format!("setting.{k}"), v.clone());
+            for s in &run.settings {
+                m.insert(format!("setting.{}", s.label()), s.value_text());
             }
             for (k, v) in run.stats.entries() {
                 m.insert(format!("counter.{k}"), v.to_string());

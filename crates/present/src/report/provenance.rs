@@ -66,7 +66,7 @@ impl Provenance {
             let settings: Vec<String> = run
                 .settings
                 .iter()
-                .map(|(k, v)| format!("{k} = {v}"))
+                .map(|s| format!("{} = {}", s.label(), s.value_text()))
                 .collect();
             v.push((format!("settings {}", run.label()), settings.join("; ")));
         }

@@ -6,6 +6,7 @@
 
 use super::doc::{Block, Cell, Table};
 use super::format::sig;
+use rockslide_engine_api::Arrangement;
 use rockslide_verify::analysis::energy::{EnergySummary, audit};
 use rockslide_verify::suite::CaseResult;
 
@@ -21,13 +22,13 @@ pub(crate) fn energy_blocks(r: &CaseResult) -> Vec<Block> {
     if let Ok(x) = &r.reference {
         audits.push((
             format!("reference ({})", x.solution.name()),
-            audit(&x.trace, &r.case.scene, "reference").map(|h| h.summary()),
+            audit(&x.trace, &r.case.scene, Arrangement::Single).map(|h| h.summary()),
         ));
     }
     for run in &r.runs {
         audits.push((
             run.label(),
-            audit(&run.trace, &r.case.scene, &run.variant).map(|h| h.summary()),
+            audit(&run.trace, &r.case.scene, run.arrangement).map(|h| h.summary()),
         ));
     }
     if audits.is_empty() {

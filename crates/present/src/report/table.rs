@@ -3,6 +3,7 @@
 //! engine that did not run, saying why ("not applicable — …"); then the tolerance and the PASS/FAIL
 //! of the case's checks on that row. Markdown, HTML and CSV render the same table.
 
+use super::doc::Tone;
 use rockslide_verify::analysis::{
     Check, QUANTITY_KEYS, Verdict, discrepancy_percent, quantity_def,
 };
@@ -49,8 +50,44 @@ pub(crate) struct Row {
     pub cells: Vec<Cell>,
     /// Tolerances applied to this quantity, in words.
     pub tolerance: String,
-    /// PASS / FAIL / `info: …` / `—`.
-    pub result: String,
+    /// The row's verdict: its gated checks' and its informative checks'.
+    pub result: RowVerdict,
+}
+
+/// The verdict of one quantity's row: the worst of its gated checks and the worst of its
+/// informative (ungated) ones, `None` where it has none.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct RowVerdict {
+    /// Worst gated verdict.
+    pub gated: Option<Verdict>,
+    /// Worst informative verdict.
+    pub informative: Option<Verdict>,
+}
+
+impl RowVerdict {
+    /// In words: `PASS`, `FAIL (info: PASS)`, `info: FAIL`, `—`.
+    pub fn label(&self) -> String {
+        match (self.gated, self.informative) {
+            (Some(v), Some(Verdict::Pass) | None) => v.label().to_string(),
+            (Some(v), Some(i)) => format!("{} (info: {})", v.label(), i.label()),
+            (None, Some(i)) => format!("info: {}", i.label()),
+            (None, None) => "—".into(),
+        }
+    }
+
+    /// How the row reads at a glance: a gated failure (or a check that could not be
+    /// evaluated) fails; a pass whose informative checks did not pass, or an informative
+    /// check alone that did not pass, warns; a pass passes.
+    pub fn tone(&self) -> Tone {
+        match (self.gated, self.informative) {
+            (Some(Verdict::Fail | Verdict::Missing), _) => Tone::Fail,
+            (Some(Verdict::Pass), Some(Verdict::Pass) | None) => Tone::Pass,
+            (Some(Verdict::Pass), Some(_)) => Tone::Warn,
+            (None, Some(Verdict::Pass)) => Tone::Pass,
+            (None, Some(_)) => Tone::Warn,
+            (None, None) => Tone::Plain,
+        }
+    }
 }
 
 /// The paper-style table of one case.
@@ -164,11 +201,9 @@ pub(crate) fn paper_table(r: &CaseResult) -> PaperTable {
         }
         let gated: Vec<&Check> = checks.iter().copied().filter(|c| c.gated).collect();
         let informative: Vec<&Check> = checks.iter().copied().filter(|c| !c.gated).collect();
-        let result = match (worst(&gated), worst(&informative)) {
-            (Some(v), Some(Verdict::Pass) | None) => v.label().to_string(),
-            (Some(v), Some(i)) => format!("{} (info: {})", v.label(), i.label()),
-            (None, Some(i)) => format!("info: {}", i.label()),
-            (None, None) => "—".into(),
+        let result = RowVerdict {
+            gated: worst(&gated),
+            informative: worst(&informative),
         };
         rows.push(Row {
             key,
@@ -192,5 +227,29 @@ pub(crate) fn paper_table(r: &CaseResult) -> PaperTable {
             .as_ref()
             .ok()
             .map(|x| format!("Reference ({})", x.solution.name())),
+    }
+}
+
+#[cfg(test)]
+mod row_verdict_tests {
+    use super::*;
+
+    #[test]
+    fn a_row_reads_from_its_verdicts_not_its_words() {
+        let row = |gated, informative| RowVerdict { gated, informative };
+        let (p, f, m) = (Verdict::Pass, Verdict::Fail, Verdict::Missing);
+        let cases = [
+            (row(Some(p), None), "PASS", Tone::Pass),
+            (row(Some(p), Some(p)), "PASS", Tone::Pass),
+            (row(Some(p), Some(f)), "PASS (info: FAIL)", Tone::Warn),
+            (row(Some(f), Some(p)), "FAIL", Tone::Fail),
+            (row(Some(m), Some(f)), "MISSING (info: FAIL)", Tone::Fail),
+            (row(None, Some(p)), "info: PASS", Tone::Pass),
+            (row(None, Some(m)), "info: MISSING", Tone::Warn),
+            (row(None, None), "—", Tone::Plain),
+        ];
+        for (r, label, tone) in cases {
+            assert_eq!((r.label().as_str(), r.tone()), (label, tone));
+        }
     }
 }

@@ -66,8 +66,9 @@ fn run(engine: &'static str, variant: &str, s: f64, liftoff: f64) -> Run {
     Run {
         engine,
         variant: variant.into(),
+        arrangement: Default::default(),
         dt: 1e-3,
-        settings: vec![("dt [s]".into(), "0.001".into())],
+        settings: vec![rockslide_engine_api::Setting::number("dt", "s", 0.001)],
         stats: SolverStats::default(),
         findings: vec![],
         trace,

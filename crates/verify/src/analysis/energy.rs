@@ -30,6 +30,7 @@
 
 use rockslide_core::case::{Excitation, Model, Scene};
 use rockslide_core::trace::{Trace, q};
+use rockslide_engine_api::Arrangement;
 
 /// Energy histories of one run, one value per trace row, J.
 #[derive(Debug, Clone, PartialEq)]
@@ -173,8 +174,14 @@ impl EnergyHistory {
     }
 }
 
-/// Audit a run of `variant` on `scene` from its trace; `Err` says why it cannot be done.
-pub fn audit(trace: &Trace, scene: &Scene, variant: &str) -> Result<EnergyHistory, String> {
+/// Audit a run on `scene` from its trace, its supports arranged as `arrangement` (the
+/// run's, [`Run::arrangement`](rockslide_engine_api::Run); an exact reference's is
+/// single); `Err` says why it cannot be done.
+pub fn audit(
+    trace: &Trace,
+    scene: &Scene,
+    arrangement: Arrangement,
+) -> Result<EnergyHistory, String> {
     let osc = match &scene.model {
         Model::Oscillator(o) => o,
         Model::RigidBlock(b) => return audit_block(trace, scene, b),
@@ -208,8 +215,8 @@ pub fn audit(trace: &Trace, scene: &Scene, variant: &str) -> Result<EnergyHistor
     let m = osc.mass;
     let c = osc.damping();
     // Double-element variants carry R through both elements in series.
-    let stiffness = match (&osc.double, variant.contains("double")) {
-        (Some(d), true) => (d.series().0, "series stiffness of the double element"),
+    let stiffness = match (&osc.double, arrangement) {
+        (Some(d), Arrangement::Double) => (d.series().0, "series stiffness of the double element"),
         _ => (osc.contact.kx, "single-element stiffness Kx"),
     };
     let k = stiffness.0;
@@ -477,7 +484,7 @@ mod tests {
             let x = (2.0 * s).cos();
             t.push(s, &[0.0, 8.0 * x, x, 0.0, -2.0 * (2.0 * s).sin()]);
         }
-        let h = audit(&t, &scene(f64::INFINITY), "paper").unwrap();
+        let h = audit(&t, &scene(f64::INFINITY), Arrangement::Single).unwrap();
         let s = h.summary();
         assert!((s.supplied - 4.0).abs() < 1e-12); // E0 = ½·8·1²
         assert!(s.relative_error < 1e-12, "{}", s.relative_error);
@@ -496,7 +503,7 @@ mod tests {
             // e = R/K = 0.125 constant, x = 0.125 + 0.3 s
             t.push(s, &[ru, ru, 0.125 + 0.3 * s, 0.3 * s, 0.3]);
         }
-        let h = audit(&t, &scene(0.5), "paper").unwrap();
+        let h = audit(&t, &scene(0.5), Arrangement::Single).unwrap();
         let s = h.summary();
         assert!((s.friction - 0.3).abs() < 1e-12);
         assert!(s.end_error.abs() < 1e-12);
@@ -505,7 +512,7 @@ mod tests {
     #[test]
     fn missing_channels_are_named() {
         let t = Trace::with_channels(&[&q::REL_DISP], 1);
-        let why = audit(&t, &scene(0.5), "paper").unwrap_err();
+        let why = audit(&t, &scene(0.5), Arrangement::Single).unwrap_err();
         assert!(why.contains("force") && why.contains("vel"), "{why}");
     }
 }

@@ -1,7 +1,7 @@
 //! What a sweep or a stability study runs: the scene's characteristic period T (the
 //! ladders are in Δt/T) and every engine variant that applies to the scene.
 
-use rockslide_core::case::{Case, Model, OptionValue, Signal};
+use rockslide_core::case::{Case, Model, Signal};
 use rockslide_core::error::{InputError, InputErrors};
 use rockslide_engine_api::Engine;
 
@@ -80,9 +80,9 @@ pub fn applicable(
                 let wanted: Vec<String> = case
                     .engine(e.id())
                     .and_then(|r| r.variants.clone())
-                    .unwrap_or_else(|| available.iter().map(|s| s.to_string()).collect());
+                    .unwrap_or_else(|| available.iter().map(|a| a.name.to_string()).collect());
                 for v in wanted {
-                    if available.contains(&v.as_str()) {
+                    if available.iter().any(|a| a.name == v.as_str()) {
                         series.push(Series {
                             engine: i,
                             engine_id: e.id(),
@@ -98,28 +98,6 @@ pub fn applicable(
     } else {
         Err(InputErrors(errors))
     }
-}
-
-/// The case with rapier stepping once per output step: `[engines.rapier] step_rule =
-/// "none"` unless the case sets `step_rule` itself. What the stability map runs (so that
-/// its rapier rows show rapier's own stability limit, not its step rule's) and what the
-/// sweep runs on a rocking body or a rigid block (so that each rung's Δt is rapier's
-/// step); docs/sweep-and-stability.md.
-pub fn rapier_at_rung_step(case: &Case) -> Case {
-    let mut case = case.clone();
-    let section = case.engines.entry("rapier".to_string()).or_default();
-    section
-        .options
-        .entry("step_rule".into())
-        .or_insert_with(|| OptionValue::Text("none".into()));
-    case
-}
-
-/// Whether a case leaves rapier's step rule to the study (it does not set `step_rule`).
-pub fn rapier_rule_unset(case: &Case) -> bool {
-    !case
-        .engine("rapier")
-        .is_some_and(|r| r.options.contains_key("step_rule"))
 }
 
 /// Intervals of the fine uniform grid a reference is sampled on over a scene's duration:

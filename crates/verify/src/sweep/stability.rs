@@ -18,7 +18,7 @@ use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use super::Options;
-use super::plan::{Series, applicable, characteristic_period, fine_grid, rapier_at_rung_step};
+use super::plan::{Series, applicable, characteristic_period, fine_grid};
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
 use crate::analysis::stability::{Class, Criteria, classify};
@@ -261,8 +261,8 @@ type Classified = (Class, Option<f64>, Result<EnergySummary, String>);
 
 /// Whether one run diverged: all a bisection step needs (the error against the basis
 /// only separates accurate from inaccurate, so it is not computed).
-fn diverged(case: &Case, variant: &str, timed: &Timed, criteria: &Criteria) -> bool {
-    classify_run(case, variant, timed, None, None, criteria, &mut None)
+fn diverged(case: &Case, timed: &Timed, criteria: &Criteria) -> bool {
+    classify_run(case, timed, None, None, criteria, &mut None)
         .0
         .diverged()
 }
@@ -304,12 +304,11 @@ fn error_against(
     }
 }
 
-/// Classify one run of `variant` on `case` at `dt` against the reference (or `own`, the
+/// Classify one run on `case` at `dt` against the reference (or `own`, the
 /// series' finest run, when there is no reference); `sampled`: the reference at the rung's
 /// rows, kept between the runs of one rung ([`exact_channel_cached`]).
 fn classify_run(
     case: &Case,
-    variant: &str,
     timed: &Timed,
     reference: Option<&ExactBasis>,
     own: Option<&rockslide_core::trace::Trace>,
@@ -329,7 +328,7 @@ fn classify_run(
             Err("no trace: the engine panicked".into()),
         ),
         Ok(run) => {
-            let energy = audit(&run.trace, &case.scene, variant);
+            let energy = audit(&run.trace, &case.scene, run.arrangement);
             let error = if run.status.completed() {
                 error_against(&run.trace, reference, own, sampled)
             } else {
@@ -353,7 +352,10 @@ fn classify_run(
 /// Run and classify every scene.
 pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
     opts.validate()?;
-    let cases: &[Case] = &cases.iter().map(rapier_at_rung_step).collect::<Vec<_>>();
+    let cases: &[Case] = &cases
+        .iter()
+        .map(registry::for_stability)
+        .collect::<Vec<_>>();
     let criteria = Criteria::default();
     let engines = registry::all();
     let mut plans = Vec::new();
@@ -431,8 +433,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                 None
             };
             for ((t, x), at) in block.iter().zip(DT_OVER_T).zip(&mut sampled) {
-                let (class, error, energy) =
-                    classify_run(case, &s.variant, t, reference, own, &criteria, at);
+                let (class, error, energy) = classify_run(case, t, reference, own, &criteria, at);
                 runs.push(StabilityRun {
                     case: case.name.clone(),
                     series: s.label(),
@@ -590,7 +591,7 @@ impl Bisection<'_> {
     /// the input.
     fn diverges(&self, case: &Case, t: f64, x: f64) -> Option<bool> {
         let timed = guarded(self.engine, case, self.variant, x * t, 1).ok()?;
-        Some(diverged(case, self.variant, &timed, self.criteria))
+        Some(diverged(case, &timed, self.criteria))
     }
 
     /// Every scene bisected on its own, in parallel: each scene's own bracket, the

@@ -15,10 +15,7 @@ use std::path::Path;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use super::plan::{
-    NotApplicable, applicable, characteristic_period, fine_grid, rapier_at_rung_step,
-    rapier_rule_unset,
-};
+use super::plan::{NotApplicable, applicable, characteristic_period, fine_grid};
 use super::{Options, Series};
 use crate::analysis::energy::{EnergySummary, audit};
 use crate::analysis::history_difference;
@@ -30,11 +27,10 @@ use crate::analysis::sweep::{
 use crate::registry;
 use crate::run::{Outcome, TimeStats, Timed, guarded};
 use crate::suite::ReferenceResult;
-use rockslide_core::case::{Case, Model, OptionValue};
+use rockslide_core::case::Case;
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::trace::{Trace, q};
-use rockslide_engine_api::Run;
-use rockslide_engine_rapier::OscillatorSteps;
+use rockslide_engine_api::{Arrangement, Run};
 
 /// File name of the typed result in the case's output folder.
 pub const FILE: &str = "sweep.json";
@@ -223,83 +219,12 @@ impl SweepResult {
     }
 }
 
-/// Options a sweep sets for itself (unless the case sets them): runs that only feed a
-/// report, not the error of the run, are switched off so the timing is the method's.
-/// (engine, option, value, why)
-pub const SWEEP_OVERRIDES: &[(&str, &str, bool, &str)] = &[(
-    "fe",
-    "sensitivity",
-    false,
-    "the FE engine's rotational-inertia and P-Delta sensitivity reruns (four extra runs of a rocking body) are not part of the method's cost",
-)];
-
-/// The case as the sweep runs it: [`SWEEP_OVERRIDES`] applied where the case is silent.
-/// Returns the case and the overrides applied.
+/// The case as the sweep runs it: each engine's own changes where the case is silent
+/// ([`Engine::for_sweep`](rockslide_engine_api::Engine::for_sweep): runs that only feed a
+/// report, not the error of the run, are switched off so the timing is the method's).
+/// Returns the case and the changes, in words.
 pub fn prepare(case: &Case) -> (Case, Vec<String>) {
-    let mut case = case.clone();
-    let mut applied = Vec::new();
-    for (engine, key, value, why) in SWEEP_OVERRIDES {
-        let section = case.engines.entry(engine.to_string()).or_default();
-        if !section.options.contains_key(*key) {
-            section
-                .options
-                .insert(key.to_string(), OptionValue::Bool(*value));
-            applied.push(format!("`[engines.{engine}] {key} = {value}`: {why}"));
-        }
-    }
-    if rapier_accuracy_per_rung(&case) {
-        applied.push(
-            "`[engines.rapier] accuracy` per rung: the target whose step rule gives the rung's Δt as rapier's step, 300·(Δt/T_min)² within 1e-4…0.2 (a coarser rung is divided by the rule), so the ladder is the rule's own steps".into(),
-        );
-    } else if rapier_step_per_rung(&case) {
-        applied.push(
-            "`[engines.rapier] step_rule = \"none\"` per rung: rapier steps once per rung Δt (its rocking and block step rules would divide the coarse rungs), so the ladder is rapier's own steps".into(),
-        );
-    }
-    (case, applied)
-}
-
-/// Whether the sweep drives the rapier engine's `accuracy` rung by rung: an oscillator
-/// (the scene its step rule is for) whose case does not set the target itself.
-fn rapier_accuracy_per_rung(case: &Case) -> bool {
-    matches!(case.scene.model, Model::Oscillator(_))
-        && !case
-            .engine("rapier")
-            .is_some_and(|r| r.options.contains_key("accuracy"))
-}
-
-/// Whether the sweep runs rapier at one step per rung: a rocking body or a rigid block
-/// (scenes whose step rule is not driven by an accuracy target) whose case does not
-/// set `step_rule` itself.
-fn rapier_step_per_rung(case: &Case) -> bool {
-    !matches!(case.scene.model, Model::Oscillator(_)) && rapier_rule_unset(case)
-}
-
-/// The case one rung of one series runs: for rapier on an oscillator, with the accuracy
-/// target whose step rule gives rapier steps of `dt`
-/// ([`OscillatorSteps::accuracy_for_step`]); on a rocking body or a rigid block, with
-/// one rapier step per rung ([`rapier_at_rung_step`]); `None`: the case as it is.
-fn rung_case(case: &Case, engine_id: &str, dt: f64) -> Option<Case> {
-    if engine_id != "rapier" {
-        return None;
-    }
-    if rapier_step_per_rung(case) {
-        return Some(rapier_at_rung_step(case));
-    }
-    let Model::Oscillator(osc) = &case.scene.model else {
-        return None;
-    };
-    if !rapier_accuracy_per_rung(case) {
-        return None;
-    }
-    let accuracy = OscillatorSteps::accuracy_for_step(osc, &case.scene.excitation, dt);
-    let mut c = case.clone();
-    c.engines
-        .entry(engine_id.to_string())
-        .or_default()
-        .options
-        .insert("accuracy".into(), OptionValue::Number(accuracy));
-    Some(c)
+    registry::for_sweep(case)
 }
 
 /// Per series: the timed rungs, coarsest first, and where the budget stopped it.
@@ -334,7 +259,7 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
                 r.solution.name(),
                 r.solution.method()
             ),
-            Some(audit(&r.trace, &case.scene, "reference").map(|h| h.summary())),
+            Some(audit(&r.trace, &case.scene, Arrangement::Single).map(|h| h.summary())),
         ),
         Err(why) => (
             format!(
@@ -353,7 +278,7 @@ pub fn sweep_case(case: &Case, opts: &Options) -> Result<SweepResult, Error> {
                 reference: &reference,
                 sampled: &mut sampled,
             };
-            let rungs = measure_rungs(case, &s.variant, block, &dts, period.0, basis);
+            let rungs = measure_rungs(case, block, &dts, period.0, basis);
             let mut r = summarise(s.label(), rungs, opts.ratio);
             r.skipped = stopped;
             r
@@ -452,7 +377,7 @@ fn run_ladder(
             .par_iter()
             .map(|&(si, repeats)| {
                 let s = &series[si];
-                let own = rung_case(case, s.engine_id, dt);
+                let own = engines[s.engine].at_rung(case, dt);
                 let case = own.as_ref().unwrap_or(case);
                 let r = guarded(engines[s.engine].as_ref(), case, &s.variant, dt, repeats);
                 tick();
@@ -484,7 +409,6 @@ struct Basis<'a> {
 /// finer rung.
 fn measure_rungs(
     case: &Case,
-    variant: &str,
     block: &[Timed],
     dts: &[f64],
     period: f64,
@@ -542,7 +466,7 @@ fn measure_rungs(
             };
             rung.peak_displacement = resp.get("peak_relative_displacement").copied();
             rung.residual_sliding = resp.get("residual_sliding").copied();
-            rung.energy = audit(&run.trace, &case.scene, variant).map(|h| h.summary());
+            rung.energy = audit(&run.trace, &case.scene, run.arrangement).map(|h| h.summary());
             rung
         })
         .collect();
