@@ -1,6 +1,7 @@
 //! # rockslide — cross-code verification of seismic sliding and rocking
 //!
-//! The command line ([`cli`]) and a façade over the workspace, so that tests, benchmarks,
+//! The command line ([`args`] its definitions, [`cli`] the dispatch, [`commands`] one
+//! file per command) and a façade over the workspace, so that tests, benchmarks,
 //! examples and library users find every part under one name. The architecture lives in
 //! the crates (see ARCHITECTURE.md):
 //!
@@ -22,8 +23,12 @@ macro_rules! say {
     }};
 }
 
+pub mod args;
 pub mod cli;
 pub mod commands;
+mod input;
+mod schedule;
+mod suite_run;
 pub mod timings;
 
 pub use rockslide_core::{error, io, response, trace};

@@ -10,10 +10,61 @@ use rockslide_present::sweep::write_sweep;
 use rockslide_verify::sweep::work_precision::sweep_case;
 use rockslide_verify::sweep::{Options, SweepResult};
 
-use crate::cli::load_all;
+use crate::args::SweepArgs;
+use crate::input::{bounded_jobs, load_all};
+
+/// Largest number of rungs of a sweep's Δt ladder.
+const MAX_RUNGS: usize = 30;
+/// Largest refinement between the first and the last rung (`ratio^(rungs-1)`).
+const MAX_REFINEMENT: f64 = 1e7;
+
+/// `rockslide sweep`: the ladder and the budget checked, then every case swept.
+pub fn run(args: &SweepArgs, quiet: bool) -> Result<ExitCode, Error> {
+    check_ladder(args.rungs, args.ratio)?;
+    check_budget(args.budget)?;
+    sweep_all(
+        &args.cases,
+        &args.out,
+        &Options {
+            rungs: args.rungs,
+            ratio: args.ratio,
+            repeats: args.repeats,
+            jobs: bounded_jobs(args.jobs),
+            quiet,
+            budget: (args.budget > 0.0).then_some(args.budget),
+        },
+    )
+}
+
+/// The Δt ladder stays within [`MAX_RUNGS`] and [`MAX_REFINEMENT`] (checked before work).
+fn check_ladder(rungs: usize, ratio: f64) -> Result<(), Error> {
+    if rungs > MAX_RUNGS {
+        return Err(Error::Other(format!(
+            "--rungs is {rungs}, but the limit is {MAX_RUNGS}"
+        )));
+    }
+    let refinement = ratio.powf(rungs.saturating_sub(1) as f64);
+    if ratio > 1.0 && (refinement.is_nan() || refinement > MAX_REFINEMENT) {
+        return Err(Error::Other(format!(
+            "--ratio {ratio:e} over {rungs} rungs refines Δt by {refinement:.3e}; the limit is \
+             {MAX_REFINEMENT:.0e}"
+        )));
+    }
+    Ok(())
+}
+
+/// `--budget`: 0 means none, a positive number is seconds; anything else is an error.
+fn check_budget(budget: f64) -> Result<(), Error> {
+    if budget >= 0.0 && budget.is_finite() {
+        return Ok(());
+    }
+    Err(Error::Other(format!(
+        "--budget is {budget} s, but must be >= 0 (0: no budget)"
+    )))
+}
 
 /// Sweep every case given.
-pub fn run(cases: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Error> {
+fn sweep_all(cases: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Error> {
     if cases.is_empty() {
         return Err(Error::Other(
             "sweep needs at least one case file (e.g. cases/pepo-mass-accel.toml)".into(),
