@@ -3,13 +3,9 @@
 //! The command line ([`args`] its definitions, [`cli`] the dispatch, [`commands`] one
 //! file per command) and a façade over the workspace, so that tests, benchmarks,
 //! examples and library users find every part under one name. The architecture lives in
-//! the crates (see ARCHITECTURE.md):
-//!
-//! ```text
-//! rockslide-core ─▶ rockslide-engine-api ─▶ rockslide-engine-{pc,fe,rapier}
-//!       └──────────▶ rockslide-reference                       │
-//!                          └──────────▶ rockslide-verify ◀──────┘ ─▶ rockslide-present ─▶ rockslide (cli)
-//! ```
+//! the crates, one way from `rockslide-core` through the engines and the references to
+//! `rockslide-verify` and `rockslide-present`: ARCHITECTURE.md draws the graph and its
+//! table, checked against the manifests, says which crate may name which.
 
 #![warn(missing_docs)]
 
