@@ -56,7 +56,7 @@ fn from_git() -> Option<String> {
     }
     if let Some(root) = git(&["rev-parse", "--show-toplevel"]) {
         let root = PathBuf::from(root);
-        for d in ["crates", "app", "Cargo.toml", "Cargo.lock"] {
+        for d in ["crates", "src", "Cargo.toml", "Cargo.lock"] {
             watch(&root.join(d));
         }
     }

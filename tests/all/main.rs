@@ -1,6 +1,7 @@
 //! The integration tests, one binary (rapier links once), one module per purpose.
 //! Shared helpers live in `common`.
 
+mod architecture;
 mod bad_input;
 mod bidirectional_independent;
 mod bidirectional_refs;

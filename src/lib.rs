@@ -1,14 +1,11 @@
 //! # rockslide — cross-code verification of seismic sliding and rocking
 //!
-//! The command line ([`cli`]) and a façade over the workspace, so that tests, benchmarks,
+//! The command line ([`args`] its definitions, [`cli`] the dispatch, [`commands`] one
+//! file per command) and a façade over the workspace, so that tests, benchmarks,
 //! examples and library users find every part under one name. The architecture lives in
-//! the crates (see ARCHITECTURE.md):
-//!
-//! ```text
-//! rockslide-core ─▶ rockslide-engine-api ─▶ rockslide-engine-{pc,fe,rapier}
-//!       └──────────▶ rockslide-reference                       │
-//!                          └──────────▶ rockslide-verify ◀──────┘ ─▶ rockslide-present ─▶ rockslide (cli)
-//! ```
+//! the crates, one way from `rockslide-core` through the engines and the references to
+//! `rockslide-verify` and `rockslide-present`: ARCHITECTURE.md draws the graph and its
+//! table, checked against the manifests, says which crate may name which.
 
 #![warn(missing_docs)]
 
@@ -22,8 +19,12 @@ macro_rules! say {
     }};
 }
 
+pub mod args;
 pub mod cli;
 pub mod commands;
+mod input;
+mod schedule;
+mod suite_run;
 pub mod timings;
 
 pub use rockslide_core::{error, io, response, trace};

@@ -1,7 +1,7 @@
-//! `rockslide study <grid>` (optionally one shard `K/N` of it), `study-merge` and
-//! `newmark`. A study runs its points (resumable, one result file per point under
-//! `<out>/runs/`); unsharded or merged, the results are gathered into the typed
-//! `<out>/study.json` and rendered as `summary.{md,html,csv}` and figures.
+//! `rockslide study <grid>` (optionally one shard `K/N` of it, or `--merge`), and the
+//! merge that `study-merge` runs too. A study runs its points (resumable, one result file
+//! per point under `<out>/runs/`); unsharded or merged, the results are gathered into the
+//! typed `<out>/study.json` and rendered as `summary.{md,html,csv}` and figures.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -9,9 +9,10 @@ use std::process::ExitCode;
 use rockslide_core::error::Error;
 use rockslide_present::study::{headline_sentences, write_summary};
 use rockslide_verify::study::{
-    NewmarkArgs, Study, StudyOptions, StudyOutcome, collect, load_grid, newmark_command, run_study,
-    runs_dir,
+    Study, StudyOptions, StudyOutcome, collect, load_grid, run_study, runs_dir,
 };
+
+use crate::args::StudyArgs;
 
 /// Parse a shard `K/N` (0-based K < N, as Slurm's `--array=0-(N-1)` and Kubernetes'
 /// `JOB_COMPLETION_INDEX` count).
@@ -122,33 +123,26 @@ pub fn merge_command(
     Ok(study)
 }
 
-/// The `study` / `study-merge` commands for the command line (exit code 0 on success).
-pub fn run(
-    grid: &Path,
-    out: &Path,
-    shard: Option<&str>,
-    merge: bool,
-    from: &[PathBuf],
-    quiet: bool,
-) -> Result<ExitCode, Error> {
-    if merge {
-        if shard.is_some() {
+/// The `study` command for the command line (exit code 0 on success); with `--merge`, as
+/// `study-merge`.
+pub fn run(args: &StudyArgs, quiet: bool) -> Result<ExitCode, Error> {
+    let (grid, out, from) = (&args.grid, &args.out, &args.from);
+    if args.merge {
+        if args.shard.is_some() {
             return Err(Error::Other(
                 "--merge and --shard do not go together".into(),
             ));
         }
         merge_command(grid, out, from, quiet)?;
     } else {
-        let shard = shard.map(parse_shard).transpose().map_err(Error::Other)?;
+        let shard = args
+            .shard
+            .as_deref()
+            .map(parse_shard)
+            .transpose()
+            .map_err(Error::Other)?;
         study_command(grid, out, shard, quiet)?;
     }
-    Ok(ExitCode::SUCCESS)
-}
-
-/// The `newmark` command: print the table.
-pub fn newmark(args: NewmarkArgs) -> Result<ExitCode, Error> {
-    let text = newmark_command(&args)?;
-    let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), text.as_bytes());
     Ok(ExitCode::SUCCESS)
 }
 

@@ -11,10 +11,15 @@ use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::io::{inside, write_atomically};
 use rockslide_export::opensees::{Samples, Settings, export_with};
 
-use crate::cli::Target;
+use crate::args::{ExportArgs, Target};
+
+/// `rockslide export`: export one case to `--to` under `--out`.
+pub fn run(args: &ExportArgs, quiet: bool) -> Result<ExitCode, Error> {
+    export(&args.case, args.to, &args.out, quiet)
+}
 
 /// Export one case to `target` under `out`.
-pub fn run(case_path: &Path, target: Target, out: &Path, quiet: bool) -> Result<ExitCode, Error> {
+fn export(case_path: &Path, target: Target, out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     let case = rockslide_verify::registry::load_case(case_path)?;
     match target {
         Target::Opensees => {}

@@ -12,10 +12,24 @@ use rockslide_verify::sweep::Options;
 use rockslide_verify::sweep::StabilityResult;
 use rockslide_verify::sweep::stability::{DIR, study};
 
-use crate::cli::{case_paths_or, load_all};
+use crate::args::StabilityArgs;
+use crate::input::{bounded_jobs, case_paths_or, load_all};
 
-/// Classify the given case files or folders.
-pub fn run(args: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Error> {
+/// `rockslide stability`: classify the given case files or folders.
+pub fn run(args: &StabilityArgs, quiet: bool) -> Result<ExitCode, Error> {
+    classify(
+        &args.cases,
+        &args.out,
+        &Options {
+            jobs: bounded_jobs(args.jobs),
+            quiet,
+            ..Default::default()
+        },
+    )
+}
+
+/// Classify the given case files or folders (default `cases/stability/`).
+fn classify(args: &[PathBuf], out: &Path, opts: &Options) -> Result<ExitCode, Error> {
     let cases = load_all(&case_paths_or(args, "cases/stability")?)?;
     if cases.is_empty() {
         return Err(Error::Other("stability: no case files found".into()));
