@@ -1,40 +1,21 @@
 //! The default run's cost scheduler: each case's cost estimated from its planned runs, so
 //! that the costliest cases start first (their longest runs set the critical path).
 
-use rockslide_core::case::{Case, Model};
+use rockslide_core::case::Case;
 use rockslide_engine_api::Engine;
 use rockslide_verify::registry;
 use rockslide_verify::suite::plan;
 
-/// Relative CPU cost of one time step of a run, in units of 0.1 µs, from the default
-/// run's single-thread CPU per case (docs/performance.md §2): the predictor-corrector
-/// 0.06 µs, fe 0.2–1.1 µs; rapier about 2 µs on a mass (the oscillator) and 25 µs on a
-/// body with corners (block, rocking body: contact manifolds, substeps), twice that with
-/// a moving kinematic ground (its contacts are rebuilt every step).
-fn step_weight(engine: &str, variant: &str, model: &Model) -> f64 {
-    match engine {
-        "rapier" => {
-            let body = match model {
-                Model::Oscillator(_) => 20.0,
-                Model::RockingBody(_) | Model::RigidBlock(_) => 250.0,
-            };
-            match variant {
-                "kinematic-ground" => 2.0 * body,
-                _ => body,
-            }
-        }
-        "fe" => 6.0,
-        _ => 1.0,
-    }
-}
-
-/// A case's estimated cost: Σ over its planned runs of steps × the run's step weight.
+/// A case's estimated cost: Σ over its planned runs of steps × the engine's cost of one
+/// step of that variant on the scene ([`Engine::step_cost`]).
 fn estimated_cost(case: &Case, engines: &[Box<dyn Engine>]) -> f64 {
     plan(case, engines).map_or(0.0, |p| {
         p.runs
             .iter()
             .map(|r| {
-                case.run.duration / r.dt * step_weight(r.engine, &r.variant, &case.scene.model)
+                let engine = engines.iter().find(|e| e.id() == r.engine);
+                let step = engine.map_or(1.0, |e| e.step_cost(&case.scene, &r.variant));
+                case.run.duration / r.dt * step
             })
             .sum()
     })
