@@ -7,7 +7,7 @@
 //! and the engine alone, so that the files' own share and the ratio to the engine are
 //! measured side by side.
 //!
-//! Run: `cargo bench --bench pipeline`. Results are recorded in docs/performance.md.
+//! Run: `cargo bench --bench pipeline`. Results are recorded in benches/runs/ (dated, per machine).
 
 use std::hint::black_box;
 use std::path::Path;

@@ -7,7 +7,7 @@
 //! the state messages compared — JSON of shortest decimals (before) and CDR (now) — each
 //! encoded and written to MCAP with the chosen compression.
 //!
-//! Run: `cargo bench --bench writers`. Results are recorded in docs/performance.md.
+//! Run: `cargo bench --bench writers`. Results are recorded in benches/runs/ (dated, per machine).
 
 use std::collections::BTreeMap;
 use std::hint::black_box;
