@@ -24,6 +24,7 @@
 use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
 
 use super::element::{Contact178, ContactState, Element, Status};
+use super::lu::Lu3;
 use super::options::Kinematics;
 use rockslide_core::case::{Contact, DoubleContact, Oscillator, RockingBody};
 
@@ -132,85 +133,6 @@ pub struct Assembly {
 
 /// A condensed Newton matrix and its LU factors (fixed size, on the stack).
 type Factors = (Matrix3<f64>, Lu3);
-
-/// LU factors of a 3×3 matrix with partial pivoting, `lu[row][column]`: nalgebra's `LU`
-/// algorithm written out for 3×3 — the first largest |pivot| of the column, the
-/// multipliers times the pivot's reciprocal, the same updates in the same order — so the
-/// factors and solutions are the same bits (unit test) at a fraction of the instructions.
-#[derive(Debug, Clone, Copy)]
-pub struct Lu3 {
-    lu: [[f64; 3]; 3],
-    /// Row swapped with row `i` at step `i`.
-    swaps: [usize; 3],
-}
-
-impl Lu3 {
-    /// Factor `m`.
-    pub fn new(m: &Matrix3<f64>) -> Self {
-        let mut a = [
-            [m[(0, 0)], m[(0, 1)], m[(0, 2)]],
-            [m[(1, 0)], m[(1, 1)], m[(1, 2)]],
-            [m[(2, 0)], m[(2, 1)], m[(2, 2)]],
-        ];
-        let mut swaps = [0, 1, 2];
-        for i in 0..3 {
-            let mut piv = i;
-            let mut max = a[i][i].abs();
-            for (j, row) in a.iter().enumerate().skip(i + 1) {
-                if row[i].abs() > max {
-                    max = row[i].abs();
-                    piv = j;
-                }
-            }
-            let diag = a[piv][i];
-            if diag == 0.0 {
-                continue;
-            }
-            swaps[i] = piv;
-            // A row swapped with itself is left alone (no copy): the same factors.
-            if piv != i {
-                a.swap(i, piv);
-            }
-            let inv = 1.0 / diag;
-            let pivot_row = a[i];
-            for row in a.iter_mut().skip(i + 1) {
-                row[i] *= inv;
-                for k in i + 1..3 {
-                    row[k] += -pivot_row[k] * row[i];
-                }
-            }
-        }
-        Self { lu: a, swaps }
-    }
-
-    /// Solve `m·x = b`; `None` if `m` is singular.
-    pub fn solve(&self, b: &Vector3<f64>) -> Option<Vector3<f64>> {
-        let mut x = [b.x, b.y, b.z];
-        for (i, &p) in self.swaps.iter().enumerate() {
-            if p != i {
-                x.swap(i, p);
-            }
-        }
-        let a = &self.lu;
-        for i in 0..2 {
-            let c = x[i];
-            for j in i + 1..3 {
-                x[j] += -c * a[j][i];
-            }
-        }
-        for i in (0..3).rev() {
-            if a[i][i] == 0.0 {
-                return None;
-            }
-            let c = x[i] / a[i][i];
-            x[i] = c;
-            for j in 0..i {
-                x[j] += -c * a[j][i];
-            }
-        }
-        Some(Vector3::new(x[0], x[1], x[2]))
-    }
-}
 
 impl Assembly {
     /// Record the ground point of a step assembled outside `Model::assemble` (the sliding
@@ -917,58 +839,5 @@ impl Model {
             };
             un[k] = d1 + Vector2::new(xg, 0.0);
         }
-    }
-}
-
-/// Test matrix entries: a xorshift sequence from `seed`, uniform mantissas over 24 orders
-/// of magnitude (10⁻¹² … 10¹²), and exact zeros when the state is a multiple of
-/// `zero_every` — the entries the LU tests compare bit for bit.
-#[cfg(test)]
-pub(crate) fn values_over_24_decades(mut seed: u64, zero_every: u64) -> impl FnMut() -> f64 {
-    move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        let mantissa = (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5;
-        let exponent = ((seed >> 3) % 25) as i32 - 12;
-        if seed % zero_every == 0 {
-            0.0
-        } else {
-            mantissa * 10f64.powi(exponent)
-        }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// `Lu3` against nalgebra's `LU` on matrices of every pivoting pattern (entries over
-    /// 24 orders of magnitude, zeros, singular ones): the same solution bits.
-    #[test]
-    fn lu3_is_nalgebras_lu_bit_for_bit() {
-        let mut next = values_over_24_decades(0x2545_f491_4f6c_dd1d, 11);
-        let mut singular = 0;
-        for case in 0..20_000 {
-            let mut m = Matrix3::from_fn(|_, _| next());
-            if case % 97 == 0 {
-                m.set_row(2, &(m.row(0) * 2.0)); // singular
-            }
-            let b = Vector3::new(next(), next(), next());
-            let ours = Lu3::new(&m).solve(&b);
-            let theirs = m.lu().solve(&b);
-            singular += usize::from(theirs.is_none());
-            match (ours, theirs) {
-                (Some(x), Some(y)) => assert!(
-                    x.iter()
-                        .zip(y.iter())
-                        .all(|(u, v)| u.to_bits() == v.to_bits()),
-                    "{m} {b}: {x} against {y}"
-                ),
-                (None, None) => {}
-                _ => panic!("{m}: {ours:?} against {theirs:?}"),
-            }
-        }
-        assert!(singular > 0);
     }
 }

@@ -175,7 +175,7 @@ struct Workspace {
     un_prev: Vec<Vector2<f64>>,
     dun_prev: Vec<Vector2<f64>>,
     /// The sliding oscillator's cached 2×2 factors (`slider`).
-    slider_factors: Option<slider::Lu2>,
+    slider_factors: Option<crate::lu::Lu2>,
 }
 
 impl Workspace {

@@ -7,13 +7,11 @@
 //! - `contact`: the cone contact (radial return, consistent tangent).
 //! - `model`: the body and supports, assembly, series equivalents of double supports,
 //!   node condensation, the 6×6 Newton solve.
-//! - `lu`: the 6×6 LU factors (nalgebra's algorithm on the stack).
 //! - `stepper`: static preload and the time loop on SO(3) (Simo–Vu Quoc material form).
 //! - `run`: one run, recorded as rows with (x, y) pairs.
 //! - `scene`: the engine on a bidirectional scene (model from `Scene::spatial`, trace).
 
 mod contact;
-mod lu;
 mod model;
 mod rotation;
 mod run;

@@ -26,9 +26,9 @@
 use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
 use super::contact::{ConeContact, ConeState};
-use super::lu::Lu6;
 use super::rotation::{right_jacobian, skew};
-use crate::element::Status;
+use crate::element::{Element, Status};
+use crate::lu::Lu6;
 use rockslide_core::case::{Contact, DoubleContact, Oscillator, RockingBody};
 
 /// A rigid body on supports, as the 3D model is built from it.

@@ -13,68 +13,9 @@ use nalgebra::{Vector2, Vector3};
 use super::{
     Counters, Drive, FailureReason, LastIteration, Newmark, StepFailure, StepState, Workspace,
 };
+use crate::lu::Lu2;
 use crate::model::Model;
 use crate::options::FeOptions;
-
-/// LU factors with partial pivoting of the Newton matrix's live block [[a, b], [c, d]]:
-/// `Lu3` on [[a, b, 0], [c, d, 0], [0, 0, 1]] operation for operation (row 1 the pivot
-/// only when strictly larger; the multiplier times the pivot's reciprocal), so the
-/// solutions are the same bits. Kept with the matrix it factors, reused while the next
-/// matrix is the same bit for bit.
-#[derive(Debug, Clone, Copy)]
-pub(super) struct Lu2 {
-    matrix: [f64; 4],
-    swap: bool,
-    u00: f64,
-    u01: f64,
-    l10: f64,
-    u11: f64,
-}
-
-impl Lu2 {
-    fn new(matrix: [f64; 4]) -> Self {
-        let [a, b, c, d] = matrix;
-        let swap = c.abs() > a.abs();
-        let ((u00, u01), (r0, r1)) = if swap {
-            ((c, d), (a, b))
-        } else {
-            ((a, b), (c, d))
-        };
-        let (l10, u11) = if u00 == 0.0 {
-            (r0, r1)
-        } else {
-            let l = r0 * (1.0 / u00);
-            (l, r1 + -u01 * l)
-        };
-        Self {
-            matrix,
-            swap,
-            u00,
-            u01,
-            l10,
-            u11,
-        }
-    }
-
-    fn same_matrix(&self, m: &[f64; 4]) -> bool {
-        self.matrix
-            .iter()
-            .zip(m)
-            .all(|(x, y)| x.to_bits() == y.to_bits())
-    }
-
-    /// Solve for the right-hand side (b0, b1); `None` if the matrix is singular.
-    fn solve(&self, b0: f64, b1: f64) -> Option<(f64, f64)> {
-        if self.u00 == 0.0 || self.u11 == 0.0 {
-            return None;
-        }
-        let (y0, y1) = if self.swap { (b1, b0) } else { (b0, b1) };
-        let y1 = y1 + -y0 * self.l10;
-        let x1 = y1 / self.u11;
-        let x0 = (y0 + -x1 * self.u01) / self.u00;
-        Some((x0, x1))
-    }
-}
 
 /// The factors of `m`, cached in `cache` (new ones unless `m` is the cached matrix).
 fn factors(cache: &mut Option<Lu2>, m: [f64; 4]) -> &Lu2 {
@@ -267,42 +208,4 @@ fn linear_step(from: Option<[f64; 4]>, k: &[f64; 4], q: &Vector2<f64>) -> bool {
             && q.x.is_finite()
             && q.y.is_finite()
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::model::Lu3;
-    use nalgebra::Matrix3;
-
-    /// `Lu2` against `Lu3` on [[a, b, 0], [c, d, 0], [0, 0, 1]] (entries over 24 orders of
-    /// magnitude, zeros, both pivot orders, singular blocks): the same solution bits, and
-    /// singular exactly when `Lu3` finds it singular.
-    #[test]
-    fn lu2_is_lu3_on_a_locked_theta_bit_for_bit() {
-        let mut next = crate::model::values_over_24_decades(0x9e37_79b9_7f4a_7c15, 7);
-        let (mut singular, mut swapped) = (0, 0);
-        for case in 0..20_000 {
-            let [a, b, mut c, mut d] = [next(), next(), next(), next()];
-            if case % 53 == 0 {
-                (c, d) = (2.0 * a, 2.0 * b); // singular
-            }
-            let (r0, r1) = (next(), next());
-            let lu = Lu2::new([a, b, c, d]);
-            swapped += usize::from(lu.swap);
-            let ours = lu.solve(r0, r1);
-            let m = Matrix3::new(a, b, 0.0, c, d, 0.0, 0.0, 0.0, 1.0);
-            let theirs = Lu3::new(&m).solve(&Vector3::new(r0, r1, 0.0));
-            singular += usize::from(theirs.is_none());
-            match (ours, theirs) {
-                (Some((x0, x1)), Some(y)) => assert!(
-                    x0.to_bits() == y.x.to_bits() && x1.to_bits() == y.y.to_bits(),
-                    "{m}: ({x0}, {x1}) against {y}"
-                ),
-                (None, None) => {}
-                _ => panic!("{m}: {ours:?} against {theirs:?}"),
-            }
-        }
-        assert!(singular > 0 && swapped > 0);
-    }
 }
