@@ -9,8 +9,9 @@ use nalgebra::Vector2;
 
 use super::energy::EnergyBook;
 use super::model::Model;
+use super::model::{Drive, Snapshot};
 use super::options::FeOptions;
-use super::stepper::{Counters, Drive, Snapshot, integrate};
+use super::stepper::{Counters, integrate};
 use rockslide_core::case::{Case, Model as SceneModel};
 use rockslide_core::trace::{CONTACT_FIELDS, ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{RunStatus, StepSink, step_count};

@@ -1,7 +1,7 @@
 //! The sliding oscillator's step in scalars (the PEPO, single or condensed double): the
 //! body's X and Z with θ locked, one element from the ground to the centre of mass.
 //!
-//! The same Newton–Raphson with line search as `newton_step`, the same operations in the
+//! The same Newton–Raphson with line search as the general step (`stepper::newton`), the same operations in the
 //! same order on the two live components, so the same bits: the general step's θ row
 //! carries exact zeros there (a locked θ, an attachment at the centre of mass), and the
 //! 3×3 LU of a matrix whose θ row and column are (0, 0, 1) is this 2×2 LU step for step
@@ -10,12 +10,13 @@
 
 use nalgebra::{Vector2, Vector3};
 
-use super::{
-    Counters, Drive, FailureReason, LastIteration, Newmark, StepFailure, StepState, Workspace,
-};
+use super::body::Model;
+use super::drive::Drive;
 use crate::lu::Lu2;
-use crate::model::Model;
 use crate::options::FeOptions;
+use crate::stepper::{
+    Counters, FailureReason, LastIteration, Newmark, State, StepFailure, StepState, Workspace,
+};
 
 /// The factors of `m`, cached in `cache` (new ones unless `m` is the cached matrix).
 fn factors(cache: &mut Option<Lu2>, m: [f64; 4]) -> &Lu2 {
@@ -45,15 +46,16 @@ fn assemble(model: &mut Model, q: &Vector2<f64>, xg: f64) -> ((f64, f64), [f64; 
     )
 }
 
-/// One step of length `nm.h` from `n` to time `t` (`newton_step` for a slider model).
+/// One step of length `nm.h` from `n` to time `t` (`stepper::newton::step` for a slider
+/// model).
 #[allow(clippy::too_many_arguments)]
-pub(super) fn step(
+pub(crate) fn step(
     model: &mut Model,
-    drive: &Drive,
+    drive: &Drive<'_>,
     opts: &FeOptions,
     nm: &Newmark,
-    w: &mut Workspace,
-    (n, next): (&StepState, &mut StepState),
+    w: &mut Workspace<3, 2, Model>,
+    (n, next): (&State<3, 2, Model>, &mut State<3, 2, Model>),
     t: f64,
     counters: &mut Counters,
 ) -> Result<(), StepFailure> {
@@ -74,9 +76,9 @@ pub(super) fn step(
     let f = Vector2::new(drive.force(t), -model.weight() + fz);
     let f_norm = f.norm();
     w.asm.set_ground(g.0);
-    let (nq, nv, na) = (n.q.xy(), n.v.xy(), n.a.xy());
+    let (nq, nv, na) = (n.pose.xy(), n.v.xy(), n.a.xy());
     // The start's share of the HHT residual, (fₙ − pₙ − damping)·α.
-    let start_x = ((n.f.x - n.pb.x) - n.damp) * alpha;
+    let start_x = ((n.f.x - n.pb.x) - n.damp.x) * alpha;
     let start_z = (n.f.y - n.pb.y) * alpha;
     let mass_c0 = mass * c0;
     let mut q = nq + nv * h + na * (0.5 * h * h);
@@ -86,20 +88,16 @@ pub(super) fn step(
     let (mut r_prev, mut lambda) = (f64::INFINITY, 1.0_f64);
     // The tangent of the iterate a full Newton step left (`linear_step`).
     let mut stepped_from: Option<[f64; 4]> = None;
-    let done = |it: usize, counters: &mut Counters| {
-        counters.iterations += it as u64;
-        counters.max_step_iterations = counters.max_step_iterations.max(it as u64);
-    };
     let accept =
         |q: Vector2<f64>, v: Vector2<f64>, a: Vector2<f64>, pb: (f64, f64), damp| StepState {
             t,
-            q: Vector3::new(q.x, q.y, n.q.z),
+            pose: Vector3::new(q.x, q.y, n.pose.z),
             v: Vector3::new(v.x, v.y, 0.0),
             a: Vector3::new(a.x, a.y, 0.0),
             f: Vector3::new(f.x, f.y, 0.0),
             fz,
             pb: Vector3::new(pb.0, pb.1, 0.0),
-            damp,
+            damp: Vector3::new(damp, 0.0, 0.0),
             g,
         };
     while it < newton.max_iterations {
@@ -108,7 +106,7 @@ pub(super) fn step(
         let (pb, k) = assemble(model, &q, g.0);
         let damp = c * (v.x - g.1);
         if linear_step(stepped_from, &k, &q) {
-            done(it, counters);
+            counters.add_step_iterations(it);
             *next = accept(q, v, a, pb, damp);
             return Ok(());
         }
@@ -125,14 +123,14 @@ pub(super) fn step(
             continue;
         }
         if !(r2.is_finite() && q.iter().all(|x| x.is_finite())) {
-            done(it, counters);
+            counters.add_step_iterations(it);
             return Err(StepFailure {
                 reason: FailureReason::NotFinite,
                 diverged: true,
             });
         }
         if r2.sqrt() <= 1e-11 * fref {
-            done(it, counters);
+            counters.add_step_iterations(it);
             *next = accept(q, v, a, pb, damp);
             return Ok(());
         }
@@ -142,8 +140,8 @@ pub(super) fn step(
             0.0 + k[2] * s,
             mass_c0 + k[3] * s,
         ];
-        let Some((dx, dz)) = factors(&mut w.slider_factors, matrix).solve(rx, rz) else {
-            done(it, counters);
+        let Some((dx, dz)) = factors(&mut w.asm.slider_factors, matrix).solve(rx, rz) else {
+            counters.add_step_iterations(it);
             return Err(StepFailure {
                 reason: FailureReason::Singular(it),
                 diverged: false,
@@ -167,13 +165,13 @@ pub(super) fn step(
         let disp_ok =
             || d2.sqrt() <= (newton.displacement_tol * inc2.sqrt()).max(1e-12 * u2.sqrt());
         if force_ok && disp_ok() {
-            done(it, counters);
+            counters.add_step_iterations(it);
             *next = accept(q, v, a, pb, damp);
             return Ok(());
         }
         if force_ok && r_prev.is_finite() && rn > 0.5 * r_prev {
             counters.roundoff_accepted += 1;
-            done(it, counters);
+            counters.add_step_iterations(it);
             *next = accept(q, v, a, pb, damp);
             return Ok(());
         }
@@ -181,13 +179,14 @@ pub(super) fn step(
         q += dq;
         stepped_from = Some(k);
     }
-    done(it, counters);
+    counters.add_step_iterations(it);
     Err(StepFailure {
         reason: FailureReason::NotConverged {
             iterations: it,
             last,
             force_tol: newton.force_tol,
             displacement_tol: newton.displacement_tol,
+            unit: " m",
         },
         diverged: false,
     })
