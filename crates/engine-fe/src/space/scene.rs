@@ -8,11 +8,12 @@
 
 use nalgebra::{Matrix3, Vector2, Vector3};
 
+use super::mechanics::SpaceDrive;
 use super::model::{BlockGrid, SpaceBody, SpaceModel};
 use super::run::record;
-use super::stepper::{SpaceDrive, integrate};
 use crate::model::default_rotational_inertia;
 use crate::options::{FeOptions, Integrator};
+use crate::stepper::integrate;
 use crate::variant;
 use crate::whole_run::WholeRun;
 use rockslide_core::case::{Case, Excitation, Model as SceneModel, Scene, Spatial};
