@@ -24,7 +24,7 @@ pub(crate) const FIELDS: usize = CONTACT_FIELDS.len();
 
 /// Where the recorder hands each row: the contacts' fields written into the sink's row as
 /// its loop over the supports finds them, the channel values written into the sink's
-/// row, then the row's time. A whole run ([`super::whole_run::WholeRun`]) keeps both where the row is
+/// row, then the row's time. A whole run (`WholeRun`) keeps both where the row is
 /// stored; any [`StepSink`] takes the rows through [`Rows`].
 pub(crate) trait RowSink {
     /// Before the first row: the run's layout (channels, contact names and compliances).

@@ -4,8 +4,9 @@
 
 use nalgebra::{Vector2, Vector3};
 
+use super::body::SpaceBody;
 use super::mechanics::{SpaceDrive, SpaceSnapshot};
-use super::model::{SpaceBody, SpaceModel};
+use super::model::SpaceModel;
 use crate::element::Status;
 use crate::options::FeOptions;
 use crate::stepper::{Counters as SpaceCounters, integrate};

@@ -8,8 +8,9 @@
 
 use nalgebra::{Matrix3, Vector2, Vector3};
 
+use super::body::{BlockGrid, SpaceBody};
 use super::mechanics::SpaceDrive;
-use super::model::{BlockGrid, SpaceBody, SpaceModel};
+use super::model::SpaceModel;
 use super::run::record;
 use crate::model::default_rotational_inertia;
 use crate::options::{FeOptions, Integrator};

@@ -4,13 +4,13 @@
 //! Newton iteration and the step cutting are written once over it (`newton`,
 //! `time_loop`). Each method is a short piece of the one formulation the two models
 //! share; the arithmetic of every piece is the model's own, in its own order, so both
-//! models' results are what they were when each had its own loop.
+//! models' results are what they were when each had its own loop. Every vector the loop
+//! needs lives in a [`Workspace`], allocated once.
 
 use nalgebra::SVector;
 
 use super::failure::{Counters, StepFailure};
 use super::newmark::Newmark;
-use super::time_loop::Workspace;
 use crate::options::FeOptions;
 
 /// The body's state at the end of a (sub)step, what the next step starts from.
@@ -109,7 +109,9 @@ pub(crate) trait Mechanics<const Q: usize, const N: usize>: Sized {
     fn reference(p: &Self::Pose) -> SVector<f64, Q>;
     /// The predictor of a step of length `h` from `n`: constant acceleration.
     fn predict(&self, n: &State<Q, N, Self>, h: f64) -> SVector<f64, Q>;
-    /// The nodes' predictor: they move with the ground (from `from` to `to`).
+    /// The nodes' predictor: they move with the ground (from `from` to `to`): element 1
+    /// is the stiff one, and a node left behind would put it far into slip and let
+    /// Newton cycle.
     fn predict_nodes(&self, un: &mut [SVector<f64, N>], to: &Self::Ground, from: &Self::Ground);
     /// Evaluate every element at the unknowns `q` of a step from pose `from` (nodes `un`,
     /// ground `g`) and assemble internal forces and the consistent tangent into `asm`.
@@ -160,5 +162,56 @@ pub(crate) trait Mechanics<const Q: usize, const N: usize>: Sized {
     /// A step written for this model alone, if it has one.
     fn own_step(&self) -> Option<StepFn<Q, N, Self>> {
         None
+    }
+}
+
+/// Every vector the loop needs, allocated once.
+pub(crate) struct Workspace<const Q: usize, const N: usize, M: Mechanics<Q, N>> {
+    /// The last assembly.
+    pub asm: M::Assembly,
+    /// Node displacements of the iterate, and at the start of the step.
+    pub un: Vec<SVector<f64, N>>,
+    pub un_n: Vec<SVector<f64, N>>,
+    /// Node forces at the start of the step.
+    pub pn_n: Vec<SVector<f64, N>>,
+    /// Node residuals and corrections.
+    pub rn: Vec<SVector<f64, N>>,
+    pub dun: Vec<SVector<f64, N>>,
+    /// Line search: the last accepted iterate and its Newton direction.
+    pub un_prev: Vec<SVector<f64, N>>,
+    pub dun_prev: Vec<SVector<f64, N>>,
+}
+
+impl<const Q: usize, const N: usize, M: Mechanics<Q, N>> Workspace<Q, N, M> {
+    /// Room for `model`'s nodes.
+    pub(crate) fn new(model: &M) -> Self {
+        let z = vec![SVector::<f64, N>::zeros(); model.nodes()];
+        Self {
+            asm: model.new_assembly(),
+            un: z.clone(),
+            un_n: z.clone(),
+            pn_n: z.clone(),
+            rn: z.clone(),
+            dun: z.clone(),
+            un_prev: z.clone(),
+            dun_prev: z,
+        }
+    }
+
+    /// Keep the nodes' converged displacements and forces as the next step's start
+    /// (nothing to copy without nodes: no call for an empty copy every step). With
+    /// condensed supports (`loop_nodes` = 0) the step reads neither `un` nor the node
+    /// forces, and `commit_step` writes every node of `un`: the two vectors are swapped,
+    /// and the node forces (never assembled) are not copied.
+    pub(crate) fn keep_nodes(&mut self, loop_nodes: usize) {
+        if self.un.is_empty() {
+            return;
+        }
+        if loop_nodes == 0 {
+            std::mem::swap(&mut self.un, &mut self.un_n);
+        } else {
+            self.un_n.copy_from_slice(&self.un);
+            self.pn_n.copy_from_slice(M::node_forces(&self.asm));
+        }
     }
 }

@@ -3,7 +3,8 @@
 //! Newton–Raphson equilibrium iterations on the consistent tangent, failing steps cut in
 //! halves. Massless nodes carry no inertia: their rows are (1 + α)·p₊ − α·pₙ = 0.
 //!
-//! - `mechanics`: what the loop asks of a model ([`Mechanics`]), the step state.
+//! - `mechanics`: what the loop asks of a model ([`Mechanics`]), the step state, the
+//!   workspace.
 //! - `newmark`: Newmark's relations and the HHT-α weights of a step.
 //! - `newton`: one step's Newton iteration, line search and convergence tests.
 //! - `time_loop`: the preload, the state at t = 0, the steps and their cutting.
@@ -17,6 +18,6 @@ mod time_loop;
 
 pub use failure::Counters;
 pub(crate) use failure::{FailureReason, LastIteration, StepFailure};
-pub(crate) use mechanics::{Mechanics, State, StepFn, StepState};
+pub(crate) use mechanics::{Mechanics, State, StepFn, StepState, Workspace};
 pub(crate) use newmark::Newmark;
-pub(crate) use time_loop::{Workspace, integrate, preload};
+pub(crate) use time_loop::{integrate, preload};

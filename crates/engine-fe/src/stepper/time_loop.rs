@@ -7,62 +7,11 @@
 use nalgebra::SVector;
 
 use super::failure::Counters;
-use super::mechanics::{Mechanics, State, StepState};
+use super::mechanics::{Mechanics, State, StepFn, StepState, Workspace};
 use super::newmark::Newmark;
 use super::newton;
 use crate::options::FeOptions;
 use rockslide_engine_api::RunStatus;
-
-/// Every vector the loop needs, allocated once.
-pub(crate) struct Workspace<const Q: usize, const N: usize, M: Mechanics<Q, N>> {
-    /// The last assembly.
-    pub asm: M::Assembly,
-    /// Node displacements of the iterate, and at the start of the step.
-    pub un: Vec<SVector<f64, N>>,
-    pub un_n: Vec<SVector<f64, N>>,
-    /// Node forces at the start of the step.
-    pub pn_n: Vec<SVector<f64, N>>,
-    /// Node residuals and corrections.
-    pub rn: Vec<SVector<f64, N>>,
-    pub dun: Vec<SVector<f64, N>>,
-    /// Line search: the last accepted iterate and its Newton direction.
-    pub un_prev: Vec<SVector<f64, N>>,
-    pub dun_prev: Vec<SVector<f64, N>>,
-}
-
-impl<const Q: usize, const N: usize, M: Mechanics<Q, N>> Workspace<Q, N, M> {
-    /// Room for `model`'s nodes.
-    pub(crate) fn new(model: &M) -> Self {
-        let z = vec![SVector::<f64, N>::zeros(); model.nodes()];
-        Self {
-            asm: model.new_assembly(),
-            un: z.clone(),
-            un_n: z.clone(),
-            pn_n: z.clone(),
-            rn: z.clone(),
-            dun: z.clone(),
-            un_prev: z.clone(),
-            dun_prev: z,
-        }
-    }
-
-    /// Keep the nodes' converged displacements and forces as the next step's start
-    /// (nothing to copy without nodes: no call for an empty copy every step). With
-    /// condensed supports (`loop_nodes` = 0) the step reads neither `un` nor the node
-    /// forces, and `commit_step` writes every node of `un`: the two vectors are swapped,
-    /// and the node forces (never assembled) are not copied.
-    fn keep_nodes(&mut self, loop_nodes: usize) {
-        if self.un.is_empty() {
-            return;
-        }
-        if loop_nodes == 0 {
-            std::mem::swap(&mut self.un, &mut self.un_n);
-        } else {
-            self.un_n.copy_from_slice(&self.un);
-            self.pn_n.copy_from_slice(M::node_forces(&self.asm));
-        }
-    }
-}
 
 /// Static equilibrium under gravity from the unloaded, just-touching state (Newton,
 /// converged to round-off); commits the elements. Returns (pose, iterations).
@@ -207,7 +156,7 @@ fn one_step<const Q: usize, const N: usize, M: Mechanics<Q, N>>(
     nm: &mut Newmark,
     w: &mut Workspace<Q, N, M>,
     (states, cur): (&mut [State<Q, N, M>; 2], &mut usize),
-    own: Option<super::mechanics::StepFn<Q, N, M>>,
+    own: Option<StepFn<Q, N, M>>,
     counters: &mut Counters,
 ) -> Option<RunStatus> {
     let max_depth = opts.newton.max_step_cuts;
