@@ -15,7 +15,8 @@ use super::drive::Drive;
 use crate::lu::Lu2;
 use crate::options::FeOptions;
 use crate::stepper::{
-    Counters, FailureReason, LastIteration, Newmark, State, StepFailure, StepState, Workspace,
+    Counters, FailureReason, LastIteration, LineSearch, Newmark, State, StepFailure, StepState,
+    Verdict, Workspace, failed, not_converged, verdict,
 };
 
 /// The factors of `m`, cached in `cache` (new ones unless `m` is the cached matrix).
@@ -46,6 +47,26 @@ fn assemble(model: &mut Model, q: &Vector2<f64>, xg: f64) -> ((f64, f64), [f64; 
     )
 }
 
+/// The Newton correction for the residual (rx, rz): the live block of the Newton matrix
+/// S = M·c0 + s·K (+ the damping's γ/(βΔt)·C·s on X) with tangent `k`, solved with the
+/// factors cached in `cache` (`None`: singular). `solve`'s matrix entry for entry (each
+/// off-diagonal from +0, as its sum).
+#[inline]
+fn correction(
+    cache: &mut Option<Lu2>,
+    k: &[f64; 4],
+    (mass_c0, s, damp_xx): (f64, f64, f64),
+    (rx, rz): (f64, f64),
+) -> Option<(f64, f64)> {
+    let matrix = [
+        (mass_c0 + k[0] * s) + damp_xx,
+        0.0 + k[1] * s,
+        0.0 + k[2] * s,
+        mass_c0 + k[3] * s,
+    ];
+    factors(cache, matrix).solve(rx, rz)
+}
+
 /// One step of length `nm.h` from `n` to time `t` (`stepper::newton::step` for a slider
 /// model).
 #[allow(clippy::too_many_arguments)]
@@ -59,16 +80,8 @@ pub(crate) fn step(
     t: f64,
     counters: &mut Counters,
 ) -> Result<(), StepFailure> {
-    let mass = model.body.mass;
-    let c = model.body.damping;
-    let Newmark {
-        alpha,
-        s,
-        c0,
-        c1,
-        h,
-        ..
-    } = *nm;
+    let (mass, c) = (model.body.mass, model.body.damping);
+    let (alpha, s, c0, c1, h) = (nm.alpha, nm.s, nm.c0, nm.c1, nm.h);
     let damp_xx = s * c * c1;
     let newton = opts.newton;
     let g = drive.ground(t);
@@ -82,10 +95,8 @@ pub(crate) fn step(
     let start_z = (n.f.y - n.pb.y) * alpha;
     let mass_c0 = mass * c0;
     let mut q = nq + nv * h + na * (0.5 * h * h);
-    let mut last = LastIteration::default();
-    let mut it = 0;
-    let (mut q_prev, mut dq_prev) = (q, Vector2::zeros());
-    let (mut r_prev, mut lambda) = (f64::INFINITY, 1.0_f64);
+    let (mut last, mut it) = (LastIteration::default(), 0);
+    let mut search = LineSearch::new(q);
     // The tangent of the iterate a full Newton step left (`linear_step`).
     let mut stepped_from: Option<[f64; 4]> = None;
     let accept =
@@ -116,36 +127,21 @@ pub(crate) fn step(
         let fref = f_norm
             + (pb.0 * pb.0 + pb.1 * pb.1).sqrt()
             + ((mass * a.x) * (mass * a.x) + (mass * a.y) * (mass * a.y)).sqrt();
-        if r2.sqrt() > (1.0 - 1e-4 * lambda) * r_prev && lambda > 1.0 / 64.0 {
-            lambda *= 0.5;
-            q = q_prev + dq_prev * lambda;
+        if search.backtrack(r2.sqrt(), &mut q) {
             stepped_from = None;
             continue;
         }
         if !(r2.is_finite() && q.iter().all(|x| x.is_finite())) {
-            counters.add_step_iterations(it);
-            return Err(StepFailure {
-                reason: FailureReason::NotFinite,
-                diverged: true,
-            });
+            return failed(counters, it, FailureReason::NotFinite, true);
         }
         if r2.sqrt() <= 1e-11 * fref {
             counters.add_step_iterations(it);
             *next = accept(q, v, a, pb, damp);
             return Ok(());
         }
-        let matrix = [
-            (mass_c0 + k[0] * s) + damp_xx,
-            0.0 + k[1] * s,
-            0.0 + k[2] * s,
-            mass_c0 + k[3] * s,
-        ];
-        let Some((dx, dz)) = factors(&mut w.asm.slider_factors, matrix).solve(rx, rz) else {
-            counters.add_step_iterations(it);
-            return Err(StepFailure {
-                reason: FailureReason::Singular(it),
-                diverged: false,
-            });
+        let cached = &mut w.asm.slider_factors;
+        let Some((dx, dz)) = correction(cached, &k, (mass_c0, s, damp_xx), (rx, rz)) else {
+            return failed(counters, it, FailureReason::Singular(it), false);
         };
         let dq = Vector2::new(dx, dz);
         let (d2, inc2, u2) = (
@@ -161,35 +157,17 @@ pub(crate) fn step(
             correction_squared: d2,
             increment_squared: inc2,
         };
-        let force_ok = rn <= newton.force_tol * fref;
-        let disp_ok =
-            || d2.sqrt() <= (newton.displacement_tol * inc2.sqrt()).max(1e-12 * u2.sqrt());
-        if force_ok && disp_ok() {
+        let verdict = verdict(&newton, (rn, fref), (d2, inc2, u2), search.r_prev);
+        if verdict != Verdict::Continue {
+            counters.roundoff_accepted += u64::from(verdict == Verdict::RoundOff);
             counters.add_step_iterations(it);
             *next = accept(q, v, a, pb, damp);
             return Ok(());
         }
-        if force_ok && r_prev.is_finite() && rn > 0.5 * r_prev {
-            counters.roundoff_accepted += 1;
-            counters.add_step_iterations(it);
-            *next = accept(q, v, a, pb, damp);
-            return Ok(());
-        }
-        (q_prev, dq_prev, r_prev, lambda) = (q, dq, rn, 1.0);
-        q += dq;
+        search.advance(&mut q, dq, rn);
         stepped_from = Some(k);
     }
-    counters.add_step_iterations(it);
-    Err(StepFailure {
-        reason: FailureReason::NotConverged {
-            iterations: it,
-            last,
-            force_tol: newton.force_tol,
-            displacement_tol: newton.displacement_tol,
-            unit: " m",
-        },
-        diverged: false,
-    })
+    not_converged(counters, it, last, &newton, " m")
 }
 
 /// Whether the iterate `q`, reached by a full Newton step from an iterate whose tangent was

@@ -195,8 +195,7 @@ pub(crate) fn step<const Q: usize, const N: usize, M: Mechanics<Q, N>>(
         model.predict_nodes(&mut w.un, &g, &n.g);
     }
     let rotates = model.rotates();
-    let mut last = LastIteration::default();
-    let mut it = 0;
+    let (mut last, mut it) = (LastIteration::default(), 0);
     let mut search = LineSearch::new(q);
     while it < newton.max_iterations {
         it += 1;
