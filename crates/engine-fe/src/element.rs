@@ -1,5 +1,7 @@
-//! The element interface the time loop drives, and the one element the engine needs: a
-//! CONTA178-like node-to-node contact with a fixed normal (the ground's vertical).
+//! The element interface the time loop drives, in either dimension, and the plane
+//! element: a CONTA178-like node-to-node contact with a fixed normal (the ground's
+//! vertical). The 3D cone contact (`space::ConeContact`) is the same element with a
+//! circular friction cone, behind the same trait.
 //!
 //! An element computes its force and tangent for a *trial* relative displacement,
 //! always starting from its *committed* state (so Newton iterations inside a step never
@@ -15,11 +17,16 @@
 
 use nalgebra::{Matrix2, Vector2};
 
-/// What the time loop asks of an element.
+/// What the time loop asks of an element, in the dimension of its relative displacement
+/// (`Vector2` in the plane, `Vector3` in space).
 pub trait Element {
+    /// The relative displacement δ and the force on the upper point.
+    type Vector;
+    /// The tangent ∂force/∂δ.
+    type Tangent;
     /// Force on the upper point and tangent ∂force/∂δ at the trial relative displacement
     /// `delta`, computed from the committed state (the trial state is kept).
-    fn trial(&mut self, delta: Vector2<f64>) -> (Vector2<f64>, Matrix2<f64>);
+    fn trial(&mut self, delta: Self::Vector) -> (Self::Vector, Self::Tangent);
     /// Accept the last trial state.
     fn commit(&mut self);
     /// Forget the trial state (back to the committed one).
@@ -187,6 +194,9 @@ impl Contact178 {
 }
 
 impl Element for Contact178 {
+    type Vector = Vector2<f64>;
+    type Tangent = Matrix2<f64>;
+
     #[inline]
     fn trial(&mut self, d: Vector2<f64>) -> (Vector2<f64>, Matrix2<f64>) {
         self.trial_as(d, self.bonded)

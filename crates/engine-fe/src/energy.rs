@@ -2,7 +2,7 @@
 
 use super::element::{Contact178, ContactState, Status};
 use super::model::Model;
-use super::stepper::Snapshot;
+use super::model::Snapshot;
 
 /// The energy terms of a run, accumulated from the engine's own element states and
 /// kinematics at every converged step (rocking bodies; `analysis::energy` audits them):

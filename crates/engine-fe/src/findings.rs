@@ -114,33 +114,46 @@ pub(crate) fn findings(run: &Findings) -> Vec<String> {
         counters.roundoff_accepted
     ));
     if let (true, Some(base)) = (rocking && opts.sensitivity && status.completed(), summary) {
-        findings.push(format!("this run: {}", base.describe()));
-        let mut alternatives: Vec<(String, Model)> = Vec::new();
-        for factor in [0.1, 10.0, 100.0] {
-            let mut m = model.clone();
-            m.body.inertia *= factor;
-            alternatives.push((format!("rotational inertia ×{factor}"), m));
-        }
-        if opts.kinematics == Kinematics::Exact {
-            let mut m = model.clone();
-            m.kinematics = Kinematics::SmallRotation;
-            m.p_delta = false;
-            alternatives.push((
-                "small rotation without P-Delta (the paper's programs)".into(),
-                m,
-            ));
-        }
-        for (label, m) in alternatives {
-            let mut alternative = Summary::default();
-            let (st, _, _) = run_model(case, m, dt, opts, &mut Rows::new(&mut alternative));
-            if st.completed() {
-                findings.push(format!("sensitivity — {label}: {}", alternative.describe()));
-            } else {
-                findings.push(format!("sensitivity — {label}: {st}"));
-            }
-        }
+        findings.extend(sensitivity(case, model, opts, dt, base));
     }
     findings
+}
+
+/// The sensitivity findings of a rocking run whose headline numbers are `base`: the same
+/// run with the rotational inertia scaled, and with small-rotation kinematics.
+fn sensitivity(
+    case: &Case,
+    model: &Model,
+    opts: &FeOptions,
+    dt: f64,
+    base: &Summary,
+) -> Vec<String> {
+    let mut out = vec![format!("this run: {}", base.describe())];
+    let mut alternatives: Vec<(String, Model)> = Vec::new();
+    for factor in [0.1, 10.0, 100.0] {
+        let mut m = model.clone();
+        m.body.inertia *= factor;
+        alternatives.push((format!("rotational inertia ×{factor}"), m));
+    }
+    if opts.kinematics == Kinematics::Exact {
+        let mut m = model.clone();
+        m.kinematics = Kinematics::SmallRotation;
+        m.p_delta = false;
+        alternatives.push((
+            "small rotation without P-Delta (the paper's programs)".into(),
+            m,
+        ));
+    }
+    for (label, m) in alternatives {
+        let mut alternative = Summary::default();
+        let (st, _, _) = run_model(case, m, dt, opts, &mut Rows::new(&mut alternative));
+        if st.completed() {
+            out.push(format!("sensitivity — {label}: {}", alternative.describe()));
+        } else {
+            out.push(format!("sensitivity — {label}: {st}"));
+        }
+    }
+    out
 }
 
 /// Headline numbers of a rocking run, for sensitivity findings, read row by row as the

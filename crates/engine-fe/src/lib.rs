@@ -17,6 +17,7 @@
 //!   engine streams natively: a whole run is the same loop into a trace sized up front).
 //! - `energy`: the energy bookkeeping of rocking runs.
 //! - `findings`: eigenfrequencies, self-checks and sensitivity reported as findings.
+//! - `variant`: the variant names (single, double).
 //! - `vertical`: vertical ground motion as an inertial load (issue 15).
 //! - `whole_run`: the sink of a whole run (rows kept row-major, split into columns once).
 
@@ -25,6 +26,7 @@
 mod element;
 mod energy;
 mod findings;
+mod lu;
 mod model;
 mod modes;
 mod options;
@@ -32,6 +34,7 @@ mod recording;
 mod simulate;
 pub mod space;
 mod stepper;
+pub mod variant;
 mod vertical;
 mod whole_run;
 
@@ -45,14 +48,6 @@ use rockslide_core::case::OptionValue;
 use rockslide_core::case::{Case, Model as SceneModel, Scene};
 use rockslide_core::error::InputError;
 use rockslide_engine_api::{Arrangement, Engine, NotApplicable, Run, StepSink, Variant};
-
-/// Variant names.
-pub mod variant {
-    /// One contact element per support.
-    pub const SINGLE: &str = "single";
-    /// Two elements in series through a massless node (element 1 slides, element 2 elastic).
-    pub const DOUBLE: &str = "double";
-}
 
 /// The penalty FE contact engine.
 pub struct Fe;

@@ -146,22 +146,9 @@ impl Default for FeOptions {
 impl FeOptions {
     /// Read and validate the case's `[engines.fe]` options; every problem is returned.
     pub fn parse(case: &Case) -> (FeOptions, Vec<InputError>) {
-        let mut errors = Vec::new();
+        let mut errors = unknown_keys(case);
         let mut o = FeOptions::default();
         let field = |k: &str| format!("engines.{ID}.{k}");
-        if let Some(req) = case.engine(ID) {
-            for k in req.options.keys() {
-                if !OPTION_KEYS.contains(&k.as_str()) {
-                    errors.push(case.field_error(
-                        &field(k),
-                        format!(
-                            "unknown option of the fe engine; its options are {}",
-                            OPTION_KEYS.join(", ")
-                        ),
-                    ));
-                }
-            }
-        }
         let mut take = |r: Result<(), InputError>| {
             if let Err(e) = r {
                 errors.push(e);
@@ -249,4 +236,26 @@ impl FeOptions {
         })());
         (o, errors)
     }
+}
+
+/// An error for every option of the case's `[engines.fe]` the engine does not know.
+fn unknown_keys(case: &Case) -> Vec<InputError> {
+    let Some(req) = case.engine(ID) else {
+        return Vec::new();
+    };
+    let unknown = req
+        .options
+        .keys()
+        .filter(|k| !OPTION_KEYS.contains(&k.as_str()));
+    unknown
+        .map(|k| {
+            case.field_error(
+                &format!("engines.{ID}.{k}"),
+                format!(
+                    "unknown option of the fe engine; its options are {}",
+                    OPTION_KEYS.join(", ")
+                ),
+            )
+        })
+        .collect()
 }

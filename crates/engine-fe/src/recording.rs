@@ -9,8 +9,9 @@ use nalgebra::Vector2;
 
 use super::energy::EnergyBook;
 use super::model::Model;
+use super::model::{Drive, Snapshot};
 use super::options::FeOptions;
-use super::stepper::{Counters, Drive, Snapshot, integrate};
+use super::stepper::{Counters, integrate};
 use rockslide_core::case::{Case, Model as SceneModel};
 use rockslide_core::trace::{CONTACT_FIELDS, ContactBlock, ContactState, Quantity, Trace, q};
 use rockslide_engine_api::{RunStatus, StepSink, step_count};
@@ -23,7 +24,7 @@ pub(crate) const FIELDS: usize = CONTACT_FIELDS.len();
 
 /// Where the recorder hands each row: the contacts' fields written into the sink's row as
 /// its loop over the supports finds them, the channel values written into the sink's
-/// row, then the row's time. A whole run ([`super::whole_run::WholeRun`]) keeps both where the row is
+/// row, then the row's time. A whole run (`WholeRun`) keeps both where the row is
 /// stored; any [`StepSink`] takes the rows through [`Rows`].
 pub(crate) trait RowSink {
     /// Before the first row: the run's layout (channels, contact names and compliances).
@@ -212,28 +213,7 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
     let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s: &Snapshot| {
         let (xg, vg, ag) = s.ground;
         // The self-check's running maximum in a local over the loop, stored once after it.
-        let mut sums = SupportSums::new(check.node_minus_slip);
-        let fields = sink.contacts();
-        // The links (and nodes) walked in step with the supports where the layout allows.
-        match layout {
-            SupportLayout::Single => {
-                for (l, field) in m.links.iter().zip(fields) {
-                    *field = sums.add(l.element.state(), None);
-                }
-            }
-            SupportLayout::Paired => {
-                let pairs = m.links.chunks_exact(2).zip(s.un);
-                for ((pair, node), field) in pairs.zip(fields) {
-                    *field = sums.add(pair[0].element.state(), Some(node.x - xg));
-                }
-            }
-            SupportLayout::General => {
-                for (sup, field) in m.supports.iter().zip(fields) {
-                    let node = sup.node.map(|k| s.un[k].x - xg);
-                    *field = sums.add(m.links[sup.ground_link].element.state(), node);
-                }
-            }
-        }
+        let sums = support_sums(layout, m, s, sink.contacts(), check.node_minus_slip);
         let SupportSums {
             shear,
             normal,
@@ -289,6 +269,41 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
         sink.end_row(s.t, i);
     });
     (status, counters, check)
+}
+
+/// The sums over the supports of a snapshot `s` of `m`, each support's contact fields
+/// written into `fields`; the self-check's running maximum starts at `node_minus_slip`.
+/// The links (and nodes) are walked in step with the supports where the layout allows.
+#[inline(always)]
+fn support_sums(
+    layout: SupportLayout,
+    m: &Model,
+    s: &Snapshot,
+    fields: &mut [[f64; FIELDS]],
+    node_minus_slip: f64,
+) -> SupportSums {
+    let xg = s.ground.0;
+    let mut sums = SupportSums::new(node_minus_slip);
+    match layout {
+        SupportLayout::Single => {
+            for (l, field) in m.links.iter().zip(fields) {
+                *field = sums.add(l.element.state(), None);
+            }
+        }
+        SupportLayout::Paired => {
+            let pairs = m.links.chunks_exact(2).zip(s.un);
+            for ((pair, node), field) in pairs.zip(fields) {
+                *field = sums.add(pair[0].element.state(), Some(node.x - xg));
+            }
+        }
+        SupportLayout::General => {
+            for (sup, field) in m.supports.iter().zip(fields) {
+                let node = sup.node.map(|k| s.un[k].x - xg);
+                *field = sums.add(m.links[sup.ground_link].element.state(), node);
+            }
+        }
+    }
+    sums
 }
 
 /// How a model's supports map onto its links and nodes, found once per run, so the

@@ -16,7 +16,7 @@
 
 use nalgebra::{Matrix3, Vector2, Vector3};
 
-use crate::element::Status;
+use crate::element::{Element, Status};
 
 /// History and the last evaluation of a cone contact.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -96,10 +96,20 @@ impl ConeContact {
         self.committed.force.xy()
     }
 
-    /// Force on the upper point and tangent ∂force/∂δ at the trial `d`, from the committed
-    /// state (kept as the trial state).
+    /// The last trial's tangent when it slipped, as D = diag(ρ, ρ, kz) − (n, 0)·wᵀ with
+    /// ρ = μN/|T*|·kt, n = T*/|T*| and w = (ρ·n, μ·kz): returns (ρ, n). Meaningful only
+    /// after a trial whose status is `Slip`.
+    pub fn slip_tangent(&self) -> (f64, Vector2<f64>) {
+        self.slip_tangent
+    }
+}
+
+impl Element for ConeContact {
+    type Vector = Vector3<f64>;
+    type Tangent = Matrix3<f64>;
+
     #[inline]
-    pub fn trial(&mut self, d: Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
+    fn trial(&mut self, d: Vector3<f64>) -> (Vector3<f64>, Matrix3<f64>) {
         let (kt, kz) = (self.kt, self.kz);
         let p = self.committed.slip;
         let dt = d.xy();
@@ -158,21 +168,14 @@ impl ConeContact {
         (force, tangent)
     }
 
-    /// The last trial's tangent when it slipped, as D = diag(ρ, ρ, kz) − (n, 0)·wᵀ with
-    /// ρ = μN/|T*|·kt, n = T*/|T*| and w = (ρ·n, μ·kz): returns (ρ, n). Meaningful only
-    /// after a trial whose status is `Slip`.
-    pub fn slip_tangent(&self) -> (f64, Vector2<f64>) {
-        self.slip_tangent
-    }
-
     /// Accept the last trial state.
     #[inline]
-    pub fn commit(&mut self) {
+    fn commit(&mut self) {
         self.committed = self.trial;
     }
 
     /// Forget the trial state.
-    pub fn restore(&mut self) {
+    fn restore(&mut self) {
         self.trial = self.committed;
     }
 }
@@ -216,7 +219,7 @@ mod tests {
 
     #[test]
     fn reduces_to_the_two_dimensional_element_in_plane() {
-        use crate::element::{Contact178, Element};
+        use crate::element::Contact178;
         let mut c2 = Contact178::new(1000.0, 4000.0, 0.5, false);
         let mut c3 = ConeContact::new(1000.0, 4000.0, 0.5, false);
         for (x, z) in [

@@ -25,136 +25,14 @@
 
 use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
-use super::contact::{ConeContact, ConeState};
-use super::lu::Lu6;
+use super::body::SpaceBody;
+use super::contact::ConeContact;
+use super::ground_sums::assemble_direct;
 use super::rotation::{right_jacobian, skew};
-use crate::element::Status;
-use rockslide_core::case::{Contact, DoubleContact, Oscillator, RockingBody};
-
-/// A rigid body on supports, as the 3D model is built from it.
-#[derive(Debug, Clone, PartialEq)]
-pub struct SpaceBody {
-    /// Mass, kg.
-    pub mass: f64,
-    /// Gravity, m/s² (along −z).
-    pub gravity: f64,
-    /// Inertia tensor about the centre of mass in the body frame (ground axes at rest),
-    /// kg·m² (unused when the rotation is locked).
-    pub inertia: Matrix3<f64>,
-    /// Whether the body rotates (false: the PEPO, a translating mass).
-    pub rotation: bool,
-    /// Support points in the body frame, relative to the centre of mass, m.
-    pub supports: Vec<Vector3<f64>>,
-    /// Each support as one element (kx is the tangential stiffness in both directions).
-    pub contact: Contact,
-    /// Each support as two elements in series, if so.
-    pub double: Option<DoubleContact>,
-    /// Horizontal viscous damping relative to the ground (both directions), N·s/m.
-    pub damping: f64,
-}
-
-/// A rigid block on an nx × ny grid of supports under its base (the RPEPO extended).
-#[derive(Debug, Clone, PartialEq)]
-pub struct BlockGrid {
-    /// Mass, kg.
-    pub mass: f64,
-    /// Gravity, m/s².
-    pub gravity: f64,
-    /// Height of the centre of mass above the base centre O, m.
-    pub cm_height: f64,
-    /// Half-length of the base along x, m.
-    pub half_length: f64,
-    /// Half-width of the base along y, m.
-    pub half_width: f64,
-    /// Supports along x (≥ 1).
-    pub nx: usize,
-    /// Supports along y (≥ 1).
-    pub ny: usize,
-    /// Inertia tensor about the centre of mass, kg·m².
-    pub inertia: Matrix3<f64>,
-    /// Single element per support.
-    pub contact: Contact,
-    /// Double arrangement, if any.
-    pub double: Option<DoubleContact>,
-}
-
-/// Equally spaced abscissae from −half to +half (0 for one), the 2D model's formula.
-fn positions(n: usize, half: f64) -> impl Iterator<Item = f64> {
-    (0..n).map(move |i| {
-        if n == 1 {
-            0.0
-        } else {
-            -half + 2.0 * half * i as f64 / (n - 1) as f64
-        }
-    })
-}
-
-impl SpaceBody {
-    /// The PEPO as a 3D oscillator: a translating mass on one contact.
-    pub fn oscillator(o: &Oscillator, double: bool) -> Self {
-        Self {
-            mass: o.mass,
-            gravity: o.gravity,
-            inertia: Matrix3::zeros(),
-            rotation: false,
-            supports: vec![Vector3::zeros()],
-            contact: o.contact,
-            double: if double { o.double } else { None },
-            damping: o.damping(),
-        }
-    }
-
-    /// A block on a grid of supports (x fastest, then y).
-    pub fn block(g: &BlockGrid, double: bool) -> Self {
-        let mut supports = Vec::with_capacity(g.nx * g.ny);
-        for y in positions(g.ny, g.half_width) {
-            for x in positions(g.nx, g.half_length) {
-                supports.push(Vector3::new(x, y, -g.cm_height));
-            }
-        }
-        Self {
-            mass: g.mass,
-            gravity: g.gravity,
-            inertia: g.inertia,
-            rotation: true,
-            supports,
-            contact: g.contact,
-            double: if double { g.double } else { None },
-            damping: 0.0,
-        }
-    }
-
-    /// The 2D rocking body in 3D: a symmetric two-row grid, each 2D support split into two
-    /// at y = ±`half_width` carrying half its stiffnesses, and an isotropic inertia
-    /// `inertia`. In its plane it is the 2D structure (the same sums of forces, each half
-    /// element at half the force); out of plane it stands (a single row of supports
-    /// would be a knife edge, free to tip sideways).
-    pub fn from_rocking(r: &RockingBody, inertia: f64, half_width: f64, double: bool) -> Self {
-        let half = |c: Contact| Contact {
-            kx: 0.5 * c.kx,
-            kz: 0.5 * c.kz,
-            mu: c.mu,
-        };
-        Self::block(
-            &BlockGrid {
-                mass: r.mass,
-                gravity: r.gravity,
-                cm_height: r.cm_height,
-                half_length: r.half_width,
-                half_width,
-                nx: r.supports,
-                ny: 2,
-                inertia: Matrix3::identity() * inertia,
-                contact: half(r.contact),
-                double: r.double.map(|d| DoubleContact {
-                    lower: half(d.lower),
-                    upper: half(d.upper),
-                }),
-            },
-            double,
-        )
-    }
-}
+use super::series::{series_equivalent, split_equivalent};
+use crate::element::Element;
+use crate::lu::Lu6;
+use rockslide_core::case::Contact;
 
 /// One support: element 1 from the ground (to the node, or to the body), and element 2
 /// from the node to the body in the double arrangement.
@@ -327,10 +205,15 @@ impl SpaceModel {
         if self.condensed {
             let sums = if self.nodes == 0 {
                 let elements = self.supports.iter_mut().map(|s| (s.offset, &mut s.lower));
-                assemble_direct(elements, pose, ground)
+                assemble_direct(elements, &pose.x, &pose.r, ground)
             } else {
                 let offsets = self.supports.iter().map(|s| s.offset);
-                assemble_direct(offsets.zip(self.equivalents.iter_mut()), pose, ground)
+                assemble_direct(
+                    offsets.zip(self.equivalents.iter_mut()),
+                    &pose.x,
+                    &pose.r,
+                    ground,
+                )
             };
             (a.pb, a.kbb) = sums;
         } else {
@@ -439,270 +322,6 @@ impl SpaceModel {
             e.restore();
         }
     }
-}
-
-/// The exact single cone contact of two in series through a massless node: element 1
-/// (ground side, compression-only, friction μ1 on the circular cone) and element 2
-/// (bonded, μ2 = ∞); `None` for any other pair.
-///
-/// Derivation (the 2D one, `crate::model::series_equivalent`, with the tangential pair as
-/// a vector). The node carries no load, so both elements transmit the same force f.
-/// Normal: element 1 closed (δtz ≤ 0) gives N = kzs·(−δtz), kzs = kz1·kz2/(kz1 + kz2);
-/// δtz > 0 opens element 1 and nothing is transmitted. Tangential, with element 1's slip
-/// s1: sticking, T = kt1·(δ1 − s1) = kt2·(δt − δ1) gives T = kts·(δt − s1),
-/// kts = kt1·kt2/(kt1 + kt2), and the pair sticks while |T| ≤ μ1·N — the same test on the
-/// same numbers. Slipping, element 1's radial return puts T = μ1·N·m with m the direction
-/// of its trial δ1 − s1 = (δt − s1) − T/kt2, so m is the direction of δt − s1 (the
-/// equivalent's trial direction), and s1 ← δ1 − T/kt1 = δt − T/kts: the radial return of
-/// one element (kts, kzs, μ1) with slip s1. Open: δ1 = δt and the origin follows the point,
-/// s1 = δt, again the same. The consistent tangent, the derivative of the same function,
-/// is the node's Schur complement D2 − D2·(D1 + D2)⁻¹·D2. Only round-off differs.
-pub fn series_equivalent(lower: &ConeContact, upper: &ConeContact) -> Option<ConeContact> {
-    if lower.bonded || !upper.bonded || upper.mu.is_finite() {
-        return None;
-    }
-    let series = |a: f64, b: f64| a * b / (a + b);
-    let mut eq = ConeContact::new(
-        series(lower.kt, upper.kt),
-        series(lower.kz, upper.kz),
-        lower.mu,
-        false,
-    );
-    eq.set_committed(*lower.state());
-    Some(eq)
-}
-
-/// Set the committed states of a condensed support's element 1 (`lower`) and element 2
-/// (`upper`) from the last trial of their series equivalent `eq`; returns the node's
-/// position relative to the ground, δ1. Both elements carry the equivalent's force f;
-/// element 2 sticks, so its deflection is δ2 = (fx/kt2, fy/kt2, fz/kz2) and δ1 = δt − δ2
-/// (δ1 = δt, δ2 = 0 when element 1 is open); element 1 has the equivalent's slip and
-/// status.
-fn split_equivalent(
-    eq: &ConeContact,
-    lower: &mut ConeContact,
-    upper: &mut ConeContact,
-) -> Vector3<f64> {
-    let st = *eq.trial_state();
-    let d2 = if st.status == Status::Open {
-        Vector3::zeros()
-    } else {
-        Vector3::new(
-            st.force.x / upper.kt,
-            st.force.y / upper.kt,
-            st.force.z / upper.kz,
-        )
-    };
-    let d1 = st.delta - d2;
-    lower.set_committed(ConeState { delta: d1, ..st });
-    upper.set_committed(ConeState {
-        slip: upper.state().slip,
-        delta: d2,
-        force: st.force,
-        status: Status::Stick,
-    });
-    d1
-}
-
-/// 3×3 matrices as rows of plain scalars.
-type M3 = [[f64; 3]; 3];
-
-/// a·b.
-#[inline]
-fn mul(a: &M3, b: &M3) -> M3 {
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j])
-    })
-}
-
-/// aᵀ·b.
-#[inline]
-fn tr_mul(a: &M3, b: &M3) -> M3 {
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| a[0][i] * b[0][j] + a[1][i] * b[1][j] + a[2][i] * b[2][j])
-    })
-}
-
-/// The ground-frame sums of one assembly over the supports that touch (`assemble_direct`),
-/// with c = R·d each support's offset turned into the ground frame:
-/// Σf, Σc × f, Σf·dᵀ, Σc·f and, for the tangent, ΣD, ΣD·ĉ, Σĉ·D, Σĉ·D·ĉ — the sticking
-/// supports (D = diag(a, a, b)) through moments of c, the slipping ones through the same
-/// moments and a rank-one correction.
-#[derive(Default)]
-struct GroundSums {
-    f: [f64; 3],
-    c_cross_f: [f64; 3],
-    f_dt: M3,
-    c_dot_f: f64,
-    d: M3,
-    d_c: M3,
-    c_d: M3,
-    c_d_c: M3,
-    /// Σa·c and Σb·c over the sticking supports.
-    ac: [f64; 3],
-    bc: [f64; 3],
-    /// Σa·(c1², c2², c3², c1c3, c2c3) and Σb·(c1², c2², c1c2) over the sticking supports.
-    a_moments: [f64; 5],
-    b_moments: [f64; 3],
-}
-
-impl GroundSums {
-    /// Add the force `f` of the support at body offset `d`, ground offset `c` = R·d.
-    #[inline]
-    fn add_force(&mut self, f: &[f64; 3], d: &[f64; 3], c: &[f64; 3]) {
-        for ((sum, row), fi) in self.f.iter_mut().zip(&mut self.f_dt).zip(f) {
-            *sum += fi;
-            for (x, dj) in row.iter_mut().zip(d) {
-                *x += fi * dj;
-            }
-        }
-        self.c_cross_f[0] += c[1] * f[2] - c[2] * f[1];
-        self.c_cross_f[1] += c[2] * f[0] - c[0] * f[2];
-        self.c_cross_f[2] += c[0] * f[1] - c[1] * f[0];
-        self.c_dot_f += c[0] * f[0] + c[1] * f[1] + c[2] * f[2];
-    }
-
-    /// Add a sticking support's tangent D = diag(a, a, b) through the moments of c.
-    #[inline]
-    fn add_sticking(&mut self, a: f64, b: f64, c: &[f64; 3]) {
-        self.d[0][0] += a;
-        self.d[1][1] += a;
-        self.d[2][2] += b;
-        for ((ac, bc), ci) in self.ac.iter_mut().zip(&mut self.bc).zip(c) {
-            *ac += a * ci;
-            *bc += b * ci;
-        }
-        let (c11, c22, c33) = (c[0] * c[0], c[1] * c[1], c[2] * c[2]);
-        let m = &mut self.a_moments;
-        m[0] += a * c11;
-        m[1] += a * c22;
-        m[2] += a * c33;
-        m[3] += a * (c[0] * c[2]);
-        m[4] += a * (c[1] * c[2]);
-        let m = &mut self.b_moments;
-        m[0] += b * c11;
-        m[1] += b * c22;
-        m[2] += b * (c[0] * c[1]);
-    }
-
-    /// Add a slipping support's tangent D = diag(ρ, ρ, b) − v·wᵀ (v = (n, 0),
-    /// w = (ρ·n, μ·kz), `ConeContact::slip_tangent`): its diagonal part as a sticking
-    /// support's, and the rank-one part through D·ĉ = diag·ĉ + v·(c × w)ᵀ,
-    /// ĉ·D = ĉ·diag − (c × v)·wᵀ, ĉ·D·ĉ = ĉ·diag·ĉ + (c × v)·(c × w)ᵀ.
-    #[inline]
-    fn add_slipping(&mut self, rho: f64, b: f64, n: &Vector2<f64>, mu_kz: f64, c: &[f64; 3]) {
-        self.add_sticking(rho, b, c);
-        let v = [n.x, n.y, 0.0];
-        let w = [rho * n.x, rho * n.y, mu_kz];
-        let cross = |u: &[f64; 3]| {
-            [
-                c[1] * u[2] - c[2] * u[1],
-                c[2] * u[0] - c[0] * u[2],
-                c[0] * u[1] - c[1] * u[0],
-            ]
-        };
-        let (cv, cw) = (cross(&v), cross(&w));
-        // Rows 0 and 1 only: v = (n, 0).
-        for ((d, d_c), vi) in self.d.iter_mut().zip(&mut self.d_c).zip(&v).take(2) {
-            for ((x, y), (wj, cwj)) in d.iter_mut().zip(d_c).zip(w.iter().zip(&cw)) {
-                *x -= vi * wj;
-                *y += vi * cwj;
-            }
-        }
-        for ((c_d, c_d_c), cvi) in self.c_d.iter_mut().zip(&mut self.c_d_c).zip(&cv) {
-            for ((x, y), (wj, cwj)) in c_d.iter_mut().zip(c_d_c).zip(w.iter().zip(&cw)) {
-                *x -= cvi * wj;
-                *y += cvi * cwj;
-            }
-        }
-    }
-
-    /// Fold the sticking supports' moments into ΣD·ĉ, Σĉ·D, Σĉ·D·ĉ: for D = diag(a, a, b),
-    /// D·ĉ = [[0, −a·c3, a·c2], [a·c3, 0, −a·c1], [−b·c2, b·c1, 0]], ĉ·D = −(D·ĉ)ᵀ and
-    /// ĉ·D·ĉ = [[−a·c3² − b·c2², b·c1c2, a·c1c3], [·, −a·c3² − b·c1², a·c2c3],
-    /// [·, ·, −a·(c1² + c2²)]] (symmetric).
-    fn fold_sticking(&mut self) {
-        let (a, b) = (self.ac, self.bc);
-        let d_c = [[0.0, -a[2], a[1]], [a[2], 0.0, -a[0]], [-b[1], b[0], 0.0]];
-        let [a11, a22, a33, a13, a23] = self.a_moments;
-        let [b11, b22, b12] = self.b_moments;
-        let c_d_c = [
-            [-a33 - b22, b12, a13],
-            [b12, -a33 - b11, a23],
-            [a13, a23, -(a11 + a22)],
-        ];
-        for i in 0..3 {
-            for j in 0..3 {
-                self.d_c[i][j] += d_c[i][j];
-                self.c_d[i][j] -= d_c[j][i];
-                self.c_d_c[i][j] += c_d_c[i][j];
-            }
-        }
-    }
-
-    /// The body's internal force (force, body-frame moment Rᵀ·Σc × f) and its tangent with
-    /// respect to (X, W): with G = −R·d̂ = −ĉ·R,
-    /// [[ΣD, −ΣD·ĉ·R], [Rᵀ·Σĉ·D, −Rᵀ·Σĉ·D·ĉ·R + Rᵀ·Σf·dᵀ − (Σc·f)·I]].
-    fn into_matrices(mut self, rm: &M3) -> (Vector6<f64>, Matrix6<f64>) {
-        self.fold_sticking();
-        let m = &self.c_cross_f;
-        let moment: [f64; 3] =
-            std::array::from_fn(|j| rm[0][j] * m[0] + rm[1][j] * m[1] + rm[2][j] * m[2]);
-        let k01 = mul(&self.d_c, rm);
-        let k10 = tr_mul(rm, &self.c_d);
-        let rt_cdc_r = tr_mul(rm, &mul(&self.c_d_c, rm));
-        let rt_fdt = tr_mul(rm, &self.f_dt);
-        let mut k = Matrix6::zeros();
-        for i in 0..3 {
-            for j in 0..3 {
-                k[(i, j)] = self.d[i][j];
-                k[(i, 3 + j)] = -k01[i][j];
-                k[(3 + i, j)] = k10[i][j];
-                k[(3 + i, 3 + j)] = rt_fdt[i][j] - rt_cdc_r[i][j];
-            }
-            k[(3 + i, 3 + i)] -= self.c_dot_f;
-        }
-        let p = Vector6::new(
-            self.f[0], self.f[1], self.f[2], moment[0], moment[1], moment[2],
-        );
-        (p, k)
-    }
-}
-
-/// Internal force on the body and its tangent (before J_r) from elements joining the
-/// ground to the body points at the given offsets (the single arrangement, or condensed
-/// double supports). Σ(f, d × Rᵀf) and [[ΣD, ΣD·G], [ΣGᵀD, ΣGᵀDG + (Rᵀf)·dᵀ − (d·Rᵀf)·I]]
-/// with G = −R·d̂ (the module docs), summed in the ground frame with R·d̂ = ĉ·R (c = R·d)
-/// and turned into the body frame once (`GroundSums`): an open element adds nothing, a
-/// sticking one its moments of c.
-fn assemble_direct<'e>(
-    elements: impl Iterator<Item = (Vector3<f64>, &'e mut ConeContact)>,
-    pose: &Pose,
-    ground: &Vector3<f64>,
-) -> (Vector6<f64>, Matrix6<f64>) {
-    let r = &pose.r;
-    let rm: M3 = std::array::from_fn(|i| [r[(i, 0)], r[(i, 1)], r[(i, 2)]]);
-    let mut sums = GroundSums::default();
-    for (d, e) in elements {
-        let d = [d.x, d.y, d.z];
-        let c: [f64; 3] =
-            std::array::from_fn(|i| rm[i][0] * d[0] + rm[i][1] * d[1] + rm[i][2] * d[2]);
-        let delta = Vector3::from_fn(|i, _| (pose.x[i] + (c[i] - d[i])) - ground[i]);
-        let (f, dm) = e.trial(delta);
-        let status = e.trial_state().status;
-        if status == Status::Open {
-            continue;
-        }
-        sums.add_force(&[f.x, f.y, f.z], &d, &c);
-        if status == Status::Stick {
-            // Sticking (or bonded): D = diag(kt, kt, kz).
-            sums.add_sticking(dm[(0, 0)], dm[(2, 2)], &c);
-        } else {
-            let (rho, n) = e.slip_tangent();
-            sums.add_slipping(rho, e.kz, &n, e.mu * e.kz, &c);
-        }
-    }
-    sums.into_matrices(&rm)
 }
 
 /// The inverse of a node block D1 + D2: reciprocals when it is diagonal (both elements
@@ -857,7 +476,9 @@ pub fn solve(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::space::body::BlockGrid;
     use crate::space::rotation::exp;
+    use rockslide_core::case::DoubleContact;
 
     /// A 4 × 3 block with the RPEPO's double elements (kx1 ≫ kx2, μ1 = 0.5).
     fn block() -> SpaceBody {

@@ -4,10 +4,12 @@
 
 use nalgebra::{Vector2, Vector3};
 
-use super::model::{SpaceBody, SpaceModel};
-use super::stepper::{SpaceCounters, SpaceDrive, SpaceSnapshot, integrate};
+use super::body::SpaceBody;
+use super::mechanics::{SpaceDrive, SpaceSnapshot};
+use super::model::SpaceModel;
 use crate::element::Status;
 use crate::options::FeOptions;
+use crate::stepper::{Counters as SpaceCounters, integrate};
 use rockslide_core::case::{Excitation, Signal};
 use rockslide_engine_api::{RunStatus, step_count};
 

@@ -8,11 +8,14 @@
 
 use nalgebra::{Matrix3, Vector2, Vector3};
 
-use super::model::{BlockGrid, SpaceBody, SpaceModel};
-use super::run::record;
-use super::stepper::{SpaceDrive, integrate};
+use super::body::{BlockGrid, SpaceBody};
+use super::mechanics::SpaceDrive;
+use super::mechanics::SpaceSnapshot;
+use super::model::SpaceModel;
+use super::run::{SpaceRow, record};
 use crate::model::default_rotational_inertia;
 use crate::options::{FeOptions, Integrator};
+use crate::stepper::integrate;
 use crate::variant;
 use crate::whole_run::WholeRun;
 use rockslide_core::case::{Case, Excitation, Model as SceneModel, Scene, Spatial};
@@ -194,52 +197,8 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
     let mut values = [0.0_f64; 32];
     let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
         let r = record(m, s, &drive, &o_offset);
-        let mut i = 0;
-        let mut put = |v: f64| {
-            values[i] = v;
-            i += 1;
-        };
-        for v in [r.force, r.resistance, r.rel_disp, r.slide, r.vel, r.acc] {
-            put(v.x);
-            put(v.y);
-        }
-        put(r.slide.norm());
-        put(if r.slide == nalgebra::Vector2::zeros() {
-            0.0
-        } else {
-            r.slide.y.atan2(r.slide.x).to_degrees()
-        });
-        if moves_ground {
-            put(s.ground[0].x);
-            put(s.ground[0].y);
-        }
-        if rocking {
-            put(r.cm.x);
-            put(r.cm.y);
-            put(r.cm.z);
-            put(-r.rotation.y);
-            put(r.rotation.x);
-            put(r.rotation.z);
-            put(r.uplift);
-            put(r.contacts as f64);
-        }
-        put(r.normal);
-        if double {
-            put(r.node_disp.x);
-        }
-        for ((c, sup), (last, along)) in states.iter_mut().zip(&m.supports).zip(&mut slid) {
-            let st = sup.lower.state();
-            let tangential = sup.lower.tangential();
-            let ds = st.slip - *last;
-            *along += plan_slip_increment([tangential.x, tangential.y], [ds.x, ds.y]);
-            *last = st.slip;
-            *c = ContactState {
-                normal: sup.lower.normal(),
-                tangential: tangential.norm(),
-                slip: *along,
-                gap: st.delta.z,
-            };
-        }
+        let i = row_values(&r, s, (moves_ground, rocking, double), &mut values);
+        contact_states(m, &mut states, &mut slid);
         sink.row(s.t, &values[..i], &states);
     });
     Ok(Run {
@@ -266,6 +225,69 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
         status,
         wall_seconds: 0.0,
     })
+}
+
+/// The channel values of row `r` (snapshot `s`) in the layout's order, written into
+/// `values`; returns how many.
+fn row_values(
+    r: &SpaceRow,
+    s: &SpaceSnapshot,
+    (moves_ground, rocking, double): (bool, bool, bool),
+    values: &mut [f64; 32],
+) -> usize {
+    let mut i = 0;
+    let mut put = |v: f64| {
+        values[i] = v;
+        i += 1;
+    };
+    for v in [r.force, r.resistance, r.rel_disp, r.slide, r.vel, r.acc] {
+        put(v.x);
+        put(v.y);
+    }
+    put(r.slide.norm());
+    put(if r.slide == nalgebra::Vector2::zeros() {
+        0.0
+    } else {
+        r.slide.y.atan2(r.slide.x).to_degrees()
+    });
+    if moves_ground {
+        put(s.ground[0].x);
+        put(s.ground[0].y);
+    }
+    if rocking {
+        put(r.cm.x);
+        put(r.cm.y);
+        put(r.cm.z);
+        put(-r.rotation.y);
+        put(r.rotation.x);
+        put(r.rotation.z);
+        put(r.uplift);
+        put(r.contacts as f64);
+    }
+    put(r.normal);
+    if double {
+        put(r.node_disp.x);
+    }
+    i
+}
+
+/// Each support's contact state (its lower element's) into `states`, with the slip
+/// accumulated along the friction force (Σ T̂·Δs; `slid`: each support's last slip vector
+/// and that sum).
+fn contact_states(m: &SpaceModel, states: &mut [ContactState], slid: &mut [(Vector2<f64>, f64)]) {
+    for ((c, sup), (last, along)) in states.iter_mut().zip(&m.supports).zip(slid) {
+        let st = sup.lower.state();
+        let tangential = sup.lower.tangential();
+        let ds = st.slip - *last;
+        *along += plan_slip_increment([tangential.x, tangential.y], [ds.x, ds.y]);
+        *last = st.slip;
+        *c = ContactState {
+            normal: sup.lower.normal(),
+            tangential: tangential.norm(),
+            slip: *along,
+            gap: st.delta.z,
+        };
+    }
 }
 
 /// What shaped a 3D run, as (name, value).
