@@ -44,6 +44,14 @@ impl Integrator {
             Integrator::Hht { alpha } => (alpha, (1.0 - alpha).powi(2) / 4.0, 0.5 - alpha),
         }
     }
+    /// The method's name, as a report states it.
+    pub fn label(&self) -> &'static str {
+        match self {
+            Integrator::Newmark => "Newmark average acceleration",
+            Integrator::Hht { .. } => "HHT-α",
+        }
+    }
+
     /// Name as in case files.
     pub fn name(&self) -> &'static str {
         match self {

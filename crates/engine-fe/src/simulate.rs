@@ -6,13 +6,13 @@
 
 use super::findings::{Findings, Summarised, findings};
 use super::model::{Model, default_rotational_inertia};
-use super::options::{FeOptions, Integrator};
+use super::options::FeOptions;
 use super::recording::{RowSink, Rows, run_model};
 use super::variant;
 use super::whole_run::WholeRun;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Run, SolverStats, StepSink, step_count};
+use rockslide_engine_api::{Run, Setting, SolverStats, StepSink, step_count};
 
 /// Run `variant` of the case's scene at time step `dt` with `opts`: the whole run, its
 /// trace sized for the run up front.
@@ -74,7 +74,7 @@ fn simulate_with<S: RowSink + ?Sized>(
         variant: variant.to_string(),
         arrangement: crate::arrangement(variant),
         dt,
-        settings: settings.into_iter().map(Into::into).collect(),
+        settings,
         stats: SolverStats {
             steps: counters.steps,
             substeps_per_step: None,
@@ -172,7 +172,7 @@ fn build_model(
     Ok((model, double, inertia_note))
 }
 
-/// Every setting that shaped the run, as (name, value).
+/// Every setting that shaped the run.
 fn settings(
     case: &Case,
     dt: f64,
@@ -180,24 +180,15 @@ fn settings(
     rocking: bool,
     double: bool,
     inertia_note: String,
-) -> Vec<(String, String)> {
+) -> Vec<Setting> {
     let scene = &case.scene;
     let (alpha, beta, gamma) = opts.integrator.parameters();
-    let mut settings: Vec<(String, String)> = vec![
-        ("dt [s]".into(), format!("{dt}")),
-        (
-            "integrator".into(),
-            match opts.integrator {
-                Integrator::Newmark => "Newmark average acceleration".into(),
-                Integrator::Hht { .. } => "HHT-α".into(),
-            },
-        ),
-        (
-            "α, β, γ".into(),
-            format!("{alpha}, {beta:.6}, {gamma:.6}"),
-        ),
-        (
-            "Newton".into(),
+    let mut settings = vec![
+        Setting::number("dt", "s", dt),
+        Setting::choice("integrator", opts.integrator.label()),
+        Setting::text("α, β, γ", format!("{alpha}, {beta:.6}, {gamma:.6}")),
+        Setting::text(
+            "Newton",
             format!(
                 "preset \"{}\": force {:.1e} (relative), displacement {:.1e} (relative), at most {} iterations per step, failing steps cut down to Δt/{}; consistent tangent",
                 opts.newton.preset,
@@ -207,36 +198,33 @@ fn settings(
                 1u32 << opts.newton.max_step_cuts
             ),
         ),
-        (
-            "gravity".into(),
-            "static preload: the run starts from equilibrium under M·g".into(),
+        Setting::text(
+            "gravity",
+            "static preload: the run starts from equilibrium under M·g",
         ),
-        (
-            "ground motion".into(),
+        Setting::text(
+            "ground motion",
             match &scene.excitation {
                 rockslide_core::case::Excitation::GroundDisplacement(_) => {
-                    "ground node moved (prescribed displacement, absolute coordinates); outputs relative to the ground".into()
+                    "ground node moved (prescribed displacement, absolute coordinates); outputs relative to the ground"
                 }
                 rockslide_core::case::Excitation::GroundAcceleration(_) => {
-                    "relative coordinates: force −M·ag on the body, ground fixed".into()
+                    "relative coordinates: force −M·ag on the body, ground fixed"
                 }
-                _ => "none".into(),
+                _ => "none",
             },
         ),
     ];
     settings.extend(super::vertical::describe(scene));
     if rocking {
-        settings.push(("kinematics".into(), opts.kinematics.name().into()));
-        settings.push((
-            "P-Delta".into(),
-            if opts.p_delta { "on" } else { "off" }.into(),
-        ));
-        settings.push(("rotational inertia".into(), inertia_note));
+        settings.push(Setting::choice("kinematics", opts.kinematics.name()));
+        settings.push(Setting::switch("P-Delta", opts.p_delta));
+        settings.push(Setting::text("rotational inertia", inertia_note));
     }
     if double {
-        settings.push((
-            "element 2".into(),
-            "bonded normal (series with the compression-only element 1 transmits the same forces; keeps the massless node determinate when element 1 opens)".into(),
+        settings.push(Setting::text(
+            "element 2",
+            "bonded normal (series with the compression-only element 1 transmits the same forces; keeps the massless node determinate when element 1 opens)",
         ));
     }
 

@@ -20,7 +20,7 @@
 //! applicable" for it rather than run a different scene.
 
 use rockslide_core::case::{NormalForce, Scene, Signal};
-use rockslide_engine_api::NotApplicable;
+use rockslide_engine_api::{NotApplicable, Setting};
 
 /// Whether fe runs the scene's vertical component (if any).
 pub(crate) fn check(scene: &Scene) -> Result<(), NotApplicable> {
@@ -40,11 +40,11 @@ pub(crate) fn load(signal: Option<&Signal>, mass: f64, t: f64) -> f64 {
 }
 
 /// The setting in words, for the run's settings table.
-pub(crate) fn describe(scene: &Scene) -> Option<(String, String)> {
+pub(crate) fn describe(scene: &Scene) -> Option<Setting> {
     scene.vertical().map(|_| {
-        (
-            "vertical ground motion".into(),
-            "relative coordinates: load −M·a_v(t) on the body's centre of mass beside the preload −M·g; N(t) from the contacts' Kz (compression only: contacts open and close, the tangential origin follows an open contact)".into(),
+        Setting::text(
+            "vertical ground motion",
+            "relative coordinates: load −M·a_v(t) on the body's centre of mass beside the preload −M·g; N(t) from the contacts' Kz (compression only: contacts open and close, the tangential origin follows an open contact)",
         )
     })
 }

@@ -14,14 +14,14 @@ use super::mechanics::SpaceSnapshot;
 use super::model::SpaceModel;
 use super::run::{SpaceRow, record};
 use crate::model::default_rotational_inertia;
-use crate::options::{FeOptions, Integrator};
+use crate::options::FeOptions;
 use crate::stepper::integrate;
 use crate::variant;
 use crate::whole_run::WholeRun;
 use rockslide_core::case::{Case, Excitation, Model as SceneModel, Scene, Spatial};
 use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, plan_slip_increment, q};
-use rockslide_engine_api::{NotApplicable, Run, SolverStats, StepSink, step_count};
+use rockslide_engine_api::{NotApplicable, Run, Setting, SolverStats, StepSink, step_count};
 
 /// The variants of a 3D scene, or why fe does not run it.
 pub fn variants(scene: &Scene, spatial: &Spatial) -> Result<Vec<&'static str>, NotApplicable> {
@@ -209,7 +209,7 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
         settings: {
             let mut s = settings(spatial, dt, opts, &body, inertia_note);
             s.extend(crate::vertical::describe(&case.scene));
-            s.into_iter().map(Into::into).collect()
+            s
         },
         stats: SolverStats {
             steps: counters.steps,
@@ -297,24 +297,18 @@ fn settings(
     opts: &FeOptions,
     body: &SpaceBody,
     inertia_note: String,
-) -> Vec<(String, String)> {
+) -> Vec<Setting> {
     let (alpha, beta, gamma) = opts.integrator.parameters();
-    let mut s: Vec<(String, String)> = vec![
-        ("dt [s]".into(), format!("{dt}")),
-        (
-            "integrator".into(),
-            match opts.integrator {
-                Integrator::Newmark => "Newmark average acceleration".into(),
-                Integrator::Hht { .. } => "HHT-α".into(),
-            },
+    let mut s = vec![
+        Setting::number("dt", "s", dt),
+        Setting::choice("integrator", opts.integrator.label()),
+        Setting::text("α, β, γ", format!("{alpha}, {beta:.6}, {gamma:.6}")),
+        Setting::text(
+            "model",
+            "3D: six degrees of freedom, exact finite rotations (Simo–Vu Quoc incremental rotation vector, right-Jacobian tangent); cone contacts with radial return",
         ),
-        ("α, β, γ".into(), format!("{alpha}, {beta:.6}, {gamma:.6}")),
-        (
-            "model".into(),
-            "3D: six degrees of freedom, exact finite rotations (Simo–Vu Quoc incremental rotation vector, right-Jacobian tangent); cone contacts with radial return".into(),
-        ),
-        (
-            "excitation".into(),
+        Setting::text(
+            "excitation",
             format!(
                 "azimuth {}°{}",
                 spatial.azimuth_deg,
@@ -325,14 +319,14 @@ fn settings(
                 }
             ),
         ),
-        ("supports".into(), format!("{}", body.supports.len())),
-        (
-            "gravity".into(),
-            "static preload: the run starts from equilibrium under M·g".into(),
+        Setting::count("supports", body.supports.len() as u64),
+        Setting::text(
+            "gravity",
+            "static preload: the run starts from equilibrium under M·g",
         ),
     ];
     if body.rotation {
-        s.push(("rotational inertia".into(), inertia_note));
+        s.push(Setting::text("rotational inertia", inertia_note));
     }
     s
 }
