@@ -256,12 +256,7 @@ pub fn run_oscillator(
         };
         out.row(t, &row, &[state]);
     };
-    let steps = Steps {
-        n: n * stride,
-        dt: dt_in,
-        stride,
-        count: StepCount::Taken,
-    };
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::Taken);
     run_loop(&mut rig, pd, (trace, record), steps, sink)
 }
 
@@ -394,11 +389,6 @@ pub fn run_block(
         };
         out.row(t, &row, &[state]);
     };
-    let steps = Steps {
-        n: n * stride,
-        dt: dt_in,
-        stride,
-        count: StepCount::Taken,
-    };
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::Taken);
     run_loop(&mut rig, pd, (trace, record), steps, sink)
 }

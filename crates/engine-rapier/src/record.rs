@@ -88,12 +88,7 @@ pub fn run_oscillator(
         out.row(t, &row, &[base]);
         prev = (v, vy);
     };
-    let steps = Steps {
-        n: n * stride,
-        dt: dt_in,
-        stride,
-        count: StepCount::ToLastRow,
-    };
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::ToLastRow);
     run_loop(&mut rig, &d, (trace, record), steps, sink)
 }
 
@@ -162,24 +157,13 @@ pub fn run_block(
     }
     // Horizontal positions are measured from the block standing flat at x = 0 (the
     // world is built that way), so a tilted start shows its offset as the reference does.
-    let b0 = &rig.world.bodies[rig.structure];
-    let phi_start = angle_z(b0);
-    let cm_start = b0.translation();
-    let mut state = BlockMemory {
-        v: 0.0,
-        vy: 0.0,
-        corners: [0.0; 2],
-        slide: 0.0,
-        contact_slip: 0.0,
-    };
-    let corners_of = |cm: Vector, phi: f64| -> [(f64, f64); 2] {
+    let corners_of = move |cm: Vector, phi: f64| -> [(f64, f64); 2] {
         let (s, c) = phi.sin_cos();
         [-bw, bw].map(|dx| (cm.x + c * dx + s * hh, cm.y + s * dx - c * hh))
     };
-    {
-        let c = corners_of(cm_start, phi_start);
-        state.corners = [c[0].0, c[1].0];
-    }
+    let b0 = &rig.world.bodies[rig.structure];
+    let start = corners_of(b0.translation(), angle_z(b0));
+    let state = BlockMemory::at_start([start[0].0, start[1].0]);
     let mut st = state;
     let record = |out: &mut dyn StepSink, rig: &Rig, k: usize| {
         let t = (k / stride) as f64 * dt;
@@ -206,34 +190,8 @@ pub fn run_block(
         let contact_x = m * (a + ag) - f_true;
         let normal = m * (ay + grav + d.vertical_acceleration(k, stride, dt));
         let corners = corners_of(cm, phi).map(|(x, y)| (x, y - hg));
-        let mut n_contact = 0.0;
-        let mut d_slide = 0.0;
-        let mut d_all = 0.0;
-        let mut uplift: f64 = 0.0;
-        // The contact's own slip: the lowest corner's horizontal motion while it touches
-        // (a block rocking about a corner does not slip there).
-        let low = usize::from(corners[1].1 < corners[0].1);
-        if k > 0 && corners[low].1 < contact_gap {
-            st.contact_slip += corners[low].0 - off - st.corners[low];
-        }
-        for (i, &(cx, cy)) in corners.iter().enumerate() {
-            uplift = uplift.max(cy);
-            let x_rel = cx - off;
-            d_all += 0.5 * (x_rel - st.corners[i]);
-            if cy < contact_gap {
-                n_contact += 1.0;
-                d_slide += x_rel - st.corners[i];
-            }
-            st.corners[i] = x_rel;
-        }
-        if n_contact > 0.0 && k > 0 {
-            st.slide += d_slide / n_contact;
-        } else if k > 0 && g.vertical.is_some() {
-            // Under vertical motion a block off the ground moves relative to it and lands
-            // elsewhere: its flight counts as sliding (block minus ground), as in the
-            // exact reference.
-            st.slide += d_all;
-        }
+        let has_vertical = g.vertical.is_some();
+        let (n_contact, uplift) = st.corners_moved(corners, off, contact_gap, k, has_vertical);
         st.v = v;
         st.vy = vy;
         let vals = [
@@ -263,12 +221,7 @@ pub fn run_block(
         };
         out.row(t, &row, &[base]);
     };
-    let steps = Steps {
-        n: n * stride,
-        dt: dt_in,
-        stride,
-        count: StepCount::ToLastRow,
-    };
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::ToLastRow);
     run_loop(&mut rig, &d, (trace, record), steps, sink)
 }
 
@@ -303,6 +256,62 @@ struct BlockMemory {
     slide: f64,
     /// The base contact's slip (lowest corner while touching), m.
     contact_slip: f64,
+}
+
+impl BlockMemory {
+    /// At rest, the base's corners at `corners` (x in the world).
+    fn at_start(corners: [f64; 2]) -> Self {
+        BlockMemory {
+            v: 0.0,
+            vy: 0.0,
+            corners,
+            slide: 0.0,
+            contact_slip: 0.0,
+        }
+    }
+
+    /// The base's corners at row `k` (x in the world, heights above the ground), the
+    /// ground at `off`: the contact's own slip, the slide and the corners kept for the
+    /// next row; returns the corners in contact (gap below `contact_gap`) and the uplift.
+    /// `vertical`: under vertical ground motion, where a flight counts as sliding.
+    fn corners_moved(
+        &mut self,
+        corners: [(f64, f64); 2],
+        off: f64,
+        contact_gap: f64,
+        k: usize,
+        vertical: bool,
+    ) -> (f64, f64) {
+        let mut n_contact = 0.0;
+        let mut d_slide = 0.0;
+        let mut d_all = 0.0;
+        let mut uplift: f64 = 0.0;
+        // The contact's own slip: the lowest corner's horizontal motion while it touches
+        // (a block rocking about a corner does not slip there).
+        let low = usize::from(corners[1].1 < corners[0].1);
+        if k > 0 && corners[low].1 < contact_gap {
+            self.contact_slip += corners[low].0 - off - self.corners[low];
+        }
+        for (i, &(cx, cy)) in corners.iter().enumerate() {
+            uplift = uplift.max(cy);
+            let x_rel = cx - off;
+            d_all += 0.5 * (x_rel - self.corners[i]);
+            if cy < contact_gap {
+                n_contact += 1.0;
+                d_slide += x_rel - self.corners[i];
+            }
+            self.corners[i] = x_rel;
+        }
+        if n_contact > 0.0 && k > 0 {
+            self.slide += d_slide / n_contact;
+        } else if k > 0 && vertical {
+            // Under vertical motion a block off the ground moves relative to it and lands
+            // elsewhere: its flight counts as sliding (block minus ground), as in the
+            // exact reference.
+            self.slide += d_all;
+        }
+        (n_contact, uplift)
+    }
 }
 
 /// Run the rocking-body rig (RPEPO) and record its channels. The rig is first settled
@@ -402,12 +411,7 @@ pub fn run_rocking(
         row.copy_from_slice(&vals[..len]);
         out.row(t, &row, &states);
     };
-    let steps = Steps {
-        n,
-        dt,
-        stride: 1,
-        count: StepCount::ToLastRow,
-    };
+    let steps = Steps::new(n, dt, 1, StepCount::ToLastRow);
     run_loop(&mut rig, &d, (trace, record), steps, sink)
 }
 
@@ -517,16 +521,11 @@ pub fn run_rocking_joint_limit(
         row.copy_from_slice(&vals[..len]);
         out.row(t, &row, &states);
     };
-    let steps = Steps {
-        n: n * stride,
-        dt: dt_in,
-        stride,
-        count: StepCount::ToLastRow,
-    };
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::ToLastRow);
     run_loop(&mut rig, &d, (trace, record), steps, sink)
 }
 
-/// Run the oscillator on its support ([`oscillator_with_supports`]) and record the
+/// Run the oscillator on its support ([`world::oscillator_with_supports`](crate::world::oscillator_with_supports)) and record the
 /// oscillator's channels (and N(t)) every `stride` rapier steps of dt/stride: the
 /// resistance and the contact are the support's spring force Kx·(δx − s) within its cap
 /// μ·N, N = Kz·compression after the step, the slide its slider.
@@ -575,11 +574,6 @@ pub(crate) fn run_oscillator_on_support(
         row[last] = sup.normal;
         out.row(t, &row, &[state]);
     };
-    let steps = Steps {
-        n: n * stride,
-        dt: dt_in,
-        stride,
-        count: StepCount::ToLastRow,
-    };
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::ToLastRow);
     run_loop(&mut rig, &d, (trace, record), steps, sink)
 }

@@ -298,12 +298,7 @@ pub fn run(
         dt: dt_in,
     };
     let record = grid_recorder(&rig, pd, (dt, stride), chans.len());
-    let steps = Steps {
-        n: n * stride,
-        dt: dt_in,
-        stride,
-        count: StepCount::Taken,
-    };
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::Taken);
     run_loop(&mut rig, pd, (trace, record), steps, sink)
 }
 

@@ -51,12 +51,12 @@ pub(crate) fn rocking_stride(omega_r: f64, dt: f64, settings: &RapierSettings) -
 }
 
 /// Most rapier steps a rigid block on a kinematic ground runs: the block's step rule
-/// ([`block_kinematic_stride`]) stops here (about 10 s of CPU at ≈ 10 µs a step); a
+/// (`plan::block_kinematic_stride`) stops here (about 10 s of CPU at ≈ 10 µs a step); a
 /// finer step than this allows is outside the engine's validity.
 pub const MAX_BLOCK_STEPS: usize = 1_000_000;
 
 /// Error constant of the rigid block on a moving kinematic ground under a record, at one
-/// substep per rapier step and a [`KINEMATIC_BLOCK_CONTACT_HZ`] contact: the total
+/// substep per rapier step and a `settings::KINEMATIC_BLOCK_CONTACT_HZ` contact: the total
 /// distance slid is off by E ≈ K·PGA·Δt² (second order in Δt). Measured against the
 /// exact block reference on the five shipped records (Northridge, Loma Prieta, Imperial
 /// Valley, Chino Hills 090° and 360°), μ = 0.08, 0.12 and 0.185 at PGA 0.3 g and three of
@@ -157,7 +157,7 @@ pub(crate) fn plan_oscillator_steps(
 
 /// The oscillator's steps in plan under a vertical component: the planar rule with its
 /// period scaled to the vertical mode √(Kz/M) when that is faster, and no longer than a
-/// vertical record's sample step (the 2D rule, [`super::vertical::oscillator_steps`]).
+/// vertical record's sample step (the 2D rule, [`oscillator_on_support_steps`]).
 pub(crate) fn plan_vertical_steps(
     osc: &Oscillator,
     ex: &Excitation,

@@ -77,6 +77,18 @@ pub(crate) struct Steps {
     pub(crate) count: StepCount,
 }
 
+impl Steps {
+    /// `n` rapier steps of `dt`, a row every `stride`, steps counted by `count`.
+    pub(crate) fn new(n: usize, dt: f64, stride: usize, count: StepCount) -> Self {
+        Self {
+            n,
+            dt,
+            stride,
+            count,
+        }
+    }
+}
+
 /// What the loop produced.
 pub struct Outcome {
     /// The run's layout (the rows went to the sink).

@@ -13,7 +13,7 @@
 //! (restitution 0: a landing block loses its vertical velocity, and Coulomb friction acts
 //! through the landing, as the exact reference's plastic impact), and the supports'
 //! compression-only springs Kz (the rocking body's, applied-force or joint-limit, their
-//! gaps measured from the moving ground; [`oscillator_with_supports`] for the oscillator:
+//! gaps measured from the moving ground; `world::oscillator_with_supports` for the oscillator:
 //! one joint-limit support under a mass free in X and Z), whose friction cap is
 //! μ times the support's own N after every step and whose slider follows an open support
 //! (CONTA178's reset at re-closure). A rigid vertical contact (`normal_force =
