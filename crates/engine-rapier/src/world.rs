@@ -1,5 +1,9 @@
-//! Building the rapier world for a scene: the ground body, the structure, and the light
-//! foot bodies that carry a scene's elasticity as spring joints.
+//! Building the rapier world of a planar scene, the planar [`Rig`]: the ground body and
+//! the structure with its contact — the rigid block's collider on the ground; the
+//! oscillator's joint-limit joint ([`Slider`]) or, under a vertical component, its one
+//! joint-limit [`Support`]; the rocking body's applied-force supports (the engine's
+//! forces, no joints) or joint-limit ones; and the feet models (`contact_model =
+//! "foot"`), light foot bodies that carry the elasticity as spring joints.
 //!
 //! Axes: rapier's x is the scene's horizontal X, rapier's y the scene's vertical Z (up),
 //! rapier's z the out-of-plane depth. Rotations of the scene are about rapier's z axis,
