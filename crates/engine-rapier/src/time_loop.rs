@@ -150,3 +150,121 @@ fn diverged(world: &PhysicsWorld, k1: usize, dt: f64) -> Option<RunStatus> {
         reason: "a body's position is not finite".into(),
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rockslide_core::trace::ContactState;
+
+    /// One free body pushed by `force` (N) every step, over a fixed ground (a force that
+    /// is not finite: its position too).
+    struct Pushed {
+        world: PhysicsWorld,
+        ground: RigidBodyHandle,
+        body: RigidBodyHandle,
+        force: f64,
+    }
+
+    impl Pushed {
+        fn new(force: f64) -> Self {
+            let mut world = PhysicsWorld::default();
+            let ground = world.insert_body(RigidBodyBuilder::fixed());
+            let body = world.insert_body(
+                RigidBodyBuilder::dynamic()
+                    .additional_mass_properties(MassProperties::new(Vector::ZERO, 1.0, Vector::ONE))
+                    .can_sleep(false),
+            );
+            Self {
+                world,
+                ground,
+                body,
+                force,
+            }
+        }
+    }
+
+    /// No ground motion.
+    struct Still;
+
+    impl StepDrive for Still {
+        fn move_ground(&self, _: &mut PhysicsWorld, _: RigidBodyHandle, _: usize) {}
+    }
+
+    impl Rig<Still> for Pushed {
+        fn world(&self) -> &PhysicsWorld {
+            &self.world
+        }
+        fn world_mut(&mut self) -> &mut PhysicsWorld {
+            &mut self.world
+        }
+        fn ground(&self) -> RigidBodyHandle {
+            self.ground
+        }
+        fn load(&mut self, _: &Still, _: usize) {
+            let b = &mut self.world.bodies[self.body];
+            b.reset_forces(false);
+            b.add_force(Vector::new(self.force, 0.0, 0.0), false);
+            if !self.force.is_finite() {
+                // what an unstable scheme ends in (rapier clamps velocities, so the pose)
+                b.set_translation(Vector::splat(f64::NAN), false);
+            }
+        }
+        fn respond(&mut self, _: &Still, _: usize) {}
+    }
+
+    /// Rows as (t, x of the body).
+    #[derive(Default)]
+    struct Rows(Vec<(f64, f64)>);
+
+    impl StepSink for Rows {
+        fn begin(&mut self, _: &Trace) {}
+        fn row(&mut self, t: f64, values: &[f64], _: &[ContactState]) {
+            self.0.push((t, values[0]));
+        }
+    }
+
+    fn run(force: f64, count: StepCount) -> (Outcome, Vec<(f64, f64)>) {
+        let mut rig = Pushed::new(force);
+        let dt = rig.world.integration_parameters.dt;
+        let body = rig.body;
+        let record = |out: &mut dyn StepSink, rig: &Pushed, k: usize| {
+            out.row(
+                k as f64 * dt,
+                &[rig.world.bodies[body].translation().x],
+                &[],
+            );
+        };
+        let mut rows = Rows::default();
+        let steps = Steps::new(6, dt, 2, count);
+        let outcome = run_loop(
+            &mut rig,
+            &Still,
+            (Trace::default(), record),
+            steps,
+            &mut rows,
+        );
+        (outcome, rows.0)
+    }
+
+    #[test]
+    fn a_run_records_a_row_every_stride_and_counts_every_step() {
+        let (outcome, rows) = run(1.0, StepCount::ToLastRow);
+        assert_eq!(outcome.status, RunStatus::Completed);
+        assert_eq!(outcome.steps, 6);
+        assert_eq!(rows.len(), 4, "step 0 and every second of six steps");
+        assert!(rows.windows(2).all(|w| w[1].1 > w[0].1), "pushed along +x");
+    }
+
+    #[test]
+    fn a_body_that_leaves_the_finite_numbers_ends_the_run_as_diverged() {
+        for (count, steps) in [(StepCount::ToLastRow, 0), (StepCount::Taken, 1)] {
+            let (outcome, rows) = run(f64::NAN, count);
+            let RunStatus::Diverged { time, reason } = &outcome.status else {
+                panic!("{:?}", outcome.status)
+            };
+            assert!(*time > 0.0 && reason.contains("not finite"));
+            assert_eq!(outcome.steps, steps, "{count:?}");
+            assert_eq!(rows.len(), 1, "only the row before the first step");
+        }
+    }
+}
