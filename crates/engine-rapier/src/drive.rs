@@ -8,7 +8,7 @@
 use rapier3d_f64::prelude::*;
 
 use super::ground::GroundTable;
-use super::plan_motion::{norm, sub, to_world};
+use super::space_axes::{norm, sub, to_world};
 use super::time_loop::StepDrive;
 use super::world::GroundKind;
 use rockslide_core::case::{Excitation, Signal, Spatial};

@@ -17,12 +17,15 @@
 //! - in a 3D scene: the block on a ground slab, the oscillator with its plan contact as an
 //!   applied force, the rocking body on an nx × ny grid of applied-force supports.
 //!
-//! Every scene runs through one time loop (`time_loop`: a rig, a drive and a recorder):
-//! - `plan`, `space`: what a planar or a 3D scene runs (rig, drive, stride, statement);
-//! - `describe`: the run's settings and findings; `step_rule`: strides and their bounds;
-//! - `settings`: the `[engines.rapier]` options and rapier's integration parameters;
+//! Every scene runs through one time loop (`time_loop`: a rig, a drive and a recorder;
+//! only the feet models settle under gravity before t = 0):
+//! - `planar_scene`, `space`: what a planar or a 3D scene runs (rig, drive, stride,
+//!   statement); `describe`: the run's settings and findings; `step_rule`: strides and
+//!   their bounds; `settings`: the `[engines.rapier]` options and rapier's integration
+//!   parameters;
 //! - `world`, `planar`: the planar rigs, built and driven; `record`: their recorders;
-//! - `plan_runs`, `space_rocking`: the 3D rigs with their recorders; `plan_motion`: axes;
+//! - `space_rigs`, `space_rocking`: the 3D rigs with their recorders; `space_axes`: the
+//!   3D scenes' axes, plan vectors and row;
 //! - `drive`, `ground`: the routes over the ground's tables (horizontal and vertical);
 //! - `rows`: where the rows go (a trace for a whole run, the caller's sink for a streamed
 //!   one: the engine streams natively), and the pilot run's path length;
@@ -35,14 +38,14 @@ mod contact_forces;
 mod describe;
 mod drive;
 mod ground;
-mod plan;
-mod plan_motion;
-mod plan_runs;
 mod planar;
+mod planar_scene;
 mod record;
 mod rows;
 mod settings;
 mod space;
+mod space_axes;
+mod space_rigs;
 mod space_rocking;
 mod step_rule;
 mod time_loop;
@@ -160,7 +163,7 @@ impl Rapier {
         let settings = RapierSettings::for_run(case, kinematic).map_err(|mut e| e.remove(0))?;
         match case.scene.spatial() {
             Some(spatial) => space::run(case, spatial, drive, (variant, dt), settings, None, sink),
-            None => plan::run(case, (variant, drive), dt, settings, sink),
+            None => planar_scene::run(case, (variant, drive), dt, settings, sink),
         }
     }
 }
@@ -213,7 +216,7 @@ fn recorded_layout(case: &Case) -> Option<(usize, usize)> {
                 let grid = RockingGrid::from_scene(r, spatial.depth?, spatial.inertia);
                 (space_rocking::channels(moves).len(), grid.points.len())
             }
-            _ => (plan_motion::plan_channels(moves).len(), 1),
+            _ => (space_axes::plan_channels(moves).len(), 1),
         });
     }
     Some(match model {

@@ -2,7 +2,7 @@
 //! excitation pair drives the bodies in both horizontal directions at once.
 //!
 //! - the rigid block on a ground slab and the oscillator (PEPO) in plan, with its plan
-//!   contact as an applied force: `plan_runs` (their rigs and recorders);
+//!   contact as an applied force: `space_rigs` (their rigs and recorders);
 //! - the rocking body on its nx × ny grid of supports: `space_rocking`.
 //!
 //! Here: whether rapier runs a 3D scene, each model's step rule and what its run states.
@@ -24,9 +24,9 @@ use rapier3d_f64::prelude::FrictionModel;
 
 use super::describe::Statement;
 use super::drive::{Drive, PlanDrive};
-use super::plan_runs::{PlanVertical, run_block, run_oscillator};
 use super::rows::PathLength;
 use super::settings::{RapierSettings, StepRule};
+use super::space_rigs::{PlanVertical, run_block, run_oscillator};
 use super::space_rocking::{self, RockingGrid};
 use super::step_rule::{
     MAX_BLOCK_STEPS, block_stride, block_substeps, plan_oscillator_steps, plan_vertical_steps,
@@ -68,7 +68,7 @@ pub fn check(scene: &Scene) -> Result<(), NotApplicable> {
 }
 
 /// rapier steps per output step for the block on a moving kinematic ground under a
-/// recorded pair: the planar rule (`plan::block_kinematic_stride`) with the plan
+/// recorded pair: the planar rule (`planar_scene::block_kinematic_stride`) with the plan
 /// ground's ∫|a_g|dt (vector norm) and the total distance slid along the path S of a
 /// pilot run (inertial force at the output step): Δt ≤ 2·ε·S/∫|a_g|dt, at most
 /// [`MAX_BLOCK_STEPS`] steps. Returns (stride, S, ∫|a_g|dt, Δt bound).

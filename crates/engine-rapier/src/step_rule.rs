@@ -51,7 +51,7 @@ pub(crate) fn rocking_stride(omega_r: f64, dt: f64, settings: &RapierSettings) -
 }
 
 /// Most rapier steps a rigid block on a kinematic ground runs: the block's step rule
-/// (`plan::block_kinematic_stride`) stops here (about 10 s of CPU at ≈ 10 µs a step); a
+/// (`planar_scene::block_kinematic_stride`) stops here (about 10 s of CPU at ≈ 10 µs a step); a
 /// finer step than this allows is outside the engine's validity.
 pub const MAX_BLOCK_STEPS: usize = 1_000_000;
 
