@@ -262,17 +262,6 @@ impl Setting {
     }
 }
 
-impl From<(String, String)> for Setting {
-    /// A setting stated in words: (name with its unit, value).
-    fn from((name, value): (String, String)) -> Setting {
-        Setting {
-            name,
-            unit: None,
-            value: SettingValue::Text(value),
-        }
-    }
-}
-
 /// The outcome of one engine run: its trace, how it ended, and what it ran with.
 #[derive(Debug, Clone)]
 pub struct Run {

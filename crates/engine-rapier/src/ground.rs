@@ -19,7 +19,7 @@
 use std::cell::Cell;
 
 use rockslide_core::case::record::{Baseline, GroundMotion, integrate};
-use rockslide_core::case::{Excitation, Signal};
+use rockslide_core::case::{Excitation, Signal, Vertical};
 
 /// Baseline correction of a recorded ground acceleration before it moves the ground:
 /// none, the record as given (its displacement may drift; the exact references and the
@@ -106,7 +106,7 @@ pub struct GroundTable {
     /// The horizontal motion.
     horizontal: GroundAt,
     /// The vertical ground motion at the same times, if the scene has one (`vertical`).
-    pub vertical: Option<super::vertical::VerticalTable>,
+    pub vertical: Option<VerticalTable>,
 }
 
 impl GroundTable {
@@ -119,9 +119,9 @@ impl GroundTable {
     }
 
     /// The same ground with the scene's vertical ground motion (if any) at the same times.
-    pub fn with_vertical(self, vertical: Option<&rockslide_core::case::Vertical>, dt: f64) -> Self {
+    pub fn with_vertical(self, vertical: Option<&Vertical>, dt: f64) -> Self {
         Self {
-            vertical: vertical.map(|v| super::vertical::VerticalTable::new(v, dt)),
+            vertical: vertical.map(|v| VerticalTable::new(v, dt)),
             ..self
         }
     }
@@ -141,6 +141,33 @@ impl GroundTable {
     /// Mean ground acceleration over step `k → k+1`, m/s² (velocity jumps included).
     pub fn mean_acceleration(&self, k: usize, dt: f64) -> f64 {
         (self.vel(k + 1) - self.vel(k)) / dt
+    }
+}
+
+/// The vertical ground motion at the step times: yg(t_n) and vg_y(t_n⁺), from rest,
+/// evaluated when asked for (the horizontal ground's integration, [`GroundAt`]).
+#[derive(Debug, Clone)]
+pub struct VerticalTable(GroundAt);
+
+impl VerticalTable {
+    /// The motion at step times `t_k = k·dt`.
+    pub fn new(vertical: &Vertical, dt: f64) -> Self {
+        Self(GroundAt::new(
+            &Excitation::GroundAcceleration(vertical.signal.clone()),
+            dt,
+        ))
+    }
+
+    /// yg(t_k), m (positive upward).
+    #[inline]
+    pub fn disp(&self, k: usize) -> f64 {
+        self.0.disp(k)
+    }
+
+    /// vg_y(t_k⁺), m/s.
+    #[inline]
+    pub fn vel(&self, k: usize) -> f64 {
+        self.0.vel(k)
     }
 }
 

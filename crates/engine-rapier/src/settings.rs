@@ -6,6 +6,7 @@ use rapier3d_f64::prelude::{FrictionModel, IntegrationParameters, SpringCoeffici
 
 use rockslide_core::case::{Case, Excitation, Model, Oscillator, Signal};
 use rockslide_core::error::InputError;
+use rockslide_engine_api::{Setting, SettingValue};
 
 /// The engine's id, as in `[engines.rapier]`.
 pub(crate) const ID: &str = "rapier";
@@ -477,45 +478,42 @@ impl RapierSettings {
     }
 
     /// (name, value) pairs for `Run::settings`.
-    pub fn describe(&self, dt: f64) -> Vec<(String, String)> {
+    pub fn describe(&self, dt: f64) -> Vec<Setting> {
         let p = self.integration_parameters(dt);
         let friction = match self.friction {
             FrictionModel::Coulomb => "Coulomb (one constraint per contact point)",
             FrictionModel::Simplified => "Simplified (one per manifold + twist)",
         };
+        let softness = |s: SpringCoefficients<f64>| {
+            SettingValue::Numbers(vec![s.natural_frequency, s.damping_ratio])
+        };
         vec![
-            ("dt [s]".into(), format!("{dt}")),
-            ("substeps".into(), format!("{}", self.substeps)),
-            (
-                "solver iterations (PGS per substep)".into(),
-                format!("{}", self.pgs_iterations),
+            Setting::number("dt", "s", dt),
+            Setting::count("substeps", self.substeps as u64),
+            Setting::count(
+                "solver iterations (PGS per substep)",
+                self.pgs_iterations as u64,
             ),
-            (
-                "contact softness (moving body) [Hz, ζ]".into(),
-                format!(
-                    "{}, {}",
-                    p.contact_softness.natural_frequency, p.contact_softness.damping_ratio
-                ),
+            Setting::new(
+                "contact softness (moving body)",
+                Some("Hz, ζ"),
+                softness(p.contact_softness),
             ),
-            (
-                "contact softness (fixed body) [Hz, ζ]".into(),
-                format!(
-                    "{}, {}",
-                    p.static_contact_softness.natural_frequency,
-                    p.static_contact_softness.damping_ratio
-                ),
+            Setting::new(
+                "contact softness (fixed body)",
+                Some("Hz, ζ"),
+                softness(p.static_contact_softness),
             ),
-            ("friction model".into(), friction.into()),
-            (
-                "friction combine".into(),
-                "both colliders carry the scene's μ (rule Average → μ)".into(),
+            Setting::choice("friction model", friction),
+            Setting::text(
+                "friction combine",
+                "both colliders carry the scene's μ (rule Average → μ)",
             ),
-            ("restitution".into(), "0 (both colliders, rule Min)".into()),
-            ("sleeping".into(), "disabled".into()),
-            (
-                "continuous collision detection".into(),
-                "off (max_ccd_substeps = 0: no body moves a sizeable part of itself in a step)"
-                    .into(),
+            Setting::text("restitution", "0 (both colliders, rule Min)"),
+            Setting::text("sleeping", "disabled"),
+            Setting::text(
+                "continuous collision detection",
+                "off (max_ccd_substeps = 0: no body moves a sizeable part of itself in a step)",
             ),
         ]
     }

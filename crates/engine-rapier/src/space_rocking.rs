@@ -21,14 +21,18 @@
 
 use rapier3d_f64::prelude::*;
 
-use super::APPLIED_FORCE_OMEGA_H;
+use super::describe::Statement;
+use super::drive::PlanDrive;
+use super::ground::VerticalTable;
+use super::rows::layout;
 use super::settings::{MAX_STRIDE, RapierSettings, StepRule};
-use super::space::{Outcome, PlanDrive, Statement, diverged, plan, radial_return, to_world};
-use super::vertical::VerticalTable;
-use super::world::{friction_cap, new_world, rocking_inertia};
+use super::space_axes::{plan, radial_return, to_world};
+use super::step_rule::APPLIED_FORCE_OMEGA_H;
+use super::time_loop::{Outcome, Rig, StepCount, Steps, run_loop};
+use super::world::{GroundKind, friction_cap, new_world, rocking_inertia};
 use rockslide_core::case::{Depth, RockingBody, Spatial, Vertical};
 use rockslide_core::trace::{ContactState, Quantity, plan_slip_increment, q};
-use rockslide_engine_api::StepSink;
+use rockslide_engine_api::{Setting, StepSink};
 
 /// The grid of supports and the body on it, as the time loop reads them.
 #[derive(Debug, Clone)]
@@ -194,6 +198,55 @@ fn apply_forces(
     body.add_torque(moment, false);
 }
 
+/// The rocking body on its grid as the time loop drives it: the body and every
+/// support's state after the last step.
+struct GridRig<'g> {
+    world: PhysicsWorld,
+    ground: RigidBodyHandle,
+    body: RigidBodyHandle,
+    grid: &'g RockingGrid,
+    sups: Vec<GridSupport>,
+    /// vg_y at the rapier steps, if the scene has a vertical component.
+    vertical: Option<&'g VerticalTable>,
+    /// rapier's step, s.
+    dt: f64,
+}
+
+impl Rig<PlanDrive<'_>> for GridRig<'_> {
+    fn world(&self) -> &PhysicsWorld {
+        &self.world
+    }
+
+    fn world_mut(&mut self) -> &mut PhysicsWorld {
+        &mut self.world
+    }
+
+    fn ground(&self) -> RigidBodyHandle {
+        self.ground
+    }
+
+    /// The supports' resultant plus the drive's M·a in plan and −M·a_v up.
+    fn load(&mut self, pd: &PlanDrive, k: usize) {
+        let m = self.grid.mass;
+        let a = pd.specific_force(k);
+        let up = self
+            .vertical
+            .map_or(0.0, |vg| -m * (vg.vel(k + 1) - vg.vel(k)) / self.dt);
+        apply_forces(
+            &mut self.world.bodies[self.body],
+            self.grid,
+            &self.sups,
+            ([m * a[0], m * a[1]], up),
+        );
+    }
+
+    /// Every support from the body's new pose.
+    fn respond(&mut self, pd: &PlanDrive, k1: usize) {
+        let xg = ground_plan(pd, k1);
+        update_supports(&self.world.bodies[self.body], self.grid, xg, &mut self.sups);
+    }
+}
+
 /// Run the rocking body on its grid: `n` output steps of `dt`, each `stride` rapier
 /// steps, the drive's tables at the rapier step. The body starts in static equilibrium
 /// (every support compressed by W/(n·Kz)). A vertical component (`vertical`: vg_y at the
@@ -210,8 +263,8 @@ pub fn run(
     let dt_in = dt / stride as f64;
     let mut world = new_world(settings, dt_in, grid.gravity);
     let ground = world.insert_body(match pd.drive.ground_kind() {
-        super::world::GroundKind::Fixed => RigidBodyBuilder::fixed(),
-        super::world::GroundKind::Kinematic => RigidBodyBuilder::kinematic_position_based(),
+        GroundKind::Fixed => RigidBodyBuilder::fixed(),
+        GroundKind::Kinematic => RigidBodyBuilder::kinematic_position_based(),
     });
     let preload = grid.preload();
     let [ix, iy, iz] = grid.inertia;
@@ -229,125 +282,118 @@ pub fn run(
     let moves = pd.first.moves_ground();
     let chans = channels(moves);
     let count = grid.points.len();
-    let trace = super::rows::layout(&chans, count, 1.0 / grid.kz);
-    sink.begin(&trace);
-    let mut states = vec![ContactState::default(); count];
-    let mut row = vec![0.0; chans.len()];
+    let trace = layout(&chans, count, 1.0 / grid.kz);
     let start = GridSupport {
         normal: m * grid.gravity / count as f64,
         delta: [0.0, 0.0, -preload],
         ..GridSupport::default()
     };
-    let mut sups = vec![start; count];
-    let cm0 = world.bodies[handle].translation();
-    let o0 = plan(anchor(&world.bodies[handle], [0.0, 0.0], grid.cm_height));
+    let mut rig = GridRig {
+        world,
+        ground,
+        body: handle,
+        grid,
+        sups: vec![start; count],
+        vertical,
+        dt: dt_in,
+    };
+    let record = grid_recorder(&rig, pd, (dt, stride), chans.len());
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::Taken);
+    run_loop(&mut rig, pd, (trace, record), steps, sink)
+}
+
+/// The grid's recorder: the plan-motion channels of a rocking body ([`channels`], `width`
+/// of them) measured from the body's start, and every support's contact state.
+fn grid_recorder<'r>(
+    rig: &GridRig,
+    pd: &'r PlanDrive,
+    (dt, stride): (f64, usize),
+    width: usize,
+) -> impl FnMut(&mut dyn StepSink, &GridRig, usize) + 'r {
+    let grid = rig.grid;
+    let (handle, m, count) = (rig.body, grid.mass, grid.points.len());
+    let (cm_height, moves) = (grid.cm_height, pd.first.moves_ground());
+    let mut states = vec![ContactState::default(); count];
+    let mut row = vec![0.0; width];
+    let cm0 = rig.world.bodies[handle].translation();
+    let o0 = plan(anchor(&rig.world.bodies[handle], [0.0, 0.0], cm_height));
     let mut v_prev = [0.0, 0.0];
-    let mut record =
-        |out: &mut dyn StepSink, world: &PhysicsWorld, k: usize, sups: &[GridSupport]| {
-            let t = (k / stride) as f64 * dt;
-            let (xg, vg) = pd.frame(k);
-            let b = &world.bodies[handle];
-            let cm = b.translation();
-            let o = plan(anchor(b, [0.0, 0.0], grid.cm_height));
-            let v = plan(b.linvel());
-            let v = [v[0] - vg[0], v[1] - vg[1]];
-            let acc = if k == 0 {
-                [0.0, 0.0]
-            } else {
-                [(v[0] - v_prev[0]) / dt, (v[1] - v_prev[1]) / dt]
-            };
-            v_prev = v;
-            let (mut shear, mut slide, mut normal) = ([0.0, 0.0], [0.0, 0.0], 0.0);
-            let (mut uplift, mut contacts) = (0.0_f64, 0.0);
-            for (state, s) in states.iter_mut().zip(sups) {
-                shear = [shear[0] + s.t[0], shear[1] + s.t[1]];
-                slide = [slide[0] + s.p[0], slide[1] + s.p[1]];
-                normal += s.normal;
-                uplift = uplift.max(s.delta[2]);
-                if s.normal > 0.0 {
-                    contacts += 1.0;
-                }
-                *state = ContactState {
-                    normal: s.normal,
-                    tangential: s.t[0].hypot(s.t[1]),
-                    slip: s.slip_along,
-                    gap: s.delta[2],
-                };
-            }
-            let slide = [slide[0] / count as f64, slide[1] / count as f64];
-            let force = pd.force(m, t);
-            let rot = b.rotation().to_scaled_axis();
-            let cm_plan = plan(cm - cm0);
-            let mut vals = [0.0; 25];
-            let mut i = 0;
-            let mut put = |x: f64| {
-                vals[i] = x;
-                i += 1;
-            };
-            for pair in [
-                force,
-                shear,
-                [o[0] - o0[0] - xg[0], o[1] - o0[1] - xg[1]],
-                slide,
-                v,
-                acc,
-            ] {
-                put(pair[0]);
-                put(pair[1]);
-            }
-            put(slide[0].hypot(slide[1]));
-            put(if slide == [0.0, 0.0] {
-                0.0
-            } else {
-                slide[1].atan2(slide[0]).to_degrees()
-            });
-            if moves {
-                let xg = pd.disp(k);
-                put(xg[0]);
-                put(xg[1]);
-            }
-            put(cm_plan[0] - xg[0]);
-            put(cm_plan[1] - xg[1]);
-            put(cm.y - cm0.y);
-            // rotation about the scene's −y (the planar sign), x, z
-            put(rot.z);
-            put(rot.x);
-            put(rot.y);
-            put(uplift.max(0.0));
-            put(contacts);
-            put(normal);
-            row.copy_from_slice(&vals[..i]);
-            out.row(t, &row, &states);
+    move |out: &mut dyn StepSink, rig: &GridRig, k: usize| {
+        let (world, sups) = (&rig.world, &rig.sups);
+        let t = (k / stride) as f64 * dt;
+        let (xg, vg) = pd.frame(k);
+        let b = &world.bodies[handle];
+        let cm = b.translation();
+        let o = plan(anchor(b, [0.0, 0.0], cm_height));
+        let v = plan(b.linvel());
+        let v = [v[0] - vg[0], v[1] - vg[1]];
+        let acc = if k == 0 {
+            [0.0, 0.0]
+        } else {
+            [(v[0] - v_prev[0]) / dt, (v[1] - v_prev[1]) / dt]
         };
-    record(sink, &world, 0, &sups);
-    let mut status = rockslide_engine_api::RunStatus::Completed;
-    let mut steps = 0;
-    for k in 0..n * stride {
-        let a = pd.specific_force(k);
-        let up = vertical.map_or(0.0, |vg| -m * (vg.vel(k + 1) - vg.vel(k)) / dt_in);
-        apply_forces(
-            &mut world.bodies[handle],
-            grid,
-            &sups,
-            ([m * a[0], m * a[1]], up),
-        );
-        pd.move_ground(&mut world, ground, k);
-        world.step();
-        steps += 1;
-        if let Some(d) = diverged(&world, k + 1, dt_in) {
-            status = d;
-            break;
+        v_prev = v;
+        let (mut shear, mut slide, mut normal) = ([0.0, 0.0], [0.0, 0.0], 0.0);
+        let (mut uplift, mut contacts) = (0.0_f64, 0.0);
+        for (state, s) in states.iter_mut().zip(sups) {
+            shear = [shear[0] + s.t[0], shear[1] + s.t[1]];
+            slide = [slide[0] + s.p[0], slide[1] + s.p[1]];
+            normal += s.normal;
+            uplift = uplift.max(s.delta[2]);
+            if s.normal > 0.0 {
+                contacts += 1.0;
+            }
+            *state = ContactState {
+                normal: s.normal,
+                tangential: s.t[0].hypot(s.t[1]),
+                slip: s.slip_along,
+                gap: s.delta[2],
+            };
         }
-        let xg = ground_plan(pd, k + 1);
-        update_supports(&world.bodies[handle], grid, xg, &mut sups);
-        if (k + 1) % stride == 0 {
-            record(sink, &world, k + 1, &sups);
+        let slide = [slide[0] / count as f64, slide[1] / count as f64];
+        let force = pd.force(m, t);
+        let rot = b.rotation().to_scaled_axis();
+        let cm_plan = plan(cm - cm0);
+        let mut vals = [0.0; 25];
+        let mut i = 0;
+        let mut put = |x: f64| {
+            vals[i] = x;
+            i += 1;
+        };
+        for pair in [
+            force,
+            shear,
+            [o[0] - o0[0] - xg[0], o[1] - o0[1] - xg[1]],
+            slide,
+            v,
+            acc,
+        ] {
+            put(pair[0]);
+            put(pair[1]);
         }
-    }
-    Outcome {
-        trace,
-        status,
-        steps,
+        put(slide[0].hypot(slide[1]));
+        put(if slide == [0.0, 0.0] {
+            0.0
+        } else {
+            slide[1].atan2(slide[0]).to_degrees()
+        });
+        if moves {
+            let xg = pd.disp(k);
+            put(xg[0]);
+            put(xg[1]);
+        }
+        put(cm_plan[0] - xg[0]);
+        put(cm_plan[1] - xg[1]);
+        put(cm.y - cm0.y);
+        // rotation about the scene's −y (the planar sign), x, z
+        put(rot.z);
+        put(rot.x);
+        put(rot.y);
+        put(uplift.max(0.0));
+        put(contacts);
+        put(normal);
+        row.copy_from_slice(&vals[..i]);
+        out.row(t, &row, &states);
     }
 }
 
@@ -373,25 +419,19 @@ pub(crate) fn case<'a>(
     let pd = pd_for(dt_in, n * stride);
     let vg = vertical.map(|v| VerticalTable::new(v, dt_in));
     if vg.is_some() {
-        said.described.push((
-            "vertical ground motion".into(),
-            "−M·(vg_y(n+1) − vg_y(n))/Δt on the body over each step, every route (the vertical in the ground's frame: the supports' heights measured from 0); N from each support's Kz".into(),
-        ));
+        said.described.push(Setting::text("vertical ground motion", "−M·(vg_y(n+1) − vg_y(n))/Δt on the body over each step, every route (the vertical in the ground's frame: the supports' heights measured from 0); N from each support's Kz"));
     }
     let omega_h = omega * dt_in / settings.substeps as f64;
     said.described
-        .retain(|(k, _)| !k.starts_with("contact softness") && !k.starts_with("friction"));
-    said.described.push((
-        "contact model".into(),
-        format!(
+        .retain(|s| !s.name.starts_with("contact softness") && !s.name.starts_with("friction"));
+    said.described.push(Setting::text("contact model", format!(
             "applied force on a grid of {} × {} supports (x × y, half-depth {} m): each support's Kz (compression only) and Kx·(δt − p), the slider p returned radially onto |T| ≤ μ·N (circular cone), computed by the engine from the body's pose after each rapier step and applied to one rapier body free in six degrees of freedom as one force and moment over the next step; no joints, no colliders (the only model in 3D: contact_model is not read)",
             grid.points.len() / depth.support_rows.max(1),
             depth.support_rows,
             depth.half_depth
-        ),
-    ));
-    said.described.push((
-        "rotational inertia [kg·m²] (x, y, z)".into(),
+        )));
+    said.described.push(Setting::text(
+        "rotational inertia [kg·m²] (x, y, z)",
         format!(
             "{}, {}, {}{}",
             grid.inertia[0],
@@ -404,20 +444,17 @@ pub(crate) fn case<'a>(
             }
         ),
     ));
-    said.described.push((
-        "rapier step [s] (output step / stride)".into(),
+    said.described.push(Setting::text(
+        "rapier step [s] (output step / stride)",
         format!("{dt_in} (stride {stride})"),
     ));
-    said.described.push((
-        "step rule".into(),
-        match settings.step_rule {
+    said.described.push(Setting::text("step rule", match settings.step_rule {
             StepRule::Scene => format!(
                 "ω_r·h ≤ {APPLIED_FORCE_OMEGA_H}, ω_r = {omega:.0} rad/s (the stiffest rocking or torsion mode of the inertia on the supports), h = rapier step / {} substeps",
                 settings.substeps
             ),
             StepRule::None => "none (step_rule = \"none\"): one rapier step per output step".into(),
-        },
-    ));
+        }));
     said.findings.push(if omega_h <= APPLIED_FORCE_OMEGA_H * (1.0 + 1e-9) {
         format!(
             "within the engine's validity for the rocking body before the first full lift-off: ω_r·h = {omega_h:.3} (rule ≤ {APPLIED_FORCE_OMEGA_H}); |T| ≤ μ·N by construction; measured (docs/rapier-engine.md, \"Plan motion\"): {MEASURED}"

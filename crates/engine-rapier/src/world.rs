@@ -1,5 +1,9 @@
-//! Building the rapier world for a scene: the ground body, the structure, and the light
-//! foot bodies that carry a scene's elasticity as spring joints.
+//! Building the rapier world of a planar scene, the planar [`Rig`]: the ground body and
+//! the structure with its contact — the rigid block's collider on the ground; the
+//! oscillator's joint-limit joint ([`Slider`]) or, under a vertical component, its one
+//! joint-limit [`Support`]; the rocking body's applied-force supports (the engine's
+//! forces, no joints) or joint-limit ones; and the feet models (`contact_model =
+//! "foot"`), light foot bodies that carry the elasticity as spring joints.
 //!
 //! Axes: rapier's x is the scene's horizontal X, rapier's y the scene's vertical Z (up),
 //! rapier's z the out-of-plane depth. Rotations of the scene are about rapier's z axis,
@@ -625,4 +629,70 @@ pub(crate) fn friction_cap(mu: f64, normal: f64) -> f64 {
 /// case's μ is infinite (rapier wants a finite coefficient).
 pub(crate) fn rapier_friction(mu: f64) -> f64 {
     if mu.is_finite() { mu } else { MU_INFINITE }
+}
+
+/// The oscillator as a mass free in X and Z (no rotation) on one joint-limit support
+/// ([`Support`], as the rocking body's): a compression-only spring Kz on Y and the spring
+/// Kx on X capped at μ·N after every step, in series with its slider. The mass carries its
+/// weight through the support and starts in static equilibrium, compressed by M·g/Kz.
+pub(crate) fn oscillator_with_supports(
+    osc: &Oscillator,
+    s: &RapierSettings,
+    dt: f64,
+    kind: GroundKind,
+) -> Rig {
+    let mut w = new_world(s, dt, osc.gravity);
+    let ground = add_ground(&mut w, kind, 0.0);
+    let m = osc.mass;
+    let (kx, kz, mu) = (osc.contact.kx, osc.contact.kz, osc.contact.mu);
+    let preload = m * osc.gravity / kz;
+    let body = RigidBodyBuilder::dynamic()
+        .translation(Vector::new(0.0, -preload, 0.0))
+        .additional_mass_properties(MassProperties::new(Vector::ZERO, m, Vector::splat(m)))
+        .enabled_translations(true, true, false)
+        .lock_rotations()
+        .can_sleep(false);
+    let structure = w.insert_body(body);
+    let h = dt / s.substeps as f64;
+    let share = 1.0 - SUPPORT_DAMPING_SHARE;
+    let damping = (osc.damping() - share * h * kx, -share * h * kz);
+    let normal = m * osc.gravity;
+    let cap = friction_cap(mu, normal);
+    let spring = |axis: JointAxis, k: f64, c: f64, max: f64| {
+        GenericJointBuilder::new(JointAxesMask::empty())
+            .local_anchor1(Vector::new(0.0, GROUND_HALF.1, 0.0))
+            .local_anchor2(Vector::ZERO)
+            .motor_model(axis, MotorModel::ForceBased)
+            .motor_position(axis, 0.0, k, c)
+            .motor_max_force(axis, max)
+            .contacts_enabled(false)
+            .build()
+    };
+    let joint = w.insert_impulse_joint(
+        ground,
+        structure,
+        spring(JointAxis::LinX, kx, damping.0, cap),
+    );
+    let vertical = w.insert_impulse_joint(
+        ground,
+        structure,
+        spring(JointAxis::LinY, kz, damping.1, f64::INFINITY),
+    );
+    Rig {
+        supports: vec![Support {
+            joint,
+            vertical,
+            x: 0.0,
+            cm_height: 0.0,
+            kx,
+            kz,
+            mu,
+            damping,
+            s: 0.0,
+            normal,
+            delta: (0.0, -preload),
+            anchor: (0.0, 0.0),
+        }],
+        ..Rig::single(w, ground, structure, m)
+    }
 }

@@ -1,127 +1,18 @@
-//! The time loop: drive the rapier world step by step (applied force, inertial force or
-//! moving kinematic ground), read the bodies back relative to the ground, and record the
-//! scene's channels. Everything is allocated before the loop.
-
-use rapier3d_f64::prelude::*;
+//! The planar scenes' runs, each through the one time loop ([`run_loop`]) with the
+//! planar rig (`world`, `planar`), a [`LineDrive`] and its recorder: what each output
+//! row holds (the scene's channels, measured from the ground's frame) and the contact
+//! block (the rapier contact of a foot or a block, or the supports' own state).
 
 use super::contact_forces::ground_force;
-use super::ground::GroundTable;
+use super::drive::{Drive, LineDrive, force_at, mean_over_step};
+use super::planar::settle;
 use super::rows::layout;
-use super::world::{FOOT_HALF, GroundKind, ROCK_FOOT_HALF, Rig, Support, angle_z};
-use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Signal, Vertical};
-use rockslide_core::trace::{ContactState, Quantity, Trace, q};
-use rockslide_engine_api::{RunStatus, StepSink, step_count};
-
-/// How the excitation enters the rapier world.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Drive {
-    /// Force M·a(t) on the structure (mass acceleration), or nothing (free response).
-    AppliedForce,
-    /// Kinematic ground moved to xg(t).
-    KinematicGround,
-    /// Fixed ground, −m·ag on every dynamic body.
-    InertialForce,
-}
-
-impl Drive {
-    /// The ground body this drive needs.
-    pub fn ground_kind(self) -> GroundKind {
-        match self {
-            Drive::KinematicGround => GroundKind::Kinematic,
-            _ => GroundKind::Fixed,
-        }
-    }
-}
-
-/// What the loop produced.
-pub struct Outcome {
-    /// The recorded channels.
-    pub trace: Trace,
-    /// How it ended.
-    pub status: RunStatus,
-    /// Steps taken.
-    pub steps: u64,
-}
-
-/// Mean of a mass-acceleration signal over [t, t + dt] (Simpson's rule), m/s².
-pub(crate) fn mean_over_step(s: &Signal, t: f64, dt: f64) -> f64 {
-    (s.value(t) + 4.0 * s.value(t + 0.5 * dt) + s.value(t + dt)) / 6.0
-}
-
-/// The force channel: M·a(t) for mass acceleration, −M·ag(t) for ground motion.
-pub(crate) fn force_at(excitation: &Excitation, m: f64, t: f64) -> f64 {
-    match excitation {
-        Excitation::None => 0.0,
-        Excitation::MassAcceleration(s) => m * s.value(t),
-        Excitation::GroundDisplacement(s) => -m * s.second_derivative(t),
-        Excitation::GroundAcceleration(s) => -m * s.value(t),
-    }
-}
-
-/// Apply the step's forces (and, for the kinematic route, the ground's next position).
-/// The structure is looked up once for its own forces (rapier marks a body modified on
-/// every mutable lookup); forces are added in the same order as they always were.
-fn drive_step(rig: &mut Rig, drive: Drive, ex: &Excitation, g: &GroundTable, k: usize, dt: f64) {
-    let t = k as f64 * dt;
-    let ag = match drive {
-        Drive::InertialForce => g.mean_acceleration(k, dt),
-        _ => 0.0,
-    };
-    let body = &mut rig.world.bodies[rig.structure];
-    body.reset_forces(false);
-    if rig.applied_supports {
-        apply_support_forces(body, &rig.supports);
-    }
-    match (drive, ex) {
-        (Drive::AppliedForce, Excitation::MassAcceleration(s)) => {
-            let f = rig.mass * mean_over_step(s, t, dt);
-            body.add_force(Vector::new(f, 0.0, 0.0), false);
-        }
-        (Drive::InertialForce, _) => {
-            body.add_force(Vector::new(-rig.mass * ag, 0.0, 0.0), false);
-        }
-        _ => {}
-    }
-    for &(h, m) in &rig.inertial_masses {
-        if h != rig.structure {
-            let other = &mut rig.world.bodies[h];
-            other.reset_forces(false);
-            if drive == Drive::InertialForce {
-                other.add_force(Vector::new(-m * ag, 0.0, 0.0), false);
-            }
-        }
-    }
-    match drive {
-        Drive::AppliedForce | Drive::InertialForce => {}
-        Drive::KinematicGround => {
-            let ground = &mut rig.world.bodies[rig.ground];
-            let y = ground.translation().y;
-            ground.set_next_kinematic_translation(Vector::new(g.disp(k + 1), y, 0.0));
-        }
-    }
-    super::vertical::drive_step(rig, drive, g, k, dt);
-}
-
-/// The applied-force supports' resultant on the structure for the next step: each
-/// support's force at its anchor (state after the last step), summed into one force at
-/// the CM and a torque about Z. The anchors are the ones [`supports_after_step`] computed
-/// at the body's pose after the last step (before the first, the ones the rig was built
-/// with at its initial pose): the body has not moved since.
-fn apply_support_forces(body: &mut RigidBody, supports: &[Support]) {
-    let cm = body.translation();
-    let (mut fx, mut fy, mut torque) = (0.0, 0.0, 0.0);
-    for sup in supports {
-        let (ax, ay) = sup.anchor;
-        let (sx, sy) = sup.force_on_body();
-        fx += sx;
-        fy += sy;
-        torque += (ax - cm.x) * sy - (ay - cm.y) * sx;
-    }
-    body.reset_torques(false);
-    body.add_force(Vector::new(fx, fy, 0.0), false);
-    body.add_torque(Vector::new(0.0, 0.0, torque), false);
-}
-
+use super::time_loop::{Outcome, StepCount, Steps, run_loop};
+use super::world::{FOOT_HALF, ROCK_FOOT_HALF, Rig, angle_z};
+use rapier3d_f64::prelude::*;
+use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Vertical};
+use rockslide_core::trace::{ContactState, Quantity, q};
+use rockslide_engine_api::{StepSink, step_count};
 /// Run the oscillator rig (one foot, or the joint-limit contact) and record its channels
 /// every `stride` rapier steps of dt/stride (one row per output step dt).
 pub fn run_oscillator(
@@ -135,7 +26,8 @@ pub fn run_oscillator(
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in);
+    let d = LineDrive::new(drive, ex, None, dt_in);
+    let g = &d.ground;
     let moves = ex.moves_ground();
     let mut channels: Vec<&'static Quantity> = q::sliding(moves);
     channels.push(&q::NORMAL);
@@ -145,31 +37,24 @@ pub fn run_oscillator(
     let mut row = vec![0.0; channels.len()];
     let (m, mf) = (rig.mass, rig.foot_mass);
     let weight = -rig.world.gravity.y * m;
-    start_in_ground_frame(&mut rig, drive, &g);
+    d.start(&mut rig.world, &rig.inertial_masses);
     // With a foot: the foot's displacement is the slide; with the joint-limit contact:
     // the slider's position (already relative to the ground).
     let foot = rig.feet.first().copied();
     let x_m0 = rig.world.bodies[rig.structure].translation().x;
     let x_f0 = foot.map_or(0.0, |f| rig.world.bodies[f].translation().x);
-    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize, prev: &mut (f64, f64)| {
+    let mut prev = (0.0, 0.0);
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize| {
         let t = (k / stride) as f64 * dt;
         let bm = &rig.world.bodies[rig.structure];
-        let x = bm.translation().x - x_m0 - ground_frame(drive, &g, k).0;
-        let v = bm.linvel().x - ground_frame(drive, &g, k).1;
+        let x = bm.translation().x - x_m0 - d.frame(k).0;
+        let v = bm.linvel().x - d.frame(k).1;
         let a = if k == 0 { 0.0 } else { (v - prev.0) / dt };
-        let base = oscillator_contact(
-            rig,
-            foot,
-            dt_in,
-            x,
-            kx,
-            weight,
-            ground_frame(drive, &g, k).0 + x_f0,
-        );
+        let base = oscillator_contact(rig, foot, dt_in, x, kx, weight, d.frame(k).0 + x_f0);
         let (xf, vy, normal) = match (foot, rig.slider) {
             (Some(f), _) => {
                 let bf = &rig.world.bodies[f];
-                let xf = bf.translation().x - x_f0 - ground_frame(drive, &g, k).0;
+                let xf = bf.translation().x - x_f0 - d.frame(k).0;
                 // Normal force on the foot from its vertical momentum balance:
                 // N = W + m_f·dv_y/dt.
                 let vy = bf.linvel().y;
@@ -201,17 +86,10 @@ pub fn run_oscillator(
             row[6] = normal;
         }
         out.row(t, &row, &[base]);
-        *prev = (v, vy);
+        prev = (v, vy);
     };
-    let steps = (n * stride, dt_in, stride);
-    time_loop(
-        &mut rig,
-        (drive, ex, &g),
-        steps,
-        (trace, sink),
-        (0.0, 0.0),
-        record,
-    )
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::ToLastRow);
+    run_loop(&mut rig, &d, (trace, record), steps, sink)
 }
 
 /// The oscillator's one contact after a step of `dt`: with a foot, the ground's contact
@@ -249,127 +127,6 @@ fn oscillator_contact(
     }
 }
 
-/// Where the recorder measures from at step `k`: the moving ground's (displacement,
-/// velocity) for a kinematic ground, zero for a fixed one.
-pub(crate) fn ground_frame(drive: Drive, g: &GroundTable, k: usize) -> (f64, f64) {
-    if drive == Drive::KinematicGround {
-        (g.disp(k), g.vel(k))
-    } else {
-        (0.0, 0.0)
-    }
-}
-
-/// With the inertial-force route a ground velocity that jumps at t = 0 gives every body
-/// the relative velocity −vg(0⁺) in the ground's frame.
-pub(crate) fn start_in_ground_frame(rig: &mut Rig, drive: Drive, g: &GroundTable) {
-    if drive == Drive::InertialForce && g.vel(0) != 0.0 {
-        for &(h, _) in &rig.inertial_masses {
-            rig.world.bodies[h].set_linvel(Vector::new(-g.vel(0), 0.0, 0.0), false);
-        }
-    }
-}
-
-/// The common time loop, driven by `(drive, excitation, ground table)`: `steps = (n, dt, stride)`: n rapier steps of dt; drive the
-/// ground, step the world, record after every `stride`-th step (the recorder gets the
-/// step index and hands its row to `sink`) with the recorder's own memory; a body whose
-/// pose stops being finite ends the run as `Diverged` (a result, not a panic). The
-/// outcome's trace is `layout` (the rows went to `sink`).
-pub(crate) fn time_loop<M>(
-    rig: &mut Rig,
-    (drive, ex, g): (Drive, &Excitation, &GroundTable),
-    (n, dt, stride): (usize, f64, usize),
-    (layout, sink): (Trace, &mut dyn StepSink),
-    mut memory: M,
-    mut record: impl FnMut(&mut dyn StepSink, &Rig, usize, &mut M),
-) -> Outcome {
-    sink.begin(&layout);
-    record(sink, rig, 0, &mut memory);
-    let mut rows = 1;
-    let mut status = RunStatus::Completed;
-    for k in 0..n {
-        drive_step(rig, drive, ex, g, k, dt);
-        rig.world.step();
-        slip_after_step(rig, super::vertical::ground_height(drive, g, k + 1));
-        let finite = rig
-            .world
-            .bodies
-            .iter()
-            .all(|(_, b)| b.translation().is_finite() && b.rotation().is_finite());
-        if !finite {
-            status = RunStatus::Diverged {
-                time: (k + 1) as f64 * dt,
-                reason: "a body's position is not finite".into(),
-            };
-            break;
-        }
-        if (k + 1) % stride == 0 {
-            record(sink, rig, k + 1, &mut memory);
-            rows += 1;
-        }
-    }
-    Outcome {
-        steps: ((rows - 1) * stride) as u64,
-        trace: layout,
-        status,
-    }
-}
-
-/// The joint-limit contact's return mapping after a step: where the capped spring has
-/// taken the mass beyond Ru/Kx, the slider follows, and the motor's target with it.
-fn slip_after_step(rig: &mut Rig, ground_height: f64) {
-    supports_after_step(rig, ground_height);
-    let Some(slider) = rig.slider.as_mut() else {
-        return;
-    };
-    let stretch = rig.world.bodies[rig.structure].translation().x
-        - rig.world.bodies[rig.ground].translation().x;
-    if let Some(s) = slider.slip(stretch)
-        && let Some(joint) = rig.world.impulse_joints.get_mut(slider.joint, false)
-    {
-        joint
-            .data
-            .set_motor_position(JointAxis::LinX, s, slider.kx, slider.motor_damping);
-    }
-}
-
-/// The joint-limit supports after a step: each one's normal force, friction cap and
-/// slider (return mapping), written back into its joint's X motor.
-/// `ground_height`: the moving ground's height above its start (vertical motion on the
-/// kinematic route; 0 otherwise), from which the supports' gaps are measured.
-fn supports_after_step(rig: &mut Rig, ground_height: f64) {
-    if rig.supports.is_empty() {
-        return;
-    }
-    let body = &rig.world.bodies[rig.structure];
-    let (cm, phi) = (body.translation(), angle_z(body));
-    let rotation = phi.sin_cos();
-    let gx = rig.world.bodies[rig.ground].translation().x;
-    let gy = ground_height;
-    for sup in rig.supports.iter_mut() {
-        let (ax, ay) = sup.anchor_at(cm, rotation);
-        sup.anchor = (ax, ay);
-        let (s, cap) = sup.update((ax - gx - sup.x, ay - gy));
-        if rig.applied_supports {
-            // no joints: the engine applies the supports' forces before the next step
-            continue;
-        }
-        if let Some(joint) = rig.world.impulse_joints.get_mut(sup.joint, false) {
-            joint
-                .data
-                .set_motor_position(JointAxis::LinX, s, sup.kx, sup.damping.0)
-                .set_motor_max_force(JointAxis::LinX, cap);
-        }
-        if let Some(joint) = rig.world.impulse_joints.get_mut(sup.vertical, false) {
-            // Open (the anchor above the ground): no force at all. (A motor with zero
-            // stiffness and damping is a rigid velocity lock in rapier: cap it at 0.)
-            let open = sup.delta.1 > 0.0;
-            joint
-                .data
-                .set_motor_max_force(JointAxis::LinY, if open { 0.0 } else { f64::INFINITY });
-        }
-    }
-}
-
 /// Run the rigid-block rig and record its channels (sliding and rocking) every
 /// `stride` rapier steps of dt/stride (one row per output step dt).
 pub fn run_block(
@@ -383,7 +140,8 @@ pub fn run_block(
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in).with_vertical(vertical, dt_in);
+    let d = LineDrive::new(drive, ex, vertical, dt_in);
+    let g = &d.ground;
     let channels = block_channels(ex.moves_ground());
     // One contact, the block's base on the ground (rigid rapier contact).
     let trace = layout(&channels, 1, 0.0);
@@ -399,33 +157,23 @@ pub fn run_block(
     }
     // Horizontal positions are measured from the block standing flat at x = 0 (the
     // world is built that way), so a tilted start shows its offset as the reference does.
-    let b0 = &rig.world.bodies[rig.structure];
-    let phi_start = angle_z(b0);
-    let cm_start = b0.translation();
-    let mut state = BlockMemory {
-        v: 0.0,
-        vy: 0.0,
-        corners: [0.0; 2],
-        slide: 0.0,
-        contact_slip: 0.0,
-    };
-    let corners_of = |cm: Vector, phi: f64| -> [(f64, f64); 2] {
+    let corners_of = move |cm: Vector, phi: f64| -> [(f64, f64); 2] {
         let (s, c) = phi.sin_cos();
         [-bw, bw].map(|dx| (cm.x + c * dx + s * hh, cm.y + s * dx - c * hh))
     };
-    {
-        let c = corners_of(cm_start, phi_start);
-        state.corners = [c[0].0, c[1].0];
-    }
-    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize, st: &mut BlockMemory| {
+    let b0 = &rig.world.bodies[rig.structure];
+    let start = corners_of(b0.translation(), angle_z(b0));
+    let state = BlockMemory::at_start([start[0].0, start[1].0]);
+    let mut st = state;
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize| {
         let t = (k / stride) as f64 * dt;
         let body = &rig.world.bodies[rig.structure];
         let cm = body.translation();
         let phi = angle_z(body);
-        let off = ground_frame(drive, &g, k).0;
-        let hg = super::vertical::ground_height(drive, &g, k);
+        let off = d.frame(k).0;
+        let hg = d.height(k);
         let o_x = cm.x + phi.sin() * hh - off;
-        let v = body.linvel().x - ground_frame(drive, &g, k).1;
+        let v = body.linvel().x - d.frame(k).1;
         let vy = body.linvel().y;
         let a = if k == 0 { 0.0 } else { (v - st.v) / dt };
         let ay = if k == 0 { 0.0 } else { (vy - st.vy) / dt };
@@ -440,37 +188,10 @@ pub fn run_block(
             _ => 0.0,
         };
         let contact_x = m * (a + ag) - f_true;
-        let normal =
-            m * (ay + grav + super::vertical::inertial_acceleration(drive, &g, k, stride, dt));
+        let normal = m * (ay + grav + d.vertical_acceleration(k, stride, dt));
         let corners = corners_of(cm, phi).map(|(x, y)| (x, y - hg));
-        let mut n_contact = 0.0;
-        let mut d_slide = 0.0;
-        let mut d_all = 0.0;
-        let mut uplift: f64 = 0.0;
-        // The contact's own slip: the lowest corner's horizontal motion while it touches
-        // (a block rocking about a corner does not slip there).
-        let low = usize::from(corners[1].1 < corners[0].1);
-        if k > 0 && corners[low].1 < contact_gap {
-            st.contact_slip += corners[low].0 - off - st.corners[low];
-        }
-        for (i, &(cx, cy)) in corners.iter().enumerate() {
-            uplift = uplift.max(cy);
-            let x_rel = cx - off;
-            d_all += 0.5 * (x_rel - st.corners[i]);
-            if cy < contact_gap {
-                n_contact += 1.0;
-                d_slide += x_rel - st.corners[i];
-            }
-            st.corners[i] = x_rel;
-        }
-        if n_contact > 0.0 && k > 0 {
-            st.slide += d_slide / n_contact;
-        } else if k > 0 && g.vertical.is_some() {
-            // Under vertical motion a block off the ground moves relative to it and lands
-            // elsewhere: its flight counts as sliding (block minus ground), as in the
-            // exact reference.
-            st.slide += d_all;
-        }
+        let has_vertical = g.vertical.is_some();
+        let (n_contact, uplift) = st.corners_moved(corners, off, contact_gap, k, has_vertical);
         st.v = v;
         st.vy = vy;
         let vals = [
@@ -500,14 +221,8 @@ pub fn run_block(
         };
         out.row(t, &row, &[base]);
     };
-    time_loop(
-        &mut rig,
-        (drive, ex, &g),
-        (n * stride, dt_in, stride),
-        (trace, sink),
-        state,
-        record,
-    )
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::ToLastRow);
+    run_loop(&mut rig, &d, (trace, record), steps, sink)
 }
 
 /// The channels of a rigid block's trace (the ground displacement last, when the ground
@@ -543,23 +258,59 @@ struct BlockMemory {
     contact_slip: f64,
 }
 
-/// Settling under gravity before t = 0: `steps` steps in which every velocity is halved
-/// after the step (a strongly damped relaxation), then all velocities are zeroed, so the
-/// soft contacts and the preloaded springs start in equilibrium.
-fn settle(rig: &mut Rig, steps: usize) {
-    for _ in 0..steps {
-        rig.world.step();
-        for &(h, _) in &rig.inertial_masses {
-            let b = &mut rig.world.bodies[h];
-            let (v, w) = (b.linvel(), b.angvel());
-            b.set_linvel(0.5 * v, false);
-            b.set_angvel(0.5 * w, false);
+impl BlockMemory {
+    /// At rest, the base's corners at `corners` (x in the world).
+    fn at_start(corners: [f64; 2]) -> Self {
+        BlockMemory {
+            v: 0.0,
+            vy: 0.0,
+            corners,
+            slide: 0.0,
+            contact_slip: 0.0,
         }
     }
-    for &(h, _) in &rig.inertial_masses {
-        let b = &mut rig.world.bodies[h];
-        b.set_linvel(Vector::ZERO, false);
-        b.set_angvel(Vector::ZERO, false);
+
+    /// The base's corners at row `k` (x in the world, heights above the ground), the
+    /// ground at `off`: the contact's own slip, the slide and the corners kept for the
+    /// next row; returns the corners in contact (gap below `contact_gap`) and the uplift.
+    /// `vertical`: under vertical ground motion, where a flight counts as sliding.
+    fn corners_moved(
+        &mut self,
+        corners: [(f64, f64); 2],
+        off: f64,
+        contact_gap: f64,
+        k: usize,
+        vertical: bool,
+    ) -> (f64, f64) {
+        let mut n_contact = 0.0;
+        let mut d_slide = 0.0;
+        let mut d_all = 0.0;
+        let mut uplift: f64 = 0.0;
+        // The contact's own slip: the lowest corner's horizontal motion while it touches
+        // (a block rocking about a corner does not slip there).
+        let low = usize::from(corners[1].1 < corners[0].1);
+        if k > 0 && corners[low].1 < contact_gap {
+            self.contact_slip += corners[low].0 - off - self.corners[low];
+        }
+        for (i, &(cx, cy)) in corners.iter().enumerate() {
+            uplift = uplift.max(cy);
+            let x_rel = cx - off;
+            d_all += 0.5 * (x_rel - self.corners[i]);
+            if cy < contact_gap {
+                n_contact += 1.0;
+                d_slide += x_rel - self.corners[i];
+            }
+            self.corners[i] = x_rel;
+        }
+        if n_contact > 0.0 && k > 0 {
+            self.slide += d_slide / n_contact;
+        } else if k > 0 && vertical {
+            // Under vertical motion a block off the ground moves relative to it and lands
+            // elsewhere: its flight counts as sliding (block minus ground), as in the
+            // exact reference.
+            self.slide += d_all;
+        }
+        (n_contact, uplift)
     }
 }
 
@@ -575,7 +326,8 @@ pub fn run_rocking(
     sink: &mut dyn StepSink,
 ) -> Outcome {
     let n = step_count(duration, dt);
-    let g = GroundTable::new(ex, dt);
+    let d = LineDrive::new(drive, ex, None, dt);
+    let g = &d.ground;
     let moves = ex.moves_ground();
     let channels = rocking_channels(moves);
     settle(&mut rig, settle_steps);
@@ -599,14 +351,15 @@ pub fn run_rocking(
     // A support is open when its foot has risen more than 1 % of the static spring
     // compression W/(n·Kz) above its settled level.
     let open_gap = 0.01 * body.weight() / (nf as f64 * kz);
-    start_in_ground_frame(&mut rig, drive, &g);
-    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize, v_prev: &mut f64| {
+    d.start(&mut rig.world, &rig.inertial_masses);
+    let mut v_prev = 0.0;
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize| {
         let t = k as f64 * dt;
         let b = &rig.world.bodies[rig.structure];
         let cm = b.translation();
         let phi = angle_z(b);
         let (sn, cs) = phi.sin_cos();
-        let off = ground_frame(drive, &g, k).0;
+        let off = d.frame(k).0;
         let (mut shear, mut normal, mut contacts) = (0.0, 0.0, 0.0);
         let (mut slide_sum, mut slide_min, mut slide_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
         let mut uplift: f64 = 0.0;
@@ -634,9 +387,9 @@ pub fn run_rocking(
                 contacts += 1.0;
             }
         }
-        let v = b.linvel().x - ground_frame(drive, &g, k).1;
-        let a = if k == 0 { 0.0 } else { (v - *v_prev) / dt };
-        *v_prev = v;
+        let v = b.linvel().x - d.frame(k).1;
+        let a = if k == 0 { 0.0 } else { (v - v_prev) / dt };
+        v_prev = v;
         let vals = [
             force_at(ex, m, t),
             shear,
@@ -658,14 +411,8 @@ pub fn run_rocking(
         row.copy_from_slice(&vals[..len]);
         out.row(t, &row, &states);
     };
-    time_loop(
-        &mut rig,
-        (drive, ex, &g),
-        (n, dt, 1),
-        (trace, sink),
-        0.0,
-        record,
-    )
+    let steps = Steps::new(n, dt, 1, StepCount::ToLastRow);
+    run_loop(&mut rig, &d, (trace, record), steps, sink)
 }
 
 /// The channels of a rocking body's trace, in the order both rocking models record them
@@ -708,7 +455,8 @@ pub fn run_rocking_joint_limit(
 ) -> Outcome {
     let n = step_count(duration, dt);
     let dt_in = dt / stride as f64;
-    let g = GroundTable::new(ex, dt_in).with_vertical(vertical, dt_in);
+    let d = LineDrive::new(drive, ex, vertical, dt_in);
+    let g = &d.ground;
     let moves = ex.moves_ground();
     let channels = rocking_channels(moves);
     // One contact per support: the vertical spring (compression only, compliance 1/Kz)
@@ -721,13 +469,14 @@ pub fn run_rocking_joint_limit(
     let b0 = &rig.world.bodies[rig.structure];
     let (cm0, phi0) = (b0.translation(), angle_z(b0));
     let o0 = cm0.x + phi0.sin() * hh;
-    start_in_ground_frame(&mut rig, drive, &g);
-    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize, v_prev: &mut f64| {
+    d.start(&mut rig.world, &rig.inertial_masses);
+    let mut v_prev = 0.0;
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize| {
         let t = (k / stride) as f64 * dt;
         let b = &rig.world.bodies[rig.structure];
         let cm = b.translation();
         let phi = angle_z(b);
-        let off = ground_frame(drive, &g, k).0;
+        let off = d.frame(k).0;
         let (mut shear, mut normal, mut contacts) = (0.0, 0.0, 0.0);
         let (mut slide_sum, mut slide_min, mut slide_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
         let mut uplift: f64 = 0.0;
@@ -748,9 +497,9 @@ pub fn run_rocking_joint_limit(
                 contacts += 1.0;
             }
         }
-        let v = b.linvel().x - ground_frame(drive, &g, k).1;
-        let a = if k == 0 { 0.0 } else { (v - *v_prev) / dt };
-        *v_prev = v;
+        let v = b.linvel().x - d.frame(k).1;
+        let a = if k == 0 { 0.0 } else { (v - v_prev) / dt };
+        v_prev = v;
         let vals = [
             force_at(ex, m, t),
             shear,
@@ -761,7 +510,7 @@ pub fn run_rocking_joint_limit(
             v,
             a,
             cm.x - off - cm0.x,
-            cm.y - cm0.y - super::vertical::ground_height(drive, &g, k),
+            cm.y - cm0.y - d.height(k),
             phi - phi0,
             uplift.max(0.0),
             contacts,
@@ -772,6 +521,59 @@ pub fn run_rocking_joint_limit(
         row.copy_from_slice(&vals[..len]);
         out.row(t, &row, &states);
     };
-    let steps = (n * stride, dt_in, stride);
-    time_loop(&mut rig, (drive, ex, &g), steps, (trace, sink), 0.0, record)
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::ToLastRow);
+    run_loop(&mut rig, &d, (trace, record), steps, sink)
+}
+
+/// Run the oscillator on its support ([`world::oscillator_with_supports`](crate::world::oscillator_with_supports)) and record the
+/// oscillator's channels (and N(t)) every `stride` rapier steps of dt/stride: the
+/// resistance and the contact are the support's spring force Kx·(δx − s) within its cap
+/// μ·N, N = Kz·compression after the step, the slide its slider.
+pub(crate) fn run_oscillator_on_support(
+    mut rig: Rig,
+    drive: Drive,
+    (ex, vertical): (&Excitation, &Vertical),
+    (dt, stride): (f64, usize),
+    duration: f64,
+    sink: &mut dyn StepSink,
+) -> Outcome {
+    let n = step_count(duration, dt);
+    let dt_in = dt / stride as f64;
+    let d = LineDrive::new(drive, ex, Some(vertical), dt_in);
+    let g = &d.ground;
+    let moves = ex.moves_ground();
+    let mut channels: Vec<&'static Quantity> = q::sliding(moves);
+    channels.push(&q::NORMAL);
+    let kz = rig.supports[0].kz;
+    let trace = layout(&channels, 1, 1.0 / kz);
+    let mut row = vec![0.0; channels.len()];
+    let m = rig.mass;
+    d.start(&mut rig.world, &rig.inertial_masses);
+    let mut v_prev = 0.0;
+    let record = |out: &mut dyn StepSink, rig: &Rig, k: usize| {
+        let t = (k / stride) as f64 * dt;
+        let (x_g, v_g) = d.frame(k);
+        let body = &rig.world.bodies[rig.structure];
+        let x = body.translation().x - x_g;
+        let v = body.linvel().x - v_g;
+        let a = if k == 0 { 0.0 } else { (v - v_prev) / dt };
+        v_prev = v;
+        let sup = &rig.supports[0];
+        let state = ContactState {
+            normal: sup.normal,
+            tangential: sup.shear(),
+            slip: sup.s,
+            gap: sup.delta.1,
+        };
+        let vals = [force_at(ex, m, t), sup.shear(), x, sup.s, v, a];
+        row[..6].copy_from_slice(&vals);
+        if moves {
+            row[6] = g.disp(k);
+        }
+        let last = row.len() - 1;
+        row[last] = sup.normal;
+        out.row(t, &row, &[state]);
+    };
+    let steps = Steps::new(n * stride, dt_in, stride, StepCount::ToLastRow);
+    run_loop(&mut rig, &d, (trace, record), steps, sink)
 }
