@@ -334,7 +334,7 @@ fn dispatch(cli: Cli) -> ExitCode {
             two_way,
             csv,
         }),
-        Ok(Some(Command::TraceInfo { file })) => rockslide_core::trace::mcap_info(&file).map(|s| {
+        Ok(Some(Command::TraceInfo { file })) => rockslide_formats::mcap_info(&file).map(|s| {
             let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), s.as_bytes());
             ExitCode::SUCCESS
         }),
@@ -908,7 +908,7 @@ fn write_reference(path: &Path, dt: f64, out: &Path) -> Result<ExitCode, Error> 
     let n = rockslide_engine_api::step_count(case.run.duration, dt);
     let times: Vec<f64> = (0..=n).map(|i| i as f64 * dt).collect();
     let trace = rockslide_reference::sample(solution.as_ref(), &times);
-    rockslide_core::trace::write_csv(&trace, out)?;
+    rockslide_formats::write_csv(&trace, out)?;
     say!("{}: {} → {}", case.name, solution.method(), out.display());
     Ok(ExitCode::SUCCESS)
 }

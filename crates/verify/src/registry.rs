@@ -91,12 +91,12 @@ impl<E: Engine> Engine for PlanGate<E> {
 
 /// Read and validate a case file against the registry's engines.
 pub fn load_case(path: &Path) -> Result<Case, InputErrors> {
-    rockslide_core::case::load_case(path, CASE_SECTION_IDS)
+    rockslide_formats::load_case(path, CASE_SECTION_IDS)
 }
 
 /// Validate a case from its text against the registry's engines.
 pub fn parse_case(path: &Path, text: &str) -> Result<Case, InputErrors> {
-    rockslide_core::case::parse_case(path, text, CASE_SECTION_IDS)
+    rockslide_formats::parse_case(path, text, CASE_SECTION_IDS)
 }
 
 #[cfg(test)]

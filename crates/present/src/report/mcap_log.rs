@@ -7,9 +7,10 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use rockslide_core::error::Error;
-use rockslide_core::trace::scene3d::Geometry;
-use rockslide_core::trace::{LoggedRun, Trace, TraceLog, scene_period_ns, write_mcap};
+use rockslide_core::trace::Trace;
 use rockslide_engine_api::RunStatus;
+use rockslide_formats::scene3d::Geometry;
+use rockslide_formats::{LoggedRun, TraceLog, scene_period_ns, write_mcap};
 use rockslide_verify::suite::CaseResult;
 
 /// The commit the tool was built from: the build's one stamp ([`crate::stamp::COMMIT`],

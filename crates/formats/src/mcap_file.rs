@@ -4,13 +4,13 @@
 //! Layout of a file (see docs/traces.md):
 //! - one channel per run, `/<label>/state` (`label` = `engine/variant` or `reference`),
 //!   schema `rockslide/State<Label>` (ROS 2 definition, encoding `ros2msg`, each field's
-//!   SI unit in a comment), messages `cdr` (see [`super::cdr`]; JSON before, still read),
+//!   SI unit in a comment), messages `cdr` (see [`crate::cdr`]; JSON before, still read),
 //!   one per trace row, with exactly the trace's fields and then, for a run with a contact
-//!   block, each contact's N, T, slip and gap (see [`super::contacts`]);
+//!   block, each contact's N, T, slip and gap (see [`crate::contacts`]);
 //! - for scenes with geometry: `/<label>/scene` and `/<label>/forces`
 //!   (`foxglove_msgs/msg/SceneUpdate`) and `/<label>/transform`
 //!   (`foxglove_msgs/msg/FrameTransforms`: the ground's and the body's transform of one
-//!   frame), `ros2msg`/`cdr`, see [`super::scene3d`]; one frame per [`scene_period_ns`];
+//!   frame), `ros2msg`/`cdr`, see [`crate::scene3d`]; one frame per [`scene_period_ns`];
 //! - files written before the contacts joined the state message have a channel
 //!   `/<label>/contacts` (schema `rockslide/Contacts<Label>`) beside it: still read;
 //! - `/log` (`foxglove.Log`): how each run ended, at the time it stopped;
@@ -33,12 +33,13 @@ use std::path::Path;
 
 use serde_json::Value;
 
-use super::cdr;
-use super::contacts::{self, ContactBlock};
-use super::scene3d::{self, Geometry, Pose};
-use super::{Trace, q};
-use crate::error::{Error, InputError, InputErrors};
-use crate::io::write_atomically_with;
+use rockslide_core::error::{Error, InputError, InputErrors};
+use rockslide_core::io::write_atomically_with;
+use rockslide_core::trace::{CONTACT_FIELDS, ContactBlock, ContactState, Quantity, Trace, q};
+
+use crate::cdr;
+use crate::contacts;
+use crate::scene3d::{self, Geometry, Pose};
 
 mod writer;
 pub use writer::{ChunkCompression, ChunkOptions, McapWriter};
@@ -400,10 +401,8 @@ fn contact_metadata(meta: &mut BTreeMap<String, String>, block: &ContactBlock) {
     meta.insert("contacts".to_string(), block.names.join(","));
     let compliance: Vec<String> = block.compliance.iter().map(|c| format!("{c:?}")).collect();
     meta.insert("contact_compliance".to_string(), compliance.join(","));
-    let (fields, units): (Vec<&str>, Vec<&str>) = contacts::CONTACT_FIELDS
-        .iter()
-        .map(|(k, u, _)| (*k, *u))
-        .unzip();
+    let (fields, units): (Vec<&str>, Vec<&str>) =
+        CONTACT_FIELDS.iter().map(|(k, u, _)| (*k, *u)).unzip();
     meta.insert("contact_fields".to_string(), fields.join(","));
     meta.insert("contact_units".to_string(), units.join(","));
 }
@@ -841,7 +840,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
     let mut ids: Vec<u16> = summary.channels.keys().copied().collect();
     ids.sort_unstable();
     let mut index_of = BTreeMap::new();
-    let mut builders: BTreeMap<u16, (usize, Vec<&'static super::Quantity>)> = BTreeMap::new();
+    let mut builders: BTreeMap<u16, (usize, Vec<&'static Quantity>)> = BTreeMap::new();
     let mut contact_channels: BTreeMap<u16, usize> = BTreeMap::new();
     for id in ids {
         let c = &summary.channels[&id];
@@ -939,7 +938,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             && is_cdr
         {
             let block = &mut contents.contacts[bi].1;
-            let width = block.count() * contacts::CONTACT_FIELDS.len();
+            let width = block.count() * CONTACT_FIELDS.len();
             cdr::read_values(m.data, width + 1, &mut values).map_err(|e| {
                 InputError::new(
                     path,
@@ -1022,7 +1021,7 @@ fn read_contact_message(block: &mut ContactBlock, data: &[u8]) -> Result<(), Str
     for name in &block.names {
         let c = obj.get(name);
         let field = |k: &str| number(c.and_then(|c| c.get(k)), &format!("{name}.{k}"));
-        row.push(super::ContactState {
+        row.push(ContactState {
             normal: field("normal")?,
             tangential: field("tangential")?,
             slip: field("slip")?,
@@ -1077,7 +1076,6 @@ pub fn mcap_info(path: &Path) -> Result<String, Error> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::trace::{ContactState, q};
 
     /// A run with one contact, its contacts in its state messages, written with every
     /// chunk compression and read back: every value and contact field bit for bit.
