@@ -173,28 +173,7 @@ pub fn read_external_csv(
         .into());
     }
     let (meanings, mut notes) = column_meanings(path, header_line_no, &headers, format)?;
-    let time_index = meanings
-        .iter()
-        .position(|m| m.is_some_and(|m| m.kind == ColumnKind::Time))
-        .ok_or_else(|| {
-            InputError::new(
-                path,
-                "",
-                "has no time column (a rockslide header `time [s]`, or a column mapped to it)",
-            )
-            .at(header_line_no, 1)
-        })?;
-    let channels: Vec<(usize, &'static Quantity, Unit)> = meanings
-        .iter()
-        .enumerate()
-        .filter_map(|(i, m)| match m {
-            Some(ColumnMeaning {
-                kind: ColumnKind::Quantity(q),
-                unit,
-            }) => Some((i, *q, *unit)),
-            _ => None,
-        })
-        .collect();
+    let (time_index, channels) = time_and_channels(path, header_line_no, &meanings)?;
     let quantities: Vec<&'static Quantity> = channels.iter().map(|c| c.1).collect();
     let mut trace = Trace::with_channels(&quantities, 0);
     let mut values = vec![0.0; channels.len()];
@@ -254,6 +233,41 @@ pub fn read_external_csv(
     }
     notes.insert(0, format!("CSV, {} rows", trace.len()));
     Ok(ExternalTrace { trace, notes })
+}
+
+/// A column's index, quantity and unit.
+type Channel = (usize, &'static Quantity, Unit);
+
+/// The time column's index and the quantity columns of a header's `meanings` (line
+/// `header_line_no`); no time column is an error.
+fn time_and_channels(
+    path: &Path,
+    header_line_no: usize,
+    meanings: &[Option<ColumnMeaning>],
+) -> Result<(usize, Vec<Channel>), InputError> {
+    let time_index = meanings
+        .iter()
+        .position(|m| m.is_some_and(|m| m.kind == ColumnKind::Time))
+        .ok_or_else(|| {
+            InputError::new(
+                path,
+                "",
+                "has no time column (a rockslide header `time [s]`, or a column mapped to it)",
+            )
+            .at(header_line_no, 1)
+        })?;
+    let channels: Vec<Channel> = meanings
+        .iter()
+        .enumerate()
+        .filter_map(|(i, m)| match m {
+            Some(ColumnMeaning {
+                kind: ColumnKind::Quantity(q),
+                unit,
+            }) => Some((i, *q, *unit)),
+            _ => None,
+        })
+        .collect();
+    Ok((time_index, channels))
 }
 
 /// The meaning of each column (`None`: ignored) and notes on units and ignored columns.

@@ -184,11 +184,23 @@ pub fn mcap_bytes_with(log: &TraceLog, chunks: ChunkOptions) -> Result<Vec<u8>, 
     write_mcap_to(log, Vec::new(), chunks)
 }
 
-/// Write the MCAP file of `log` into `sink`; returns the sink.
+/// Write the MCAP file of `log` into `sink`; returns the sink. The order of its records:
+/// attachments and metadata, schemas and channels, the static scenes at t = 0, then the
+/// runs' rows interleaved in time.
 fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Result<W, Error> {
     let mut out = Out {
         w: McapWriter::new(sink, options).map_err(mcap_error)?,
     };
+    write_metadata(&mut out, log)?;
+    let (channels, log_channel) = add_channels(&mut out, log)?;
+    let mut buf = Vec::with_capacity(512);
+    write_static_scenes(&mut out, log, &channels, &mut buf)?;
+    write_rows(&mut out, log, &channels, log_channel, &mut buf)?;
+    out.w.finish().map_err(mcap_error)
+}
+
+/// The attachments, the file's metadata and each run's (`run <label>`).
+fn write_metadata<W: Write>(out: &mut Out<W>, log: &TraceLog) -> Result<(), Error> {
     for (name, media_type, data) in &log.attachments {
         out.w.attach(name, media_type, data).map_err(mcap_error)?;
     }
@@ -214,29 +226,41 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             .metadata(&format!("run {}", run.label), &meta)
             .map_err(mcap_error)?;
     }
+    Ok(())
+}
 
-    let json_schema = |out: &mut Out<W>, name: &str, v: &Value| {
-        out.w
-            .add_schema(name, "jsonschema", v.to_string().as_bytes())
-            .map_err(mcap_error)
-    };
-    let ros2_schema = |out: &mut Out<W>, m: &'static scene3d::Msg| {
-        out.w
-            .add_schema(
-                &m.schema_name(),
-                cdr::SCHEMA_ENCODING,
-                scene3d::definition(m).as_bytes(),
-            )
-            .map_err(mcap_error)
-    };
+/// A ROS 2 schema of the 3D view.
+fn ros2_schema<W: Write>(out: &mut Out<W>, m: &'static scene3d::Msg) -> Result<u16, Error> {
+    out.w
+        .add_schema(
+            &m.schema_name(),
+            cdr::SCHEMA_ENCODING,
+            scene3d::definition(m).as_bytes(),
+        )
+        .map_err(mcap_error)
+}
+
+/// The schemas and channels: the 3D view's schemas (with a geometry), the log's, then each
+/// run's state channel (and its view channels when drawn), then `/log`.
+fn add_channels<W: Write>(
+    out: &mut Out<W>,
+    log: &TraceLog,
+) -> Result<(Vec<RunChannels>, u16), Error> {
     let scene_schema = match &log.geometry {
         Some(_) => Some((
-            ros2_schema(&mut out, &scene3d::SCENE_UPDATE)?,
-            ros2_schema(&mut out, &scene3d::FRAME_TRANSFORMS)?,
+            ros2_schema(out, &scene3d::SCENE_UPDATE)?,
+            ros2_schema(out, &scene3d::FRAME_TRANSFORMS)?,
         )),
         None => None,
     };
-    let log_schema = json_schema(&mut out, "foxglove.Log", &scene3d::log_schema())?;
+    let log_schema = out
+        .w
+        .add_schema(
+            "foxglove.Log",
+            "jsonschema",
+            scene3d::log_schema().to_string().as_bytes(),
+        )
+        .map_err(mcap_error)?;
     let mut channels = Vec::with_capacity(log.runs.len());
     for run in &log.runs {
         let name = state_schema_name(&run.label);
@@ -248,27 +272,7 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
                 cdr::state_definition(run.trace).as_bytes(),
             )
             .map_err(mcap_error)?;
-        let mut meta = BTreeMap::new();
-        meta.insert("run".to_string(), run.label.clone());
-        meta.insert(
-            "fields".to_string(),
-            run.trace
-                .channels
-                .iter()
-                .map(|c| c.key)
-                .collect::<Vec<_>>()
-                .join(","),
-        );
-        meta.insert(
-            "units".to_string(),
-            run.trace
-                .channels
-                .iter()
-                .map(|c| c.unit)
-                .collect::<Vec<_>>()
-                .join(","),
-        );
-        contact_metadata(&mut meta, &run.trace.contacts);
+        let meta = state_channel_metadata(run);
         let state = out
             .w
             .add_channel(
@@ -305,12 +309,45 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         .w
         .add_channel(log_schema, "/log", "json", &BTreeMap::new())
         .map_err(mcap_error)?;
+    Ok((channels, log_channel))
+}
 
-    let mut buf = Vec::with_capacity(512);
-    // Static scenes first, at t = 0.
+/// A run's state channel metadata: the run, its fields and units, its contacts.
+fn state_channel_metadata(run: &LoggedRun) -> BTreeMap<String, String> {
+    let mut meta = BTreeMap::new();
+    meta.insert("run".to_string(), run.label.clone());
+    meta.insert(
+        "fields".to_string(),
+        run.trace
+            .channels
+            .iter()
+            .map(|c| c.key)
+            .collect::<Vec<_>>()
+            .join(","),
+    );
+    meta.insert(
+        "units".to_string(),
+        run.trace
+            .channels
+            .iter()
+            .map(|c| c.unit)
+            .collect::<Vec<_>>()
+            .join(","),
+    );
+    contact_metadata(&mut meta, &run.trace.contacts);
+    meta
+}
+
+/// The static scenes, at t = 0 (the datum with the first).
+fn write_static_scenes<W: Write>(
+    out: &mut Out<W>,
+    log: &TraceLog,
+    channels: &[RunChannels],
+    buf: &mut Vec<u8>,
+) -> Result<(), Error> {
     if let Some(g) = &log.geometry {
         let mut first = true;
-        for (lane, (run, ch)) in log.runs.iter().zip(&channels).enumerate() {
+        for (lane, (run, ch)) in log.runs.iter().zip(channels).enumerate() {
             if let Some((scene, _, _)) = ch.view {
                 let mut s = scene3d::static_scene(g, lane, &run.label);
                 if first {
@@ -319,12 +356,23 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
                     }
                     first = false;
                 }
-                scene3d::encode(&scene3d::SCENE_UPDATE, &s, &mut buf);
-                out.put(scene, 0, &buf)?;
+                scene3d::encode(&scene3d::SCENE_UPDATE, &s, buf);
+                out.put(scene, 0, buf)?;
             }
         }
     }
+    Ok(())
+}
 
+/// The runs' rows: state messages, the 3D view at its period, and a log line at each run's
+/// end.
+fn write_rows<W: Write>(
+    out: &mut Out<W>,
+    log: &TraceLog,
+    channels: &[RunChannels],
+    log_channel: u16,
+    buf: &mut Vec<u8>,
+) -> Result<(), Error> {
     // Interleave the runs' rows in time order (ties: run order). Each run's next log
     // time is computed once, when the run moves on (its rows' times never go back: each
     // is clamped to the one before).
@@ -367,10 +415,10 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
             let lane_y = r as f64 * g.lane_spacing();
             let (ground, body) = &frame_names[r];
             let frames = (ground.as_str(), body.as_str());
-            scene3d::encode_frame_transforms(ns, run.trace, i, lane_y, &p, frames, &mut buf);
-            out.put(tf, ns, &buf)?;
-            scene3d::encode_forces(run.trace, i, ns, g, &p, ground, &mut buf);
-            out.put(forces, ns, &buf)?;
+            scene3d::encode_frame_transforms(ns, run.trace, i, lane_y, &p, frames, buf);
+            out.put(tf, ns, buf)?;
+            scene3d::encode_forces(run.trace, i, ns, g, &p, ground, buf);
+            out.put(forces, ns, buf)?;
             next_view[r] = ns + view_period[r];
         }
         if last_row {
@@ -387,7 +435,7 @@ fn write_mcap_to<W: Write>(log: &TraceLog, sink: W, options: ChunkOptions) -> Re
         row[r] += 1;
         next_ns[r] = run.trace.time.get(row[r]).map(|&t| ns_of(t, ns));
     }
-    out.w.finish().map_err(mcap_error)
+    Ok(())
 }
 
 /// The contacts a state channel carries after its fields, in its metadata: their names
@@ -836,6 +884,49 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
                 "the MCAP file has no summary section (not written by rockslide, or cut short)",
             )
         })?;
+    let (mut contents, index) = read_channels(path, &summary)?;
+    let (first, last) = read_messages(path, bytes, &summary, &index, &mut contents)?;
+    contents.time_range = if first <= last { (first, last) } else { (0, 0) };
+    if let Some(stats) = &summary.stats
+        && stats.message_count != contents.message_count
+    {
+        return Err(damaged(
+            "statistics",
+            &format!(
+                "{} messages read, {} in the summary",
+                contents.message_count, stats.message_count
+            ),
+        )
+        .into());
+    }
+    for idx in &summary.metadata_indexes {
+        let m = mcap::read::metadata(bytes, idx).map_err(|e| damaged("metadata", &e))?;
+        contents.metadata.insert(m.name, m.metadata);
+    }
+    for idx in &summary.attachment_indexes {
+        let a = mcap::read::attachment(bytes, idx).map_err(|e| damaged("attachment", &e))?;
+        contents
+            .attachments
+            .push((a.name, a.media_type, a.data.into_owned()));
+    }
+    Ok(contents)
+}
+
+/// Where each channel's messages go: its index in [`McapContents::channels`], the state
+/// trace it fills (with its quantities) or the old contact block.
+#[derive(Default)]
+struct ChannelIndex {
+    index_of: BTreeMap<u16, usize>,
+    builders: BTreeMap<u16, (usize, Vec<&'static Quantity>)>,
+    contact_channels: BTreeMap<u16, usize>,
+}
+
+/// The contents' channels from the summary (by id), with an empty trace per state channel
+/// and an empty block per old contact channel.
+fn read_channels(
+    path: &Path,
+    summary: &mcap::read::Summary,
+) -> Result<(McapContents, ChannelIndex), InputError> {
     let mut contents = McapContents::default();
     let mut ids: Vec<u16> = summary.channels.keys().copied().collect();
     ids.sort_unstable();
@@ -887,6 +978,33 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             messages: 0,
         });
     }
+    Ok((
+        contents,
+        ChannelIndex {
+            index_of,
+            builders,
+            contact_channels,
+        },
+    ))
+}
+
+/// Every message read into `contents` (counted per channel; states, old contact blocks
+/// and JSON decoded, the 3D view decoded to check it); returns the first and last log
+/// times.
+fn read_messages(
+    path: &Path,
+    bytes: &[u8],
+    summary: &mcap::read::Summary,
+    index: &ChannelIndex,
+    contents: &mut McapContents,
+) -> Result<(u64, u64), InputError> {
+    let damaged = |what: &str, e: &dyn std::fmt::Display| {
+        InputError::new(
+            path,
+            "",
+            format!("not a readable MCAP file ({what}: {e}); it may be truncated or corrupt"),
+        )
+    };
     let mut values = Vec::new();
     let (mut first, mut last) = (u64::MAX, 0u64);
     let mut topics: BTreeMap<u16, String> = BTreeMap::new();
@@ -895,7 +1013,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
     }
     for_each_message(bytes, |m| {
         let id = m.channel;
-        let Some(&ci) = index_of.get(&id) else {
+        let Some(&ci) = index.index_of.get(&id) else {
             return Err(damaged("data", &format!("message on unknown channel {id}")));
         };
         let topic = &topics[&id];
@@ -914,45 +1032,29 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
             )
         };
         let is_cdr = contents.channels[ci].message_encoding == cdr::MESSAGE_ENCODING;
-        if let Some((si, qs)) = builders.get(&id)
+        if let Some((si, qs)) = index.builders.get(&id)
             && is_cdr
         {
-            let trace = &mut contents.states[*si].1;
-            let count = cdr::state_values(trace);
-            cdr::read_values(m.data, count, &mut values).map_err(|e| {
+            push_cdr_state(&mut contents.states[*si].1, qs.len(), m.data, &mut values).map_err(
+                |e| {
+                    InputError::new(
+                        path,
+                        "",
+                        format!("channel {topic}, message {}: {e}", m.sequence),
+                    )
+                },
+            )?;
+        } else if let Some(&bi) = index.contact_channels.get(&id)
+            && is_cdr
+        {
+            push_cdr_contacts(&mut contents.contacts[bi].1, m.data, &mut values).map_err(|e| {
                 InputError::new(
                     path,
                     "",
-                    format!(
-                        "channel {topic}, message {}: not a CDR state message of {count} values: {e}",
-                        m.sequence,
-                    ),
+                    format!("channel {topic}, message {}: {e}", m.sequence),
                 )
             })?;
-            let (row, contact_values) = values[1..].split_at(qs.len());
-            trace.push(values[0], row);
-            if trace.contacts.count() > 0 {
-                trace.contacts.push_values(values[0], contact_values);
-            }
-        } else if let Some(&bi) = contact_channels.get(&id)
-            && is_cdr
-        {
-            let block = &mut contents.contacts[bi].1;
-            let width = block.count() * CONTACT_FIELDS.len();
-            cdr::read_values(m.data, width + 1, &mut values).map_err(|e| {
-                InputError::new(
-                    path,
-                    "",
-                    format!(
-                        "channel {}, message {}: not a CDR contact message of {} values: {e}",
-                        topic,
-                        m.sequence,
-                        width + 1
-                    ),
-                )
-            })?;
-            block.push_values(values[0], &values[1..]);
-        } else if let Some((si, qs)) = builders.get(&id) {
+        } else if let Some((si, qs)) = index.builders.get(&id) {
             let obj: BTreeMap<String, Option<f64>> =
                 serde_json::from_slice(m.data).map_err(|e| bad(&e))?;
             let field = |k: &str| {
@@ -966,7 +1068,7 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
                 values.push(field(qty.key)?);
             }
             contents.states[*si].1.push(t, &values);
-        } else if let Some(&bi) = contact_channels.get(&id) {
+        } else if let Some(&bi) = index.contact_channels.get(&id) {
             read_contact_message(&mut contents.contacts[bi].1, m.data).map_err(|e| bad(&e))?;
         } else if contents.channels[ci].message_encoding == "json" {
             serde_json::from_slice::<serde::de::IgnoredAny>(m.data).map_err(|e| bad(&e))?;
@@ -982,30 +1084,39 @@ pub fn read_mcap_bytes(path: &Path, bytes: &[u8]) -> Result<McapContents, InputE
         Ok(why) => damaged("data", &why),
         Err(e) => e,
     })?;
-    contents.time_range = if first <= last { (first, last) } else { (0, 0) };
-    if let Some(stats) = &summary.stats
-        && stats.message_count != contents.message_count
-    {
-        return Err(damaged(
-            "statistics",
-            &format!(
-                "{} messages read, {} in the summary",
-                contents.message_count, stats.message_count
-            ),
-        )
-        .into());
+    Ok((first, last))
+}
+
+/// An old CDR contact message appended to its block; `values` is scratch.
+fn push_cdr_contacts(
+    block: &mut ContactBlock,
+    data: &[u8],
+    values: &mut Vec<f64>,
+) -> Result<(), String> {
+    let width = block.count() * CONTACT_FIELDS.len();
+    cdr::read_values(data, width + 1, values)
+        .map_err(|e| format!("not a CDR contact message of {} values: {e}", width + 1))?;
+    block.push_values(values[0], &values[1..]);
+    Ok(())
+}
+
+/// A CDR state message appended to its trace (and the contacts it carries to the trace's
+/// block); `values` is scratch.
+fn push_cdr_state(
+    trace: &mut Trace,
+    quantities: usize,
+    data: &[u8],
+    values: &mut Vec<f64>,
+) -> Result<(), String> {
+    let count = cdr::state_values(trace);
+    cdr::read_values(data, count, values)
+        .map_err(|e| format!("not a CDR state message of {count} values: {e}"))?;
+    let (row, contact_values) = values[1..].split_at(quantities);
+    trace.push(values[0], row);
+    if trace.contacts.count() > 0 {
+        trace.contacts.push_values(values[0], contact_values);
     }
-    for idx in &summary.metadata_indexes {
-        let m = mcap::read::metadata(bytes, idx).map_err(|e| damaged("metadata", &e))?;
-        contents.metadata.insert(m.name, m.metadata);
-    }
-    for idx in &summary.attachment_indexes {
-        let a = mcap::read::attachment(bytes, idx).map_err(|e| damaged("attachment", &e))?;
-        contents
-            .attachments
-            .push((a.name, a.media_type, a.data.into_owned()));
-    }
-    Ok(contents)
+    Ok(())
 }
 
 /// One contact message appended to its block: `time` and, per contact, its four fields.
