@@ -1,7 +1,7 @@
 //! The MCAP trace of a case run: turns a [`CaseResult`] into a [`TraceLog`] (one state
 //! channel per engine run and for the reference, the 3D view when the scene has
 //! geometry, provenance and settings as metadata, the case file as an attachment) and
-//! writes `<case>.mcap`. The format itself lives in `trace::mcap_file`.
+//! writes `<case>.mcap`. The format itself lives in `rockslide-formats` (`mcap_file`).
 
 use std::collections::BTreeMap;
 use std::path::Path;
