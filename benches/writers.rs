@@ -18,10 +18,11 @@ use std::time::Duration;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rockslide::case::parse_case;
 use rockslide::engine;
-use rockslide::trace::{
-    CDR_LE_HEADER, CHUNKS, ChunkCompression, ChunkOptions, LoggedRun, McapWriter, Trace, TraceLog,
+use rockslide::formats::{
+    CDR_LE_HEADER, CHUNKS, ChunkCompression, ChunkOptions, LoggedRun, McapWriter, TraceLog,
     mcap_bytes, write_csv, write_mcap,
 };
+use rockslide::trace::Trace;
 
 /// The shipped PEPO case at `duration`, predictor-corrector only, Δt = 1 ms.
 fn pepo_case(duration: f64) -> rockslide::case::Case {

@@ -18,9 +18,10 @@ use plotters::prelude::*;
 use rockslide::analysis::responses;
 use rockslide::case::{load_case, parse_case};
 use rockslide::engine::{Run, RunStatus};
+use rockslide::formats::{mcap_bytes, read_mcap, scene3d};
 use rockslide::report::{case_trace_log, write_case_outputs};
 use rockslide::suite::{CaseResult, run_case};
-use rockslide::trace::{Trace, mcap_bytes, q, read_mcap, scene3d};
+use rockslide::trace::{Trace, q};
 use serde_json::Value;
 
 const RPEPO: &str = r#"

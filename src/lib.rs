@@ -30,6 +30,9 @@ pub mod timings;
 pub use rockslide_core::{error, io, response, trace};
 /// Scene export (`rockslide export`): another program's input written from a case.
 pub use rockslide_export as export;
+/// The trace's files (CSV, MCAP, the Foxglove 3D scene) and other programs' results read
+/// as traces.
+pub use rockslide_formats as formats;
 /// The renderers of every human output (`present::sweep`, `present::stability`,
 /// `present::study` beside the reports).
 pub use rockslide_present as present;

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
-use rockslide_core::case::parse_case;
+use rockslide_formats::parse_case;
 
 /// The engine ids of the registry (`rockslide_verify::registry::ENGINE_IDS`), kept here so
 /// that the target builds without the engines.

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
-use rockslide_core::trace::read_mcap_bytes;
+use rockslide_formats::read_mcap_bytes;
 
 fuzz_target!(|data: &[u8]| {
     let _ = read_mcap_bytes(Path::new("fuzz.mcap"), data);

@@ -9,8 +9,8 @@ use std::path::PathBuf;
 use std::sync::OnceLock;
 
 use libfuzzer_sys::fuzz_target;
-use rockslide_core::case::load_case;
 use rockslide_core::study_grid::read_grid;
+use rockslide_formats::load_case;
 
 /// The engine ids of the registry (`rockslide_verify::registry::ENGINE_IDS`), kept here so
 /// that the target builds without the engines.

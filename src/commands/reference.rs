@@ -25,7 +25,7 @@ pub fn run(args: &ReferenceArgs) -> Result<ExitCode, Error> {
     let n = rockslide_engine_api::step_count(case.run.duration, dt);
     let times: Vec<f64> = (0..=n).map(|i| i as f64 * dt).collect();
     let trace = rockslide_reference::sample(solution.as_ref(), &times);
-    rockslide_core::trace::write_csv(&trace, out)?;
+    rockslide_formats::write_csv(&trace, out)?;
     say!("{}: {} → {}", case.name, solution.method(), out.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -9,7 +9,7 @@ use crate::args::TraceInfoArgs;
 
 /// Print what the file holds.
 pub fn run(args: &TraceInfoArgs) -> Result<ExitCode, Error> {
-    rockslide_core::trace::mcap_info(&args.file).map(|s| {
+    rockslide_formats::mcap_info(&args.file).map(|s| {
         let _ = std::io::Write::write_all(&mut std::io::stdout().lock(), s.as_bytes());
         ExitCode::SUCCESS
     })

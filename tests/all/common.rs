@@ -41,6 +41,22 @@ pub fn setting(run: &Run, key: &str) -> Option<String> {
         .map(|s| s.value_text())
 }
 
+/// A case read as the loader reads it before the engines check their options: for tests of
+/// an engine's own option checks. Asserts that the checked load refuses it with the same
+/// first error the engine gives, so that a bad option never gets past loading.
+pub fn parse_with_bad_options(path: &Path, text: &str) -> Case {
+    let c = rockslide::formats::parse_case(path, text, rockslide::registry::CASE_SECTION_IDS)
+        .expect("the case parses before the engines' option checks");
+    let refused = parse_case(path, text).expect_err("a bad option is refused at load");
+    let first = rockslide::registry::all()
+        .iter()
+        .flat_map(|e| e.check_options(&c))
+        .next()
+        .expect("an engine finds the bad option");
+    assert_eq!(refused.0[0].to_string(), first.to_string());
+    c
+}
+
 /// Observed order of accuracy between two errors at steps dt1 > dt2.
 pub fn order(e1: f64, e2: f64, dt1: f64, dt2: f64) -> f64 {
     (e1 / e2).ln() / (dt1 / dt2).ln()

@@ -12,10 +12,11 @@
 
 use rockslide::case::{load_case, parse_case};
 use rockslide::engine::{Run, RunStatus, SolverStats};
+use rockslide::formats::{read_contacts_csv, read_mcap};
 use rockslide::invariants::check_run;
 use rockslide::report::write_case_outputs;
 use rockslide::suite::run_case;
-use rockslide::trace::{ContactBlock, ContactState, Trace, q, read_contacts_csv, read_mcap};
+use rockslide::trace::{ContactBlock, ContactState, Trace, q};
 
 fn same(a: f64, b: f64) -> bool {
     a.to_bits() == b.to_bits() || (a.is_nan() && b.is_nan())

@@ -27,6 +27,14 @@ fn case(path: &str, extra: &str) -> Case {
     parse_case(Path::new(path), &text).unwrap()
 }
 
+/// The case at `path` with a bad option `extra` in its `[engines.fe]` section (refused at
+/// load: [`crate::common::parse_with_bad_options`]).
+fn case_with_bad_option(path: &str, extra: &str) -> Case {
+    let original = std::fs::read_to_string(path).unwrap();
+    let text = original.replacen("[engines.fe]", &format!("[engines.fe]\n{extra}"), 1);
+    crate::common::parse_with_bad_options(Path::new(path), &text)
+}
+
 fn run(c: &Case, variant: &str, dt: f64) -> Run {
     let (o, errors) = FeOptions::parse(c);
     assert!(errors.is_empty(), "{errors:?}");
@@ -215,7 +223,7 @@ fn bad_options_are_located_errors() {
         ("rotational_inertia = -1.0", "engines.fe.rotational_inertia"),
         ("max_iterations = 2.5", "engines.fe.max_iterations"),
     ] {
-        let c = case("cases/pepo-mass-accel.toml", extra);
+        let c = case_with_bad_option("cases/pepo-mass-accel.toml", extra);
         let errors = Fe.check_options(&c);
         assert_eq!(errors.len(), 1, "{extra}: {errors:?}");
         assert_eq!(errors[0].field, field);

@@ -119,7 +119,7 @@ fn the_limits_are_overridden_by_the_environment() {
     // the values a row records, as the MCAP state messages carry them (time, the
     // channels, the contact's four fields; its contacts CSV is not written: it repeats
     // the run's columns)
-    let m = rockslide::trace::read_mcap(&out.join("long-pepo").join("long-pepo.mcap")).unwrap();
+    let m = rockslide::formats::read_mcap(&out.join("long-pepo").join("long-pepo.mcap")).unwrap();
     let state = m.state("/predictor-corrector/paper/state").unwrap();
     let values = 1 + state.channels.len() + 4 * state.contacts.count();
     assert_eq!(values as u64, VALUES_PER_ROW);

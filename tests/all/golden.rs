@@ -4,8 +4,8 @@
 use crate::common;
 
 use rockslide::engine::step_count;
+use rockslide::formats::{read_csv, write_csv};
 use rockslide::reference::{for_case, sample};
-use rockslide::trace::{read_csv, write_csv};
 
 #[test]
 fn reference_traces_match_their_golden_files() {

@@ -8,9 +8,9 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 use rockslide::case::load_case;
+use rockslide::formats::read_mcap_bytes;
 use rockslide::report::write_case_outputs;
 use rockslide::suite::run_case;
-use rockslide::trace::read_mcap_bytes;
 
 fn rockslide(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_rockslide"))

@@ -13,9 +13,10 @@ use std::path::Path;
 use rockslide::analysis::responses;
 use rockslide::case::{Case, parse_case};
 use rockslide::engine::{Run, RunStatus};
+use rockslide::formats::{read_mcap, scene3d};
 use rockslide::report::write_case_outputs;
 use rockslide::suite::{CaseResult, run_case};
-use rockslide::trace::{Trace, q, read_mcap, scene3d};
+use rockslide::trace::{Trace, q};
 use serde_json::Value;
 
 use crate::common::case;

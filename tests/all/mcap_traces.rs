@@ -23,9 +23,10 @@ use std::path::Path;
 use rockslide::analysis::responses;
 use rockslide::case::{Case, load_case, parse_case};
 use rockslide::engine::{Run, RunStatus};
+use rockslide::formats::{read_csv, read_mcap};
 use rockslide::report::write_case_outputs;
 use rockslide::suite::{CaseResult, run_case};
-use rockslide::trace::{Trace, q, read_csv, read_mcap};
+use rockslide::trace::{Trace, q};
 use serde_json::Value;
 
 /// Same f64, bit for bit (±∞ included); any NaN equals any NaN (a CSV spells every NaN
@@ -374,7 +375,7 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
     // Schemas: ROS 2 definitions and CDR messages, units per field, only the trace's fields.
     for c in m.channels.iter().filter(|c| c.topic.ends_with("/state")) {
         let label = c.topic.trim_start_matches('/').trim_end_matches("/state");
-        assert_eq!(c.schema, rockslide::trace::state_schema_name(label));
+        assert_eq!(c.schema, rockslide::formats::state_schema_name(label));
         assert_eq!(
             (c.schema_encoding.as_str(), c.message_encoding.as_str()),
             ("ros2msg", "cdr")
@@ -902,8 +903,8 @@ fn same_case_gives_identical_bytes_apart_from_wall_time() {
         case(ROCKING_CASE, "det"),
         vec![run("fe", "exact", trace, RunStatus::Completed)],
     );
-    let a = rockslide::trace::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
-    let b = rockslide::trace::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
+    let a = rockslide::formats::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
+    let b = rockslide::formats::mcap_bytes(&rockslide::report::case_trace_log(&result)).unwrap();
     assert_eq!(a, b);
 }
 
@@ -939,7 +940,7 @@ fn a_minute_long_run_has_one_transform_message_per_scene_frame_with_the_exact_po
             .unwrap()
             .messages
     };
-    assert_eq!(rockslide::trace::MAX_SCENE_FRAMES, 1_500);
+    assert_eq!(rockslide::formats::MAX_SCENE_FRAMES, 1_500);
     assert_eq!(count("/rapier/inertial/transform"), 1_501);
     assert_eq!(count("/rapier/inertial/forces"), 1_501);
     assert_eq!(count("/rapier/inertial/state"), 3_001);

@@ -6,9 +6,9 @@
 use std::path::Path;
 
 use rockslide::case::parse_case;
+use rockslide::formats::{read_csv, read_mcap};
 use rockslide::report::write_case_outputs;
 use rockslide::suite::run_case;
-use rockslide::trace::{read_csv, read_mcap};
 
 const CASE: &str = "cases/pepo-mass-accel.toml";
 

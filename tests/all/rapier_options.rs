@@ -23,7 +23,7 @@ fn bad_options_are_located_errors() {
             "[engines.rapier]",
             "[engines.rapier]\nfriction_model = \"sticky\"\nfoot_mass = 3.0\npgs_iterations = 2.5",
         );
-    let c = parse_case(Path::new("opts.toml"), &text).expect("parses");
+    let c = crate::common::parse_with_bad_options(Path::new("opts.toml"), &text);
     let errors = Rapier.check_options(&c);
     let text: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
     println!("{text:#?}");
@@ -99,10 +99,14 @@ fn step_rule_none_steps_once_per_output_step() {
         "{:?}",
         none.findings
     );
-    let errors = Rapier.check_options(&with("contact_model = \"applied-force\""));
+    let bad = |o: &str| {
+        let t = osc.replacen("[engines.rapier]", &format!("[engines.rapier]\n{o}"), 1);
+        crate::common::parse_with_bad_options(Path::new("pepo.toml"), &t)
+    };
+    let errors = Rapier.check_options(&bad("contact_model = \"applied-force\""));
     assert_eq!(errors.len(), 1);
     assert!(errors[0].to_string().contains("rocking body only"));
-    let errors = Rapier.check_options(&with("step_rule = \"sometimes\""));
+    let errors = Rapier.check_options(&bad("step_rule = \"sometimes\""));
     assert_eq!(errors.len(), 1);
     assert!(errors[0].to_string().contains("\"none\""), "{}", errors[0]);
 }

@@ -11,8 +11,8 @@ use rockslide::case::limits::{DEFAULT_MAX_STEPS, MAX_JOBS, clamp_jobs};
 use rockslide::case::record::{AccelUnit, parse_at2, parse_csv};
 use rockslide::case::{Case, parse_case};
 use rockslide::engine::fe::{FeOptions, simulate};
+use rockslide::formats::read_mcap_bytes;
 use rockslide::io::{inside, remove_stale_temporaries, write_atomically};
-use rockslide::trace::read_mcap_bytes;
 
 use crate::common::{repo, rockslide};
 

@@ -1,11 +1,13 @@
 //! # rockslide-core — what every rockslide crate shares
 //!
-//! The input side and the output format, no physics:
+//! The input side and the output type, no physics and no file format:
 //!
 //! - [`case`]: TOML case files → validated scenes (SI units), excitations, recorded ground
 //!   motions, with every input error located (`file:line:col: field: reason`).
 //! - [`response`]: the response quantities a case's tolerances can name, with display units.
-//! - [`trace`]: the output format — channels with units — and its CSV and MCAP files.
+//! - [`trace`]: the output type — channels with units, the quantity catalogue, the
+//!   per-contact block — that engines fill. Its files (CSV, MCAP, the Foxglove scene) and
+//!   other programs' results are `rockslide-formats`', which engines do not need.
 //! - [`study_grid`]: study grid files → validated, expanded grids of points.
 //! - [`error`]: input errors and run-time errors; [`io`]: atomic writes.
 //!

@@ -22,10 +22,11 @@ use std::collections::BTreeSet;
 use std::path::PathBuf;
 use std::sync::Mutex;
 
-use rockslide_core::case::{Case, EXTERNAL_VARIANT, External, read_external_participant};
+use rockslide_core::case::{Case, EXTERNAL_VARIANT, External};
 use rockslide_core::error::{InputError, InputErrors};
 use rockslide_core::response::quantity_def;
 use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
+use rockslide_formats::read_external_participant;
 
 use crate::analysis::{Check, QUANTITY_KEYS, Responses, Verdict, discrepancy_percent};
 use crate::invariants::InvariantCheck;

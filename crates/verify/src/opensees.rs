@@ -17,11 +17,12 @@ use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-use rockslide_core::case::{Case, EXTERNAL_VARIANT, External};
+use rockslide_core::case::{Case, EXTERNAL_VARIANT, External, ExternalFormat};
 use rockslide_core::error::InputErrors;
-use rockslide_core::trace::{ExternalFormat, MAX_EXTERNAL_BYTES, Trace, read_external_csv};
+use rockslide_core::trace::Trace;
 use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
 use rockslide_export::opensees::{self as export, SECTION, Samples, Settings};
+use rockslide_formats::{MAX_EXTERNAL_BYTES, read_external_csv};
 
 /// The participant's label (its run is `opensees/external`).
 pub const LABEL: &str = SECTION;

@@ -143,12 +143,12 @@ pub fn for_stability(case: &Case) -> Case {
 /// Read and validate a case file against the registry's engines: its sections and each
 /// engine's options ([`Engine::check_options`]), every error located.
 pub fn load_case(path: &Path) -> Result<Case, InputErrors> {
-    rockslide_core::case::load_case(path, CASE_SECTION_IDS).and_then(with_valid_options)
+    rockslide_formats::load_case(path, CASE_SECTION_IDS).and_then(with_valid_options)
 }
 
 /// Validate a case from its text against the registry's engines.
 pub fn parse_case(path: &Path, text: &str) -> Result<Case, InputErrors> {
-    rockslide_core::case::parse_case(path, text, CASE_SECTION_IDS).and_then(with_valid_options)
+    rockslide_formats::parse_case(path, text, CASE_SECTION_IDS).and_then(with_valid_options)
 }
 
 /// The case, or every problem the engines find with their options in it.

@@ -379,90 +379,9 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
             ),
         ));
     }
-    // Line 3: units.
-    let units_line = lines[2].to_ascii_uppercase();
-    let header_unit = if units_line.contains("CM/S") || units_line.contains("GAL") {
-        Some(AccelUnit::CentimetrePerSecond2)
-    } else if units_line.contains("M/S") {
-        Some(AccelUnit::MetrePerSecond2)
-    } else if units_line.contains("UNITS OF G") || units_line.split_whitespace().last() == Some("G")
-    {
-        Some(AccelUnit::G)
-    } else {
-        None
-    };
-    let unit = match (header_unit, unit) {
-        (Some(h), Some(u)) if h != u => {
-            return Err(at(
-                path,
-                3,
-                None,
-                format!(
-                    "the header says the values are in {}, but the case's record_unit says {}",
-                    h.name(),
-                    u.name()
-                ),
-            ));
-        }
-        (Some(h), _) => h,
-        (None, Some(u)) => u,
-        (None, None) => {
-            return Err(at(
-                path,
-                3,
-                None,
-                format!(
-                    "cannot tell the unit from the header's units line \"{}\" (expected e.g. \"ACCELERATION TIME HISTORY IN UNITS OF G\"); give `record_unit`",
-                    lines[2].trim()
-                ),
-            ));
-        }
-    };
-    // Line 4: NPTS and DT.
-    let Some((npts_at, dt_at)) = npts_dt(lines[3]) else {
-        return Err(at(
-            path,
-            4,
-            None,
-            format!(
-                "cannot read NPTS and DT from \"{}\" (expected e.g. \"NPTS=  3930, DT= .00500 SEC\")",
-                lines[3].trim()
-            ),
-        ));
-    };
-    let (npts, dt) = (npts_at.value, dt_at.value);
-    let at_npts = |reason: String| at(path, 4, Some(npts_at.column), reason);
-    if !(npts >= 1.0 && npts.fract() == 0.0) {
-        return Err(at_npts(format!(
-            "NPTS is {npts}, but must be a whole number of at least 1"
-        )));
-    }
-    if !(dt.is_finite() && dt > 0.0) {
-        return Err(at(
-            path,
-            4,
-            Some(dt_at.column),
-            format!("DT is {dt} s, but must be a positive finite number"),
-        ));
-    }
-    if dt < MIN_DT {
-        return Err(at(
-            path,
-            4,
-            Some(dt_at.column),
-            format!("DT is {dt:e} s, below the smallest sample interval accepted ({MIN_DT:e} s)"),
-        ));
-    }
-    // Each value takes at least two bytes (a digit and a separator): a larger NPTS cannot
-    // be right, and must not be allocated.
-    let room = text.len().div_ceil(2) as f64;
-    if npts > room {
-        return Err(at_npts(format!(
-            "NPTS = {npts}, but the file ({} bytes) cannot hold more than {room} values",
-            text.len()
-        )));
-    }
-    let npts = npts as usize;
+    let unit = at2_unit(path, lines[2], unit)?;
+    let (npts, dt, npts_column) = at2_npts_dt(path, text, lines[3])?;
+    let at_npts = |reason: String| at(path, 4, Some(npts_column), reason);
     let mut samples = Vec::with_capacity(npts);
     let mut last_line = 4;
     for (i, line) in lines.iter().enumerate().skip(4) {
@@ -504,6 +423,97 @@ pub fn parse_at2(path: &Path, text: &str, unit: Option<AccelUnit>) -> Result<Rec
     })
 }
 
+/// The unit of a PEER record: its header's units line (line 3) and the case's
+/// `record_unit`, which must agree when both say one.
+fn at2_unit(
+    path: &Path,
+    units_line: &str,
+    unit: Option<AccelUnit>,
+) -> Result<AccelUnit, InputError> {
+    let upper = units_line.to_ascii_uppercase();
+    let header_unit = if upper.contains("CM/S") || upper.contains("GAL") {
+        Some(AccelUnit::CentimetrePerSecond2)
+    } else if upper.contains("M/S") {
+        Some(AccelUnit::MetrePerSecond2)
+    } else if upper.contains("UNITS OF G") || upper.split_whitespace().last() == Some("G") {
+        Some(AccelUnit::G)
+    } else {
+        None
+    };
+    match (header_unit, unit) {
+        (Some(h), Some(u)) if h != u => Err(at(
+            path,
+            3,
+            None,
+            format!(
+                "the header says the values are in {}, but the case's record_unit says {}",
+                h.name(),
+                u.name()
+            ),
+        )),
+        (Some(h), _) => Ok(h),
+        (None, Some(u)) => Ok(u),
+        (None, None) => Err(at(
+            path,
+            3,
+            None,
+            format!(
+                "cannot tell the unit from the header's units line \"{}\" (expected e.g. \"ACCELERATION TIME HISTORY IN UNITS OF G\"); give `record_unit`",
+                units_line.trim()
+            ),
+        )),
+    }
+}
+
+/// NPTS and DT of a PEER record's line 4, checked (a whole NPTS the file can hold, a
+/// positive DT of at least [`MIN_DT`]): NPTS, DT and the column of NPTS.
+fn at2_npts_dt(path: &Path, text: &str, line: &str) -> Result<(usize, f64, usize), InputError> {
+    let Some((npts_at, dt_at)) = npts_dt(line) else {
+        return Err(at(
+            path,
+            4,
+            None,
+            format!(
+                "cannot read NPTS and DT from \"{}\" (expected e.g. \"NPTS=  3930, DT= .00500 SEC\")",
+                line.trim()
+            ),
+        ));
+    };
+    let (npts, dt) = (npts_at.value, dt_at.value);
+    let at_npts = |reason: String| at(path, 4, Some(npts_at.column), reason);
+    if !(npts >= 1.0 && npts.fract() == 0.0) {
+        return Err(at_npts(format!(
+            "NPTS is {npts}, but must be a whole number of at least 1"
+        )));
+    }
+    if !(dt.is_finite() && dt > 0.0) {
+        return Err(at(
+            path,
+            4,
+            Some(dt_at.column),
+            format!("DT is {dt} s, but must be a positive finite number"),
+        ));
+    }
+    if dt < MIN_DT {
+        return Err(at(
+            path,
+            4,
+            Some(dt_at.column),
+            format!("DT is {dt:e} s, below the smallest sample interval accepted ({MIN_DT:e} s)"),
+        ));
+    }
+    // Each value takes at least two bytes (a digit and a separator): a larger NPTS cannot
+    // be right, and must not be allocated.
+    let room = text.len().div_ceil(2) as f64;
+    if npts > room {
+        return Err(at_npts(format!(
+            "NPTS = {npts}, but the file ({} bytes) cannot hold more than {room} values",
+            text.len()
+        )));
+    }
+    Ok((npts as usize, dt, npts_at.column))
+}
+
 /// Parse a two-column CSV (time s, acceleration in `unit`): `#` comment lines and blank
 /// lines are skipped, one header row of column names is allowed before the data, the
 /// separator is a comma, semicolon or whitespace.
@@ -520,6 +530,82 @@ pub fn parse_csv_column(
     column: Option<usize>,
 ) -> Result<Record, InputError> {
     let text = strip_bom(text);
+    let CsvSamples {
+        description,
+        times,
+        samples,
+        last_line,
+    } = csv_samples(path, text, unit, column)?;
+    if samples.is_empty() {
+        return Err(at(
+            path,
+            text.lines().count().max(1),
+            None,
+            "the record has no samples (expected lines of \"time, acceleration\")",
+        ));
+    }
+    if samples.len() == 1 {
+        return Err(at(
+            path,
+            last_line,
+            None,
+            "the record has a single sample: at least two are needed to know its time step",
+        ));
+    }
+    let mut notes = Vec::new();
+    let t0 = times[0];
+    if t0 != 0.0 {
+        notes.push(format!("shifted by {} s to start at t = 0", -t0));
+    }
+    let n = times.len();
+    let span = times[n - 1] - t0;
+    let dt_mean = span / (n - 1) as f64;
+    let uniform = times
+        .iter()
+        .enumerate()
+        .all(|(i, &t)| (t - t0 - i as f64 * dt_mean).abs() <= 1e-3 * dt_mean);
+    if dt_mean < MIN_DT {
+        return Err(at(
+            path,
+            last_line,
+            None,
+            format!(
+                "the time step is {dt_mean:e} s, below the smallest sample interval accepted ({MIN_DT:e} s)"
+            ),
+        ));
+    }
+    let (dt, samples) = if uniform {
+        (dt_mean, samples)
+    } else {
+        let (dt, out, note) = resample(path, &times, &samples)?;
+        notes.push(note);
+        (dt, out)
+    };
+    Ok(Record {
+        dt,
+        samples,
+        unit,
+        description,
+        note: notes.join("; "),
+    })
+}
+
+/// The rows of a record CSV as read: the first comment (its description), the times and
+/// the accelerations in SI, and the line of the last sample.
+struct CsvSamples {
+    description: String,
+    times: Vec<f64>,
+    samples: Vec<f64>,
+    last_line: usize,
+}
+
+/// Read the rows of a record CSV (see [`parse_csv_column`]): times must increase.
+fn csv_samples(
+    path: &Path,
+    text: &str,
+    unit: AccelUnit,
+    column: Option<usize>,
+) -> Result<CsvSamples, InputError> {
     let mut description = String::new();
     let mut times: Vec<f64> = Vec::new();
     let mut samples: Vec<f64> = Vec::new();
@@ -585,90 +671,60 @@ pub fn parse_csv_column(
         samples.push(a * unit.to_si());
         last_line = line_no;
     }
-    if samples.is_empty() {
-        return Err(at(
-            path,
-            text.lines().count().max(1),
-            None,
-            "the record has no samples (expected lines of \"time, acceleration\")",
-        ));
-    }
-    if samples.len() == 1 {
-        return Err(at(
-            path,
-            last_line,
-            None,
-            "the record has a single sample: at least two are needed to know its time step",
-        ));
-    }
-    let mut notes = Vec::new();
-    let t0 = times[0];
-    if t0 != 0.0 {
-        notes.push(format!("shifted by {} s to start at t = 0", -t0));
-    }
+    Ok(CsvSamples {
+        description,
+        times,
+        samples,
+        last_line,
+    })
+}
+
+/// A non-uniform time column resampled by linear interpolation at its smallest interval
+/// (within [`limits::max_steps`](crate::case::limits::max_steps) samples): the step, the
+/// samples and a note saying so.
+fn resample(
+    path: &Path,
+    times: &[f64],
+    samples: &[f64],
+) -> Result<(f64, Vec<f64>, String), InputError> {
     let n = times.len();
+    let t0 = times[0];
     let span = times[n - 1] - t0;
-    let dt_mean = span / (n - 1) as f64;
-    let uniform = times
-        .iter()
-        .enumerate()
-        .all(|(i, &t)| (t - t0 - i as f64 * dt_mean).abs() <= 1e-3 * dt_mean);
-    if dt_mean < MIN_DT {
+    let dt_min = times
+        .windows(2)
+        .map(|w| w[1] - w[0])
+        .fold(f64::INFINITY, f64::min);
+    // Bounded like a run's steps: a few lines with one far time must not ask for
+    // 10⁷ samples and gigabytes (found by fuzzing: 46 bytes, 1.8e7 samples, 0.9 GB).
+    let max = crate::case::limits::max_steps();
+    let m_f = (span / dt_min).round() + 1.0;
+    if m_f.is_nan() || m_f > max as f64 {
         return Err(at(
             path,
-            last_line,
+            1,
             None,
             format!(
-                "the time step is {dt_mean:e} s, below the smallest sample interval accepted ({MIN_DT:e} s)"
+                "the time column is not uniform and its smallest interval ({dt_min} s) would need {m_f:.3e} samples to resample; the limit is {max} (set {} to raise it): fix the time column",
+                crate::case::limits::MAX_STEPS_VARIABLE
             ),
         ));
     }
-    let (dt, samples) = if uniform {
-        (dt_mean, samples)
-    } else {
-        let dt_min = times
-            .windows(2)
-            .map(|w| w[1] - w[0])
-            .fold(f64::INFINITY, f64::min);
-        // Bounded like a run's steps: a few lines with one far time must not ask for
-        // 10⁷ samples and gigabytes (found by fuzzing: 46 bytes, 1.8e7 samples, 0.9 GB).
-        let max = crate::case::limits::max_steps();
-        let m_f = (span / dt_min).round() + 1.0;
-        if m_f.is_nan() || m_f > max as f64 {
-            return Err(at(
-                path,
-                1,
-                None,
-                format!(
-                    "the time column is not uniform and its smallest interval ({dt_min} s) would need {m_f:.3e} samples to resample; the limit is {max} (set {} to raise it): fix the time column",
-                    crate::case::limits::MAX_STEPS_VARIABLE
-                ),
-            ));
+    let m = m_f as usize;
+    let dt = span / (m - 1) as f64;
+    let mut out = Vec::with_capacity(m);
+    let mut j = 0;
+    for k in 0..m {
+        let t = t0 + k as f64 * dt;
+        while j + 2 < n && times[j + 1] <= t {
+            j += 1;
         }
-        let m = m_f as usize;
-        let dt = span / (m - 1) as f64;
-        let mut out = Vec::with_capacity(m);
-        let mut j = 0;
-        for k in 0..m {
-            let t = t0 + k as f64 * dt;
-            while j + 2 < n && times[j + 1] <= t {
-                j += 1;
-            }
-            let f = ((t - times[j]) / (times[j + 1] - times[j])).clamp(0.0, 1.0);
-            out.push(samples[j] + f * (samples[j + 1] - samples[j]));
-        }
-        notes.push(format!(
-            "time column not uniform: resampled by linear interpolation from {n} samples to {m} at dt = {dt:.6} s (its smallest interval)"
-        ));
-        (dt, out)
-    };
-    Ok(Record {
-        dt,
-        samples,
-        unit,
-        description,
-        note: notes.join("; "),
-    })
+        let f = ((t - times[j]) / (times[j + 1] - times[j])).clamp(0.0, 1.0);
+        out.push(samples[j] + f * (samples[j + 1] - samples[j]));
+    }
+    let note = format!(
+        "time column not uniform: resampled by linear interpolation from {n} samples to {m} at dt = {dt:.6} s (its smallest interval)"
+    );
+    Ok((dt, out, note))
 }
 
 /// How the drift of integrated ground displacement is removed.

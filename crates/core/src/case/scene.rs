@@ -5,6 +5,7 @@ pub use super::invariant::INVARIANT_KEYS;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 
+use super::external::{EXTERNAL_VARIANT, External};
 use super::locate::Locator;
 use super::signal::Signal;
 use crate::error::InputError;
@@ -423,27 +424,6 @@ pub struct Case {
     pub locator: Locator,
     /// Other programs' results taking part like engines (`[[external]]`, `--external`).
     pub externals: Vec<External>,
-}
-
-/// The variant name of every external participant: its run is `<label>/external`.
-pub const EXTERNAL_VARIANT: &str = "external";
-
-/// Results produced by another program, read from a file: a participant of the case like
-/// an engine run, under its own label.
-#[derive(Debug, Clone, PartialEq)]
-pub struct External {
-    /// Label, as tolerances name it (`engine = "sap2000"`); never an engine id.
-    pub label: String,
-    /// The program (and version) that produced it, free text.
-    pub program: String,
-    /// The element or model used in it, free text.
-    pub element: String,
-    /// The results file, as resolved (relative to the case file, or as given).
-    pub file: PathBuf,
-    /// Its time histories in SI, and how they were read.
-    pub read: crate::trace::ExternalTrace,
-    /// Where it was declared (`external[0]`, or `--external <label>`).
-    pub field: String,
 }
 
 impl Case {

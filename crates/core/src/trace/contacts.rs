@@ -2,9 +2,9 @@
 //! oscillator's base, each support of a rocking body, a rigid block's base), at every
 //! recorded row, its normal force N, tangential force T, accumulated slip and normal gap,
 //! in SI units. The physical invariants read it (friction bound, stick/slip, dissipation
-//! and penetration per contact); it is written as `<run>-contacts.csv` beside the run's
-//! CSV and in the run's MCAP state messages, after its fields (`/<engine>/<variant>/state`,
-//! Foxglove paths `.base.normal`, `.s1.slip`, …).
+//! and penetration per contact); the file formats write it as `<run>-contacts.csv` beside
+//! the run's CSV and in the run's MCAP state messages, after its fields
+//! (`/<engine>/<variant>/state`, Foxglove paths `.base.normal`, `.s1.slip`, …).
 //!
 //! Sign conventions: N > 0 in compression (a compression-only contact never pulls);
 //! T is the contact's tangential force signed as the trace's `resistance`: positive when
@@ -17,14 +17,6 @@
 //!
 //! Rows are stored flat (row × contact × field) in one vector preallocated for the run,
 //! so that recording never allocates.
-
-use std::io::Write;
-use std::path::Path;
-
-use super::Trace;
-use super::csv_file::DecimalRows;
-use crate::error::{Error, InputError, InputErrors};
-use crate::io::write_atomically_with;
 
 /// The recorded fields of a contact: (key, SI unit, meaning).
 pub const CONTACT_FIELDS: [(&str, &str, &str); 4] = [
@@ -49,13 +41,6 @@ pub const CONTACT_FIELDS: [(&str, &str, &str); 4] = [
         "Normal separation from the ground, negative when penetrating.",
     ),
 ];
-
-/// Schema name prefix of the per-run contact channels of files written before the
-/// contacts joined the state messages (still read).
-pub const CONTACTS_SCHEMA: &str = "rockslide/Contacts";
-
-/// The prefix contact schemas had when their messages were JSON (still read).
-pub(crate) const JSON_CONTACTS_SCHEMA: &str = "rockslide.Contacts";
 
 /// One contact at one instant.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -182,31 +167,6 @@ impl ContactBlock {
         self.values.extend_from_slice(values);
     }
 
-    /// Whether this block only repeats `trace`'s own columns: one contact, a row per trace
-    /// row, its T the trace's `resistance` and its slip its `slide` bit for bit, its N and
-    /// gap constant (the predictor-corrector's one contact: N = M·g, gap = −N/Kz, both
-    /// given by the case). Its CSV file would hold nothing the run's CSV and the case do
-    /// not, so it is not written; the MCAP state messages still carry it.
-    pub fn repeats(&self, trace: &Trace) -> bool {
-        let (Some(resistance), Some(slide)) = (trace.column("resistance"), trace.column("slide"))
-        else {
-            return false;
-        };
-        if self.count() != 1 || self.len() != trace.len() || self.is_empty() {
-            return false;
-        }
-        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
-        let first = self.at(0, 0);
-        (0..self.len()).all(|i| {
-            let c = self.at(i, 0);
-            same(self.time[i], trace.time[i])
-                && same(c.tangential, resistance[i])
-                && same(c.slip, slide[i])
-                && same(c.normal, first.normal)
-                && same(c.gap, first.gap)
-        })
-    }
-
     /// Number of contacts.
     pub fn count(&self) -> usize {
         self.names.len()
@@ -233,115 +193,12 @@ impl ContactBlock {
             gap: v[3],
         }
     }
-
-    /// The CSV column names: `<contact>.<field> [<unit>]` after `time [s]`.
-    pub fn header(&self) -> Vec<String> {
-        let mut h = vec!["time [s]".to_string()];
-        for n in &self.names {
-            for (key, unit, _) in CONTACT_FIELDS {
-                h.push(format!("{n}.{key} [{unit}]"));
-            }
-        }
-        h
-    }
-}
-
-/// Write `block` to `path` atomically (full round-trip precision, as the run's CSV),
-/// streamed: the header through `csv::Writer` (quoting), then rows of shortest decimals
-/// written straight into the buffer, no per-row allocation.
-pub fn write_contacts_csv(block: &ContactBlock, path: &Path) -> Result<(), Error> {
-    write_atomically_with(path, |w| {
-        write_contacts_csv_to(block, w).map_err(|e| Error::io(path, e))
-    })
-}
-
-fn write_contacts_csv_to(block: &ContactBlock, w: &mut impl Write) -> std::io::Result<()> {
-    {
-        let mut header = csv::Writer::from_writer(&mut *w);
-        header.write_record(block.header())?;
-        header.flush()?;
-    }
-    let width = block.count() * CONTACT_FIELDS.len();
-    let mut rows = DecimalRows::new(1 + width);
-    for (i, t) in block.time.iter().enumerate() {
-        rows.value(0, *t);
-        for (j, v) in block.values[i * width..(i + 1) * width].iter().enumerate() {
-            rows.value(j + 1, *v);
-        }
-        rows.end_row(w)?;
-    }
-    rows.flush(w)
-}
-
-/// Read a contact CSV written by [`write_contacts_csv`] (compliances are not in the CSV:
-/// read back as 0).
-pub fn read_contacts_csv(path: &Path) -> Result<ContactBlock, InputErrors> {
-    let bad = |line: usize, reason: String| InputError::new(path, "", reason).at(line, 1);
-    let mut r = csv::Reader::from_path(path)
-        .map_err(|e| InputError::new(path, "", format!("cannot read: {e}")))?;
-    let headers = r
-        .headers()
-        .map_err(|e| bad(1, format!("bad header: {e}")))?
-        .clone();
-    let columns = headers.len().saturating_sub(1);
-    if columns % CONTACT_FIELDS.len() != 0 {
-        return Err(bad(
-            1,
-            format!("{columns} columns after time: not 4 per contact"),
-        )
-        .into());
-    }
-    let mut names = Vec::new();
-    for (j, h) in headers.iter().skip(1).enumerate() {
-        let (name, rest) = h.rsplit_once('.').unwrap_or(("", h));
-        let (key, unit, _) = CONTACT_FIELDS[j % CONTACT_FIELDS.len()];
-        if name.is_empty() || rest != format!("{key} [{unit}]") {
-            return Err(bad(
-                1,
-                format!(
-                    "column {}: expected <contact>.{key} [{unit}], found \"{h}\"",
-                    j + 2
-                ),
-            )
-            .into());
-        }
-        if j % CONTACT_FIELDS.len() == 0 {
-            names.push(name.to_string());
-        }
-    }
-    let mut block = ContactBlock {
-        compliance: vec![0.0; names.len()],
-        names,
-        ..ContactBlock::default()
-    };
-    for (n, rec) in r.records().enumerate() {
-        let line = n + 2;
-        let rec = rec.map_err(|e| bad(line, e.to_string()))?;
-        for (j, s) in rec.iter().enumerate() {
-            let v = s
-                .trim()
-                .parse::<f64>()
-                .map_err(|_| bad(line, format!("\"{s}\" is not a number")))?;
-            if j == 0 {
-                block.time.push(v);
-            } else {
-                block.values.push(v);
-            }
-        }
-    }
-    Ok(block)
-}
-
-/// The schema name a run's contact messages had in files written before the contacts
-/// joined the state messages: `rockslide/Contacts<Label>`, the label in CamelCase (a
-/// ROS 2 message name, as [`super::state_schema_name`]). Such files are still read.
-pub fn contacts_schema_name(label: &str) -> String {
-    format!("{CONTACTS_SCHEMA}{}", super::cdr::camel_case(label))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::trace::Trace;
 
     fn block() -> ContactBlock {
         let mut b = ContactBlock::with_contacts(&["s1", "s2"], &[1e-6, 0.0], 2);
@@ -397,21 +254,5 @@ mod tests {
         let mut bare = Trace::with_channels(&[&q::SLIDE], 3);
         bare.contacts = trace.contacts.clone();
         assert!(!trace.contacts.repeats(&bare));
-    }
-
-    #[test]
-    fn the_csv_round_trips_bit_for_bit() {
-        let dir = std::env::temp_dir().join(format!("rs-contacts-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("c.csv");
-        let b = block();
-        write_contacts_csv(&b, &path).unwrap();
-        let back = read_contacts_csv(&path).unwrap();
-        assert_eq!(back.names, b.names);
-        assert_eq!(back.time, b.time);
-        for (x, y) in back.values.iter().zip(&b.values) {
-            assert!(x.to_bits() == y.to_bits() || (x.is_nan() && y.is_nan()));
-        }
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -1,38 +1,17 @@
 //! Traces: the one output format every engine and reference writes. A trace is a table of
-//! time histories, one column per [`Quantity`] the scene has, in SI units; `csv` writes
-//! it for spreadsheet users; `mcap_file` logs every run of a case to one MCAP file for
-//! Foxglove, with a 3D view (`scene3d`) for scenes with geometry; `contacts` is the
-//! per-contact block (forces, slip, gap of each contact) engines record beside it;
-//! `external` reads other programs' results (rockslide CSV in any known unit, foreign CSV
-//! with a column map, MCAP).
+//! time histories, one column per [`Quantity`] the scene has, in SI units (`quantity`, the
+//! catalogue); `contacts` is the per-contact block (forces, slip, gap of each contact)
+//! engines record beside it; `unit` the units a column may be written in and the column
+//! header `key [unit]`. Its files (CSV, MCAP, the Foxglove 3D scene) and the readers of
+//! other programs' results are the file formats' crate, which engines do not need.
 
-mod cdr;
 mod contacts;
-mod csv_file;
-mod external;
-mod mcap_file;
 mod quantity;
-pub mod scene3d;
+mod unit;
 
-pub use cdr::{
-    CDR_LE_HEADER, MESSAGE_ENCODING as STEP_MESSAGE_ENCODING,
-    SCHEMA_ENCODING as STEP_SCHEMA_ENCODING, state_definition,
-};
-pub use contacts::{
-    CONTACT_FIELDS, CONTACTS_SCHEMA, ContactBlock, ContactState, contacts_schema_name,
-    plan_slip_increment, read_contacts_csv, write_contacts_csv,
-};
-pub use csv_file::{read_csv, write_csv};
-pub use external::{
-    ColumnKind, ColumnMeaning, ExternalFormat, ExternalTrace, MAX_EXTERNAL_BYTES,
-    MAX_EXTERNAL_COLUMNS, UNITS, Unit, parse_header, read_external, read_external_csv,
-};
-pub use mcap_file::{
-    CHUNKS, ChunkCompression, ChunkOptions, LoggedRun, MAX_SCENE_FRAMES, McapChannel, McapContents,
-    McapWriter, SCENE_PERIOD_NS, STATE_SCHEMA, TraceLog, describe, mcap_bytes, mcap_bytes_with,
-    mcap_info, read_mcap, read_mcap_bytes, scene_period_ns, state_schema_name, write_mcap,
-};
+pub use contacts::{CONTACT_FIELDS, ContactBlock, ContactState, plan_slip_increment};
 pub use quantity::{Quantity, q};
+pub use unit::{ColumnKind, ColumnMeaning, UNITS, Unit, parse_header};
 
 /// Time histories of one run: `time` plus one column per channel, all the same length.
 #[derive(Debug, Clone, PartialEq, Default)]
@@ -147,6 +126,33 @@ impl Trace {
     /// Last row's time, s (0 when empty).
     pub fn end_time(&self) -> f64 {
         self.time.last().copied().unwrap_or(0.0)
+    }
+}
+
+impl ContactBlock {
+    /// Whether this block only repeats `trace`'s own columns: one contact, a row per trace
+    /// row, its T the trace's `resistance` and its slip its `slide` bit for bit, its N and
+    /// gap constant (the predictor-corrector's one contact: N = M·g, gap = −N/Kz, both
+    /// given by the case). Its CSV file would hold nothing the run's CSV and the case do
+    /// not, so it is not written; the MCAP state messages still carry it.
+    pub fn repeats(&self, trace: &Trace) -> bool {
+        let (Some(resistance), Some(slide)) = (trace.column("resistance"), trace.column("slide"))
+        else {
+            return false;
+        };
+        if self.count() != 1 || self.len() != trace.len() || self.is_empty() {
+            return false;
+        }
+        let same = |a: f64, b: f64| a.to_bits() == b.to_bits();
+        let first = self.at(0, 0);
+        (0..self.len()).all(|i| {
+            let c = self.at(i, 0);
+            same(self.time[i], trace.time[i])
+                && same(c.tangential, resistance[i])
+                && same(c.slip, slide[i])
+                && same(c.normal, first.normal)
+                && same(c.gap, first.gap)
+        })
     }
 }
 

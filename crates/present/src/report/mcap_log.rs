@@ -1,15 +1,16 @@
 //! The MCAP trace of a case run: turns a [`CaseResult`] into a [`TraceLog`] (one state
 //! channel per engine run and for the reference, the 3D view when the scene has
 //! geometry, provenance and settings as metadata, the case file as an attachment) and
-//! writes `<case>.mcap`. The format itself lives in `trace::mcap_file`.
+//! writes `<case>.mcap`. The format itself lives in `rockslide-formats` (`mcap_file`).
 
 use std::collections::BTreeMap;
 use std::path::Path;
 
 use rockslide_core::error::Error;
-use rockslide_core::trace::scene3d::Geometry;
-use rockslide_core::trace::{LoggedRun, Trace, TraceLog, scene_period_ns, write_mcap};
+use rockslide_core::trace::Trace;
 use rockslide_engine_api::RunStatus;
+use rockslide_formats::scene3d::Geometry;
+use rockslide_formats::{LoggedRun, TraceLog, scene_period_ns, write_mcap};
 use rockslide_verify::suite::CaseResult;
 
 /// The commit the tool was built from: the build's one stamp ([`crate::stamp::COMMIT`],

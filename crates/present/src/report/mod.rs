@@ -47,7 +47,8 @@ use std::path::{Path, PathBuf};
 
 use rockslide_core::error::Error;
 use rockslide_core::io::write_atomically;
-use rockslide_core::trace::{Trace, write_contacts_csv, write_csv};
+use rockslide_core::trace::Trace;
+use rockslide_formats::{write_contacts_csv, write_csv};
 use rockslide_verify::suite::CaseResult;
 use rockslide_verify::timings;
 

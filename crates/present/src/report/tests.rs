@@ -214,7 +214,7 @@ fn the_lean_set_leaves_traces_to_the_mcap_file_and_links_each_figure_once() {
         .collect();
     assert_eq!(lean_files.iter().collect::<Vec<_>>(), without_csv);
     let mcap =
-        |dir: &Path| rockslide_core::trace::read_mcap(&dir.join("synthetic-rocking.mcap")).unwrap();
+        |dir: &Path| rockslide_formats::read_mcap(&dir.join("synthetic-rocking.mcap")).unwrap();
     let (full_mcap, lean_mcap) = (mcap(&full_case.dir), mcap(&lean_case.dir));
     assert_eq!(full_mcap.states.len(), lean_mcap.states.len());
     for ((topic, full), (lean_topic, lean)) in full_mcap.states.iter().zip(&lean_mcap.states) {
@@ -222,8 +222,7 @@ fn the_lean_set_leaves_traces_to_the_mcap_file_and_links_each_figure_once() {
         assert!(lean.len() < full.len(), "{topic}: {} rows", lean.len());
         assert_eq!(&full.at_output_step(super::LEAN_FILE_STEP), lean, "{topic}");
     }
-    let step =
-        |m: &rockslide_core::trace::McapContents| m.metadata["rockslide"]["output_dt_s"].clone();
+    let step = |m: &rockslide_formats::McapContents| m.metadata["rockslide"]["output_dt_s"].clone();
     assert_eq!(step(&full_mcap), "every step");
     assert_eq!(step(&lean_mcap), "0.005");
     assert_eq!(r.case.run.output_dt, None, "the case is not changed");

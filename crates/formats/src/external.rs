@@ -6,184 +6,23 @@
 //! Values are converted to SI on reading (`value × mul / div`, exact for SI columns, so a
 //! trace written by rockslide reads back bit for bit). Sizes are checked before anything
 //! is allocated: the file's bytes ([`MAX_EXTERNAL_BYTES`]), its columns
-//! ([`MAX_EXTERNAL_COLUMNS`]) and rows ([`crate::case::limits::max_steps`]). Every problem
+//! ([`MAX_EXTERNAL_COLUMNS`]) and rows ([`limits::max_steps`]). Every problem
 //! is an input error naming the file, line, column and reason.
 
 use std::path::Path;
 
-use super::mcap_file::{read_bounded, read_mcap};
-use super::{Quantity, Trace, q};
-use crate::error::{InputError, InputErrors};
+use rockslide_core::case::limits;
+use rockslide_core::case::{ExternalFormat, ExternalTrace};
+use rockslide_core::error::{InputError, InputErrors, io_reason, line_col};
+use rockslide_core::trace::{ColumnKind, ColumnMeaning, Quantity, Trace, Unit, parse_header};
+
+use crate::mcap_file::{read_bounded, read_mcap};
 
 /// Largest external results file read, bytes (256 MiB).
 pub const MAX_EXTERNAL_BYTES: u64 = 256 << 20;
 
 /// Most columns an external CSV may have.
 pub const MAX_EXTERNAL_COLUMNS: usize = 1024;
-
-/// A unit a column may be written in: `SI = value × mul / div` (division for the
-/// sub-units, so that `12.5 mm` is exactly the f64 nearest 0.0125 m).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Unit {
-    /// As written in a header (`mm`).
-    pub name: &'static str,
-    /// The SI unit it converts to (`m`).
-    pub si: &'static str,
-    /// Multiplier to SI.
-    pub mul: f64,
-    /// Divisor to SI.
-    pub div: f64,
-}
-
-impl Unit {
-    /// The value in SI.
-    pub fn to_si(&self, value: f64) -> f64 {
-        if self.mul == 1.0 && self.div == 1.0 {
-            value
-        } else {
-            value * self.mul / self.div
-        }
-    }
-}
-
-const fn unit(name: &'static str, si: &'static str, mul: f64, div: f64) -> Unit {
-    Unit { name, si, mul, div }
-}
-
-/// Standard gravity, m/s² (for `g` and `kgf`, `tf`).
-const G: f64 = 9.80665;
-
-/// Every unit accepted, by the SI unit it converts to.
-pub static UNITS: &[Unit] = &[
-    unit("s", "s", 1.0, 1.0),
-    unit("ms", "s", 1.0, 1000.0),
-    unit("m", "m", 1.0, 1.0),
-    unit("mm", "m", 1.0, 1000.0),
-    unit("cm", "m", 1.0, 100.0),
-    unit("km", "m", 1000.0, 1.0),
-    unit("in", "m", 0.0254, 1.0),
-    unit("ft", "m", 0.3048, 1.0),
-    unit("N", "N", 1.0, 1.0),
-    unit("kN", "N", 1000.0, 1.0),
-    unit("MN", "N", 1e6, 1.0),
-    unit("kgf", "N", G, 1.0),
-    unit("tf", "N", 1000.0 * G, 1.0),
-    unit("m/s", "m/s", 1.0, 1.0),
-    unit("mm/s", "m/s", 1.0, 1000.0),
-    unit("cm/s", "m/s", 1.0, 100.0),
-    unit("m/s²", "m/s²", 1.0, 1.0),
-    unit("m/s^2", "m/s²", 1.0, 1.0),
-    unit("mm/s²", "m/s²", 1.0, 1000.0),
-    unit("mm/s^2", "m/s²", 1.0, 1000.0),
-    unit("cm/s²", "m/s²", 1.0, 100.0),
-    unit("cm/s^2", "m/s²", 1.0, 100.0),
-    unit("g", "m/s²", G, 1.0),
-    unit("rad", "rad", 1.0, 1.0),
-    unit("mrad", "rad", 1.0, 1000.0),
-    unit("deg", "rad", std::f64::consts::PI, 180.0),
-    unit("J", "J", 1.0, 1.0),
-    unit("kJ", "J", 1000.0, 1.0),
-    unit("MJ", "J", 1e6, 1.0),
-    unit("N·m", "J", 1.0, 1.0),
-    unit("kN·m", "J", 1000.0, 1.0),
-    unit("", "", 1.0, 1.0),
-    unit("-", "", 1.0, 1.0),
-    unit("%", "", 1.0, 100.0),
-];
-
-/// What a column holds: the time, or a catalogue quantity.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum ColumnKind {
-    /// Simulation time.
-    Time,
-    /// A recorded quantity.
-    Quantity(&'static Quantity),
-}
-
-/// A column's meaning and unit, parsed from a rockslide header `key [unit]`.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct ColumnMeaning {
-    /// Time or which quantity.
-    pub kind: ColumnKind,
-    /// The unit its values are written in.
-    pub unit: Unit,
-}
-
-impl ColumnMeaning {
-    fn key(&self) -> &'static str {
-        match self.kind {
-            ColumnKind::Time => "time",
-            ColumnKind::Quantity(q) => q.key,
-        }
-    }
-}
-
-/// Parse a rockslide header, `time [s]`, `rel_disp [mm]`, `contacts []` (a missing
-/// `[unit]` means the quantity's SI unit). The reason on error lists what is accepted.
-pub fn parse_header(header: &str) -> Result<ColumnMeaning, String> {
-    let header = header.trim();
-    let (key, unit) = match header.split_once('[') {
-        Some((k, rest)) => {
-            let Some(u) = rest.trim_end().strip_suffix(']') else {
-                return Err(format!("\"{header}\": the unit must be closed by `]`"));
-            };
-            (k.trim(), Some(u.trim()))
-        }
-        None => (header, None),
-    };
-    let (kind, si) = if key == "time" {
-        (ColumnKind::Time, "s")
-    } else {
-        let qty = q::by_key(key).ok_or_else(|| {
-            let known: Vec<&str> = q::ALL.iter().map(|q| q.key).collect();
-            format!(
-                "\"{key}\" is not a quantity rockslide knows; known: time, {}",
-                known.join(", ")
-            )
-        })?;
-        (ColumnKind::Quantity(qty), qty.unit)
-    };
-    let unit_name = unit.unwrap_or(si);
-    let unit = UNITS
-        .iter()
-        .find(|u| u.si == si && u.name == unit_name)
-        .copied()
-        .ok_or_else(|| {
-            let accepted: Vec<String> = UNITS
-                .iter()
-                .filter(|u| u.si == si)
-                .map(|u| format!("[{}]", u.name))
-                .collect();
-            format!(
-                "\"{key}\" cannot be in [{unit_name}]; accepted: {}",
-                accepted.join(", ")
-            )
-        })?;
-    Ok(ColumnMeaning { kind, unit })
-}
-
-/// How an external file is laid out.
-#[derive(Debug, Clone, PartialEq, Default)]
-pub struct ExternalFormat {
-    /// Foreign header → rockslide header (`"U1 (mm)"` → `"rel_disp [mm]"`). Empty: the
-    /// headers are rockslide's. With a map, unmapped columns are ignored (and listed).
-    pub columns: Vec<(String, String)>,
-    /// Field separator of a CSV: `,` (default), `;`, `\t`, or `' '` for runs of blanks.
-    pub delimiter: Option<char>,
-    /// Lines before the header line (a foreign program's preamble).
-    pub skip_lines: usize,
-    /// The state topic of an MCAP file (`/fe/paper/state`); needed when it has several.
-    pub topic: Option<String>,
-}
-
-/// An external file read: its trace in SI, and what the reader did, in words.
-#[derive(Debug, Clone, PartialEq)]
-pub struct ExternalTrace {
-    /// Time histories, SI, catalogue quantities only.
-    pub trace: Trace,
-    /// How it was read: format, units converted, columns ignored.
-    pub notes: Vec<String>,
-}
 
 /// Read an external results file: an MCAP file (by extension `.mcap`) or a CSV.
 pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTrace, InputErrors> {
@@ -194,11 +33,11 @@ pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTra
         return read_external_mcap(path, format.topic.as_deref());
     }
     let bytes = read_bounded(path, MAX_EXTERNAL_BYTES).map_err(|e| {
-        let why = crate::error::io_reason(&e);
+        let why = io_reason(&e);
         InputError::new(path, "", format!("cannot read the results file: {why}"))
     })?;
     let text = String::from_utf8(bytes).map_err(|e| {
-        let (line, col) = crate::error::line_col(
+        let (line, col) = line_col(
             &String::from_utf8_lossy(&e.as_bytes()[..e.utf8_error().valid_up_to()]),
             usize::MAX,
         );
@@ -334,32 +173,11 @@ pub fn read_external_csv(
         .into());
     }
     let (meanings, mut notes) = column_meanings(path, header_line_no, &headers, format)?;
-    let time_index = meanings
-        .iter()
-        .position(|m| m.is_some_and(|m| m.kind == ColumnKind::Time))
-        .ok_or_else(|| {
-            InputError::new(
-                path,
-                "",
-                "has no time column (a rockslide header `time [s]`, or a column mapped to it)",
-            )
-            .at(header_line_no, 1)
-        })?;
-    let channels: Vec<(usize, &'static Quantity, Unit)> = meanings
-        .iter()
-        .enumerate()
-        .filter_map(|(i, m)| match m {
-            Some(ColumnMeaning {
-                kind: ColumnKind::Quantity(q),
-                unit,
-            }) => Some((i, *q, *unit)),
-            _ => None,
-        })
-        .collect();
+    let (time_index, channels) = time_and_channels(path, header_line_no, &meanings)?;
     let quantities: Vec<&'static Quantity> = channels.iter().map(|c| c.1).collect();
     let mut trace = Trace::with_channels(&quantities, 0);
     let mut values = vec![0.0; channels.len()];
-    let max_rows = crate::case::limits::max_steps();
+    let max_rows = limits::max_steps();
     let time_unit = meanings[time_index].expect("time column").unit;
     for (index, raw) in lines {
         let line_no = index + 1;
@@ -369,7 +187,7 @@ pub fn read_external_csv(
                 "",
                 format!(
                     "has more than {max_rows} rows (set {} to raise the limit)",
-                    crate::case::limits::MAX_STEPS_VARIABLE
+                    limits::MAX_STEPS_VARIABLE
                 ),
             )
             .at(line_no, 1)
@@ -415,6 +233,41 @@ pub fn read_external_csv(
     }
     notes.insert(0, format!("CSV, {} rows", trace.len()));
     Ok(ExternalTrace { trace, notes })
+}
+
+/// A column's index, quantity and unit.
+type Channel = (usize, &'static Quantity, Unit);
+
+/// The time column's index and the quantity columns of a header's `meanings` (line
+/// `header_line_no`); no time column is an error.
+fn time_and_channels(
+    path: &Path,
+    header_line_no: usize,
+    meanings: &[Option<ColumnMeaning>],
+) -> Result<(usize, Vec<Channel>), InputError> {
+    let time_index = meanings
+        .iter()
+        .position(|m| m.is_some_and(|m| m.kind == ColumnKind::Time))
+        .ok_or_else(|| {
+            InputError::new(
+                path,
+                "",
+                "has no time column (a rockslide header `time [s]`, or a column mapped to it)",
+            )
+            .at(header_line_no, 1)
+        })?;
+    let channels: Vec<Channel> = meanings
+        .iter()
+        .enumerate()
+        .filter_map(|(i, m)| match m {
+            Some(ColumnMeaning {
+                kind: ColumnKind::Quantity(q),
+                unit,
+            }) => Some((i, *q, *unit)),
+            _ => None,
+        })
+        .collect();
+    Ok((time_index, channels))
 }
 
 /// The meaning of each column (`None`: ignored) and notes on units and ignored columns.

@@ -4,9 +4,9 @@
 use std::io::Write;
 use std::path::Path;
 
-use super::{Trace, q};
-use crate::error::{Error, InputError, InputErrors};
-use crate::io::write_atomically_with;
+use rockslide_core::error::{Error, InputError, InputErrors};
+use rockslide_core::io::write_atomically_with;
+use rockslide_core::trace::{Trace, q};
 
 /// Write `trace` to `path` atomically, streamed in blocks: no per-row allocation and
 /// nothing of the file held in memory beyond one block. The blocks go to the file itself,

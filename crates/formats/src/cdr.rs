@@ -15,8 +15,7 @@
 
 use std::fmt::Write as _;
 
-use super::Trace;
-use super::contacts::CONTACT_FIELDS;
+use rockslide_core::trace::{CONTACT_FIELDS, Trace};
 
 /// Schema encoding of the per-step channels.
 pub const SCHEMA_ENCODING: &str = "ros2msg";
@@ -154,7 +153,7 @@ pub fn read_values(data: &[u8], count: usize, values: &mut Vec<f64>) -> Result<(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::trace::{ContactBlock, ContactState, q};
+    use rockslide_core::trace::{ContactBlock, ContactState, q};
 
     /// Row `i`'s message alone in `buf`.
     fn state_message(buf: &mut Vec<u8>, trace: &Trace, i: usize) {

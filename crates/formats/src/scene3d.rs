@@ -31,9 +31,11 @@
 
 use serde_json::{Value, json};
 
-use crate::case::{Model, Scene};
+use rockslide_core::case::{Model, Scene};
 
-use super::Trace;
+use rockslide_core::trace::Trace;
+
+use crate::cdr::CDR_LE_HEADER;
 
 /// The label of the reference's run, drawn as a ghost.
 const REFERENCE_LABEL: &str = "reference";
@@ -606,7 +608,7 @@ impl CdrOut<'_> {
     /// Start a message: clear the buffer, write the little-endian header.
     fn start(buf: &mut Vec<u8>) -> CdrOut<'_> {
         buf.clear();
-        buf.extend_from_slice(&super::CDR_LE_HEADER);
+        buf.extend_from_slice(&CDR_LE_HEADER);
         CdrOut(buf)
     }
 
@@ -1122,7 +1124,7 @@ fn align(buf: &mut Vec<u8>, n: usize) {
 /// zero, false, empty (a JSON `null` number is NaN).
 pub fn encode(m: &Msg, v: &Value, buf: &mut Vec<u8>) {
     buf.clear();
-    buf.extend_from_slice(&super::CDR_LE_HEADER);
+    buf.extend_from_slice(&CDR_LE_HEADER);
     put_msg(m, v, buf);
 }
 
@@ -1165,7 +1167,7 @@ pub fn decode(m: &Msg, data: &[u8]) -> Result<Value, String> {
     let Some(header) = data.get(..4) else {
         return Err(format!("{} bytes, shorter than the CDR header", data.len()));
     };
-    if header[..2] != super::CDR_LE_HEADER[..2] {
+    if header[..2] != CDR_LE_HEADER[..2] {
         return Err("not little-endian plain CDR".into());
     }
     let mut r = Reader { data, at: 4 };
@@ -1274,7 +1276,7 @@ mod tests {
     fn trace_of(keys: &[&str], rows: &[&[f64]]) -> Trace {
         let channels: Vec<_> = keys
             .iter()
-            .map(|k| crate::trace::q::by_key(k).unwrap())
+            .map(|k| rockslide_core::trace::q::by_key(k).unwrap())
             .collect();
         let mut t = Trace::with_channels(&channels, rows.len());
         for (i, r) in rows.iter().enumerate() {
