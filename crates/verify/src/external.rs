@@ -29,7 +29,7 @@ use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
 
 use crate::analysis::{Check, QUANTITY_KEYS, Responses, Verdict, discrepancy_percent};
 use crate::invariants::InvariantCheck;
-use crate::suite::CaseResult;
+use crate::result::CaseResult;
 
 /// The SAP2000 verification manual's "Acceptable" difference, % (displacements, forces).
 pub const ACCEPTABLE_PERCENT: f64 = 5.0;
