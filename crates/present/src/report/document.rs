@@ -7,16 +7,16 @@ use super::attachments::Attachments;
 use super::crosscode::{
     CrossCode, HISTORY_KEY, LIFTOFF_KEY, PEAK_KEY, cross_code, normalised_rms, participants,
 };
-use super::doc::{Block, Cell, Table, Tone};
-use super::format::{display_unit, pct, ratio, show};
 use super::plots::figures;
 use super::provenance::Provenance;
 use super::sections;
 use super::table::{Column, paper_table};
-use crate::gate;
+use crate::doc::format::{display_unit, pct, ratio, show};
+use crate::doc::{Block, Cell, Table, Tone};
 use rockslide_core::case::Invariant;
 use rockslide_verify::analysis::{Verdict, quantity_def};
 use rockslide_verify::suite::CaseResult;
+use rockslide_verify::verdict;
 
 fn tone_of(verdict: Verdict, gated: bool) -> Tone {
     match (verdict, gated) {
@@ -36,7 +36,7 @@ fn mark(verdict: Verdict, gated: bool) -> &'static str {
 
 /// Gated checks of a case that failed.
 fn gated_failures(r: &CaseResult) -> usize {
-    gate::failures(std::slice::from_ref(r)).len()
+    verdict::failures(std::slice::from_ref(r)).len()
 }
 
 /// The paper-style table.
@@ -158,7 +158,7 @@ fn checks_table(r: &CaseResult) -> Table {
                 .into(),
             display_unit(&ch.quantity).0.into(),
             pct(ch.percent).into(),
-            gate::limit_text(r, ch).into(),
+            verdict::limit_text(r, ch).into(),
             (if ch.gated { "yes" } else { "no" }).into(),
             Cell::toned(ch.verdict.label(), tone_of(ch.verdict, ch.gated)),
         ]);
@@ -459,14 +459,14 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     if !warnings.is_empty() {
         b.push(Block::List(warnings));
     }
-    let lines: Vec<String> = gate::failures(std::slice::from_ref(r))
+    let lines: Vec<String> = verdict::failures(std::slice::from_ref(r))
         .iter()
         .map(|f| f.to_string())
         .collect();
     if !lines.is_empty() {
         b.push(Block::List(lines));
     }
-    let notes = gate::informative(std::slice::from_ref(r));
+    let notes = verdict::informative(std::slice::from_ref(r));
     if !notes.is_empty() {
         b.push(Block::Para(
             "Informative findings — checks outside their tolerance that are not gated (a known property of a method, reported rather than failed):".into(),
@@ -596,7 +596,7 @@ pub(crate) fn suite_document(
     prov: &Provenance,
     att: &Attachments,
 ) -> Vec<Block> {
-    let all = gate::failures(results);
+    let all = verdict::failures(results);
     let mut b = vec![Block::Heading(1, "rockslide — verification suite".into())];
     b.push(Block::Verdict {
         passed: all.is_empty(),
@@ -617,7 +617,7 @@ pub(crate) fn suite_document(
     if !all.is_empty() {
         b.push(Block::List(all.iter().map(|f| f.to_string()).collect()));
     }
-    let notes = gate::informative(results);
+    let notes = verdict::informative(results);
     if !notes.is_empty() {
         b.push(Block::Para("Informative findings (not gated):".into()));
         b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
@@ -657,7 +657,11 @@ pub(crate) fn suite_document(
             ),
             Cell::plain(r.checks.len().to_string()),
             Cell::plain(failed.to_string()),
-            Cell::plain(gate::informative(std::slice::from_ref(r)).len().to_string()),
+            Cell::plain(
+                verdict::informative(std::slice::from_ref(r))
+                    .len()
+                    .to_string(),
+            ),
             if failed == 0 {
                 Cell::toned("PASS", Tone::Pass)
             } else {

@@ -10,8 +10,9 @@
 
 use plotters::prelude::*;
 
-use super::figure::{
-    Entry, GRID, NOTE, REFERENCE, draw_legend, failed_svg, legend_height, palette,
+use crate::doc::figure::{
+    DASH_MARK, Entry, Figure, GRID, NOTE, REFERENCE, dash_marked, draw_legend, failed_svg,
+    legend_height, palette,
 };
 use rockslide_core::trace::{Quantity, Trace, q};
 use rockslide_verify::suite::CaseResult;
@@ -24,17 +25,6 @@ const SIZE: (u32, u32) = (1000, 440);
 /// (its min and max) per pixel column of the figure, so nothing visible is lost and the
 /// SVG (inlined again in the HTML pages) stays small.
 const MAX_POINTS: usize = 2 * SIZE.0 as usize;
-
-/// One rendered figure.
-#[derive(Debug, Clone)]
-pub(crate) struct Figure {
-    /// File stem (`relative-displacement`), unique within a case.
-    pub id: String,
-    /// Caption.
-    pub caption: String,
-    /// The SVG document.
-    pub svg: String,
-}
 
 /// What a figure shows: channels sharing one axis.
 struct Spec {
@@ -143,12 +133,12 @@ fn colour(i: usize, has_reference: bool) -> RGBColor {
 /// order) when long, so that peaks survive and the SVG stays small.
 #[cfg(test)]
 fn points(trace: &Trace, key: &str, factor: f64) -> Vec<(f64, f64)> {
-    super::figure::channel_points(trace, None, key, |v| v * factor, MAX_POINTS)
+    crate::doc::figure::channel_points(trace, None, key, |v| v * factor, MAX_POINTS)
 }
 
 /// The points of a line's channel: a streamed run's envelope, else its trace reduced.
 fn line_points(line: &Line<'_>, key: &str, factor: f64) -> Vec<(f64, f64)> {
-    super::figure::channel_points(line.trace, line.envelope, key, |v| v * factor, MAX_POINTS)
+    crate::doc::figure::channel_points(line.trace, line.envelope, key, |v| v * factor, MAX_POINTS)
 }
 
 /// The largest |value| of a line's channels over every step (a streamed run's envelope
@@ -231,7 +221,7 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
                     format!(
                         "{} (peak {} {})",
                         all[i].label,
-                        super::format::sig(p),
+                        crate::doc::format::sig(p),
                         spec.channels[0].display.0
                     )
                 })
@@ -375,20 +365,7 @@ fn draw(
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    super::figure::compact_svg(&dash_marked(&svg))
-}
-
-/// The opacity that marks a line to be dashed: plotters writes a colour's alpha as the
-/// element's `opacity`, and no other element of a figure is drawn with this one.
-pub(crate) const DASH_MARK: f64 = 0.999;
-
-/// The lines drawn with [`DASH_MARK`] made opaque and dashed (6 on, 4 off, as plotters'
-/// own dashed series): one SVG element per line instead of one per dash.
-pub(crate) fn dash_marked(svg: &str) -> String {
-    svg.replace(
-        &format!("opacity=\"{DASH_MARK}\""),
-        "opacity=\"1\" stroke-dasharray=\"6 4\"",
-    )
+    crate::doc::figure::compact_svg(&dash_marked(&svg))
 }
 
 #[cfg(test)]

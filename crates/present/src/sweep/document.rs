@@ -4,8 +4,8 @@
 //! the figure and the rung table), which reads `sweep.json` and never recomputes.
 
 use super::figure::figure;
-use crate::report::doc::{Block, Cell, Table, Tone};
-use crate::report::format::{order, sci};
+use crate::doc::format::{order, sci};
+use crate::doc::{Block, Cell, Table, Tone};
 use rockslide_verify::analysis::sweep::{ORDER_METHOD, Richardson};
 use rockslide_verify::suite::CaseResult;
 use rockslide_verify::sweep::SweepResult;
