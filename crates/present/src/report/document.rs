@@ -241,25 +241,7 @@ fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
         }
     )));
     if x.lifts_off {
-        let (m, lift) = liftoff_matrix(r);
-        b.push(Block::Heading(
-            3,
-            "Up to the first full lift-off: normalised RMS difference of the relative displacement"
-                .into(),
-        ));
-        b.push(Block::Para(format!(
-            "Window: from the start to the earlier first full lift-off of the two participants. First full lift-off: {}.",
-            x.labels
-                .iter()
-                .zip(&lift)
-                .map(|(l, t)| format!(
-                    "{l} {}",
-                    t.map_or("none".to_string(), |t| format!("{t:.4} s"))
-                ))
-                .collect::<Vec<_>>()
-                .join(", ")
-        )));
-        b.push(Block::Table(matrix(&x, &m, ratio)));
+        b.extend(liftoff_blocks(r, &x));
     }
     b.push(Block::Heading(
         3,
@@ -275,6 +257,40 @@ fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
     b.push(Block::Para(
         "One column per pair “compared vs basis”: Δ % = 100·(compared/basis − 1) for values, compared − basis in ms for event times.".into(),
     ));
+    b.push(Block::Table(pairs_table(&x)));
+    let _ = PEAK_KEY;
+    b
+}
+
+/// The cross-code history up to the first full lift-off: its heading, the window (each
+/// participant's first full lift-off) and the matrix.
+fn liftoff_blocks(r: &CaseResult, x: &CrossCode) -> Vec<Block> {
+    let mut blocks = Vec::new();
+    let (m, lift) = liftoff_matrix(r);
+    blocks.push(Block::Heading(
+        3,
+        "Up to the first full lift-off: normalised RMS difference of the relative displacement"
+            .into(),
+    ));
+    blocks.push(Block::Para(format!(
+        "Window: from the start to the earlier first full lift-off of the two participants. First full lift-off: {}.",
+        x.labels
+            .iter()
+            .zip(&lift)
+            .map(|(l, t)| format!(
+                "{l} {}",
+                t.map_or("none".to_string(), |t| format!("{t:.4} s"))
+            ))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )));
+    blocks.push(Block::Table(matrix(x, &m, ratio)));
+    blocks
+}
+
+/// Every pair, every quantity: one row per quantity some pair compares (Δ % for values,
+/// Δ ms for event times), then the history nRMS rows; one column per pair.
+fn pairs_table(x: &CrossCode) -> Table {
     // Quantities as rows and pairs as columns: the table stays as wide as the number of
     // pairs, however many quantities a scene has.
     let mut header = vec!["Quantity".to_string()];
@@ -317,13 +333,11 @@ fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
     let mut row: Vec<Cell> = vec![Cell::plain("History nRMS (whole run)")];
     row.extend(x.pairs.iter().map(|p| Cell::plain(ratio(p.nrms))));
     rows.push(row);
-    b.push(Block::Table(Table {
+    Table {
         header,
         numeric,
         rows,
-    }));
-    let _ = PEAK_KEY;
-    b
+    }
 }
 
 fn history_table(r: &CaseResult) -> Option<Table> {
