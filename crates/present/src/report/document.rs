@@ -431,75 +431,9 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     let c = &r.case;
     let mut b = vec![Block::Heading(1, format!("{} — {}", c.name, c.title))];
     b.push(document_control(c, prov));
-    let mut facts = Vec::new();
-    if !c.source.is_empty() {
-        facts.push(("Source".to_string(), c.source.clone()));
-    }
-    if !c.requirement.is_empty() {
-        facts.push(("Requirement".to_string(), c.requirement.clone()));
-    }
-    if let Some(rockslide_core::case::Signal::Record { label, .. }) = c.scene.excitation.signal() {
-        facts.push(("Record".to_string(), label.clone()));
-    }
-    // a 3D scene's second horizontal component, along e₂
-    if let Some(rockslide_core::case::Signal::Record { label, .. }) =
-        c.scene.spatial().and_then(|s| s.second.as_ref())
-    {
-        facts.push((
-            "Record, second component (along e₂)".to_string(),
-            label.clone(),
-        ));
-    }
-    facts.push((
-        "Scene".into(),
-        format!(
-            "{} under {}, {} s",
-            c.scene.model.kind(),
-            c.scene.excitation.kind(),
-            c.run.duration
-        ),
-    ));
-    b.push(Block::Facts(facts));
-    let gated = r.checks.iter().filter(|c| c.gated).count();
-    let failed = gated_failures(r);
-    let informative = r.checks.len() - gated;
-    b.push(Block::Verdict {
-        passed: failed == 0,
-        text: format!(
-            "{gated} gated checks, {failed} failed; {informative} informative (not gated) checks"
-        ),
-    });
-    let warnings = rockslide_verify::verdict::warnings(std::slice::from_ref(r));
-    if !warnings.is_empty() {
-        b.push(Block::List(warnings));
-    }
-    let lines: Vec<String> = verdict::failures(std::slice::from_ref(r))
-        .iter()
-        .map(|f| f.to_string())
-        .collect();
-    if !lines.is_empty() {
-        b.push(Block::List(lines));
-    }
-    let notes = verdict::informative(std::slice::from_ref(r));
-    if !notes.is_empty() {
-        b.push(Block::Para(
-            "Informative findings — checks outside their tolerance that are not gated (a known property of a method, reported rather than failed):".into(),
-        ));
-        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
-    }
-
-    b.push(Block::Heading(2, "Response quantities".into()));
-    let (table, notes) = response_table(r);
-    b.push(Block::Table(table));
-    let mut foot = vec![
-        "Δ % = 100·(run/reference − 1) (the SAP2000 verification convention); ✓ within a gated tolerance, ✗ outside it, (✗) outside an informative one.".to_string(),
-    ];
-    foot.extend(notes);
-    match &r.reference {
-        Ok(x) => foot.push(format!("Reference: {}.", x.solution.method())),
-        Err(why) => foot.push(format!("Reference: none — {why}.")),
-    }
-    b.push(Block::List(foot));
+    b.push(case_facts(c));
+    b.extend(verdict_blocks(r));
+    b.extend(response_blocks(r));
 
     if !r.checks.is_empty() {
         b.push(Block::Heading(2, "Tolerance checks".into()));
@@ -544,6 +478,104 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     b.extend(sections::energy_blocks(r));
     b.extend(crate::sweep::case_section(r, att.sweep.as_ref()));
 
+    b.extend(runs_blocks(r));
+
+    b.push(Block::Heading(2, "Provenance".into()));
+    b.push(Block::Facts(prov.lines(r)));
+    b.push(Block::Details {
+        summary: format!("case file {}", c.path.display()),
+        text: c.text.clone(),
+    });
+    b
+}
+
+/// The case's facts: its source, requirement, records and scene.
+fn case_facts(c: &rockslide_core::case::Case) -> Block {
+    let mut facts = Vec::new();
+    if !c.source.is_empty() {
+        facts.push(("Source".to_string(), c.source.clone()));
+    }
+    if !c.requirement.is_empty() {
+        facts.push(("Requirement".to_string(), c.requirement.clone()));
+    }
+    if let Some(rockslide_core::case::Signal::Record { label, .. }) = c.scene.excitation.signal() {
+        facts.push(("Record".to_string(), label.clone()));
+    }
+    // a 3D scene's second horizontal component, along e₂
+    if let Some(rockslide_core::case::Signal::Record { label, .. }) =
+        c.scene.spatial().and_then(|s| s.second.as_ref())
+    {
+        facts.push((
+            "Record, second component (along e₂)".to_string(),
+            label.clone(),
+        ));
+    }
+    facts.push((
+        "Scene".into(),
+        format!(
+            "{} under {}, {} s",
+            c.scene.model.kind(),
+            c.scene.excitation.kind(),
+            c.run.duration
+        ),
+    ));
+    Block::Facts(facts)
+}
+
+/// The gate's verdict of the case, its warnings, its failures and its informative findings.
+fn verdict_blocks(r: &CaseResult) -> Vec<Block> {
+    let mut b = Vec::new();
+    let gated = r.checks.iter().filter(|c| c.gated).count();
+    let failed = gated_failures(r);
+    let informative = r.checks.len() - gated;
+    b.push(Block::Verdict {
+        passed: failed == 0,
+        text: format!(
+            "{gated} gated checks, {failed} failed; {informative} informative (not gated) checks"
+        ),
+    });
+    let warnings = rockslide_verify::verdict::warnings(std::slice::from_ref(r));
+    if !warnings.is_empty() {
+        b.push(Block::List(warnings));
+    }
+    let lines: Vec<String> = verdict::failures(std::slice::from_ref(r))
+        .iter()
+        .map(|f| f.to_string())
+        .collect();
+    if !lines.is_empty() {
+        b.push(Block::List(lines));
+    }
+    let notes = verdict::informative(std::slice::from_ref(r));
+    if !notes.is_empty() {
+        b.push(Block::Para(
+            "Informative findings — checks outside their tolerance that are not gated (a known property of a method, reported rather than failed):".into(),
+        ));
+        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
+    }
+    b
+}
+
+/// The response quantities of every participant, with the table's notes and the reference.
+fn response_blocks(r: &CaseResult) -> Vec<Block> {
+    let mut b = Vec::new();
+    b.push(Block::Heading(2, "Response quantities".into()));
+    let (table, notes) = response_table(r);
+    b.push(Block::Table(table));
+    let mut foot = vec![
+        "Δ % = 100·(run/reference − 1) (the SAP2000 verification convention); ✓ within a gated tolerance, ✗ outside it, (✗) outside an informative one.".to_string(),
+    ];
+    foot.extend(notes);
+    match &r.reference {
+        Ok(x) => foot.push(format!("Reference: {}.", x.solution.method())),
+        Err(why) => foot.push(format!("Reference: none — {why}.")),
+    }
+    b.push(Block::List(foot));
+    b
+}
+
+/// Each run's settings, solver statistics and findings.
+fn runs_blocks(r: &CaseResult) -> Vec<Block> {
+    let mut b = Vec::new();
     b.push(Block::Heading(
         2,
         "Runs: settings, solver statistics, findings".into(),
@@ -565,13 +597,6 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
         );
         b.push(Block::Facts(facts));
     }
-
-    b.push(Block::Heading(2, "Provenance".into()));
-    b.push(Block::Facts(prov.lines(r)));
-    b.push(Block::Details {
-        summary: format!("case file {}", c.path.display()),
-        text: c.text.clone(),
-    });
     b
 }
 
