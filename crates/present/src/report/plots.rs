@@ -255,16 +255,9 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
 /// One line of a figure: participant index, channel index, points.
 type Series = (usize, usize, Vec<(f64, f64)>);
 
-/// Draw one figure into an SVG string.
-fn draw(
-    spec: &Spec,
-    title: &str,
-    all: &[Line<'_>],
-    members: &[usize],
-    has_reference: bool,
-    liftoff: Option<f64>,
-) -> String {
-    let (unit, factor) = spec.channels[0].display;
+/// The lines of a figure: each member's points of each of the spec's channels, in
+/// display units (participant, channel index, points); channels without points left out.
+fn series_of(spec: &Spec, all: &[Line<'_>], members: &[usize], factor: f64) -> Vec<Series> {
     // (participant, channel index, points)
     let mut series: Vec<Series> = Vec::new();
     for &i in members {
@@ -275,8 +268,14 @@ fn draw(
             }
         }
     }
+    series
+}
+
+/// The time axis's end and the value axis's range (5 % padding; ±1 around 0 when flat) of
+/// a figure's lines.
+fn axis_ranges(series: &[Series]) -> (f64, f64, f64) {
     let (mut t1, mut y0, mut y1) = (0.0_f64, f64::INFINITY, f64::NEG_INFINITY);
-    for (_, _, p) in &series {
+    for (_, _, p) in series {
         for &(t, y) in p {
             if y.is_finite() {
                 t1 = t1.max(t);
@@ -291,11 +290,18 @@ fn draw(
     let pad = 0.05 * (y1 - y0);
     let (y0, y1) = (y0 - pad, y1 + pad);
     let t1 = if t1 > 0.0 { t1 } else { 1.0 };
-    let names: Vec<&str> = spec.channels.iter().map(|c| c.label).collect();
-    let ylabel = format!("{} [{unit}]", names.join(", "));
+    (t1, y0, y1)
+}
 
-    // Legend entries, drawn in a strip below the plot so that no box hides a curve.
-    let entries: Vec<Entry> = series
+/// The legend's entries of a figure's lines: the participant (with the channel when the
+/// figure has several), its colour, and dashed for the first of several channels.
+fn legend_entries(
+    spec: &Spec,
+    all: &[Line<'_>],
+    series: &[Series],
+    has_reference: bool,
+) -> Vec<Entry> {
+    series
         .iter()
         .map(|(i, ci, _)| {
             let name = if spec.channels.len() > 1 {
@@ -306,7 +312,26 @@ fn draw(
             let dashed = spec.channels.len() > 1 && *ci == 0;
             (name, colour(*i, has_reference), dashed)
         })
-        .collect();
+        .collect()
+}
+
+/// Draw one figure into an SVG string.
+fn draw(
+    spec: &Spec,
+    title: &str,
+    all: &[Line<'_>],
+    members: &[usize],
+    has_reference: bool,
+    liftoff: Option<f64>,
+) -> String {
+    let (unit, factor) = spec.channels[0].display;
+    let series = series_of(spec, all, members, factor);
+    let (t1, y0, y1) = axis_ranges(&series);
+    let names: Vec<&str> = spec.channels.iter().map(|c| c.label).collect();
+    let ylabel = format!("{} [{unit}]", names.join(", "));
+
+    // Legend entries, drawn in a strip below the plot so that no box hides a curve.
+    let entries = legend_entries(spec, all, &series, has_reference);
     let legend_h = legend_height(entries.len(), SIZE.0);
 
     let mut svg = String::new();
