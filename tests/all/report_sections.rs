@@ -44,7 +44,7 @@ fn row(md: &str, first: &str) -> Vec<String> {
 }
 
 /// A CSV file as header and numeric rows.
-/// A figure written through the reports' compaction (`present::report::figure::compact_svg`):
+/// A figure written through the reports' compaction (`present::doc::figure::compact_svg`):
 /// every line a `<path>` of relative moves (plotters writes `<polyline>`s), the grid lines
 /// in groups carrying their attributes.
 pub fn compacted(svg: &str) {

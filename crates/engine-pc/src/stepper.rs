@@ -134,6 +134,140 @@ impl Eq9Change {
     }
 }
 
+/// The method's constants for one run: mass, stiffness, damping, friction coefficient,
+/// time step, and whether the slip-once route integrates the deflection.
+struct Method {
+    m: f64,
+    k: f64,
+    c: f64,
+    mu: f64,
+    dt: f64,
+    /// Eq 12 with the slip counted once, under ground motion ([`GroundRoute::Eq12SlipOnce`]).
+    slip_once: bool,
+}
+
+/// What the method carries from one step to the next.
+#[derive(Clone, Copy)]
+struct State {
+    x: f64,
+    v: f64,
+    a: f64,
+    /// Slip xp.
+    xp: f64,
+    /// Resistance R.
+    r: f64,
+}
+
+impl Method {
+    /// Steps 3–6 at time `t` under force `f`: the predicting pass, then the correcting
+    /// pass; returns the corrected state (velocity jump not yet applied) and the predicted
+    /// displacement (for Eq 9). With a vertical ground motion the friction limit `ru` is
+    /// μ·N(t) of each pass, N stepped by the same scheme, pass for pass.
+    #[inline]
+    fn predict_correct(
+        &self,
+        prev: &State,
+        f: f64,
+        t: f64,
+        ru: &mut f64,
+        mut normal_stepper: Option<&mut NormalStepper<'_>>,
+    ) -> (State, f64) {
+        let (m, k, c, dt) = (self.m, self.k, self.c, self.dt);
+        let (x_prev, v_prev, a_prev, xp) = (prev.x, prev.v, prev.a, prev.xp);
+        let mut a_t = a_prev; // step 3: predictor a_t = a_{t−1}
+        let mut x_predict = 0.0;
+        let mut next = *prev;
+        for pass in 0..2 {
+            // The friction limit of this pass: Ru = μ·N(t) from the vertical motion, the
+            // normal force stepped by the same scheme, pass for pass.
+            if let Some(ns) = normal_stepper.as_deref_mut() {
+                ns.pass(t, dt, pass == 1);
+                *ru = self.mu * ns.normal();
+            }
+            let ru = *ru;
+            // step 4: Eqs 3 and 4
+            let v_t = v_prev + 0.5 * (a_t + a_prev) * dt;
+            let x_t = x_prev + 0.5 * (v_t + v_prev) * dt;
+            // step 5: R from Eqs 7–8 with the previous step's slip
+            let (r_t, xp_new) = if self.slip_once {
+                let trial = k * x_t;
+                let r = trial.clamp(-ru, ru);
+                (r, xp + (trial - r) / k)
+            } else {
+                resistance(x_t, xp, k, ru)
+            };
+            // step 6: Eq 5
+            a_t = (f - r_t - c * (v_prev + a_prev * dt / 2.0)) / (m + c * dt / 2.0);
+            if pass == 0 {
+                x_predict = x_t;
+            } else {
+                next.x = x_t;
+                next.v = v_t;
+                next.r = r_t;
+                next.xp = xp_new;
+            }
+        }
+        next.a = a_t;
+        (next, x_predict)
+    }
+}
+
+/// The predictor-corrector's trace layout: the sliding channels, the Eq 9 change, N(t)
+/// when it varies (horizontal-only traces stay as they were), and the one contact.
+fn layout_of(osc: &Oscillator, moves_ground: bool, varying_normal: bool) -> Trace {
+    let mut channels = q::sliding(moves_ground);
+    debug_assert_eq!(channels[REL_DISP_COLUMN].key, q::REL_DISP.key);
+    channels.push(&q::PC_CHANGE);
+    if varying_normal {
+        channels.push(&q::NORMAL);
+    }
+    let mut layout = Trace::with_channels(&channels, 0);
+    layout.contacts = ContactBlock::with_contacts(&["base"], &[1.0 / osc.contact.kz], 0);
+    layout
+}
+
+/// Hands each row to the sink (and the Eq 9 observer), counting them; one row buffer for
+/// the whole run.
+struct Recorder<'a, S: StepSink + ?Sized> {
+    sink: &'a mut S,
+    eq9: Option<&'a mut Eq9Change>,
+    excitation: &'a Excitation,
+    moves_ground: bool,
+    row: Vec<f64>,
+    rows: u64,
+}
+
+impl<S: StepSink + ?Sized> Recorder<'_, S> {
+    /// The row at time `t`: force `f`, the contact's (normal force, gap), the state (its
+    /// x the relative displacement) and the Eq 9 change.
+    #[inline]
+    fn record(&mut self, t: f64, f: f64, (normal, gap): (f64, f64), s: &State, change: f64) {
+        let State { x, v, a, xp, r } = *s;
+        let mut vals = [f, r, x, xp, v, a, 0.0, 0.0, 0.0];
+        if self.moves_ground {
+            vals[6] = forcing_ground_disp(self.excitation, t);
+            vals[7] = change;
+            vals[8] = normal;
+        } else {
+            vals[6] = change;
+            vals[7] = normal;
+        }
+        let n = self.row.len();
+        self.row.copy_from_slice(&vals[..n]);
+        let base = ContactState {
+            normal,
+            tangential: r,
+            slip: xp,
+            gap,
+        };
+        self.sink.row(t, &self.row, &[base]);
+        if let Some(e) = self.eq9.as_deref_mut() {
+            e.observe(x, change);
+        }
+        self.rows += 1;
+    }
+}
+
 /// The time loop: every row to `sink`, and to `eq9` when given; the run's findings are
 /// the caller's.
 fn integrate<S: StepSink + ?Sized>(
@@ -143,125 +277,58 @@ fn integrate<S: StepSink + ?Sized>(
     s: &PcSettings,
     variant: &str,
     sink: &mut S,
-    mut eq9: Option<&mut Eq9Change>,
+    eq9: Option<&mut Eq9Change>,
 ) -> Run {
-    let (m, k, c, ru) = (
-        osc.mass,
-        osc.contact.kx,
-        osc.damping(),
-        osc.friction_limit(),
-    );
     let dt = s.dt;
     let n = step_count(s.duration, dt);
     let moves_ground = excitation.moves_ground();
-    let mut channels = q::sliding(moves_ground);
-    debug_assert_eq!(channels[REL_DISP_COLUMN].key, q::REL_DISP.key);
-    channels.push(&q::PC_CHANGE);
-    // N(t) is a channel only when it varies (horizontal-only traces stay as they were).
+    let method = Method {
+        m: osc.mass,
+        k: osc.contact.kx,
+        c: osc.damping(),
+        mu: osc.contact.mu,
+        dt,
+        slip_once: s.route == GroundRoute::Eq12SlipOnce && moves_ground,
+    };
+    let (m, c) = (method.m, method.c);
     let mut normal_stepper = vertical.map(|v| NormalStepper::new(osc, v));
-    if normal_stepper.is_some() {
-        channels.push(&q::NORMAL);
-    }
-    let mut layout = Trace::with_channels(&channels, 0);
+    let layout = layout_of(osc, moves_ground, normal_stepper.is_some());
     // The one contact: the normal force is the weight (no vertical motion), its static
     // penalty compression N/Kz the gap; T is the resistance R, the slip xp.
     let kz = osc.contact.kz;
     let (mut normal, mut gap) = (osc.normal_force(), -osc.normal_force() / kz);
-    let mut ru = ru;
+    let mut ru = osc.friction_limit();
     if let Some(ns) = &normal_stepper {
         (normal, gap) = (ns.normal(), ns.gap());
         ru = osc.contact.mu * normal;
     }
-    layout.contacts = ContactBlock::with_contacts(&["base"], &[1.0 / kz], 0);
     sink.begin(&layout);
-    let mut rows: u64 = 0;
-    let mut row = vec![0.0; channels.len()];
+    let mut out = Recorder {
+        sink,
+        eq9,
+        excitation,
+        moves_ground,
+        row: vec![0.0; layout.channels.len()],
+        rows: 0,
+    };
 
     let mut forcing = Forcing::new(excitation, s.route, m, dt);
-    // Step 1: a at t0 from Eq 2 and zero initial conditions (plus the relative-velocity
-    // jump when the ground starts moving abruptly).
-    let (mut x, mut v, mut xp) = (0.0, forcing.velocity_jump(0.0, dt), 0.0);
-    let f0 = forcing.force(0, 0.0, xp);
-    let mut r = 0.0;
-    let mut a = (f0 - r - c * v) / m;
-    let mut record = |t: f64,
-                      normal: f64,
-                      gap: f64,
-                      f: f64,
-                      r: f64,
-                      x: f64,
-                      xp: f64,
-                      v: f64,
-                      a: f64,
-                      change: f64| {
-        let mut vals = [f, r, x, xp, v, a, 0.0, 0.0, 0.0];
-        if moves_ground {
-            vals[6] = forcing_ground_disp(excitation, t);
-            vals[7] = change;
-            vals[8] = normal;
-        } else {
-            vals[6] = change;
-            vals[7] = normal;
-        }
-        let n = row.len();
-        row.copy_from_slice(&vals[..n]);
-        let base = ContactState {
-            normal,
-            tangential: r,
-            slip: xp,
-            gap,
-        };
-        sink.row(t, &row, &[base]);
-        if let Some(e) = eq9.as_deref_mut() {
-            e.observe(x, change);
-        }
-        rows += 1;
-    };
-    record(0.0, normal, gap, f0, r, x, xp, v, a, 0.0);
+    let (mut state, f0) = initial_state(&mut forcing, m, c, dt);
+    out.record(0.0, f0, (normal, gap), &state, 0.0);
 
     let mut status = RunStatus::Completed;
     for i in 1..=n {
         let t = i as f64 * dt; // step 2
-        let f = forcing.force(i, t, xp);
-        let (x_prev, v_prev, a_prev) = (x, v, a);
-        let mut a_t = a_prev; // step 3: predictor a_t = a_{t−1}
-        let mut x_predict = 0.0;
-        let mut xp_t = xp;
-        for pass in 0..2 {
-            // The friction limit of this pass: Ru = μ·N(t) from the vertical motion, the
-            // normal force stepped by the same scheme, pass for pass.
-            if let Some(ns) = normal_stepper.as_mut() {
-                ns.pass(t, dt, pass == 1);
-                ru = osc.contact.mu * ns.normal();
-            }
-            // step 4: Eqs 3 and 4
-            let v_t = v_prev + 0.5 * (a_t + a_prev) * dt;
-            let x_t = x_prev + 0.5 * (v_t + v_prev) * dt;
-            // step 5: R from Eqs 7–8 with the previous step's slip
-            let (r_t, xp_new) = match s.route {
-                GroundRoute::Eq12SlipOnce if moves_ground => {
-                    let trial = k * x_t;
-                    let r = trial.clamp(-ru, ru);
-                    (r, xp + (trial - r) / k)
-                }
-                _ => resistance(x_t, xp, k, ru),
-            };
-            // step 6: Eq 5
-            a_t = (f - r_t - c * (v_prev + a_prev * dt / 2.0)) / (m + c * dt / 2.0);
-            if pass == 0 {
-                x_predict = x_t;
-            } else {
-                x = x_t;
-                v = v_t;
-                r = r_t;
-                xp_t = xp_new;
-            }
-        }
-        a = a_t;
-        xp = xp_t;
+        let f = forcing.force(i, t, state.xp);
+        let x_predict;
+        (state, x_predict) = method.predict_correct(&state, f, t, &mut ru, normal_stepper.as_mut());
+        let State {
+            x, mut v, a, xp, ..
+        } = state;
         // Eq 9: change between the corrected and the predicted displacement.
         let change = if x != 0.0 { (x - x_predict) / x } else { 0.0 };
         v += forcing.velocity_jump(t, dt);
+        state.v = v;
         if !(x.is_finite() && v.is_finite() && a.is_finite()) {
             status = RunStatus::Diverged {
                 time: t,
@@ -270,17 +337,48 @@ fn integrate<S: StepSink + ?Sized>(
             break;
         }
         // The slip-once route integrates the deflection w: the relative displacement is w + xp.
-        let x_rel = if s.route == GroundRoute::Eq12SlipOnce && moves_ground {
-            x + xp
-        } else {
-            x
-        };
+        let x_rel = if method.slip_once { x + xp } else { x };
         if let Some(ns) = &normal_stepper {
             (normal, gap) = (ns.normal(), ns.gap());
         }
-        record(t, normal, gap, f, r, x_rel, xp, v, a, change);
+        out.record(t, f, (normal, gap), &State { x: x_rel, ..state }, change);
     }
+    let rows = out.rows;
 
+    Run {
+        engine: "predictor-corrector",
+        variant: variant.to_string(),
+        arrangement: Arrangement::Single,
+        dt,
+        settings: settings_of(osc, s, moves_ground, c, normal_stepper.as_ref()),
+        stats: SolverStats::steps(rows - 1),
+        findings: Vec::new(),
+        trace: layout,
+        status,
+        wall_seconds: 0.0,
+    }
+}
+
+/// Step 1: a at t0 from Eq 2 and zero initial conditions (plus the relative-velocity jump
+/// when the ground starts moving abruptly); returns the state and the force at t0.
+fn initial_state(forcing: &mut Forcing<'_>, m: f64, c: f64, dt: f64) -> (State, f64) {
+    let (x, v, xp) = (0.0, forcing.velocity_jump(0.0, dt), 0.0);
+    let f0 = forcing.force(0, 0.0, xp);
+    let r = 0.0;
+    let a = (f0 - r - c * v) / m;
+    (State { x, v, a, xp, r }, f0)
+}
+
+/// The run's settings: Δt, Δt/T, the passes, the damping, the support route and, under
+/// vertical ground motion, how N(t) is stepped.
+fn settings_of(
+    osc: &Oscillator,
+    s: &PcSettings,
+    moves_ground: bool,
+    c: f64,
+    normal_stepper: Option<&NormalStepper<'_>>,
+) -> Vec<Setting> {
+    let dt = s.dt;
     let route = match (moves_ground, s.route) {
         (false, _) => "mass force M·a(t)",
         (true, GroundRoute::Eq12SlipOnce) => {
@@ -300,21 +398,10 @@ fn integrate<S: StepSink + ?Sized>(
         Setting::number("damping C", "N·s/m", c),
         Setting::choice("support route", route),
     ];
-    if let Some(ns) = &normal_stepper {
+    if let Some(ns) = normal_stepper {
         settings.push(Setting::text("normal force", ns.describe()));
     }
-    Run {
-        engine: "predictor-corrector",
-        variant: variant.to_string(),
-        arrangement: Arrangement::Single,
-        dt,
-        settings,
-        stats: SolverStats::steps(rows - 1),
-        findings: Vec::new(),
-        trace: layout,
-        status,
-        wall_seconds: 0.0,
-    }
+    settings
 }
 
 fn forcing_ground_disp(excitation: &Excitation, t: f64) -> f64 {

@@ -30,7 +30,7 @@ use rockslide_formats::read_external_participant;
 
 use crate::analysis::{Check, QUANTITY_KEYS, Responses, Verdict, discrepancy_percent};
 use crate::invariants::InvariantCheck;
-use crate::suite::CaseResult;
+use crate::result::CaseResult;
 
 /// The SAP2000 verification manual's "Acceptable" difference, % (displacements, forces).
 pub const ACCEPTABLE_PERCENT: f64 = 5.0;

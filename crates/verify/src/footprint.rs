@@ -2,7 +2,7 @@
 //! (rows = duration / Δt of each run), and refused with a clear error when over a limit.
 //!
 //! A whole run keeps one row per step in memory for the analysis; a run streamed by an
-//! engine that streams natively (`crate::suite::streams`: every engine — the
+//! engine that streams natively (`crate::plan::streams`: every engine — the
 //! predictor-corrector, fe and rapier — when the case keeps at most half the rows) keeps
 //! only the rows at the case's output step, its analysis reading every step as it comes
 //! (`crate::analysis::streamed`), the engine itself holding nothing per step. Each row is
@@ -19,7 +19,7 @@ use rockslide_core::case::Case;
 use rockslide_core::error::InputError;
 use rockslide_core::trace::q;
 
-use crate::suite::{Plan, PlannedRun};
+use crate::plan::{Plan, PlannedRun, rows_of, streams};
 
 /// Default limit of the estimated memory of one case's traces: 8 GiB (a third of the
 /// machines this runs on). The estimate is about three times the measured peak (a
@@ -66,16 +66,6 @@ pub struct Footprint {
     pub disk: u64,
 }
 
-/// Rows a run of `duration` at `dt` records (one per step, plus the initial state).
-pub(crate) fn rows_of(duration: f64, dt: f64) -> u64 {
-    let steps = (duration / dt).ceil();
-    if steps.is_finite() && steps >= 0.0 {
-        (steps as u64).saturating_add(1)
-    } else {
-        u64::MAX
-    }
-}
-
 /// Values a row of planned run `p` records: the engine's declaration, else time and
 /// every quantity of the catalogue.
 fn values_per_row(p: &PlannedRun) -> u64 {
@@ -95,11 +85,7 @@ pub fn estimate(case: &Case, plan: &Plan) -> Footprint {
     for p in &plan.runs {
         let all = rows_of(case.run.duration, p.dt);
         let written = kept_rows(case, p.dt);
-        let held = if crate::suite::streams(case, p) {
-            written
-        } else {
-            all
-        };
+        let held = if streams(case, p) { written } else { all };
         let values = values_per_row(p);
         rows = rows.saturating_add(all);
         held_rows = held_rows.saturating_add(held);

@@ -7,42 +7,19 @@
 use rayon::prelude::*;
 
 use crate::analysis::streamed::{Peaks, StreamedSummary, Summaries};
-use crate::analysis::{
-    Check, Responses, evaluate_tolerances, history_difference, quantity_def, responses,
-};
+use crate::analysis::{Responses, evaluate_tolerances, history_difference, responses};
 use crate::registry;
 use crate::timings;
 use rockslide_core::case::Case;
 use rockslide_core::error::{InputError, InputErrors};
-use rockslide_core::trace::{Quantity, Trace, q};
+use rockslide_core::trace::q;
 use rockslide_engine_api::{Engine, Run};
 use rockslide_reference::ExactSolution;
 
-/// One planned run.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PlannedRun {
-    /// Engine id.
-    pub engine: &'static str,
-    /// Variant.
-    pub variant: String,
-    /// Time step, s.
-    pub dt: f64,
-    /// Values one row records (time, channels, contact fields), when the engine declares
-    /// it ([`Engine::recorded_values`]); `None`: priced as every quantity of the catalogue.
-    pub values: Option<usize>,
-    /// Whether the engine streams natively ([`Engine::streams_natively`]): a streamed run
-    /// then holds only its kept rows.
-    pub native_streaming: bool,
-}
-
-/// The runs a case asks for, and the engines that do not apply (with why).
-#[derive(Debug, Clone, Default)]
-pub struct Plan {
-    /// Runs to make.
-    pub runs: Vec<PlannedRun>,
-    /// (engine id, reason) for each engine that cannot represent the scene.
-    pub not_applicable: Vec<(&'static str, String)>,
-}
+pub use crate::plan::{Plan, PlannedRun, STREAMING_STEPS, streams};
+use crate::plan::{kept_rows, streams_above};
+pub use crate::reference::{ReferenceResult, solve_reference};
+pub use crate::result::{CaseResult, HistoryError};
 
 /// Plan a case: every engine it names (all engines if it names none) with every variant
 /// it asks for (all that apply by default). Unknown variants are input errors, and so is a
@@ -101,240 +78,6 @@ pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputError
     }
 }
 
-/// The reference of a case, sampled, with its response quantities.
-pub struct ReferenceResult {
-    /// The solution, for sampling at other times.
-    pub solution: Box<dyn ExactSolution>,
-    /// Sampled on a fine uniform grid, in memory only: response quantities, the energy
-    /// audit and history differences read it.
-    pub trace: Trace,
-    /// Sampled where it is compared — every run's output times and the exact event times —
-    /// for the files and figures ([`ReferenceResult::at_compared_times`]); until then, no
-    /// rows (the solution's channels).
-    pub output: Trace,
-    /// Response quantities (exact event times where the solution knows them).
-    pub responses: Responses,
-    /// The exact instants the solution knows (slip start and end, lift-off, impacts),
-    /// read once off [`ExactSolution::exact_quantities`].
-    event_times: Vec<f64>,
-}
-
-impl ReferenceResult {
-    /// A reference from its solution, fine trace and the response quantities read off
-    /// that trace, with no output rows yet: the solution's exact quantities, read once,
-    /// replace the readings they also give, and its exact instants are kept as the event
-    /// times.
-    pub(crate) fn from_parts(
-        solution: Box<dyn ExactSolution>,
-        trace: Trace,
-        mut responses: Responses,
-    ) -> Self {
-        let mut event_times = Vec::new();
-        for (k, v) in solution.exact_quantities() {
-            if quantity_def(k).is_some_and(|d| d.is_time()) {
-                event_times.push(v);
-            }
-            responses.insert(k, v);
-        }
-        ReferenceResult {
-            solution,
-            output: Trace::with_channels(&trace.channels, 0),
-            trace,
-            responses,
-            event_times,
-        }
-    }
-
-    /// Sample the output trace at the union of the runs' output times and the exact
-    /// event times (what the CSV, the MCAP file and the figures show): no fixed fine grid.
-    /// A time that is also a row of the fine trace (the same bits) takes that row — the
-    /// solution is evaluated pointwise, so the same values — and only the others are
-    /// evaluated. Without any such time (no run), the fine trace.
-    pub fn at_compared_times(&mut self, runs: &[Run]) {
-        let mut times: Vec<f64> = runs
-            .iter()
-            .flat_map(|r| r.trace.time.iter().copied())
-            .chain(self.event_times.iter().copied())
-            .filter(|t| t.is_finite())
-            .collect();
-        if times.is_empty() {
-            self.output = self.trace.clone();
-            return;
-        }
-        times.sort_by(f64::total_cmp);
-        times.dedup();
-        self.output = self.sampled_reusing_fine_rows(&times);
-    }
-
-    /// The solution at `times` (ascending): the fine trace's row where a time is one of
-    /// its rows bit for bit, the solution evaluated at the others.
-    fn sampled_reusing_fine_rows(&self, times: &[f64]) -> Trace {
-        let fine = &self.trace;
-        let rows = rows_of(&fine.time, times);
-        let missing: Vec<f64> = times
-            .iter()
-            .zip(&rows)
-            .filter(|(_, row)| row.is_none())
-            .map(|(&t, _)| t)
-            .collect();
-        // (a solution samples the same channels at any time: the fine trace's)
-        let fresh = rockslide_reference::sample(self.solution.as_ref(), &missing);
-        let mut out = Trace::with_channels(&fine.channels, times.len());
-        out.time.extend_from_slice(times);
-        let mut next_fresh = 0;
-        for row in rows {
-            let (source, i) = match row {
-                Some(i) => (fine, i),
-                None => {
-                    next_fresh += 1;
-                    (&fresh, next_fresh - 1)
-                }
-            };
-            for (column, from) in out.columns.iter_mut().zip(&source.columns) {
-                column.push(from[i]);
-            }
-        }
-        out
-    }
-
-    /// The reference at `times` (a run's output times): the rows of the output trace,
-    /// which was sampled at every run's times, when each time is there (the same values:
-    /// the solution is evaluated pointwise); sampled anew otherwise.
-    pub fn at_times(&self, times: &[f64]) -> Trace {
-        self.at_times_of(times, &self.output.channels)
-    }
-
-    /// [`Self::at_times`] of only the `channels` asked (those the output trace has): what a
-    /// history difference reads, without copying every other column of every row.
-    pub fn at_times_of(&self, times: &[f64], channels: &[&'static Quantity]) -> Trace {
-        rows_at(&self.output, times, channels).unwrap_or_else(|| {
-            let all = rockslide_reference::sample(self.solution.as_ref(), times);
-            rows_at(&all, times, channels).unwrap_or(all)
-        })
-    }
-}
-
-/// For each of `times` (ascending), the index of the row of `rows` (ascending) with the
-/// same bits, if any: one walk over both.
-fn rows_of(rows: &[f64], times: &[f64]) -> Vec<Option<usize>> {
-    let mut at = 0;
-    times
-        .iter()
-        .map(|&t| {
-            while rows.get(at).is_some_and(|&x| x < t) {
-                at += 1;
-            }
-            rows.get(at)
-                .filter(|x| x.to_bits() == t.to_bits())
-                .map(|_| at)
-        })
-        .collect()
-}
-
-/// The rows of `trace` at `times` (ascending) in its columns of `channels` (those it has,
-/// in `channels`' order), or `None` when some time is not one of its rows, bit for bit.
-fn rows_at(trace: &Trace, times: &[f64], channels: &[&'static Quantity]) -> Option<Trace> {
-    let kept: Vec<(&'static Quantity, &[f64])> = channels
-        .iter()
-        .filter_map(|&c| Some((c, trace.column(c.key)?)))
-        .collect();
-    let kept_channels: Vec<&'static Quantity> = kept.iter().map(|(c, _)| *c).collect();
-    let mut out = Trace::with_channels(&kept_channels, times.len());
-    let mut row = vec![0.0; kept.len()];
-    // times ascend: one walk over both (O(rows + times) in all)
-    for (&t, at) in times.iter().zip(rows_of(&trace.time, times)) {
-        let at = at?;
-        for (v, (_, column)) in row.iter_mut().zip(&kept) {
-            *v = column[at];
-        }
-        out.push(t, &row);
-    }
-    Some(out)
-}
-
-/// Whole-history difference of one run from the reference.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct HistoryError {
-    /// max |Δ| / peak of the primary displacement.
-    pub max: f64,
-    /// RMS Δ / peak of the primary displacement.
-    pub rms: f64,
-}
-
-/// Everything known about one case after running it.
-pub struct CaseResult {
-    /// The case.
-    pub case: Case,
-    /// The runs, in plan order.
-    pub runs: Vec<Run>,
-    /// Response quantities of each run.
-    pub run_responses: Vec<Responses>,
-    /// Relative-displacement history error of each run against the reference.
-    pub history_errors: Vec<Option<HistoryError>>,
-    /// Engines that do not apply, and why.
-    pub not_applicable: Vec<(&'static str, String)>,
-    /// The reference, or why there is none.
-    pub reference: Result<ReferenceResult, String>,
-    /// Tolerance checks.
-    pub checks: Vec<Check>,
-    /// Physical invariants of every completed run ([`crate::invariants`]).
-    pub invariants: Vec<crate::invariants::InvariantCheck>,
-    /// Per run (in run order; missing or `None`: draw the trace), the per-slice extremes
-    /// of every channel over every step of a streamed run, which the figures draw instead
-    /// of its kept rows ([`crate::analysis::envelope`]).
-    pub envelopes: Vec<Option<crate::analysis::envelope::Envelope>>,
-}
-
-impl CaseResult {
-    /// The envelope of run `i`, when it was streamed.
-    pub fn envelope(&self, i: usize) -> Option<&crate::analysis::envelope::Envelope> {
-        self.envelopes.get(i).and_then(Option::as_ref)
-    }
-
-    /// Release the time histories once the case's own files are written: every run's
-    /// trace and per-contact block, the reference's sampled traces and the streamed runs'
-    /// envelopes, down to each trace's last row (its end time and final values). What the
-    /// suite's pages, the gate and the JUnit XML read — checks, responses, invariants,
-    /// statuses, solver statistics — stays. A run of many cases then holds the histories
-    /// of the cases in flight, not of every case at once.
-    pub fn release_histories(&mut self) {
-        for run in &mut self.runs {
-            keep_last_row(&mut run.trace);
-        }
-        if let Ok(reference) = &mut self.reference {
-            keep_last_row(&mut reference.trace);
-            keep_last_row(&mut reference.output);
-        }
-        self.envelopes.clear();
-    }
-
-    /// Whether the case passes the gate (as `rockslide check` decides it).
-    pub fn gate_passed(&self) -> bool {
-        // one truth with `check`: failed gated checks and gated tolerances that check nothing
-        crate::verdict::failures(std::slice::from_ref(self)).is_empty()
-    }
-}
-
-/// Cut a trace to its last row (none when it has none), its memory returned.
-fn keep_last_row(trace: &mut Trace) {
-    let n = trace.time.len();
-    let keep = |v: &mut Vec<f64>, from: usize| {
-        let tail = v.get(from..).map(<[f64]>::to_vec).unwrap_or_default();
-        *v = tail;
-    };
-    let from = n.saturating_sub(1);
-    keep(&mut trace.time, from);
-    for column in &mut trace.columns {
-        keep(column, from);
-    }
-    let contacts = &mut trace.contacts;
-    let rows = contacts.time.len();
-    if let Some(width) = contacts.values.len().checked_div(rows) {
-        keep(&mut contacts.time, rows - 1);
-        keep(&mut contacts.values, (rows - 1) * width);
-    }
-}
-
 /// Run one planned run, guarded and timed: a panic inside the engine becomes a run that
 /// diverged at an unknown time with the panic's message ([`crate::run::Timed::into_run`]).
 pub fn execute(
@@ -348,45 +91,6 @@ pub fn execute(
         .expect("planned engines exist");
     let timed = crate::run::guarded(e.as_ref(), case, &p.variant, p.dt, 1)?;
     Ok(timed.into_run(e.id(), &p.variant, p.dt))
-}
-
-/// Steps above which a run is streamed ([`crate::analysis::streamed`]): its rows go to
-/// the analysis as they are computed and only those at the case's output step are kept,
-/// so its memory follows its output rows, not its steps. Every shipped case runs below
-/// it (the longest: 2·10⁵ steps), so their figures keep every step; a streamed run's
-/// responses, invariants and history errors are those of a whole run bit for bit
-/// (tests/all/streaming.rs), and its figures draw every channel's per-slice extremes over
-/// every step ([`crate::analysis::envelope`]), not the kept rows.
-pub const STREAMING_STEPS: u64 = 500_000;
-
-/// Whether planned run `p` of `case` is streamed: more than [`STREAMING_STEPS`] steps of
-/// an engine that streams natively, keeping at most half its rows (`[run] output_dt` at
-/// least 2 Δt); every registered engine streams natively (the predictor-corrector, fe,
-/// rapier). An engine that does not stream natively would run whole anyway and
-/// forward its rows — holding its whole trace, and run twice by the two passes — so its
-/// long runs are analysed whole, once; a run that keeps every row (no `output_dt`) holds
-/// its whole trace either way, so streaming would only cost the second pass.
-pub fn streams(case: &Case, p: &PlannedRun) -> bool {
-    p.native_streaming && streams_above(case, p, STREAMING_STEPS) && keeps_few_rows(case, p)
-}
-
-/// Whether run `p` keeps at most half its rows: the case's output step at least twice
-/// the run's Δt (to a relative 10⁻⁹, so 0.002 s over 0.001 s counts whatever its bits).
-fn keeps_few_rows(case: &Case, p: &PlannedRun) -> bool {
-    case.run
-        .output_dt
-        .is_some_and(|o| o >= 2.0 * p.dt * (1.0 - 1e-9))
-}
-
-/// Whether planned run `p` of `case` takes more than `steps` steps.
-fn streams_above(case: &Case, p: &PlannedRun, steps: u64) -> bool {
-    crate::footprint::rows_of(case.run.duration, p.dt) > steps.saturating_add(1)
-}
-
-/// Expected rows kept at the case's output step (every row without one), for sizing.
-fn kept_rows(case: &Case, dt: f64) -> usize {
-    let kept = case.run.output_dt.map_or(dt, |o| o.max(dt));
-    crate::footprint::rows_of(case.run.duration, kept).saturating_add(1) as usize
 }
 
 /// Run one planned run streamed, guarded: a first pass reads the run-wide scales, the
@@ -438,15 +142,6 @@ pub fn execute_streamed(
             Ok((timed.into_run(e.id(), &p.variant, p.dt), None))
         }
     }
-}
-
-/// Solve and sample the reference of a case.
-pub fn solve_reference(case: &Case) -> Result<ReferenceResult, String> {
-    let solution = rockslide_reference::for_case(case)?;
-    let n = crate::sweep::plan::fine_grid(case.run.duration);
-    let trace = rockslide_reference::sample_uniform(solution.as_ref(), case.run.duration, n);
-    let resp = responses(&trace);
-    Ok(ReferenceResult::from_parts(solution, trace, resp))
 }
 
 /// Run a whole case: plan, run engines in parallel, reference, responses, checks.
@@ -610,52 +305,4 @@ fn analyse(
         reference,
         checks,
     })
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    fn trace(times: &[f64]) -> Trace {
-        let mut t = Trace::with_channels(&[&q::REL_DISP, &q::VEL], times.len());
-        for &x in times {
-            t.push(x, &[10.0 * x, -x]);
-        }
-        t
-    }
-
-    #[test]
-    fn rows_at_takes_the_rows_of_the_times_asked_and_nothing_else() {
-        let full = trace(&[0.0, 0.25, 0.5, 0.75, 1.0]);
-        let both = [&q::REL_DISP, &q::VEL];
-        let rows = rows_at(&full, &[0.25, 1.0], &both).expect("both times are rows");
-        assert_eq!(rows, trace(&[0.25, 1.0]));
-        assert_eq!(rows_at(&full, &[], &both), Some(trace(&[])));
-        // a time between rows, past the end, or out of order: sampled anew by the caller
-        assert_eq!(rows_at(&full, &[0.3], &both), None);
-        assert_eq!(rows_at(&full, &[2.0], &both), None);
-        assert_eq!(rows_at(&full, &[0.5, 0.25], &both), None);
-        assert_eq!(rows_at(&full, &[f64::NAN], &both), None);
-    }
-
-    #[test]
-    fn rows_of_finds_each_time_s_row_by_its_bits_and_nothing_else() {
-        let rows = [0.0, 0.25, 0.5, 0.75, 1.0];
-        let times = [-0.0, 0.0, 0.1, 0.25, 0.5 + f64::EPSILON, 1.0, 2.0];
-        let found = rows_of(&rows, &times);
-        // −0.0 is not the row 0.0 (another bit pattern): sampled anew, as are the times
-        // between rows or past the end
-        assert_eq!(found, [None, Some(0), None, Some(1), None, Some(4), None]);
-        assert_eq!(rows_of(&[], &[0.0]), [None]);
-    }
-
-    #[test]
-    fn rows_at_keeps_only_the_channels_asked_bit_for_bit() {
-        let full = trace(&[0.0, 0.25, 0.5]);
-        let one = rows_at(&full, &[0.25, 0.5], &[&q::VEL, &q::SLIDE]).expect("rows");
-        // the channel the trace lacks is left out; the one kept is the same column
-        assert_eq!(one.channels, vec![&q::VEL]);
-        assert_eq!(one.time, [0.25, 0.5]);
-        assert_eq!(one.columns, vec![vec![-0.25, -0.5]]);
-    }
 }

@@ -6,7 +6,7 @@ use std::fmt;
 
 use crate::analysis::{Check, Verdict};
 use crate::invariants::InvariantCheck;
-use crate::suite::CaseResult;
+use crate::result::CaseResult;
 use rockslide_core::case::Tolerance;
 use rockslide_core::response::show_value;
 
@@ -362,6 +362,14 @@ fn disagreement(c: &Check, percent: f64) -> String {
     match (is_time, c.value, c.basis_value) {
         (true, Some(v), Some(b)) => format!("{:+.4} s ({v:.4} vs {b:.4} s)", v - b),
         _ => format!("{percent:+.1} %"),
+    }
+}
+
+impl CaseResult {
+    /// Whether the case passes the gate (as `rockslide check` decides it).
+    pub fn gate_passed(&self) -> bool {
+        // one truth with `check`: failed gated checks and gated tolerances that check nothing
+        failures(std::slice::from_ref(self)).is_empty()
     }
 }
 

@@ -7,16 +7,16 @@ use super::attachments::Attachments;
 use super::crosscode::{
     CrossCode, HISTORY_KEY, LIFTOFF_KEY, PEAK_KEY, cross_code, normalised_rms, participants,
 };
-use super::doc::{Block, Cell, Table, Tone};
-use super::format::{display_unit, pct, ratio, show};
 use super::plots::figures;
 use super::provenance::Provenance;
 use super::sections;
 use super::table::{Column, paper_table};
-use crate::gate;
+use crate::doc::format::{display_unit, pct, ratio, show};
+use crate::doc::{Block, Cell, Table, Tone};
 use rockslide_core::case::Invariant;
 use rockslide_verify::analysis::{Verdict, quantity_def};
 use rockslide_verify::suite::CaseResult;
+use rockslide_verify::verdict;
 
 fn tone_of(verdict: Verdict, gated: bool) -> Tone {
     match (verdict, gated) {
@@ -36,7 +36,7 @@ fn mark(verdict: Verdict, gated: bool) -> &'static str {
 
 /// Gated checks of a case that failed.
 fn gated_failures(r: &CaseResult) -> usize {
-    gate::failures(std::slice::from_ref(r)).len()
+    verdict::failures(std::slice::from_ref(r)).len()
 }
 
 /// The paper-style table.
@@ -158,7 +158,7 @@ fn checks_table(r: &CaseResult) -> Table {
                 .into(),
             display_unit(&ch.quantity).0.into(),
             pct(ch.percent).into(),
-            gate::limit_text(r, ch).into(),
+            verdict::limit_text(r, ch).into(),
             (if ch.gated { "yes" } else { "no" }).into(),
             Cell::toned(ch.verdict.label(), tone_of(ch.verdict, ch.gated)),
         ]);
@@ -241,25 +241,7 @@ fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
         }
     )));
     if x.lifts_off {
-        let (m, lift) = liftoff_matrix(r);
-        b.push(Block::Heading(
-            3,
-            "Up to the first full lift-off: normalised RMS difference of the relative displacement"
-                .into(),
-        ));
-        b.push(Block::Para(format!(
-            "Window: from the start to the earlier first full lift-off of the two participants. First full lift-off: {}.",
-            x.labels
-                .iter()
-                .zip(&lift)
-                .map(|(l, t)| format!(
-                    "{l} {}",
-                    t.map_or("none".to_string(), |t| format!("{t:.4} s"))
-                ))
-                .collect::<Vec<_>>()
-                .join(", ")
-        )));
-        b.push(Block::Table(matrix(&x, &m, ratio)));
+        b.extend(liftoff_blocks(r, &x));
     }
     b.push(Block::Heading(
         3,
@@ -275,6 +257,40 @@ fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
     b.push(Block::Para(
         "One column per pair “compared vs basis”: Δ % = 100·(compared/basis − 1) for values, compared − basis in ms for event times.".into(),
     ));
+    b.push(Block::Table(pairs_table(&x)));
+    let _ = PEAK_KEY;
+    b
+}
+
+/// The cross-code history up to the first full lift-off: its heading, the window (each
+/// participant's first full lift-off) and the matrix.
+fn liftoff_blocks(r: &CaseResult, x: &CrossCode) -> Vec<Block> {
+    let mut blocks = Vec::new();
+    let (m, lift) = liftoff_matrix(r);
+    blocks.push(Block::Heading(
+        3,
+        "Up to the first full lift-off: normalised RMS difference of the relative displacement"
+            .into(),
+    ));
+    blocks.push(Block::Para(format!(
+        "Window: from the start to the earlier first full lift-off of the two participants. First full lift-off: {}.",
+        x.labels
+            .iter()
+            .zip(&lift)
+            .map(|(l, t)| format!(
+                "{l} {}",
+                t.map_or("none".to_string(), |t| format!("{t:.4} s"))
+            ))
+            .collect::<Vec<_>>()
+            .join(", ")
+    )));
+    blocks.push(Block::Table(matrix(x, &m, ratio)));
+    blocks
+}
+
+/// Every pair, every quantity: one row per quantity some pair compares (Δ % for values,
+/// Δ ms for event times), then the history nRMS rows; one column per pair.
+fn pairs_table(x: &CrossCode) -> Table {
     // Quantities as rows and pairs as columns: the table stays as wide as the number of
     // pairs, however many quantities a scene has.
     let mut header = vec!["Quantity".to_string()];
@@ -317,13 +333,11 @@ fn cross_code_blocks(r: &CaseResult) -> Vec<Block> {
     let mut row: Vec<Cell> = vec![Cell::plain("History nRMS (whole run)")];
     row.extend(x.pairs.iter().map(|p| Cell::plain(ratio(p.nrms))));
     rows.push(row);
-    b.push(Block::Table(Table {
+    Table {
         header,
         numeric,
         rows,
-    }));
-    let _ = PEAK_KEY;
-    b
+    }
 }
 
 fn history_table(r: &CaseResult) -> Option<Table> {
@@ -417,75 +431,9 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     let c = &r.case;
     let mut b = vec![Block::Heading(1, format!("{} — {}", c.name, c.title))];
     b.push(document_control(c, prov));
-    let mut facts = Vec::new();
-    if !c.source.is_empty() {
-        facts.push(("Source".to_string(), c.source.clone()));
-    }
-    if !c.requirement.is_empty() {
-        facts.push(("Requirement".to_string(), c.requirement.clone()));
-    }
-    if let Some(rockslide_core::case::Signal::Record { label, .. }) = c.scene.excitation.signal() {
-        facts.push(("Record".to_string(), label.clone()));
-    }
-    // a 3D scene's second horizontal component, along e₂
-    if let Some(rockslide_core::case::Signal::Record { label, .. }) =
-        c.scene.spatial().and_then(|s| s.second.as_ref())
-    {
-        facts.push((
-            "Record, second component (along e₂)".to_string(),
-            label.clone(),
-        ));
-    }
-    facts.push((
-        "Scene".into(),
-        format!(
-            "{} under {}, {} s",
-            c.scene.model.kind(),
-            c.scene.excitation.kind(),
-            c.run.duration
-        ),
-    ));
-    b.push(Block::Facts(facts));
-    let gated = r.checks.iter().filter(|c| c.gated).count();
-    let failed = gated_failures(r);
-    let informative = r.checks.len() - gated;
-    b.push(Block::Verdict {
-        passed: failed == 0,
-        text: format!(
-            "{gated} gated checks, {failed} failed; {informative} informative (not gated) checks"
-        ),
-    });
-    let warnings = rockslide_verify::verdict::warnings(std::slice::from_ref(r));
-    if !warnings.is_empty() {
-        b.push(Block::List(warnings));
-    }
-    let lines: Vec<String> = gate::failures(std::slice::from_ref(r))
-        .iter()
-        .map(|f| f.to_string())
-        .collect();
-    if !lines.is_empty() {
-        b.push(Block::List(lines));
-    }
-    let notes = gate::informative(std::slice::from_ref(r));
-    if !notes.is_empty() {
-        b.push(Block::Para(
-            "Informative findings — checks outside their tolerance that are not gated (a known property of a method, reported rather than failed):".into(),
-        ));
-        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
-    }
-
-    b.push(Block::Heading(2, "Response quantities".into()));
-    let (table, notes) = response_table(r);
-    b.push(Block::Table(table));
-    let mut foot = vec![
-        "Δ % = 100·(run/reference − 1) (the SAP2000 verification convention); ✓ within a gated tolerance, ✗ outside it, (✗) outside an informative one.".to_string(),
-    ];
-    foot.extend(notes);
-    match &r.reference {
-        Ok(x) => foot.push(format!("Reference: {}.", x.solution.method())),
-        Err(why) => foot.push(format!("Reference: none — {why}.")),
-    }
-    b.push(Block::List(foot));
+    b.push(case_facts(c));
+    b.extend(verdict_blocks(r));
+    b.extend(response_blocks(r));
 
     if !r.checks.is_empty() {
         b.push(Block::Heading(2, "Tolerance checks".into()));
@@ -530,6 +478,104 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     b.extend(sections::energy_blocks(r));
     b.extend(crate::sweep::case_section(r, att.sweep.as_ref()));
 
+    b.extend(runs_blocks(r));
+
+    b.push(Block::Heading(2, "Provenance".into()));
+    b.push(Block::Facts(prov.lines(r)));
+    b.push(Block::Details {
+        summary: format!("case file {}", c.path.display()),
+        text: c.text.clone(),
+    });
+    b
+}
+
+/// The case's facts: its source, requirement, records and scene.
+fn case_facts(c: &rockslide_core::case::Case) -> Block {
+    let mut facts = Vec::new();
+    if !c.source.is_empty() {
+        facts.push(("Source".to_string(), c.source.clone()));
+    }
+    if !c.requirement.is_empty() {
+        facts.push(("Requirement".to_string(), c.requirement.clone()));
+    }
+    if let Some(rockslide_core::case::Signal::Record { label, .. }) = c.scene.excitation.signal() {
+        facts.push(("Record".to_string(), label.clone()));
+    }
+    // a 3D scene's second horizontal component, along e₂
+    if let Some(rockslide_core::case::Signal::Record { label, .. }) =
+        c.scene.spatial().and_then(|s| s.second.as_ref())
+    {
+        facts.push((
+            "Record, second component (along e₂)".to_string(),
+            label.clone(),
+        ));
+    }
+    facts.push((
+        "Scene".into(),
+        format!(
+            "{} under {}, {} s",
+            c.scene.model.kind(),
+            c.scene.excitation.kind(),
+            c.run.duration
+        ),
+    ));
+    Block::Facts(facts)
+}
+
+/// The gate's verdict of the case, its warnings, its failures and its informative findings.
+fn verdict_blocks(r: &CaseResult) -> Vec<Block> {
+    let mut b = Vec::new();
+    let gated = r.checks.iter().filter(|c| c.gated).count();
+    let failed = gated_failures(r);
+    let informative = r.checks.len() - gated;
+    b.push(Block::Verdict {
+        passed: failed == 0,
+        text: format!(
+            "{gated} gated checks, {failed} failed; {informative} informative (not gated) checks"
+        ),
+    });
+    let warnings = rockslide_verify::verdict::warnings(std::slice::from_ref(r));
+    if !warnings.is_empty() {
+        b.push(Block::List(warnings));
+    }
+    let lines: Vec<String> = verdict::failures(std::slice::from_ref(r))
+        .iter()
+        .map(|f| f.to_string())
+        .collect();
+    if !lines.is_empty() {
+        b.push(Block::List(lines));
+    }
+    let notes = verdict::informative(std::slice::from_ref(r));
+    if !notes.is_empty() {
+        b.push(Block::Para(
+            "Informative findings — checks outside their tolerance that are not gated (a known property of a method, reported rather than failed):".into(),
+        ));
+        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
+    }
+    b
+}
+
+/// The response quantities of every participant, with the table's notes and the reference.
+fn response_blocks(r: &CaseResult) -> Vec<Block> {
+    let mut b = Vec::new();
+    b.push(Block::Heading(2, "Response quantities".into()));
+    let (table, notes) = response_table(r);
+    b.push(Block::Table(table));
+    let mut foot = vec![
+        "Δ % = 100·(run/reference − 1) (the SAP2000 verification convention); ✓ within a gated tolerance, ✗ outside it, (✗) outside an informative one.".to_string(),
+    ];
+    foot.extend(notes);
+    match &r.reference {
+        Ok(x) => foot.push(format!("Reference: {}.", x.solution.method())),
+        Err(why) => foot.push(format!("Reference: none — {why}.")),
+    }
+    b.push(Block::List(foot));
+    b
+}
+
+/// Each run's settings, solver statistics and findings.
+fn runs_blocks(r: &CaseResult) -> Vec<Block> {
+    let mut b = Vec::new();
     b.push(Block::Heading(
         2,
         "Runs: settings, solver statistics, findings".into(),
@@ -551,13 +597,6 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
         );
         b.push(Block::Facts(facts));
     }
-
-    b.push(Block::Heading(2, "Provenance".into()));
-    b.push(Block::Facts(prov.lines(r)));
-    b.push(Block::Details {
-        summary: format!("case file {}", c.path.display()),
-        text: c.text.clone(),
-    });
     b
 }
 
@@ -596,7 +635,7 @@ pub(crate) fn suite_document(
     prov: &Provenance,
     att: &Attachments,
 ) -> Vec<Block> {
-    let all = gate::failures(results);
+    let all = verdict::failures(results);
     let mut b = vec![Block::Heading(1, "rockslide — verification suite".into())];
     b.push(Block::Verdict {
         passed: all.is_empty(),
@@ -617,7 +656,7 @@ pub(crate) fn suite_document(
     if !all.is_empty() {
         b.push(Block::List(all.iter().map(|f| f.to_string()).collect()));
     }
-    let notes = gate::informative(results);
+    let notes = verdict::informative(results);
     if !notes.is_empty() {
         b.push(Block::Para("Informative findings (not gated):".into()));
         b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
@@ -657,7 +696,11 @@ pub(crate) fn suite_document(
             ),
             Cell::plain(r.checks.len().to_string()),
             Cell::plain(failed.to_string()),
-            Cell::plain(gate::informative(std::slice::from_ref(r)).len().to_string()),
+            Cell::plain(
+                verdict::informative(std::slice::from_ref(r))
+                    .len()
+                    .to_string(),
+            ),
             if failed == 0 {
                 Cell::toned("PASS", Tone::Pass)
             } else {

@@ -43,6 +43,56 @@ pub fn case_trace_log_of<'a>(
     let reference_shown = reference_trace.or(result.reference.as_ref().ok().map(|r| &r.output));
     let all_traces: Vec<&Trace> = runs_traces.iter().copied().chain(reference_shown).collect();
     let geometry = Geometry::of_scene(&c.scene, &all_traces);
+    let mut metadata = vec![("rockslide".to_string(), case_metadata(result, file_step))];
+    let mut runs: Vec<LoggedRun> = result
+        .runs
+        .iter()
+        .zip(runs_traces)
+        .map(|(run, &trace)| logged_run(run, trace))
+        .collect();
+    match &result.reference {
+        Ok(r) => {
+            metadata.push((
+                "reference".to_string(),
+                map([
+                    ("solution", r.solution.name().to_string()),
+                    ("method", r.solution.method()),
+                    ("topic", "/reference/state".to_string()),
+                ]),
+            ));
+            runs.push(LoggedRun {
+                label: "reference".to_string(),
+                trace: reference_trace.unwrap_or(&r.output),
+                status: "completed".to_string(),
+                stop: None,
+                metadata: map([("solution", r.solution.name().to_string())]),
+            });
+        }
+        Err(why) => metadata.push(("reference".to_string(), map([("none", why.clone())]))),
+    }
+    if let Some(g) = &geometry {
+        metadata.push(("scene3d".to_string(), scene_metadata(g, c.run.duration)));
+    }
+    let file_name = c.path.file_name().map_or_else(
+        || format!("{}.toml", c.name),
+        |f| f.to_string_lossy().into_owned(),
+    );
+    TraceLog {
+        runs,
+        geometry,
+        metadata,
+        attachments: vec![(
+            file_name,
+            "application/toml".to_string(),
+            c.text.clone().into_bytes(),
+        )],
+    }
+}
+
+/// The log's `rockslide` metadata: the tool and its commit, the case and its file, the
+/// model, excitation and steps, the units, the gate, and the engines that do not apply.
+fn case_metadata(result: &CaseResult, file_step: Option<f64>) -> BTreeMap<String, String> {
+    let c = &result.case;
     let mut head = map([
         ("tool", "rockslide".to_string()),
         ("version", env!("CARGO_PKG_VERSION").to_string()),
@@ -77,108 +127,69 @@ pub fn case_trace_log_of<'a>(
     for (engine, why) in &result.not_applicable {
         head.insert(format!("not_applicable.{engine}"), why.clone());
     }
-    let mut metadata = vec![("rockslide".to_string(), head)];
-    let mut runs: Vec<LoggedRun> = result
-        .runs
-        .iter()
-        .zip(runs_traces)
-        .map(|(run, &trace)| {
-            let mut m = map([
-                ("engine", run.engine.to_string()),
-                ("variant", run.variant.clone()),
-                ("dt_s", format!("{:?}", run.dt)),
-            ]);
-            // no wall time here: a trace is byte-identical across reruns (the timing is in
-            // the report and result.json only)
-            for s in &run.settings {
-                m.insert(format!("setting.{}", s.label()), s.value_text());
-            }
-            for (k, v) in run.stats.entries() {
-                m.insert(format!("counter.{k}"), v.to_string());
-            }
-            for (i, f) in run.findings.iter().enumerate() {
-                m.insert(format!("finding.{i}"), f.clone());
-            }
-            let stop = match &run.status {
-                RunStatus::Completed => None,
-                RunStatus::Diverged { time, reason } | RunStatus::NotConverged { time, reason } => {
-                    Some((*time, reason.clone()))
-                }
-            };
-            LoggedRun {
-                label: run.label(),
-                trace,
-                status: run.status.label().to_string(),
-                stop,
-                metadata: m,
-            }
-        })
-        .collect();
-    match &result.reference {
-        Ok(r) => {
-            metadata.push((
-                "reference".to_string(),
-                map([
-                    ("solution", r.solution.name().to_string()),
-                    ("method", r.solution.method()),
-                    ("topic", "/reference/state".to_string()),
-                ]),
-            ));
-            runs.push(LoggedRun {
-                label: "reference".to_string(),
-                trace: reference_trace.unwrap_or(&r.output),
-                status: "completed".to_string(),
-                stop: None,
-                metadata: map([("solution", r.solution.name().to_string())]),
-            });
+    head
+}
+
+/// One engine run as a logged channel: its label, status and where it stopped, and its
+/// settings, counters and findings as metadata.
+fn logged_run<'a>(run: &rockslide_engine_api::Run, trace: &'a Trace) -> LoggedRun<'a> {
+    let mut m = map([
+        ("engine", run.engine.to_string()),
+        ("variant", run.variant.clone()),
+        ("dt_s", format!("{:?}", run.dt)),
+    ]);
+    // no wall time here: a trace is byte-identical across reruns (the timing is in
+    // the report and result.json only)
+    for s in &run.settings {
+        m.insert(format!("setting.{}", s.label()), s.value_text());
+    }
+    for (k, v) in run.stats.entries() {
+        m.insert(format!("counter.{k}"), v.to_string());
+    }
+    for (i, f) in run.findings.iter().enumerate() {
+        m.insert(format!("finding.{i}"), f.clone());
+    }
+    let stop = match &run.status {
+        RunStatus::Completed => None,
+        RunStatus::Diverged { time, reason } | RunStatus::NotConverged { time, reason } => {
+            Some((*time, reason.clone()))
         }
-        Err(why) => metadata.push(("reference".to_string(), map([("none", why.clone())]))),
+    };
+    LoggedRun {
+        label: run.label(),
+        trace,
+        status: run.status.label().to_string(),
+        stop,
+        metadata: m,
     }
-    if let Some(g) = &geometry {
-        metadata.push((
-            "scene3d".to_string(),
-            map([
-                ("model", g.kind.to_string()),
-                (
-                    "frames",
-                    if g.is_spatial() {
-                        "world → <run>/ground (ground_disp, lane y + ground_disp_y) → <run>/body (centre of mass x, y, z; rotation vector rotation_x, −rotation, rotation_z)"
-                    } else {
-                        "world → <run>/ground (ground_disp, lane y) → <run>/body (centre of mass, rotation)"
-                    }
-                    .to_string(),
-                ),
-                ("lane_spacing_m", format!("{:?}", g.lane_spacing())),
-                ("arrow_scale_m_per_N", format!("{:e}", g.arrow_scale())),
-                (
-                    "arrows",
-                    "green: total normal force, red: total tangential force on the body (its horizontal resultant in a 3D scene), drawn ending at base centre O".to_string(),
-                ),
-                (
-                    "reference",
-                    "drawn as a translucent grey ghost in its own lane".to_string(),
-                ),
-                (
-                    "period_ns",
-                    scene_period_ns(c.run.duration).to_string(),
-                ),
-            ]),
-        ));
-    }
-    let file_name = c.path.file_name().map_or_else(
-        || format!("{}.toml", c.name),
-        |f| f.to_string_lossy().into_owned(),
-    );
-    TraceLog {
-        runs,
-        geometry,
-        metadata,
-        attachments: vec![(
-            file_name,
-            "application/toml".to_string(),
-            c.text.clone().into_bytes(),
-        )],
-    }
+}
+
+/// The log's `scene3d` metadata: the model, the frames of the 3D view, the lane spacing,
+/// the force arrows' scale and colours, the reference's ghost and the scene's period.
+fn scene_metadata(g: &Geometry, duration: f64) -> BTreeMap<String, String> {
+    map([
+        ("model", g.kind.to_string()),
+        (
+            "frames",
+            if g.is_spatial() {
+                "world → <run>/ground (ground_disp, lane y + ground_disp_y) → <run>/body (centre of mass x, y, z; rotation vector rotation_x, −rotation, rotation_z)"
+            } else {
+                "world → <run>/ground (ground_disp, lane y) → <run>/body (centre of mass, rotation)"
+            }
+            .to_string(),
+        ),
+        ("lane_spacing_m", format!("{:?}", g.lane_spacing())),
+        ("arrow_scale_m_per_N", format!("{:e}", g.arrow_scale())),
+        (
+            "arrows",
+            "green: total normal force, red: total tangential force on the body (its horizontal resultant in a 3D scene), drawn ending at base centre O".to_string(),
+        ),
+        (
+            "reference",
+            "drawn as a translucent grey ghost in its own lane".to_string(),
+        ),
+        ("period_ns", scene_period_ns(duration).to_string()),
+    ])
 }
 
 /// Write the case's MCAP trace to `path` atomically.

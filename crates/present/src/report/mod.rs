@@ -19,15 +19,10 @@
 
 mod attachments;
 mod crosscode;
-pub(crate) mod doc;
 mod document;
-pub(crate) mod figure;
-pub(crate) mod files;
-pub(crate) mod format;
-mod html;
-pub(crate) mod markdown;
 mod mcap_log;
 mod orbit_plot;
+mod pages;
 mod plots;
 mod provenance;
 mod record_plot;
@@ -36,9 +31,9 @@ mod summary_csv;
 mod table;
 mod vertical_plot;
 
-pub use html::{case_html, suite_html};
-pub use markdown::{Links, case_markdown, suite_markdown, suite_markdown_with};
+pub use crate::doc::markdown::Links;
 pub use mcap_log::{case_trace_log, git_commit, write_case_mcap};
+pub use pages::{case_html, case_markdown, suite_html, suite_markdown, suite_markdown_with};
 pub use provenance::Provenance;
 pub use summary_csv::{SUMMARY_HEADER, summary_csv};
 
@@ -51,6 +46,8 @@ use rockslide_core::trace::Trace;
 use rockslide_formats::{write_contacts_csv, write_csv};
 use rockslide_verify::suite::CaseResult;
 use rockslide_verify::timings;
+
+use crate::doc::{self, html, markdown};
 
 pub use rockslide_core::response::show_value;
 
@@ -269,7 +266,7 @@ fn write_figures_and_markdown(
 pub fn write_suite_outputs(results: &[CaseResult], out: &Path) -> Result<PathBuf, Error> {
     let sections: Vec<String> = results
         .iter()
-        .map(|r| html::case_section_in(r, Some(out)))
+        .map(|r| pages::case_section_in(r, Some(out)))
         .collect();
     write_suite_pages(results, &sections, out)
 }

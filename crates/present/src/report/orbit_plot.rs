@@ -7,8 +7,8 @@
 
 use plotters::prelude::*;
 
-use super::figure::{GRID, draw_legend, failed_svg, legend_height, participants};
-use super::plots::Figure;
+use crate::doc::figure::Figure;
+use crate::doc::figure::{GRID, draw_legend, failed_svg, legend_height, participants};
 use rockslide_core::trace::Trace;
 use rockslide_verify::suite::CaseResult;
 
@@ -186,7 +186,7 @@ fn draw(orbits: &[Orbit], extent: f64) -> String {
             return failed_svg(SIDE, &e.to_string());
         }
     }
-    super::figure::compact_svg(&svg)
+    crate::doc::figure::compact_svg(&svg)
 }
 
 /// An arrow from the origin to `tip` with a head 4 % of the axes' half-width long.

@@ -10,8 +10,9 @@
 
 use plotters::prelude::*;
 
-use super::figure::{
-    Entry, GRID, NOTE, REFERENCE, draw_legend, failed_svg, legend_height, palette,
+use crate::doc::figure::{
+    DASH_MARK, Entry, Figure, GRID, NOTE, REFERENCE, dash_marked, draw_legend, failed_svg,
+    legend_height, palette,
 };
 use rockslide_core::trace::{Quantity, Trace, q};
 use rockslide_verify::suite::CaseResult;
@@ -24,17 +25,6 @@ const SIZE: (u32, u32) = (1000, 440);
 /// (its min and max) per pixel column of the figure, so nothing visible is lost and the
 /// SVG (inlined again in the HTML pages) stays small.
 const MAX_POINTS: usize = 2 * SIZE.0 as usize;
-
-/// One rendered figure.
-#[derive(Debug, Clone)]
-pub(crate) struct Figure {
-    /// File stem (`relative-displacement`), unique within a case.
-    pub id: String,
-    /// Caption.
-    pub caption: String,
-    /// The SVG document.
-    pub svg: String,
-}
 
 /// What a figure shows: channels sharing one axis.
 struct Spec {
@@ -143,12 +133,12 @@ fn colour(i: usize, has_reference: bool) -> RGBColor {
 /// order) when long, so that peaks survive and the SVG stays small.
 #[cfg(test)]
 fn points(trace: &Trace, key: &str, factor: f64) -> Vec<(f64, f64)> {
-    super::figure::channel_points(trace, None, key, |v| v * factor, MAX_POINTS)
+    crate::doc::figure::channel_points(trace, None, key, |v| v * factor, MAX_POINTS)
 }
 
 /// The points of a line's channel: a streamed run's envelope, else its trace reduced.
 fn line_points(line: &Line<'_>, key: &str, factor: f64) -> Vec<(f64, f64)> {
-    super::figure::channel_points(line.trace, line.envelope, key, |v| v * factor, MAX_POINTS)
+    crate::doc::figure::channel_points(line.trace, line.envelope, key, |v| v * factor, MAX_POINTS)
 }
 
 /// The largest |value| of a line's channels over every step (a streamed run's envelope
@@ -231,7 +221,7 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
                     format!(
                         "{} (peak {} {})",
                         all[i].label,
-                        super::format::sig(p),
+                        crate::doc::format::sig(p),
                         spec.channels[0].display.0
                     )
                 })
@@ -265,16 +255,9 @@ pub(crate) fn figures(r: &CaseResult) -> Vec<Figure> {
 /// One line of a figure: participant index, channel index, points.
 type Series = (usize, usize, Vec<(f64, f64)>);
 
-/// Draw one figure into an SVG string.
-fn draw(
-    spec: &Spec,
-    title: &str,
-    all: &[Line<'_>],
-    members: &[usize],
-    has_reference: bool,
-    liftoff: Option<f64>,
-) -> String {
-    let (unit, factor) = spec.channels[0].display;
+/// The lines of a figure: each member's points of each of the spec's channels, in
+/// display units (participant, channel index, points); channels without points left out.
+fn series_of(spec: &Spec, all: &[Line<'_>], members: &[usize], factor: f64) -> Vec<Series> {
     // (participant, channel index, points)
     let mut series: Vec<Series> = Vec::new();
     for &i in members {
@@ -285,8 +268,14 @@ fn draw(
             }
         }
     }
+    series
+}
+
+/// The time axis's end and the value axis's range (5 % padding; ±1 around 0 when flat) of
+/// a figure's lines.
+fn axis_ranges(series: &[Series]) -> (f64, f64, f64) {
     let (mut t1, mut y0, mut y1) = (0.0_f64, f64::INFINITY, f64::NEG_INFINITY);
-    for (_, _, p) in &series {
+    for (_, _, p) in series {
         for &(t, y) in p {
             if y.is_finite() {
                 t1 = t1.max(t);
@@ -301,11 +290,18 @@ fn draw(
     let pad = 0.05 * (y1 - y0);
     let (y0, y1) = (y0 - pad, y1 + pad);
     let t1 = if t1 > 0.0 { t1 } else { 1.0 };
-    let names: Vec<&str> = spec.channels.iter().map(|c| c.label).collect();
-    let ylabel = format!("{} [{unit}]", names.join(", "));
+    (t1, y0, y1)
+}
 
-    // Legend entries, drawn in a strip below the plot so that no box hides a curve.
-    let entries: Vec<Entry> = series
+/// The legend's entries of a figure's lines: the participant (with the channel when the
+/// figure has several), its colour, and dashed for the first of several channels.
+fn legend_entries(
+    spec: &Spec,
+    all: &[Line<'_>],
+    series: &[Series],
+    has_reference: bool,
+) -> Vec<Entry> {
+    series
         .iter()
         .map(|(i, ci, _)| {
             let name = if spec.channels.len() > 1 {
@@ -316,7 +312,26 @@ fn draw(
             let dashed = spec.channels.len() > 1 && *ci == 0;
             (name, colour(*i, has_reference), dashed)
         })
-        .collect();
+        .collect()
+}
+
+/// Draw one figure into an SVG string.
+fn draw(
+    spec: &Spec,
+    title: &str,
+    all: &[Line<'_>],
+    members: &[usize],
+    has_reference: bool,
+    liftoff: Option<f64>,
+) -> String {
+    let (unit, factor) = spec.channels[0].display;
+    let series = series_of(spec, all, members, factor);
+    let (t1, y0, y1) = axis_ranges(&series);
+    let names: Vec<&str> = spec.channels.iter().map(|c| c.label).collect();
+    let ylabel = format!("{} [{unit}]", names.join(", "));
+
+    // Legend entries, drawn in a strip below the plot so that no box hides a curve.
+    let entries = legend_entries(spec, all, &series, has_reference);
     let legend_h = legend_height(entries.len(), SIZE.0);
 
     let mut svg = String::new();
@@ -375,20 +390,7 @@ fn draw(
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    super::figure::compact_svg(&dash_marked(&svg))
-}
-
-/// The opacity that marks a line to be dashed: plotters writes a colour's alpha as the
-/// element's `opacity`, and no other element of a figure is drawn with this one.
-pub(crate) const DASH_MARK: f64 = 0.999;
-
-/// The lines drawn with [`DASH_MARK`] made opaque and dashed (6 on, 4 off, as plotters'
-/// own dashed series): one SVG element per line instead of one per dash.
-pub(crate) fn dash_marked(svg: &str) -> String {
-    svg.replace(
-        &format!("opacity=\"{DASH_MARK}\""),
-        "opacity=\"1\" stroke-dasharray=\"6 4\"",
-    )
+    crate::doc::figure::compact_svg(&dash_marked(&svg))
 }
 
 #[cfg(test)]

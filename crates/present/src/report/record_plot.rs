@@ -5,8 +5,8 @@
 
 use plotters::prelude::*;
 
-use super::figure::{GRID, failed_svg};
-use super::plots::Figure;
+use crate::doc::figure::Figure;
+use crate::doc::figure::{GRID, failed_svg};
 use rockslide_core::case::record::STANDARD_GRAVITY;
 use rockslide_core::case::{Excitation, Signal};
 use rockslide_verify::suite::CaseResult;
@@ -88,7 +88,7 @@ fn displacement_figure(r: &CaseResult, signal: &Signal) -> Figure {
 /// (time s, value g) of every sample, reduced to per-bucket min and max beyond
 /// [`MAX_POINTS`] so that every peak stays drawn.
 fn in_g(dt: f64, samples: &[f64]) -> Vec<(f64, f64)> {
-    super::figure::extreme_indices(samples.len(), MAX_POINTS, |i| samples[i])
+    crate::doc::figure::extreme_indices(samples.len(), MAX_POINTS, |i| samples[i])
         .into_iter()
         .map(|i| (i as f64 * dt, samples[i] / STANDARD_GRAVITY))
         .collect()
@@ -133,7 +133,7 @@ fn draw(title: &str, ylabel: &str, points: &[(f64, f64)], duration: f64) -> Stri
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    super::figure::compact_svg(&svg)
+    crate::doc::figure::compact_svg(&svg)
 }
 
 #[cfg(test)]

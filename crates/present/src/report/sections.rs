@@ -4,8 +4,8 @@
 //! The work-precision and stability sections are rendered from the typed results of
 //! `sweep` and `stability` (`crate::sweep`, `crate::stability`).
 
-use super::doc::{Block, Cell, Table};
-use super::format::sig;
+use crate::doc::format::sig;
+use crate::doc::{Block, Cell, Table};
 use rockslide_engine_api::Arrangement;
 use rockslide_verify::analysis::energy::{EnergySummary, audit};
 use rockslide_verify::suite::CaseResult;

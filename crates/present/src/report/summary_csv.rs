@@ -66,7 +66,7 @@ pub(crate) fn case_rows(r: &CaseResult) -> Vec<Vec<String>> {
                 v.extend([
                     c.basis.clone(),
                     num(c.basis_value),
-                    crate::gate::limit_text(r, c),
+                    rockslide_verify::verdict::limit_text(r, c),
                     c.gated.to_string(),
                     c.verdict.label().to_string(),
                 ]);

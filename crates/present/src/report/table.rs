@@ -3,7 +3,7 @@
 //! engine that did not run, saying why ("not applicable — …"); then the tolerance and the PASS/FAIL
 //! of the case's checks on that row. Markdown, HTML and CSV render the same table.
 
-use super::doc::Tone;
+use crate::doc::Tone;
 use rockslide_verify::analysis::{
     Check, QUANTITY_KEYS, Verdict, discrepancy_percent, quantity_def,
 };
@@ -188,7 +188,7 @@ pub(crate) fn paper_table(r: &CaseResult) -> PaperTable {
             .collect();
         let mut limits: Vec<String> = Vec::new();
         for c in &checks {
-            let mut s = crate::gate::limit_text(r, c);
+            let mut s = rockslide_verify::verdict::limit_text(r, c);
             if c.basis != "reference" {
                 s.push_str(&format!(" vs {}", c.basis));
             }

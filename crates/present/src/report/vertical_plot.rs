@@ -7,10 +7,10 @@
 
 use plotters::prelude::*;
 
-use super::figure::{
+use crate::doc::figure::{DASH_MARK, Figure, dash_marked};
+use crate::doc::figure::{
     GRID, Participant, channel_points, draw_legend, failed_svg, legend_height, participants,
 };
-use super::plots::{DASH_MARK, Figure, dash_marked};
 use rockslide_core::case::Model;
 use rockslide_core::trace::Trace;
 use rockslide_verify::analysis::envelope::Envelope;
@@ -160,5 +160,5 @@ fn draw(lines: &[Participant<'_>], mu: f64, duration: f64) -> String {
             return failed_svg(SIZE.0, &e.to_string());
         }
     }
-    super::figure::compact_svg(&dash_marked(&svg))
+    crate::doc::figure::compact_svg(&dash_marked(&svg))
 }

@@ -4,8 +4,8 @@
 //! `stability.json` and never recomputes. Both use the same limits table and map cells.
 
 use super::figure::figure;
-use crate::report::doc::{Block, Cell, Table, Tone};
-use crate::report::format::sci;
+use crate::doc::format::sci;
+use crate::doc::{Block, Cell, Table, Tone};
 use rockslide_verify::analysis::stability::Class;
 use rockslide_verify::sweep::StabilityResult;
 use rockslide_verify::sweep::stability::{Limit, StabilityRun};

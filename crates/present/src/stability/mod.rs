@@ -17,7 +17,7 @@ use rockslide_core::error::Error;
 use rockslide_core::io::write_atomically;
 use rockslide_verify::sweep::StabilityResult;
 
-use crate::report::files::{csv_bytes, csv_e, write_document};
+use crate::doc::files::{csv_bytes, csv_e, write_document};
 
 /// Columns of `stability.csv`.
 pub const CSV_HEADER: [&str; 9] = [
@@ -117,7 +117,7 @@ mod tests {
         assert_eq!(rows[0][5].parse::<f64>().unwrap(), 3.28);
         assert_eq!(&rows[1][4], "accurate");
         assert_eq!(rows[1][6].parse::<f64>().unwrap(), 7.16e-3);
-        let md = |b: &[crate::report::doc::Block]| crate::report::markdown::render(b, "");
+        let md = |b: &[crate::doc::Block]| crate::doc::markdown::render(b, "");
         // The limit is the bracket's midpoint, (0.25 + 0.2625)/2 = 0.25625, to 4 digits.
         let row = "| predictor-corrector/paper | 0.4 (mu-large) | 0.3 | [0.25000, 0.26250] (mu-large) | **0.2562** | 0.02 |";
         assert!(md(&document::document(&st)).contains(row));

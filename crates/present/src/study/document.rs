@@ -5,7 +5,7 @@
 //! afterwards gives the same summary, byte for byte, as the study run in one go.
 
 use super::figure::{residual_vs_pga, run_slug};
-use crate::report::doc::{Block, Table};
+use crate::doc::{Block, Table};
 use rockslide_core::case::record::STANDARD_GRAVITY;
 use rockslide_verify::study::{Headline, Study, headline, short_name};
 

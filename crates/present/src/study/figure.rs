@@ -9,7 +9,7 @@ use std::collections::BTreeMap;
 
 use plotters::prelude::*;
 
-use crate::report::figure::{
+use crate::doc::figure::{
     Entry, GRID, compact_svg, draw_legend, failed_svg, legend_height, palette,
 };
 use rockslide_core::case::record::STANDARD_GRAVITY;

@@ -17,7 +17,7 @@ use rockslide_core::error::Error;
 use rockslide_core::io::write_atomically;
 use rockslide_verify::study::{Study, short_name};
 
-use crate::report::files::{csv_bytes, write_document};
+use crate::doc::files::{csv_bytes, write_document};
 
 /// Columns of `summary.csv`.
 pub const CSV_HEADER: [&str; 20] = [

@@ -4,8 +4,8 @@
 //! the figure and the rung table), which reads `sweep.json` and never recomputes.
 
 use super::figure::figure;
-use crate::report::doc::{Block, Cell, Table, Tone};
-use crate::report::format::{order, sci};
+use crate::doc::format::{order, sci};
+use crate::doc::{Block, Cell, Table, Tone};
 use rockslide_verify::analysis::sweep::{ORDER_METHOD, Richardson};
 use rockslide_verify::suite::CaseResult;
 use rockslide_verify::sweep::SweepResult;
@@ -166,6 +166,81 @@ pub(crate) fn document(r: &SweepResult) -> Vec<Block> {
         Block::Heading(1, format!("{} — error against run time", r.case)),
         Block::Para(r.title.clone()),
     ];
+    b.push(sweep_facts(r));
+    for se in &r.series {
+        b.extend(series_blocks(r, se));
+    }
+    if let Some(svg) = figure(r) {
+        b.push(Block::Figure {
+            file: "sweep.svg".into(),
+            caption: format!(
+                "Left: max error against Δt, against the {} (the legend gives each engine's observed order p: {ORDER_METHOD}). Right: work-precision, max error against median run time.",
+                if r.exact_basis {
+                    "exact reference"
+                } else {
+                    "own finest rung"
+                }
+            ),
+            svg,
+        });
+    }
+    b
+}
+
+/// The work-precision section of a case report: the sweep's summary per series, figure
+/// and rung table, or how to produce them.
+pub(crate) fn case_section(
+    r: &CaseResult,
+    sweep: Option<&Result<SweepResult, String>>,
+) -> Vec<Block> {
+    let mut b = vec![Block::Heading(
+        2,
+        "Error against run time (work-precision)".into(),
+    )];
+    let case = &r.case.name;
+    let file = rockslide_verify::sweep::work_precision::FILE;
+    let how = format!(
+        "`rockslide sweep {} --out <this folder>` writes it — every applicable engine and variant over a Δt ladder from T/10 down, a few minutes — and `rockslide run` and `check` pick it up from the output folder without recomputing it.",
+        r.case.path.display()
+    );
+    let s = match sweep {
+        None => {
+            b.push(Block::Para(format!(
+                "No sweep in the output folder ({case}/{file}): {how}"
+            )));
+            return b;
+        }
+        Some(Err(why)) => {
+            b.push(Block::Para(format!("{file} could not be read: {why}.")));
+            return b;
+        }
+        Some(Ok(s)) => s,
+    };
+    b.push(Block::Para(format!(
+        "Picked up from {case}/{file}: {how} Basis: {}. Errors: max and RMS of the relative-displacement difference over the whole history, normalised by the basis's peak; residual-sliding error in mm; event-time error (slip start/end, first lift-off) in ms. Run time: median of the repeats, wall clock. Observed order p: {ORDER_METHOD} — one number per engine on this page, the one the Richardson estimates below use.",
+        s.basis
+    )));
+    if !s.exact_basis {
+        b.push(Block::Para(
+            "Without an exact reference these are convergence errors against each engine's own finest solution: they show how fast a method converges, not whether it converges to the right answer — the cross-code comparison above does that.".into(),
+        ));
+    }
+    b.push(Block::Table(summary_table(s)));
+    if let Some(svg) = figure(s) {
+        b.push(Block::Figure {
+            file: "plot-work-precision.svg".into(),
+            caption: "Left: max error against Δt, log-log (the legend gives each engine's observed order p of the table above). Right: work-precision, max error against median run time — lower left is better. Where series coincide, the earlier one is drawn wider so that it shows around the later ones.".into(),
+            svg,
+        });
+    }
+    b.push(Block::Table(rungs_table(s)));
+    b.extend(richardson_blocks(s));
+    b
+}
+
+/// The sweep's facts: the period, the ladder, the basis, what the errors and run times
+/// are, the cost budget, the sweep's settings, the engines that do not apply, the tool.
+fn sweep_facts(r: &SweepResult) -> Block {
     let mut facts = vec![
         (
             "Characteristic period".to_string(),
@@ -228,107 +303,61 @@ pub(crate) fn document(r: &SweepResult) -> Vec<Block> {
         "Made by".into(),
         format!("{}, commit {}", crate::stamp::tool(), crate::stamp::COMMIT),
     ));
-    b.push(Block::Facts(facts));
-    for se in &r.series {
-        b.push(Block::Heading(2, se.label.clone()));
-        let mut facts = vec![
-            (order_header(), order(se.observed_order(), 2)),
-            (
-                "Diagnostics (slopes, not the order)".into(),
-                format!(
-                    "ln(max error) over the whole ladder, coarse rungs included: {}; ln(change to the next rung), self-convergence: {} (finest three changes: {})",
-                    order(se.fitted_order, 2),
-                    order(se.self_order, 2),
-                    order(se.fine_self_order, 2)
-                ),
+    Block::Facts(facts)
+}
+
+/// One series of the sweep: its observed order and diagnostics, what the cost budget
+/// skipped, its rungs and its Richardson estimates.
+fn series_blocks(r: &SweepResult, se: &SeriesResult) -> Vec<Block> {
+    let mut b = Vec::new();
+    b.push(Block::Heading(2, se.label.clone()));
+    let mut facts = vec![
+        (order_header(), order(se.observed_order(), 2)),
+        (
+            "Diagnostics (slopes, not the order)".into(),
+            format!(
+                "ln(max error) over the whole ladder, coarse rungs included: {}; ln(change to the next rung), self-convergence: {} (finest three changes: {})",
+                order(se.fitted_order, 2),
+                order(se.self_order, 2),
+                order(se.fine_self_order, 2)
             ),
-        ];
-        if let Some(k) = &se.skipped {
-            facts.push((
-                "Cost budget".into(),
-                format!(
-                    "{} of {} rungs run; Δt ≤ {:.4e} s skipped (one run projected at {:.2} s, {:.2} s of the {} s budget already spent)",
-                    se.rungs.len(),
-                    r.planned_rungs,
-                    k.from_dt,
-                    k.projected,
-                    k.spent,
-                    r.budget.unwrap_or(f64::NAN)
-                ),
-            ));
-        }
-        b.push(Block::Facts(facts));
-        b.push(Block::Table(rung_table(se)));
-        if let Some(why) = se.rungs.iter().find_map(|g| g.energy.as_ref().err()) {
-            b.push(Block::Para(format!("Energy audit: {why}.")));
-        }
-        let extrapolations = se.extrapolations(r.ratio);
-        if !extrapolations.is_empty() {
-            b.push(Block::Para(richardson_sentence(r.ratio)));
-            let mut t = table(&RICHARDSON_COLUMNS);
-            t.rows.extend(
-                extrapolations
-                    .into_iter()
-                    .map(|(q, e)| richardson_cells(q, e)),
-            );
-            b.push(Block::Table(t));
-        }
+        ),
+    ];
+    if let Some(k) = &se.skipped {
+        facts.push((
+            "Cost budget".into(),
+            format!(
+                "{} of {} rungs run; Δt ≤ {:.4e} s skipped (one run projected at {:.2} s, {:.2} s of the {} s budget already spent)",
+                se.rungs.len(),
+                r.planned_rungs,
+                k.from_dt,
+                k.projected,
+                k.spent,
+                r.budget.unwrap_or(f64::NAN)
+            ),
+        ));
     }
-    if let Some(svg) = figure(r) {
-        b.push(Block::Figure {
-            file: "sweep.svg".into(),
-            caption: format!(
-                "Left: max error against Δt, against the {} (the legend gives each engine's observed order p: {ORDER_METHOD}). Right: work-precision, max error against median run time.",
-                if r.exact_basis {
-                    "exact reference"
-                } else {
-                    "own finest rung"
-                }
-            ),
-            svg,
-        });
+    b.push(Block::Facts(facts));
+    b.push(Block::Table(rung_table(se)));
+    if let Some(why) = se.rungs.iter().find_map(|g| g.energy.as_ref().err()) {
+        b.push(Block::Para(format!("Energy audit: {why}.")));
+    }
+    let extrapolations = se.extrapolations(r.ratio);
+    if !extrapolations.is_empty() {
+        b.push(Block::Para(richardson_sentence(r.ratio)));
+        let mut t = table(&RICHARDSON_COLUMNS);
+        t.rows.extend(
+            extrapolations
+                .into_iter()
+                .map(|(q, e)| richardson_cells(q, e)),
+        );
+        b.push(Block::Table(t));
     }
     b
 }
 
-/// The work-precision section of a case report: the sweep's summary per series, figure
-/// and rung table, or how to produce them.
-pub(crate) fn case_section(
-    r: &CaseResult,
-    sweep: Option<&Result<SweepResult, String>>,
-) -> Vec<Block> {
-    let mut b = vec![Block::Heading(
-        2,
-        "Error against run time (work-precision)".into(),
-    )];
-    let case = &r.case.name;
-    let file = rockslide_verify::sweep::work_precision::FILE;
-    let how = format!(
-        "`rockslide sweep {} --out <this folder>` writes it — every applicable engine and variant over a Δt ladder from T/10 down, a few minutes — and `rockslide run` and `check` pick it up from the output folder without recomputing it.",
-        r.case.path.display()
-    );
-    let s = match sweep {
-        None => {
-            b.push(Block::Para(format!(
-                "No sweep in the output folder ({case}/{file}): {how}"
-            )));
-            return b;
-        }
-        Some(Err(why)) => {
-            b.push(Block::Para(format!("{file} could not be read: {why}.")));
-            return b;
-        }
-        Some(Ok(s)) => s,
-    };
-    b.push(Block::Para(format!(
-        "Picked up from {case}/{file}: {how} Basis: {}. Errors: max and RMS of the relative-displacement difference over the whole history, normalised by the basis's peak; residual-sliding error in mm; event-time error (slip start/end, first lift-off) in ms. Run time: median of the repeats, wall clock. Observed order p: {ORDER_METHOD} — one number per engine on this page, the one the Richardson estimates below use.",
-        s.basis
-    )));
-    if !s.exact_basis {
-        b.push(Block::Para(
-            "Without an exact reference these are convergence errors against each engine's own finest solution: they show how fast a method converges, not whether it converges to the right answer — the cross-code comparison above does that.".into(),
-        ));
-    }
+/// The case report's summary of a sweep: per series, its order and its finest rung.
+fn summary_table(s: &SweepResult) -> Table {
     let mut summary = table(&[
         ("Engine/variant", false),
         (&order_header(), true),
@@ -348,14 +377,11 @@ pub(crate) fn case_section(
             last.map_or("—".into(), median_ms).into(),
         ]);
     }
-    b.push(Block::Table(summary));
-    if let Some(svg) = figure(s) {
-        b.push(Block::Figure {
-            file: "plot-work-precision.svg".into(),
-            caption: "Left: max error against Δt, log-log (the legend gives each engine's observed order p of the table above). Right: work-precision, max error against median run time — lower left is better. Where series coincide, the earlier one is drawn wider so that it shows around the later ones.".into(),
-            svg,
-        });
-    }
+    summary
+}
+
+/// Every rung of every series of a sweep, for the case report.
+fn rungs_table(s: &SweepResult) -> Table {
     let mut t = table(&[
         ("Engine/variant", false),
         ("Δt [s]", true),
@@ -389,7 +415,12 @@ pub(crate) fn case_section(
             ]);
         }
     }
-    b.push(Block::Table(t));
+    t
+}
+
+/// The Richardson estimates of every series of a sweep (none when no series has one).
+fn richardson_blocks(s: &SweepResult) -> Vec<Block> {
+    let mut b = Vec::new();
     if s.series
         .iter()
         .any(|se| !se.extrapolations(s.ratio).is_empty())

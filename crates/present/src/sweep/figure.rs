@@ -5,7 +5,7 @@
 
 use plotters::prelude::*;
 
-use crate::report::figure::{
+use crate::doc::figure::{
     Entry, GRID, compact_svg, draw_legend, failed_svg, legend_height, log_range, palette,
 };
 use rockslide_verify::sweep::SweepResult;

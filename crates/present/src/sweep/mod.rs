@@ -17,7 +17,7 @@ use rockslide_core::error::Error;
 use rockslide_core::io::write_atomically;
 use rockslide_verify::sweep::SweepResult;
 
-use crate::report::files::{csv_bytes, csv_e, write_document};
+use crate::doc::files::{csv_bytes, csv_e, write_document};
 
 /// Columns of `sweep.csv`.
 pub const CSV_HEADER: [&str; 17] = [

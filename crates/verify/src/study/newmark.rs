@@ -71,8 +71,9 @@ fn table_rows(s: &NewmarkSummary, label: &str) -> String {
     t
 }
 
-/// Run the command: print a Markdown table (and write CSV when asked).
-pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
+/// The record the arguments name, read in its unit and scaled to `--pga` when asked; the
+/// yield accelerations and the PGA checked positive.
+fn checked_record(a: &NewmarkArgs) -> Result<rockslide_core::case::record::Record, Error> {
     let unit = match a.unit.as_deref() {
         None => None,
         Some(u) => Some(AccelUnit::parse(u).ok_or_else(|| {
@@ -105,16 +106,13 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
         }
         rec.scale_to_pga(pga * STANDARD_GRAVITY, 1.0);
     }
-    let sliding = if a.two_way {
-        Sliding::TwoWay
-    } else {
-        Sliding::OneWay
-    };
-    let name = a
-        .record
-        .file_name()
-        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
-    let mut md = format!(
+    Ok(rec)
+}
+
+/// The table's heading: the sliding mode, the record (samples, step, PGA) and the sign
+/// convention.
+fn heading(a: &NewmarkArgs, rec: &rockslide_core::case::record::Record, name: &str) -> String {
+    format!(
         "Newmark rigid block ({}), record {name}: {} samples × {} s, PGA {:.4} g{}\n\
          Sliding: block minus ground, mm, positive in +x (the case reports' convention; SLAMMER's u = −sliding)\n\n",
         if a.two_way {
@@ -130,21 +128,79 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
         } else {
             format!(" ({})", rec.note)
         }
-    );
+    )
+}
+
+/// The CSV file's header.
+const CSV_HEADER: [&str; 9] = [
+    "record",
+    "ky_g",
+    "polarity",
+    "sliding_mm",
+    "sliding_m",
+    "slip_episodes",
+    "total_slid_m",
+    "slip_start_s",
+    "slip_end_s",
+];
+
+/// The CSV rows of one yield acceleration: normal, inverse, mean abs.
+fn csv_rows(
+    csv: &mut csv::Writer<Vec<u8>>,
+    name: &str,
+    ky: f64,
+    s: &NewmarkSummary,
+) -> Result<(), csv::Error> {
+    let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
+    for (pol, d, episodes, total, span) in [
+        (
+            "normal",
+            s.normal,
+            Some(s.episodes.0),
+            Some(s.total_slid.0),
+            s.span.0,
+        ),
+        (
+            "inverse",
+            s.inverse,
+            Some(s.episodes.1),
+            Some(s.total_slid.1),
+            s.span.1,
+        ),
+        ("mean abs", -s.mean(), None, None, None),
+    ] {
+        let d = sliding_of(d);
+        csv.write_record([
+            name.to_string(),
+            ky.to_string(),
+            pol.to_string(),
+            (d * 1e3).to_string(),
+            d.to_string(),
+            episodes.map_or(String::new(), |n| n.to_string()),
+            opt(total),
+            opt(span.map(|s| s.0)),
+            opt(span.map(|s| s.1)),
+        ])?;
+    }
+    Ok(())
+}
+
+/// Run the command: print a Markdown table (and write CSV when asked).
+pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
+    let rec = checked_record(a)?;
+    let sliding = if a.two_way {
+        Sliding::TwoWay
+    } else {
+        Sliding::OneWay
+    };
+    let name = a
+        .record
+        .file_name()
+        .map_or_else(String::new, |n| n.to_string_lossy().into_owned());
+    let mut md = heading(a, &rec, &name);
     let csv_error = |e: csv::Error| Error::Other(format!("newmark CSV: {e}"));
     let mut csv = csv::Writer::from_writer(Vec::new());
-    csv.write_record([
-        "record",
-        "ky_g",
-        "polarity",
-        "sliding_mm",
-        "sliding_m",
-        "slip_episodes",
-        "total_slid_m",
-        "slip_start_s",
-        "slip_end_s",
-    ])
-    .map_err(csv_error)?;
+    csv.write_record(CSV_HEADER).map_err(csv_error)?;
     for (i, &ky) in a.ky.iter().enumerate() {
         let s = NewmarkSummary::of(rec.dt, &rec.samples, ky * STANDARD_GRAVITY, sliding, 0.0)
             .map_err(|why| Error::Other(format!("{name}: rigid block at ky {ky} g: {why}")))?;
@@ -152,38 +208,7 @@ pub fn newmark_command(a: &NewmarkArgs) -> Result<String, Error> {
             md.push_str(TABLE_HEADER);
         }
         md.push_str(&table_rows(&s, &name));
-        let opt = |x: Option<f64>| x.map_or(String::new(), |v| v.to_string());
-        for (pol, d, episodes, total, span) in [
-            (
-                "normal",
-                s.normal,
-                Some(s.episodes.0),
-                Some(s.total_slid.0),
-                s.span.0,
-            ),
-            (
-                "inverse",
-                s.inverse,
-                Some(s.episodes.1),
-                Some(s.total_slid.1),
-                s.span.1,
-            ),
-            ("mean abs", -s.mean(), None, None, None),
-        ] {
-            let d = sliding_of(d);
-            csv.write_record([
-                name.clone(),
-                ky.to_string(),
-                pol.to_string(),
-                (d * 1e3).to_string(),
-                d.to_string(),
-                episodes.map_or(String::new(), |n| n.to_string()),
-                opt(total),
-                opt(span.map(|s| s.0)),
-                opt(span.map(|s| s.1)),
-            ])
-            .map_err(csv_error)?;
-        }
+        csv_rows(&mut csv, &name, ky, &s).map_err(csv_error)?;
     }
     if let Some(path) = &a.csv {
         let bytes = csv

@@ -235,89 +235,14 @@ pub fn run_point(
     let planned = plan(&case, engines)?;
     let mut runs = Vec::new();
     for pr in &planned.runs {
-        let engine = engines
-            .iter()
-            .find(|e| e.id() == pr.engine)
-            .expect("planned engines exist");
-        let timed =
-            guarded(engine.as_ref(), &case, &pr.variant, pr.dt, 1).map_err(InputErrors::from)?;
-        let wall = timed.seconds.first().copied().unwrap_or(f64::NAN);
-        let status = Outcome::of(&timed.run).to_string();
-        let Ok(run) = timed.run else {
-            // A panic is a result: recorded with its message, no numbers.
-            runs.push(RunSummary {
-                engine: pr.engine.to_string(),
-                variant: pr.variant.clone(),
-                dt: pr.dt,
-                status,
-                residual_sliding: None,
-                peak_abs_sliding: None,
-                peak_relative_displacement: None,
-                slip_episodes: None,
-                total_slid: None,
-                slip_start: None,
-                slip_end: None,
-                steps: 0,
-                wall_seconds: wall,
-            });
-            continue;
-        };
-        let resp = responses(&run.trace);
-        let peak_abs_sliding = match (resp.get("peak_sliding"), resp.get("min_sliding")) {
-            (Some(a), Some(b)) => Some(a.abs().max(b.abs())),
-            _ => None,
-        };
-        runs.push(RunSummary {
-            engine: run.engine.to_string(),
-            variant: run.variant.clone(),
-            dt: run.dt,
-            status,
-            residual_sliding: resp.get("residual_sliding").copied(),
-            peak_abs_sliding,
-            peak_relative_displacement: resp.get("peak_relative_displacement").copied(),
-            slip_episodes: None,
-            total_slid: None,
-            slip_start: resp.get("slip_start").copied(),
-            slip_end: resp.get("slip_end").copied(),
-            steps: run.stats.steps,
-            wall_seconds: wall,
-        });
+        runs.push(engine_summary(&case, engines, pr)?);
     }
     if let Some(exact) = exact_summary(&case) {
         runs.push(exact);
     }
     let excitation_signal = case.scene.excitation.signal();
     if grid.newmark {
-        if let (Some(Signal::Record { dt, samples, .. }), Some(ky)) =
-            (excitation_signal, yield_acceleration(&case.scene.model))
-        {
-            let is_ground = matches!(case.scene.excitation, Excitation::GroundAcceleration(_));
-            let start = Instant::now();
-            // Level frictional base: sliding both ways. The tail lets it come to rest.
-            let tail = case.run.duration - dt * (samples.len() - 1) as f64;
-            let sign = if is_ground { 1.0 } else { -1.0 };
-            let acc: Vec<f64> = samples.iter().map(|a| sign * a).collect();
-            let r = rigid_block(*dt, &acc, ky, Sliding::TwoWay, tail.max(0.0))
-                .map_err(|why| Error::Other(format!("rigid block: {why}")))?;
-            let u = r.residual();
-            // Convert SLAMMER's u (ground relative to block) to mass minus ground: −u.
-            let peak = r.peak_abs;
-            runs.push(RunSummary {
-                engine: "newmark-rigid".into(),
-                variant: "two-way".into(),
-                dt: *dt,
-                status: "completed".into(),
-                residual_sliding: Some(-u + 0.0), // + 0.0: no "-0" in tables
-                peak_abs_sliding: Some(peak),
-                peak_relative_displacement: None,
-                slip_episodes: Some(r.episodes() as u64),
-                total_slid: Some(r.total_slid()),
-                slip_start: r.slides.first().map(|s| s.start),
-                slip_end: r.slides.last().map(|s| s.end),
-                steps: r.disp.len().saturating_sub(1) as u64,
-                wall_seconds: start.elapsed().as_secs_f64(),
-            });
-        }
+        runs.extend(newmark_summary(&case)?);
     }
     let rec = &grid.records[p.record];
     let pga = grid.pga(p);
@@ -339,6 +264,97 @@ pub fn run_point(
             .collect(),
         runs,
     })
+}
+
+/// One planned engine run of a point, guarded and timed, summarised from its responses;
+/// a panic is a result, recorded with its message and no numbers.
+fn engine_summary(
+    case: &rockslide_core::case::Case,
+    engines: &[Box<dyn rockslide_engine_api::Engine>],
+    pr: &crate::plan::PlannedRun,
+) -> Result<RunSummary, Error> {
+    let engine = engines
+        .iter()
+        .find(|e| e.id() == pr.engine)
+        .expect("planned engines exist");
+    let timed = guarded(engine.as_ref(), case, &pr.variant, pr.dt, 1).map_err(InputErrors::from)?;
+    let wall = timed.seconds.first().copied().unwrap_or(f64::NAN);
+    let status = Outcome::of(&timed.run).to_string();
+    let Ok(run) = timed.run else {
+        // A panic is a result: recorded with its message, no numbers.
+        return Ok(RunSummary {
+            engine: pr.engine.to_string(),
+            variant: pr.variant.clone(),
+            dt: pr.dt,
+            status,
+            residual_sliding: None,
+            peak_abs_sliding: None,
+            peak_relative_displacement: None,
+            slip_episodes: None,
+            total_slid: None,
+            slip_start: None,
+            slip_end: None,
+            steps: 0,
+            wall_seconds: wall,
+        });
+    };
+    let resp = responses(&run.trace);
+    let peak_abs_sliding = match (resp.get("peak_sliding"), resp.get("min_sliding")) {
+        (Some(a), Some(b)) => Some(a.abs().max(b.abs())),
+        _ => None,
+    };
+    Ok(RunSummary {
+        engine: run.engine.to_string(),
+        variant: run.variant.clone(),
+        dt: run.dt,
+        status,
+        residual_sliding: resp.get("residual_sliding").copied(),
+        peak_abs_sliding,
+        peak_relative_displacement: resp.get("peak_relative_displacement").copied(),
+        slip_episodes: None,
+        total_slid: None,
+        slip_start: resp.get("slip_start").copied(),
+        slip_end: resp.get("slip_end").copied(),
+        steps: run.stats.steps,
+        wall_seconds: wall,
+    })
+}
+
+/// Newmark's rigid block (two-way, on a level frictional base) on the point's record,
+/// when its excitation is a record and its model has a yield acceleration.
+fn newmark_summary(case: &rockslide_core::case::Case) -> Result<Option<RunSummary>, Error> {
+    let (Some(Signal::Record { dt, samples, .. }), Some(ky)) = (
+        case.scene.excitation.signal(),
+        yield_acceleration(&case.scene.model),
+    ) else {
+        return Ok(None);
+    };
+    let is_ground = matches!(case.scene.excitation, Excitation::GroundAcceleration(_));
+    let start = Instant::now();
+    // Level frictional base: sliding both ways. The tail lets it come to rest.
+    let tail = case.run.duration - dt * (samples.len() - 1) as f64;
+    let sign = if is_ground { 1.0 } else { -1.0 };
+    let acc: Vec<f64> = samples.iter().map(|a| sign * a).collect();
+    let r = rigid_block(*dt, &acc, ky, Sliding::TwoWay, tail.max(0.0))
+        .map_err(|why| Error::Other(format!("rigid block: {why}")))?;
+    let u = r.residual();
+    // Convert SLAMMER's u (ground relative to block) to mass minus ground: −u.
+    let peak = r.peak_abs;
+    Ok(Some(RunSummary {
+        engine: "newmark-rigid".into(),
+        variant: "two-way".into(),
+        dt: *dt,
+        status: "completed".into(),
+        residual_sliding: Some(-u + 0.0), // + 0.0: no "-0" in tables
+        peak_abs_sliding: Some(peak),
+        peak_relative_displacement: None,
+        slip_episodes: Some(r.episodes() as u64),
+        total_slid: Some(r.total_slid()),
+        slip_start: r.slides.first().map(|s| s.start),
+        slip_end: r.slides.last().map(|s| s.end),
+        steps: r.disp.len().saturating_sub(1) as u64,
+        wall_seconds: start.elapsed().as_secs_f64(),
+    }))
 }
 
 /// Newmark's yield acceleration of a model on a level frictional base, μ·g (m/s²); `None`

@@ -100,10 +100,5 @@ pub fn applicable(
     }
 }
 
-/// Intervals of the fine uniform grid a reference is sampled on over a scene's duration:
-/// one per 10 µs, within 1,000 … 200,000 (the grid of `crate::suite::solve_reference`, so
-/// that peaks, event times and energy audits read off it — and every error they normalise
-/// — are the ones the case reports measure).
-pub fn fine_grid(duration: f64) -> usize {
-    ((duration / 1e-5).ceil() as usize).clamp(1000, 200_000)
-}
+/// The fine grid a reference is sampled on, shared with the case run.
+pub use crate::reference::fine_grid;

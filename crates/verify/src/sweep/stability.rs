@@ -358,11 +358,35 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
         .collect::<Vec<_>>();
     let criteria = Criteria::default();
     let engines = registry::all();
+    let (plans, not_applicable) = plan_series(cases, &engines)?;
+    let periods: Vec<f64> = cases.iter().map(|c| characteristic_period(c).0).collect();
+    let (timed, references, threads) = run_ladders(cases, &engines, &plans, &periods, opts)?;
+    let (runs, times) = classify_all(cases, &plans, &timed, &references, &periods, &criteria);
+    let limits = limits_of(&plans, &engines, cases, &periods, &runs, &criteria);
+    Ok(StabilityResult {
+        cases: scenes(cases, &references, &periods),
+        runs,
+        limits,
+        not_applicable,
+        criteria,
+        timing: StabilityTiming {
+            threads,
+            runs: times,
+        },
+    })
+}
+
+/// The series (engine variants) that apply to each scene, and the engines that do not
+/// apply to one (with why); every scene's input errors at once.
+fn plan_series(
+    cases: &[Case],
+    engines: &[Box<dyn Engine>],
+) -> Result<(Vec<Vec<Series>>, Vec<NotApplicable>), Error> {
     let mut plans = Vec::new();
     let mut not_applicable = Vec::new();
     let mut errors = Vec::new();
     for c in cases {
-        match applicable(c, &engines) {
+        match applicable(c, engines) {
             Ok((series, na)) => {
                 not_applicable.extend(na.into_iter().map(|(engine, why)| NotApplicable {
                     scene: c.name.clone(),
@@ -377,7 +401,22 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
     if !errors.is_empty() {
         return Err(InputErrors(errors).into());
     }
-    let periods: Vec<f64> = cases.iter().map(|c| characteristic_period(c).0).collect();
+    Ok((plans, not_applicable))
+}
+
+/// A scene's exact basis, or why it has none.
+type Basis = Result<ExactBasis, String>;
+
+/// Every series of every scene run at every rung of the ladder (in parallel, guarded),
+/// beside every scene's exact basis: the runs in scene, series, rung order, the bases,
+/// and the threads used.
+fn run_ladders(
+    cases: &[Case],
+    engines: &[Box<dyn Engine>],
+    plans: &[Vec<Series>],
+    periods: &[f64],
+    opts: &Options,
+) -> Result<(Vec<Timed>, Vec<Basis>, usize), Error> {
     let tasks: Vec<(usize, &Series, f64)> = plans
         .iter()
         .enumerate()
@@ -411,7 +450,19 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
         .into_iter()
         .collect::<Result<_, _>>()
         .map_err(InputErrors::from)?;
+    Ok((timed, references, threads))
+}
 
+/// Every run classified against its scene's basis (the exact reference, else the finest
+/// completed run of its series), with its wall time.
+fn classify_all(
+    cases: &[Case],
+    plans: &[Vec<Series>],
+    timed: &[Timed],
+    references: &[Basis],
+    periods: &[f64],
+    criteria: &Criteria,
+) -> (Vec<StabilityRun>, Vec<RunTime>) {
     let mut runs = Vec::new();
     let mut times = Vec::new();
     let mut k = 0;
@@ -433,7 +484,7 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                 None
             };
             for ((t, x), at) in block.iter().zip(DT_OVER_T).zip(&mut sampled) {
-                let (class, error, energy) = classify_run(case, t, reference, own, &criteria, at);
+                let (class, error, energy) = classify_run(case, t, reference, own, criteria, at);
                 runs.push(StabilityRun {
                     case: case.name.clone(),
                     series: s.label(),
@@ -452,17 +503,27 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
             }
         }
     }
+    (runs, times)
+}
 
-    // Limits per engine variant, over every scene.
+/// The stability limit of each engine variant (in first-seen order), over every scene.
+fn limits_of(
+    plans: &[Vec<Series>],
+    engines: &[Box<dyn Engine>],
+    cases: &[Case],
+    periods: &[f64],
+    runs: &[StabilityRun],
+    criteria: &Criteria,
+) -> Vec<Limit> {
     let mut labels: Vec<(String, usize, String)> = Vec::new();
-    for series in &plans {
+    for series in plans {
         for s in series {
             if !labels.iter().any(|l| l.0 == s.label()) {
                 labels.push((s.label(), s.engine, s.variant.clone()));
             }
         }
     }
-    let limits = labels
+    labels
         .iter()
         .map(|(label, ei, variant)| {
             limit_of(
@@ -470,39 +531,33 @@ pub fn study(cases: &[Case], opts: &Options) -> Result<StabilityResult, Error> {
                 engines[*ei].as_ref(),
                 variant,
                 cases,
-                &periods,
-                &runs,
-                &criteria,
+                periods,
+                runs,
+                criteria,
             )
         })
-        .collect();
-    Ok(StabilityResult {
-        cases: cases
-            .iter()
-            .zip(&references)
-            .zip(&periods)
-            .map(|((c, r), t)| {
-                let basis = match r {
-                    Ok(r) => format!("exact reference: {}", r.solution.name()),
-                    Err(_) => "own finest run (no exact reference)".into(),
-                };
-                Scene {
-                    name: c.name.clone(),
-                    title: c.title.clone(),
-                    period: *t,
-                    basis,
-                }
-            })
-            .collect(),
-        runs,
-        limits,
-        not_applicable,
-        criteria,
-        timing: StabilityTiming {
-            threads,
-            runs: times,
-        },
-    })
+        .collect()
+}
+
+/// Each scene with its period and what its runs are measured against.
+fn scenes(cases: &[Case], references: &[Basis], periods: &[f64]) -> Vec<Scene> {
+    cases
+        .iter()
+        .zip(references)
+        .zip(periods)
+        .map(|((c, r), t)| {
+            let basis = match r {
+                Ok(r) => format!("exact reference: {}", r.solution.name()),
+                Err(_) => "own finest run (no exact reference)".into(),
+            };
+            Scene {
+                name: c.name.clone(),
+                title: c.title.clone(),
+                period: *t,
+                basis,
+            }
+        })
+        .collect()
 }
 
 /// Bracket the first divergence of one engine variant on the ladder, then bisect it on

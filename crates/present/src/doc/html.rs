@@ -1,17 +1,12 @@
-//! Self-contained HTML rendering of the report documents: one file, inline CSS, the SVG
+//! Self-contained HTML rendering of the document model: one file, inline CSS, the SVG
 //! plots embedded inline — no scripts, fonts, images or style sheets fetched from anywhere,
 //! so the page can be archived with a verification record and opened offline. Case names
 //! in the suite table link to the case's section of the same page.
 
 use std::fmt::Write;
-use std::path::Path;
 
-use super::attachments::Attachments;
-use super::doc::{Block, Cell, Table, Tone};
-use super::document::{case_document, suite_document};
 use super::format::esc;
-use super::provenance::Provenance;
-use rockslide_verify::suite::CaseResult;
+use super::model::{Block, Cell, Table, Tone};
 
 const STYLE: &str = r#"
 body { font-family: system-ui, -apple-system, "Segoe UI", Roboto, sans-serif; margin: 2rem auto; max-width: 1400px; padding: 0 1rem; color: #1b1b1b; line-height: 1.45; }
@@ -216,38 +211,6 @@ pub(crate) fn page(title: &str, body: &str) -> String {
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{body}</body>\n</html>\n",
         esc(title)
     )
-}
-
-/// The self-contained HTML report of one case.
-pub fn case_html(r: &CaseResult) -> String {
-    let blocks = case_document(r, Provenance::current(), &Attachments::default());
-    page(&format!("rockslide — {}", r.case.name), &render(&blocks))
-}
-
-/// The self-contained HTML report of the suite: the summary, then every case in full.
-pub fn suite_html(results: &[CaseResult]) -> String {
-    suite_html_in(results, None)
-}
-
-/// The suite page, with the sweeps and the stability study found under `out` (when given).
-pub(crate) fn suite_html_in(results: &[CaseResult], out: Option<&Path>) -> String {
-    let att = out.map_or_else(Attachments::default, Attachments::for_suite);
-    let blocks = suite_document(results, Provenance::current(), &att);
-    let sections: Vec<String> = results.iter().map(|r| case_section_in(r, out)).collect();
-    suite_page(&blocks, &sections)
-}
-
-/// A case's section of the suite page, figures inline, with its sweep found under `out`
-/// (when given).
-pub(crate) fn case_section_in(r: &CaseResult, out: Option<&Path>) -> String {
-    let att = out.map_or_else(Attachments::default, |o| {
-        Attachments::for_case(&o.join(&r.case.name))
-    });
-    let blocks: Vec<Block> = case_document(r, Provenance::current(), &att)
-        .into_iter()
-        .map(|b| b.demoted(1))
-        .collect();
-    case_section(&r.case.name, &render(&blocks))
 }
 
 /// A case's rendered body as a section of the suite page (its anchor is the summary

@@ -391,6 +391,30 @@ impl<'a> LineRun<'a> {
     }
 }
 
+/// One rendered figure.
+#[derive(Debug, Clone)]
+pub(crate) struct Figure {
+    /// File stem (`relative-displacement`), unique within a case.
+    pub id: String,
+    /// Caption.
+    pub caption: String,
+    /// The SVG document.
+    pub svg: String,
+}
+
+/// The opacity that marks a line to be dashed: plotters writes a colour's alpha as the
+/// element's `opacity`, and no other element of a figure is drawn with this one.
+pub(crate) const DASH_MARK: f64 = 0.999;
+
+/// The lines drawn with [`DASH_MARK`] made opaque and dashed (6 on, 4 off, as plotters'
+/// own dashed series): one SVG element per line instead of one per dash.
+pub(crate) fn dash_marked(svg: &str) -> String {
+    svg.replace(
+        &format!("opacity=\"{DASH_MARK}\""),
+        "opacity=\"1\" stroke-dasharray=\"6 4\"",
+    )
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

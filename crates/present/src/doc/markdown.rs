@@ -1,15 +1,12 @@
-//! Markdown rendering of the report documents: GitHub-flavoured tables, figures as links
-//! to the SVG files written beside the report, the case file in a collapsible block.
-//! The content itself is built in `document.rs`.
+//! Markdown rendering of the document model: GitHub-flavoured tables, figures as links
+//! to the SVG files written beside the page, the case file in a collapsible block.
+//! The content itself is built by each page's document (`report/document.rs`, the sweep,
+//! stability and study documents).
 
 use std::fmt::Write;
 
-use super::attachments::Attachments;
-use super::doc::{Block, Cell, Table, Tone};
-use super::document::{case_document, suite_document};
 use super::format::md_cell;
-use super::provenance::Provenance;
-use rockslide_verify::suite::CaseResult;
+use super::model::{Block, Cell, Table, Tone};
 
 /// Where a rendered page's links to other outputs point.
 #[derive(Debug, Clone, PartialEq)]
@@ -98,7 +95,7 @@ pub(crate) fn render(blocks: &[Block], figure_dir: &str) -> String {
 }
 
 /// Render blocks as Markdown with links to other outputs made as `links` says.
-fn render_with(blocks: &[Block], figure_dir: &str, links: &Links) -> String {
+pub(crate) fn render_with(blocks: &[Block], figure_dir: &str, links: &Links) -> String {
     let mut s = String::new();
     for b in blocks {
         match b {
@@ -139,27 +136,4 @@ fn render_with(blocks: &[Block], figure_dir: &str, links: &Links) -> String {
         }
     }
     s
-}
-
-/// The Markdown report of one case.
-pub fn case_markdown(r: &CaseResult) -> String {
-    render(
-        &case_document(r, Provenance::current(), &Attachments::default()),
-        "",
-    )
-}
-
-/// The suite summary: the verdict per case, every gate failure, provenance.
-pub fn suite_markdown(results: &[CaseResult]) -> String {
-    suite_markdown_with(results, &Links::Relative)
-}
-
-/// The suite summary with its links to the case pages and figures made as `links` says
-/// (the GitHub step summary, read away from the output folder).
-pub fn suite_markdown_with(results: &[CaseResult], links: &Links) -> String {
-    render_with(
-        &suite_document(results, Provenance::current(), &Attachments::default()),
-        "",
-        links,
-    )
 }

@@ -7,7 +7,7 @@ use std::path::Path;
 use rockslide_core::error::Error;
 use rockslide_core::io::write_atomically;
 
-use super::doc::Block;
+use super::model::Block;
 use super::{html, markdown};
 
 /// Write `blocks` as `<dir>/<stem>.md` and `<dir>/<stem>.html` (page title `title`), and
