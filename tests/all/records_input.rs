@@ -314,7 +314,7 @@ fn shipped_record_cases_load() {
     }
 }
 
-/// Baseline handling (record.rs `integrate`): the cubic correction keeps the corrected
+/// Baseline handling (record/integrate.rs `integrate`): the cubic correction keeps the corrected
 /// acceleration, velocity and displacement exact integrals of each other (re-integrating
 /// the corrected acceleration reproduces them to < 1e-12), keeps the start at rest, leaves
 /// a displacement orthogonal to t² and t³ (the least-squares conditions), and reduces the

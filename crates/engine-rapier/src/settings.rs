@@ -242,157 +242,17 @@ impl RapierSettings {
         Self::with_defaults(case, defaults)
     }
 
-    /// The case's options read and validated over the defaults `d`.
+    /// The case's options read and validated over the defaults `d`: the numbers, the
+    /// named choices, the model's defaults where an option is not given, then the keys
+    /// no option has (every error in that order).
     fn with_defaults(case: &Case, d: Self) -> Result<Self, Vec<InputError>> {
         let mut errors = Vec::new();
-        let mut number = |key: &str, default: f64, lo: f64, hi: f64, what: &str| -> f64 {
-            match case.engine_number(ID, key, default) {
-                Ok(x) if x.is_finite() && x >= lo && x <= hi => x,
-                Ok(x) => {
-                    errors.push(case.field_error(
-                        &format!("engines.{ID}.{key}"),
-                        format!("is {x}, but must be {what}"),
-                    ));
-                    default
-                }
-                Err(e) => {
-                    errors.push(e);
-                    default
-                }
-            }
-        };
-        let whole = |x: f64| x.fract() == 0.0;
-        let substeps = number(
-            "substeps",
-            d.substeps as f64,
-            1.0,
-            1000.0,
-            "a whole number from 1 to 1000",
-        );
-        let pgs = number(
-            "pgs_iterations",
-            d.pgs_iterations as f64,
-            1.0,
-            1000.0,
-            "a whole number from 1 to 1000",
-        );
-        let foot = number(
-            "foot_mass_ratio",
-            d.foot_mass_ratio,
-            1e-9,
-            0.999,
-            "a mass ratio between 1e-9 and 0.999",
-        );
-        let hz = number("contact_hz", 0.0, 0.0, 1e9, "a frequency in Hz, positive");
-        let accuracy = number(
-            "accuracy",
-            d.accuracy,
-            ACCURACY_MIN,
-            ACCURACY_MAX,
-            "a relative accuracy from 1e-4 to 0.2",
-        );
-        let zeta = number(
-            "contact_damping_ratio",
-            d.contact_damping_ratio,
-            0.0,
-            1e6,
-            "a damping ratio, zero or positive",
-        );
-        for (key, x) in [("substeps", substeps), ("pgs_iterations", pgs)] {
-            if !whole(x) {
-                errors.push(case.field_error(
-                    &format!("engines.{ID}.{key}"),
-                    format!("is {x}, but must be a whole number"),
-                ));
-            }
-        }
-        let has_hz = case
-            .engine(ID)
-            .is_some_and(|r| r.options.contains_key("contact_hz"));
-        if has_hz && hz <= 0.0 {
-            errors.push(case.field_error(
-                &format!("engines.{ID}.contact_hz"),
-                "must be a positive frequency in Hz",
-            ));
-        }
-        let friction = match case.engine_text(
-            ID,
-            "friction_model",
-            "simplified",
-            &["simplified", "coulomb"],
-        ) {
-            Ok(s) if s == "coulomb" => FrictionModel::Coulomb,
-            Ok(_) => FrictionModel::Simplified,
-            Err(e) => {
-                errors.push(e);
-                FrictionModel::Simplified
-            }
-        };
-        let oscillator_contact = match case.engine_text(
-            ID,
-            "contact_model",
-            d.contact_model_name(),
-            &["joint-limit", "foot", "applied-force"],
-        ) {
-            Ok(s) if s == "foot" => OscillatorContact::Foot,
-            Ok(s) if s == "applied-force" => {
-                if !matches!(case.scene.model, Model::RockingBody(_)) {
-                    errors.push(case.field_error(
-                        &format!("engines.{ID}.contact_model"),
-                        "is \"applied-force\", which is built for a rocking body only; use \"joint-limit\" or \"foot\"",
-                    ));
-                }
-                OscillatorContact::AppliedForce
-            }
-            Ok(_) => OscillatorContact::JointLimit,
-            Err(e) => {
-                errors.push(e);
-                OscillatorContact::JointLimit
-            }
-        };
-        let step_rule = match case.engine_text(ID, "step_rule", "scene", &["scene", "none"]) {
-            Ok(s) if s == "none" => StepRule::None,
-            Ok(_) => StepRule::Scene,
-            Err(e) => {
-                errors.push(e);
-                StepRule::Scene
-            }
-        };
-        let has_substeps = case
-            .engine(ID)
-            .is_some_and(|r| r.options.contains_key("substeps"));
-        let substeps = match oscillator_contact {
-            OscillatorContact::Foot if !has_substeps => Self::default().substeps as f64,
-            // Applied forces are held over the whole rapier step: substeps add nothing.
-            OscillatorContact::AppliedForce if !has_substeps => 1.0,
-            _ => substeps,
-        };
-        // The rocking body's feet need 8 sweeps (their loaded contacts creep with 1); the
-        // joint-limit supports are as accurate with 1 (docs/rapier-engine.md).
-        let has_pgs = case
-            .engine(ID)
-            .is_some_and(|r| r.options.contains_key("pgs_iterations"));
-        let pgs = if oscillator_contact == OscillatorContact::Foot
-            && matches!(case.scene.model, Model::RockingBody(_))
-            && !has_pgs
-        {
-            FOOT_ROCKING_SWEEPS as f64
-        } else {
-            pgs
-        };
-        if let Some(r) = case.engine(ID) {
-            for key in r.options.keys() {
-                if !KEYS.contains(&key.as_str()) {
-                    errors.push(case.field_error(
-                        &format!("engines.{ID}.{key}"),
-                        format!(
-                            "unknown option of the rapier engine; options are {}",
-                            KEYS.join(", ")
-                        ),
-                    ));
-                }
-            }
-        }
+        let n = Numbers::read(case, &d, &mut errors);
+        let friction = friction_model(case, &mut errors);
+        let oscillator_contact = contact_model(case, &d, &mut errors);
+        let step_rule = step_rule(case, &mut errors);
+        let (substeps, pgs) = contact_defaults(case, oscillator_contact, n.substeps, n.pgs);
+        unknown_options(case, &mut errors);
         if !errors.is_empty() {
             return Err(errors);
         }
@@ -400,11 +260,11 @@ impl RapierSettings {
             substeps: substeps as usize,
             pgs_iterations: pgs as usize,
             friction,
-            foot_mass_ratio: foot,
-            contact_hz: if has_hz { Some(hz) } else { d.contact_hz },
-            contact_damping_ratio: zeta,
+            foot_mass_ratio: n.foot,
+            contact_hz: if n.has_hz { Some(n.hz) } else { d.contact_hz },
+            contact_damping_ratio: n.zeta,
             oscillator_contact,
-            accuracy,
+            accuracy: n.accuracy,
             step_rule,
         })
     }
@@ -531,3 +391,222 @@ pub const KEYS: &[&str] = &[
     "accuracy",
     "step_rule",
 ];
+
+/// The numeric options of a case as read over the defaults (a value out of range is
+/// reported and replaced by its default).
+struct Numbers {
+    substeps: f64,
+    pgs: f64,
+    foot: f64,
+    hz: f64,
+    has_hz: bool,
+    accuracy: f64,
+    zeta: f64,
+}
+
+impl Numbers {
+    /// Read every numeric option over the defaults `d`, then check that the counts are
+    /// whole and a given `contact_hz` positive.
+    fn read(case: &Case, d: &RapierSettings, errors: &mut Vec<InputError>) -> Self {
+        let mut number = |key: &str, default: f64, lo: f64, hi: f64, what: &str| {
+            engine_number(case, errors, key, default, (lo, hi), what)
+        };
+        let substeps = number(
+            "substeps",
+            d.substeps as f64,
+            1.0,
+            1000.0,
+            "a whole number from 1 to 1000",
+        );
+        let pgs = number(
+            "pgs_iterations",
+            d.pgs_iterations as f64,
+            1.0,
+            1000.0,
+            "a whole number from 1 to 1000",
+        );
+        let foot = number(
+            "foot_mass_ratio",
+            d.foot_mass_ratio,
+            1e-9,
+            0.999,
+            "a mass ratio between 1e-9 and 0.999",
+        );
+        let hz = number("contact_hz", 0.0, 0.0, 1e9, "a frequency in Hz, positive");
+        let accuracy = number(
+            "accuracy",
+            d.accuracy,
+            ACCURACY_MIN,
+            ACCURACY_MAX,
+            "a relative accuracy from 1e-4 to 0.2",
+        );
+        let zeta = number(
+            "contact_damping_ratio",
+            d.contact_damping_ratio,
+            0.0,
+            1e6,
+            "a damping ratio, zero or positive",
+        );
+        let whole = |x: f64| x.fract() == 0.0;
+        for (key, x) in [("substeps", substeps), ("pgs_iterations", pgs)] {
+            if !whole(x) {
+                errors.push(case.field_error(
+                    &format!("engines.{ID}.{key}"),
+                    format!("is {x}, but must be a whole number"),
+                ));
+            }
+        }
+        let has_hz = has_option(case, "contact_hz");
+        if has_hz && hz <= 0.0 {
+            errors.push(case.field_error(
+                &format!("engines.{ID}.contact_hz"),
+                "must be a positive frequency in Hz",
+            ));
+        }
+        Self {
+            substeps,
+            pgs,
+            foot,
+            hz,
+            has_hz,
+            accuracy,
+            zeta,
+        }
+    }
+}
+
+/// Whether the case gives the option `key` of this engine.
+fn has_option(case: &Case, key: &str) -> bool {
+    case.engine(ID).is_some_and(|r| r.options.contains_key(key))
+}
+
+/// The number option `key` (`default` when not given) within `lo..=hi`; otherwise an
+/// error saying it must be `what`, and the default.
+fn engine_number(
+    case: &Case,
+    errors: &mut Vec<InputError>,
+    key: &str,
+    default: f64,
+    (lo, hi): (f64, f64),
+    what: &str,
+) -> f64 {
+    match case.engine_number(ID, key, default) {
+        Ok(x) if x.is_finite() && x >= lo && x <= hi => x,
+        Ok(x) => {
+            errors.push(case.field_error(
+                &format!("engines.{ID}.{key}"),
+                format!("is {x}, but must be {what}"),
+            ));
+            default
+        }
+        Err(e) => {
+            errors.push(e);
+            default
+        }
+    }
+}
+
+/// `friction_model`: rapier's `"simplified"` (default) or `"coulomb"` friction.
+fn friction_model(case: &Case, errors: &mut Vec<InputError>) -> FrictionModel {
+    match case.engine_text(
+        ID,
+        "friction_model",
+        "simplified",
+        &["simplified", "coulomb"],
+    ) {
+        Ok(s) if s == "coulomb" => FrictionModel::Coulomb,
+        Ok(_) => FrictionModel::Simplified,
+        Err(e) => {
+            errors.push(e);
+            FrictionModel::Simplified
+        }
+    }
+}
+
+/// `contact_model` over the model's default: `"applied-force"` is refused but for a
+/// rocking body.
+fn contact_model(
+    case: &Case,
+    d: &RapierSettings,
+    errors: &mut Vec<InputError>,
+) -> OscillatorContact {
+    match case.engine_text(
+        ID,
+        "contact_model",
+        d.contact_model_name(),
+        &["joint-limit", "foot", "applied-force"],
+    ) {
+        Ok(s) if s == "foot" => OscillatorContact::Foot,
+        Ok(s) if s == "applied-force" => {
+            if !matches!(case.scene.model, Model::RockingBody(_)) {
+                errors.push(case.field_error(
+                    &format!("engines.{ID}.contact_model"),
+                    "is \"applied-force\", which is built for a rocking body only; use \"joint-limit\" or \"foot\"",
+                ));
+            }
+            OscillatorContact::AppliedForce
+        }
+        Ok(_) => OscillatorContact::JointLimit,
+        Err(e) => {
+            errors.push(e);
+            OscillatorContact::JointLimit
+        }
+    }
+}
+
+/// `step_rule`: `"scene"` (default) or `"none"`.
+fn step_rule(case: &Case, errors: &mut Vec<InputError>) -> StepRule {
+    match case.engine_text(ID, "step_rule", "scene", &["scene", "none"]) {
+        Ok(s) if s == "none" => StepRule::None,
+        Ok(_) => StepRule::Scene,
+        Err(e) => {
+            errors.push(e);
+            StepRule::Scene
+        }
+    }
+}
+
+/// Substeps and Gauss–Seidel sweeps where the case gives none: the contact model's.
+fn contact_defaults(
+    case: &Case,
+    contact: OscillatorContact,
+    substeps: f64,
+    pgs: f64,
+) -> (f64, f64) {
+    let substeps = match contact {
+        OscillatorContact::Foot if !has_option(case, "substeps") => {
+            RapierSettings::default().substeps as f64
+        }
+        // Applied forces are held over the whole rapier step: substeps add nothing.
+        OscillatorContact::AppliedForce if !has_option(case, "substeps") => 1.0,
+        _ => substeps,
+    };
+    // The rocking body's feet need 8 sweeps (their loaded contacts creep with 1); the
+    // joint-limit supports are as accurate with 1 (docs/rapier-engine.md).
+    let pgs = if contact == OscillatorContact::Foot
+        && matches!(case.scene.model, Model::RockingBody(_))
+        && !has_option(case, "pgs_iterations")
+    {
+        FOOT_ROCKING_SWEEPS as f64
+    } else {
+        pgs
+    };
+    (substeps, pgs)
+}
+
+/// An error for every option of this engine that is not one of [`KEYS`].
+fn unknown_options(case: &Case, errors: &mut Vec<InputError>) {
+    if let Some(r) = case.engine(ID) {
+        for key in r.options.keys() {
+            if !KEYS.contains(&key.as_str()) {
+                errors.push(case.field_error(
+                    &format!("engines.{ID}.{key}"),
+                    format!(
+                        "unknown option of the rapier engine; options are {}",
+                        KEYS.join(", ")
+                    ),
+                ));
+            }
+        }
+    }
+}
