@@ -1,4 +1,4 @@
-//! A streaming MCAP writer (https://mcap.dev/spec) of just what rockslide's files hold:
+//! A streaming MCAP writer (<https://mcap.dev/spec>) of just what rockslide's files hold:
 //! header, attachments, metadata, schemas and channels in the data section, messages in
 //! zstd chunks with their message indexes, then the summary (schemas, channels,
 //! statistics, chunk, attachment and metadata indexes), summary offsets and footer, with
