@@ -2,7 +2,7 @@
 //! stability map of `cases/stability/`, the work-precision sweeps of the top-level
 //! oscillator cases (cheap: each has an exact reference and runs in seconds per engine),
 //! and every case of the default case folders, all three at once on every core in one
-//! pool, the costliest cases first ([`crate::schedule`]). A case whose report shows a
+//! pool, the costliest cases first (`schedule.rs`). A case whose report shows a
 //! sweep is written once its sweep is; the others as soon as they are run. Output order
 //! is the cases' order, whatever finished first.
 

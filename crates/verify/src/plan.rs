@@ -14,9 +14,9 @@ pub struct PlannedRun {
     /// Time step, s.
     pub dt: f64,
     /// Values one row records (time, channels, contact fields), when the engine declares
-    /// it ([`Engine::recorded_values`]); `None`: priced as every quantity of the catalogue.
+    /// it ([`Engine::recorded_values`](rockslide_engine_api::Engine::recorded_values)); `None`: priced as every quantity of the catalogue.
     pub values: Option<usize>,
-    /// Whether the engine streams natively ([`Engine::streams_natively`]): a streamed run
+    /// Whether the engine streams natively ([`Engine::streams_natively`](rockslide_engine_api::Engine::streams_natively)): a streamed run
     /// then holds only its kept rows.
     pub native_streaming: bool,
 }
