@@ -54,7 +54,7 @@ pub struct Fe;
 
 impl Engine for Fe {
     fn id(&self) -> &'static str {
-        "fe"
+        options::ID
     }
 
     fn description(&self) -> &'static str {

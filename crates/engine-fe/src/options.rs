@@ -5,7 +5,8 @@
 use rockslide_core::case::Case;
 use rockslide_core::error::InputError;
 
-const ID: &str = "fe";
+/// The engine's id, as in `[engines.fe]` and in every run it makes.
+pub(crate) const ID: &str = "fe";
 
 /// The option that switches the rotational-inertia and P-Delta sensitivity reruns.
 pub(crate) const SENSITIVITY: &str = "sensitivity";

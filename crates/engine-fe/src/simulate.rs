@@ -70,7 +70,7 @@ fn simulate_with<S: RowSink + ?Sized>(
         check,
     });
     Ok(Run {
-        engine: "fe",
+        engine: crate::options::ID,
         variant: variant.to_string(),
         arrangement: crate::arrangement(variant),
         dt,

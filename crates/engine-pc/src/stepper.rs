@@ -346,7 +346,7 @@ fn integrate<S: StepSink + ?Sized>(
     let rows = out.rows;
 
     Run {
-        engine: "predictor-corrector",
+        engine: crate::options::ID,
         variant: variant.to_string(),
         arrangement: Arrangement::Single,
         dt,

@@ -83,7 +83,7 @@ pub mod variant {
 
 impl Engine for Rapier {
     fn id(&self) -> &'static str {
-        "rapier"
+        settings::ID
     }
 
     fn description(&self) -> &'static str {

@@ -53,7 +53,7 @@ pub(crate) fn run(
     said.described.extend(vertical::describe(case, drive));
     describe::record_baseline(ex, drive, &mut said.described);
     Ok(Run {
-        engine: "rapier",
+        engine: crate::settings::ID,
         variant: variant.to_string(),
         arrangement: Arrangement::Single,
         dt,

@@ -164,7 +164,7 @@ pub fn run(
         ),
     ));
     Ok(Run {
-        engine: "rapier",
+        engine: crate::settings::ID,
         variant: variant.to_string(),
         arrangement: rockslide_engine_api::Arrangement::Single,
         dt,

@@ -202,7 +202,7 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
         sink.row(s.t, &values[..i], &states);
     });
     Ok(Run {
-        engine: "fe",
+        engine: crate::options::ID,
         variant: variant.to_string(),
         arrangement: crate::arrangement(variant),
         dt,
