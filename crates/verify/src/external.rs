@@ -22,7 +22,8 @@ use std::collections::BTreeSet;
 use std::path::PathBuf;
 use std::sync::Mutex;
 
-use rockslide_core::case::{Case, EXTERNAL_VARIANT, External};
+use rockslide_core::case::{Case, EXTERNAL_VARIANT, External, Model};
+use rockslide_core::trace::Trace;
 use rockslide_core::error::{InputError, InputErrors};
 use rockslide_core::response::quantity_def;
 use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
@@ -113,6 +114,7 @@ fn external_run(case: &Case, e: &External) -> Run {
     let (t0, t1) = (trace.time[0], trace.end_time());
     let channels: Vec<&str> = trace.channels.iter().map(|c| c.key).collect();
     let mut findings = e.read.notes.clone();
+    findings.extend(invariant_coverage(case, &trace));
     if t1 < case.run.duration * (1.0 - 1e-9) {
         findings.push(format!(
             "the file ends at t = {t1} s, before the case's duration {} s",
@@ -255,13 +257,59 @@ fn default_checks(
 /// The physical invariants of a run: an engine's with its own limits, an external run's
 /// on the channels its file provides, with [`INVARIANT_LIMIT`].
 pub fn check_invariants(case: &Case, run: &Run) -> Vec<InvariantCheck> {
-    let mut checks = crate::invariants::check_run(case, run);
-    if is_external(run) {
-        for c in &mut checks {
-            c.limit = INVARIANT_LIMIT;
-        }
+    if !is_external(run) {
+        return crate::invariants::check_run(case, run);
+    }
+    let mut checks = crate::invariants::check_external_run(case, run);
+    for c in &mut checks {
+        c.limit = INVARIANT_LIMIT;
     }
     checks
+}
+
+/// What an external trace lets the invariants measure, in words for the run's findings:
+/// each invariant its file cannot support is "not provided" (with the channels it lacks),
+/// never a zero that passes; a normal force the file does not give but the scene fixes
+/// (M·g on a horizontally shaken oscillator) is said to be the scene's.
+fn invariant_coverage(case: &Case, trace: &Trace) -> Vec<String> {
+    let has = |k: &str| trace.has(k);
+    let tangential = has("resistance") || has("base_shear");
+    let scene_normal =
+        matches!(case.scene.model, Model::Oscillator(_)) && case.scene.vertical().is_none();
+    let normal = has("normal") || scene_normal;
+    let one_contact = matches!(case.scene.model, Model::Oscillator(_));
+    let mut missing: Vec<String> = Vec::new();
+    let lack = |missing: &mut Vec<String>, invariant: &str, needs: &[(&str, bool)]| {
+        let absent: Vec<&str> = needs.iter().filter(|n| !n.1).map(|n| n.0).collect();
+        if !absent.is_empty() {
+            missing.push(format!("{invariant} (no {})", absent.join(", no ")));
+        }
+    };
+    let tangential_force = ("resistance or base_shear", tangential);
+    lack(&mut missing, "friction_bound", &[tangential_force, ("normal", normal)]);
+    lack(&mut missing, "compression", &[("normal", has("normal"))]);
+    let slip = [tangential_force, ("normal", normal), ("slide", has("slide"))];
+    if one_contact {
+        lack(&mut missing, "stick_slip", &slip);
+        lack(&mut missing, "dissipation", &slip);
+    } else {
+        missing.push("stick_slip, dissipation (need each support's own forces and slip)".into());
+    }
+    missing.push("penetration (no per-contact gaps)".into());
+    let energy = [("energy_input", has("energy_input")), ("energy_error", has("energy_error"))];
+    lack(&mut missing, "energy_balance", &energy);
+    let mut notes = vec![format!(
+        "invariants not provided by the file: {}",
+        missing.join("; ")
+    )];
+    if !has("normal") && scene_normal && tangential {
+        notes.push(
+            "friction_bound measured against the scene's normal force M·g (the file gives \
+             no normal force)"
+                .into(),
+        );
+    }
+    notes
 }
 
 /// What a response table shows for a run without a value of quantity `key`: "not

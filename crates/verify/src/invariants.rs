@@ -127,7 +127,20 @@ fn friction_and_weight(case: &Case) -> (f64, f64) {
     }
 }
 
-fn contact_series<'a>(case: &Case, trace: &'a Trace) -> Option<ContactSeries<'a>> {
+/// Where the normal force of the summed series comes from.
+#[derive(Clone, Copy, PartialEq)]
+enum NormalSource {
+    /// An engine's run: the scene's M·g for a horizontally shaken oscillator.
+    Engine,
+    /// Another program's results: its own normal force wherever it gives one.
+    Own,
+}
+
+fn contact_series<'a>(
+    case: &Case,
+    trace: &'a Trace,
+    source: NormalSource,
+) -> Option<ContactSeries<'a>> {
     let tangential = trace
         .column("base_shear")
         .or_else(|| trace.column("resistance"))?;
@@ -135,7 +148,9 @@ fn contact_series<'a>(case: &Case, trace: &'a Trace) -> Option<ContactSeries<'a>
     // A horizontally shaken oscillator has no vertical dynamics in the scene: its normal
     // force is M·g, whatever an engine's own model of it (rapier's foot) records, so the
     // structure's resistance is held to μ·M·g. Under vertical motion N(t) is recorded.
+    // Another program's normal force is its own: a sign error in its model must show.
     let normal = match (trace.column("normal"), &case.scene.model) {
+        (Some(n), _) if source == NormalSource::Own => Normal::Recorded(n),
         (_, Model::Oscillator(o)) if case.scene.vertical().is_none() => {
             Normal::Constant(o.normal_force())
         }
@@ -165,6 +180,16 @@ fn worse(a: Option<Measure>, b: Option<Measure>) -> Option<Measure> {
 /// Every invariant measurable on a completed run, with the engine's tolerance and the
 /// case's declarations. A run that did not complete is judged by its status instead.
 pub fn check_run(case: &Case, run: &Run) -> Vec<InvariantCheck> {
+    check_trace(case, run, NormalSource::Engine)
+}
+
+/// [`check_run`] for another program's results: its trace sums are its own, so its
+/// normal force (where given) is checked for compression and bounds its friction.
+pub fn check_external_run(case: &Case, run: &Run) -> Vec<InvariantCheck> {
+    check_trace(case, run, NormalSource::Own)
+}
+
+fn check_trace(case: &Case, run: &Run, source: NormalSource) -> Vec<InvariantCheck> {
     if !run.status.completed() || run.trace.is_empty() {
         return Vec::new();
     }
@@ -172,7 +197,7 @@ pub fn check_run(case: &Case, run: &Run) -> Vec<InvariantCheck> {
     let frictional = mu.is_finite() && mu > 0.0;
     let block = &run.trace.contacts;
     let per_contact = !block.is_empty();
-    let summed = contact_series(case, &run.trace);
+    let summed = contact_series(case, &run.trace, source);
     let time = &run.trace.time;
     let mut found: Vec<(Invariant, Measure)> = Vec::new();
     let mut put = |key: Invariant, m: Option<Measure>| {

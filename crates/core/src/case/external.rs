@@ -31,15 +31,85 @@ pub struct External {
 /// How an external file is laid out.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct ExternalFormat {
-    /// Foreign header → rockslide header (`"U1 (mm)"` → `"rel_disp [mm]"`). Empty: the
-    /// headers are rockslide's. With a map, unmapped columns are ignored (and listed).
-    pub columns: Vec<(String, String)>,
+    /// The program's layout (`format = "…"`); `None`: recognised from the file (a
+    /// SAP2000 `TABLE:` title line, the ANSYS POST26 listing banner), else a CSV.
+    pub layout: Option<ExternalLayout>,
+    /// Foreign column → rockslide header, with a factor (`"U1 (mm)"` → `"rel_disp [mm]"`,
+    /// `"Link 1: P"` → `"normal [kN]"` × −1). Empty: the headers are rockslide's. With a
+    /// map, unmapped columns are ignored (and listed).
+    pub columns: Vec<ColumnMap>,
     /// Field separator of a CSV: `,` (default), `;`, `\t`, or `' '` for runs of blanks.
     pub delimiter: Option<char>,
     /// Lines before the header line (a foreign program's preamble).
     pub skip_lines: usize,
     /// The state topic of an MCAP file (`/fe/paper/state`); needed when it has several.
     pub topic: Option<String>,
+    /// A SAP2000/ETABS/CSiBridge table's `OutputCase` to read (needed when it has several).
+    pub output_case: Option<String>,
+    /// The OpenSees recorder command that wrote the file (`Node -file d.out -time -node 2
+    /// -dof 1 disp`), naming its columns.
+    pub recorder: Option<String>,
+    /// An OpenSees script (Tcl or Python, resolved) whose recorder command writing the
+    /// file names its columns.
+    pub script: Option<PathBuf>,
+}
+
+/// One column of a foreign file as rockslide reads it: `value × scale`, in `to`'s unit.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ColumnMap {
+    /// The column as the program names it (`"U1 (mm)"`, `"Joint 2: U1"`, `"UX_2"`).
+    pub from: String,
+    /// The rockslide header it becomes (`"rel_disp [mm]"`; without a unit, the file's
+    /// own units row or the quantity's SI unit).
+    pub to: String,
+    /// Factor applied before the unit's conversion: a sign (−1 for a compression-negative
+    /// normal force) and a scale.
+    pub scale: f64,
+}
+
+impl ColumnMap {
+    /// A column read as written (scale 1).
+    pub fn new(from: impl Into<String>, to: impl Into<String>) -> Self {
+        Self {
+            from: from.into(),
+            to: to.into(),
+            scale: 1.0,
+        }
+    }
+}
+
+/// The programs whose result files are read in their own layout.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ExternalLayout {
+    /// A CSV (rockslide's headers, or foreign ones with a column map).
+    Csv,
+    /// SAP2000, ETABS or CSiBridge table export: `TABLE:` title, field names, units row,
+    /// long tables (one row per object per step).
+    CsiTables,
+    /// ANSYS POST26 `PRVAR` listing (the banner repeated on every page).
+    AnsysPrvar,
+    /// Abaqus XY report (`.rpt`): an `X` column and named curves, `NoValue` gaps.
+    AbaqusReport,
+    /// OpenSees recorder output: no header, columns named by the recorder command.
+    OpenSeesRecorder,
+}
+
+impl ExternalLayout {
+    /// The layout `format = "…"` names, or `None`.
+    pub fn from_key(key: &str) -> Option<Self> {
+        Some(match key {
+            "csv" => Self::Csv,
+            "sap2000" | "etabs" | "csibridge" => Self::CsiTables,
+            "ansys" => Self::AnsysPrvar,
+            "abaqus" => Self::AbaqusReport,
+            "opensees" => Self::OpenSeesRecorder,
+            _ => return None,
+        })
+    }
+
+    /// The accepted keys, in words.
+    pub const KEYS: &'static str =
+        "\"csv\", \"sap2000\" (also \"etabs\", \"csibridge\"), \"ansys\", \"abaqus\", \"opensees\"";
 }
 
 /// An external file read: its trace in SI, and what the reader did, in words.

@@ -17,7 +17,8 @@ pub mod slug;
 mod spatial;
 
 pub use external::{
-    EXTERNAL_VARIANT, External, ExternalFormat, ExternalTrace, ReadExternal, check_label,
+    ColumnMap, EXTERNAL_VARIANT, External, ExternalFormat, ExternalLayout, ExternalTrace,
+    ReadExternal, check_label,
 };
 pub use invariant::Invariant;
 pub use load::{

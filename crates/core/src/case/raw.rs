@@ -40,7 +40,28 @@ pub struct RawExternal {
     pub delimiter: Option<String>,
     pub skip_lines: Option<i64>,
     #[serde(default)]
-    pub columns: BTreeMap<String, String>,
+    pub columns: BTreeMap<String, RawColumn>,
+    pub format: Option<String>,
+    pub output_case: Option<String>,
+    pub recorder: Option<String>,
+    pub script: Option<String>,
+}
+
+/// One entry of an `[[external]]` column map: the rockslide header it becomes, or that
+/// header with a factor (`{ quantity = "normal [kN]", scale = -1 }`).
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+pub enum RawColumn {
+    Header(String),
+    Scaled(RawScaledColumn),
+}
+
+/// A column map entry with a sign and a scale.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawScaledColumn {
+    pub quantity: String,
+    pub scale: f64,
 }
 
 /// `[[expected_outcome]]`: a run that is meant not to complete (a stability scene that

@@ -1,17 +1,27 @@
 //! `[[external]]`: other programs' results taking part like engines: the label, the
-//! file's layout (delimiter, preamble, column map, MCAP topic) and the file itself, read
-//! by the validator's reader so that a bad results file is an input error before any work.
+//! file's layout (the program's format, delimiter, preamble, column map with signs and
+//! scales, MCAP topic, SAP2000 output case, OpenSees recorder or script) and the file
+//! itself, read by the validator's reader so that a bad results file is an input error
+//! before any work.
 
 use std::path::Path;
 
-use super::super::external::{External, ExternalFormat, check_label};
-use super::super::raw::RawExternal;
+use super::super::external::{ColumnMap, External, ExternalFormat, ExternalLayout, check_label};
+use super::super::raw::{RawColumn, RawExternal};
 use super::validator::Validator;
 use crate::error::InputError;
 use crate::trace::parse_header;
 
-/// The external file's layout from its `[[external]]` keys, or the reason for a bad key.
-fn external_format(e: &RawExternal) -> Result<ExternalFormat, (&'static str, String)> {
+/// The external file's layout from its `[[external]]` keys (`dir`: the case's folder,
+/// against which a `script` resolves), or the reason for a bad key.
+fn external_format(e: &RawExternal, dir: &Path) -> Result<ExternalFormat, (&'static str, String)> {
+    let layout = match e.format.as_deref() {
+        None => None,
+        Some(key) => Some(ExternalLayout::from_key(key).ok_or_else(|| {
+            let keys = ExternalLayout::KEYS;
+            ("format", format!("is \"{key}\", but must be one of {keys}"))
+        })?),
+    };
     let delimiter = match e.delimiter.as_deref() {
         None | Some(",") => None,
         Some(";") => Some(';'),
@@ -36,21 +46,61 @@ fn external_format(e: &RawExternal) -> Result<ExternalFormat, (&'static str, Str
             ));
         }
     };
-    for (from, to) in &e.columns {
-        if let Err(why) = parse_header(to) {
-            return Err(("columns", format!("\"{from}\" = \"{to}\": {why}")));
+    let columns = column_map(e)?;
+    let opensees_only = |key: &'static str, given: bool| {
+        if given && layout != Some(ExternalLayout::OpenSeesRecorder) {
+            Err((
+                key,
+                "applies to OpenSees recorder files only (format = \"opensees\")".to_string(),
+            ))
+        } else {
+            Ok(())
         }
+    };
+    opensees_only("recorder", e.recorder.is_some())?;
+    opensees_only("script", e.script.is_some())?;
+    if e.output_case.is_some() && layout != Some(ExternalLayout::CsiTables) {
+        return Err((
+            "output_case",
+            "applies to SAP2000/ETABS/CSiBridge tables only (format = \"sap2000\")".into(),
+        ));
     }
     Ok(ExternalFormat {
-        columns: e
-            .columns
-            .iter()
-            .map(|(a, b)| (a.clone(), b.clone()))
-            .collect(),
+        layout,
+        columns,
         delimiter,
         skip_lines,
         topic: e.topic.clone(),
+        output_case: e.output_case.clone(),
+        recorder: e.recorder.clone(),
+        script: e.script.as_ref().map(|s| dir.join(s)),
     })
+}
+
+/// The column map: each entry's rockslide header checked, its factor finite and non-zero.
+fn column_map(e: &RawExternal) -> Result<Vec<ColumnMap>, (&'static str, String)> {
+    let mut out = Vec::with_capacity(e.columns.len());
+    for (from, column) in &e.columns {
+        let (to, scale) = match column {
+            RawColumn::Header(to) => (to, 1.0),
+            RawColumn::Scaled(s) => (&s.quantity, s.scale),
+        };
+        if let Err(why) = parse_header(to) {
+            return Err(("columns", format!("\"{from}\" = \"{to}\": {why}")));
+        }
+        if !(scale.is_finite() && scale != 0.0) {
+            return Err((
+                "columns",
+                format!("\"{from}\": scale is {scale}, but must be a finite number other than 0"),
+            ));
+        }
+        out.push(ColumnMap {
+            from: from.clone(),
+            to: to.clone(),
+            scale,
+        });
+    }
+    Ok(out)
 }
 
 impl Validator<'_> {
@@ -72,7 +122,7 @@ impl Validator<'_> {
                 );
                 continue;
             }
-            let format = match external_format(e) {
+            let format = match external_format(e, dir) {
                 Ok(f) => f,
                 Err((key, why)) => {
                     self.fail(&format!("{field}.{key}"), why);

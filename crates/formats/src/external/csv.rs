@@ -1,96 +1,22 @@
-//! Results produced by another program, read as a [`Trace`]: rockslide's own trace CSV
-//! (`time [s],rel_disp [m],…`, in any unit the catalogue's quantities accept — `mm`, `kN`,
-//! `ms`, `deg`…), a CSV with foreign headers and a column map saying what each column is
-//! (`"U1 (mm)" = "rel_disp [mm]"`), or a state topic of a rockslide MCAP file.
-//!
-//! Values are converted to SI on reading (`value × mul / div`, exact for SI columns, so a
-//! trace written by rockslide reads back bit for bit). Sizes are checked before anything
-//! is allocated: the file's bytes ([`MAX_EXTERNAL_BYTES`]), its columns
-//! ([`MAX_EXTERNAL_COLUMNS`]) and rows ([`limits::max_steps`]). Every problem
-//! is an input error naming the file, line, column and reason.
+//! CSV results files: rockslide's own headers (`time [s],rel_disp [mm],…`, any catalogued
+//! unit), or foreign headers with a column map (`"U1 (mm)" = "rel_disp [mm]"`, a factor
+//! where the program's sign or scale differs); `,`, `;`, tab or blank separators, decimal
+//! commas where the separator is not a comma, blank and `#` lines skipped.
 
 use std::path::Path;
 
 use rockslide_core::case::limits;
-use rockslide_core::case::{ExternalFormat, ExternalTrace};
-use rockslide_core::error::{InputError, InputErrors, io_reason, line_col};
+use rockslide_core::case::{ColumnMap, ExternalFormat, ExternalTrace};
+use rockslide_core::error::{InputError, InputErrors};
 use rockslide_core::trace::{ColumnKind, ColumnMeaning, Quantity, Trace, Unit, parse_header};
 
-use crate::mcap_file::{read_bounded, read_mcap};
-
-/// Largest external results file read, bytes (256 MiB).
-pub const MAX_EXTERNAL_BYTES: u64 = 256 << 20;
-
-/// Most columns an external CSV may have.
-pub const MAX_EXTERNAL_COLUMNS: usize = 1024;
-
-/// Read an external results file: an MCAP file (by extension `.mcap`) or a CSV.
-pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTrace, InputErrors> {
-    if path
-        .extension()
-        .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
-    {
-        return read_external_mcap(path, format.topic.as_deref());
-    }
-    let bytes = read_bounded(path, MAX_EXTERNAL_BYTES).map_err(|e| {
-        let why = io_reason(&e);
-        InputError::new(path, "", format!("cannot read the results file: {why}"))
-    })?;
-    let text = String::from_utf8(bytes).map_err(|e| {
-        let (line, col) = line_col(
-            &String::from_utf8_lossy(&e.as_bytes()[..e.utf8_error().valid_up_to()]),
-            usize::MAX,
-        );
-        InputError::new(path, "", "is not UTF-8 text").at(line, col)
-    })?;
-    // a byte-order mark, as spreadsheet programs write it, is not part of the first header
-    read_external_csv(path, text.strip_prefix('\u{feff}').unwrap_or(&text), format)
-}
-
-/// The state topic of a rockslide MCAP file as an external trace.
-fn read_external_mcap(path: &Path, topic: Option<&str>) -> Result<ExternalTrace, InputErrors> {
-    let contents = read_mcap(path)?;
-    let candidates: Vec<&(String, Trace)> = contents
-        .states
-        .iter()
-        .filter(|(t, _)| t != "/reference/state")
-        .collect();
-    let chosen = match topic {
-        Some(t) => contents.states.iter().find(|(name, _)| name == t),
-        None if candidates.len() == 1 => Some(candidates[0]),
-        None => None,
-    };
-    let Some((name, trace)) = chosen else {
-        let topics: Vec<&str> = contents.states.iter().map(|(t, _)| t.as_str()).collect();
-        let what = match topic {
-            Some(t) => format!("has no state topic \"{t}\""),
-            None => "has several state topics: name one with `topic`".to_string(),
-        };
-        return Err(InputError::new(
-            path,
-            "topic",
-            format!("{what}; its state topics: {}", topics.join(", ")),
-        )
-        .into());
-    };
-    if trace.is_empty() {
-        return Err(InputError::new(path, "topic", format!("\"{name}\" has no messages")).into());
-    }
-    check_times(path, name, &trace.time)?;
-    // the state alone, as from a CSV file: the contacts its messages carry stay out
-    let notes = vec![format!(
-        "rockslide MCAP topic {name}, {} samples",
-        trace.len()
-    )];
-    let mut trace = trace.clone();
-    trace.contacts = Default::default();
-    Ok(ExternalTrace { trace, notes })
-}
+use super::MAX_EXTERNAL_COLUMNS;
+use super::number::{Decimal, parse_number};
 
 /// The fields of a line: each one's text (surrounding double quotes removed) and 1-based
 /// character column. With `' '` as delimiter, runs of blanks separate fields (a header
 /// with blanks in it is then quoted).
-fn split_fields(line: &str, delimiter: char) -> Vec<(String, usize)> {
+pub(super) fn split_fields(line: &str, delimiter: char) -> Vec<(String, usize)> {
     let blanks = delimiter == ' ';
     let separates = |c: char| {
         if blanks {
@@ -138,7 +64,7 @@ fn split_fields(line: &str, delimiter: char) -> Vec<(String, usize)> {
 }
 
 /// Whether a line carries no data: blank, or a `#` comment.
-fn is_blank(line: &str) -> bool {
+pub(super) fn is_blank(line: &str) -> bool {
     let t = line.trim();
     t.is_empty() || t.starts_with('#')
 }
@@ -178,7 +104,9 @@ pub fn read_external_csv(
     let mut trace = Trace::with_channels(&quantities, 0);
     let mut values = vec![0.0; channels.len()];
     let max_rows = limits::max_steps();
-    let time_unit = meanings[time_index].expect("time column").unit;
+    let decimal = Decimal::for_delimiter(delimiter);
+    let mut commas = false;
+    let time_unit = meanings[time_index].expect("time column").0.unit;
     for (index, raw) in lines {
         let line_no = index + 1;
         if trace.len() as u64 >= max_rows {
@@ -208,10 +136,14 @@ pub fn read_external_csv(
             .at(line_no, col)
             .into());
         }
-        let number = |i: usize| parse_value(path, line_no, &headers[i].0, &fields[i]);
+        let mut number = |i: usize| {
+            let (x, comma) = parse_value(path, line_no, &headers[i].0, &fields[i], decimal)?;
+            commas |= comma;
+            Ok::<f64, InputError>(x)
+        };
         let t = time_unit.to_si(number(time_index)?);
-        for (v, (i, _, unit)) in values.iter_mut().zip(&channels) {
-            *v = unit.to_si(number(*i)?);
+        for (v, (i, _, unit, scale)) in values.iter_mut().zip(&channels) {
+            *v = unit.to_si(scaled(number(*i)?, *scale));
         }
         if let Some(&last) = trace.time.last()
             && t <= last
@@ -231,23 +163,31 @@ pub fn read_external_csv(
             .at(header_line_no, 1)
             .into());
     }
+    if commas {
+        notes.push("decimal commas read as decimal points".into());
+    }
     notes.insert(0, format!("CSV, {} rows", trace.len()));
     Ok(ExternalTrace { trace, notes })
 }
 
-/// A column's index, quantity and unit.
-type Channel = (usize, &'static Quantity, Unit);
+/// A column's index, quantity, unit and the map's factor.
+type Channel = (usize, &'static Quantity, Unit, f64);
+
+/// A value times the map's factor (exactly the value at factor 1).
+pub(super) fn scaled(value: f64, scale: f64) -> f64 {
+    if scale == 1.0 { value } else { value * scale }
+}
 
 /// The time column's index and the quantity columns of a header's `meanings` (line
 /// `header_line_no`); no time column is an error.
 fn time_and_channels(
     path: &Path,
     header_line_no: usize,
-    meanings: &[Option<ColumnMeaning>],
+    meanings: &[Option<Meaning>],
 ) -> Result<(usize, Vec<Channel>), InputError> {
     let time_index = meanings
         .iter()
-        .position(|m| m.is_some_and(|m| m.kind == ColumnKind::Time))
+        .position(|m| m.is_some_and(|m| m.0.kind == ColumnKind::Time))
         .ok_or_else(|| {
             InputError::new(
                 path,
@@ -260,18 +200,24 @@ fn time_and_channels(
         .iter()
         .enumerate()
         .filter_map(|(i, m)| match m {
-            Some(ColumnMeaning {
-                kind: ColumnKind::Quantity(q),
-                unit,
-            }) => Some((i, *q, *unit)),
+            Some((
+                ColumnMeaning {
+                    kind: ColumnKind::Quantity(q),
+                    unit,
+                },
+                scale,
+            )) => Some((i, *q, *unit, *scale)),
             _ => None,
         })
         .collect();
     Ok((time_index, channels))
 }
 
+/// A column's meaning and the map's factor on it.
+type Meaning = (ColumnMeaning, f64);
+
 /// The meaning of each column (`None`: ignored) and notes on units and ignored columns.
-type Meanings = (Vec<Option<ColumnMeaning>>, Vec<String>);
+type Meanings = (Vec<Option<Meaning>>, Vec<String>);
 
 fn column_meanings(
     path: &Path,
@@ -279,30 +225,27 @@ fn column_meanings(
     headers: &[(String, usize)],
     format: &ExternalFormat,
 ) -> Result<Meanings, InputErrors> {
-    let mut meanings = Vec::with_capacity(headers.len());
+    let mut meanings: Vec<Option<Meaning>> = Vec::with_capacity(headers.len());
     let (mut errors, mut ignored, mut converted) = (Vec::new(), Vec::new(), Vec::new());
+    let mut factors = Vec::new();
     for (text, col) in headers {
         let target = if format.columns.is_empty() {
-            Some(text.as_str())
+            Some((text.as_str(), 1.0))
         } else {
             format
                 .columns
                 .iter()
-                .find(|(from, _)| from.trim() == text.trim())
-                .map(|(_, to)| to.as_str())
+                .find(|c| c.from.trim() == text.trim())
+                .map(|c| (c.to.as_str(), c.scale))
         };
-        let Some(target) = target else {
+        let Some((target, scale)) = target else {
             ignored.push(format!("\"{text}\""));
             meanings.push(None);
             continue;
         };
         match parse_header(target) {
             Ok(m) => {
-                if meanings
-                    .iter()
-                    .flatten()
-                    .any(|o: &ColumnMeaning| o.key() == m.key())
-                {
+                if meanings.iter().flatten().any(|o| o.0.key() == m.key()) {
                     errors.push(
                         InputError::new(
                             path,
@@ -315,7 +258,10 @@ fn column_meanings(
                 if m.unit.mul != 1.0 || m.unit.div != 1.0 {
                     converted.push(format!("{} [{}]", m.key(), m.unit.name));
                 }
-                meanings.push(Some(m));
+                if scale != 1.0 {
+                    factors.push(factor_note(text, scale, m.key()));
+                }
+                meanings.push(Some((m, scale)));
             }
             Err(why) => {
                 let reason = if format.columns.is_empty() {
@@ -328,18 +274,7 @@ fn column_meanings(
             }
         }
     }
-    for (from, _) in &format.columns {
-        if !headers.iter().any(|(h, _)| h.trim() == from.trim()) {
-            errors.push(
-                InputError::new(
-                    path,
-                    "",
-                    format!("the column map names \"{from}\", but the header has no such column"),
-                )
-                .at(line, 1),
-            );
-        }
-    }
+    errors.extend(unmatched(path, line, headers, &format.columns));
     if !errors.is_empty() {
         return Err(InputErrors(errors));
     }
@@ -347,64 +282,67 @@ fn column_meanings(
     if !converted.is_empty() {
         notes.push(format!("converted to SI: {}", converted.join(", ")));
     }
+    if !factors.is_empty() {
+        notes.push(format!("sign and scale: {}", factors.join(", ")));
+    }
     if !ignored.is_empty() {
         notes.push(format!("columns ignored: {}", ignored.join(", ")));
     }
     Ok((meanings, notes))
 }
 
-/// One field as a finite number, or an error at its line and column.
+/// The map's factor in words: `"P" × -1 → normal`.
+pub(super) fn factor_note(column: &str, scale: f64, key: &str) -> String {
+    format!("\"{column}\" × {scale} → {key}")
+}
+
+/// An error for each map entry that names no column of the header.
+fn unmatched(
+    path: &Path,
+    line: usize,
+    headers: &[(String, usize)],
+    columns: &[ColumnMap],
+) -> Vec<InputError> {
+    columns
+        .iter()
+        .filter(|c| !headers.iter().any(|(h, _)| h.trim() == c.from.trim()))
+        .map(|c| {
+            let from = &c.from;
+            InputError::new(
+                path,
+                "",
+                format!("the column map names \"{from}\", but the header has no such column"),
+            )
+            .at(line, 1)
+        })
+        .collect()
+}
+
+/// One field as a finite number (and whether it was written with a decimal comma), or an
+/// error at its line and column.
 fn parse_value(
     path: &Path,
     line: usize,
     header: &str,
     field: &(String, usize),
-) -> Result<f64, InputError> {
+    decimal: Decimal,
+) -> Result<(f64, bool), InputError> {
     let (text, col) = field;
-    let at = |reason: String| InputError::new(path, "", reason).at(line, *col);
-    let s = text.trim();
-    if s.is_empty() {
-        return Err(at(format!(
-            "column \"{header}\": empty value (a missing value is not zero)"
-        )));
-    }
-    match s.parse::<f64>() {
-        Ok(x) if x.is_finite() => Ok(x),
-        Ok(_) => Err(at(format!(
-            "column \"{header}\": \"{s}\" is not a finite number"
-        ))),
-        Err(_) => Err(at(format!("column \"{header}\": \"{s}\" is not a number"))),
-    }
-}
-
-/// Times of an MCAP topic must be finite and strictly increasing (message `i`, 1-based).
-fn check_times(path: &Path, topic: &str, time: &[f64]) -> Result<(), InputErrors> {
-    for i in 0..time.len() {
-        if !(time[i].is_finite() && (i == 0 || time[i] > time[i - 1])) {
-            return Err(InputError::new(
-                path,
-                "topic",
-                format!(
-                    "{topic}: message {}: time {} s does not increase",
-                    i + 1,
-                    time[i]
-                ),
-            )
-            .into());
-        }
-    }
-    Ok(())
+    parse_number(text, decimal).map_err(|why| {
+        InputError::new(path, "", format!("column \"{header}\": {why}")).at(line, *col)
+    })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::external::read_external;
 
     fn fmt(columns: &[(&str, &str)]) -> ExternalFormat {
         ExternalFormat {
             columns: columns
                 .iter()
-                .map(|(a, b)| (a.to_string(), b.to_string()))
+                .map(|(a, b)| ColumnMap::new(*a, *b))
                 .collect(),
             ..Default::default()
         }

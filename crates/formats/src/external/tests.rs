@@ -1,0 +1,369 @@
+//! Each program's layout read, and each malformed variant refused at its line and column.
+//! The texts follow the layouts the programs document (module docs of each reader).
+
+use rockslide_core::case::{ColumnMap, ExternalFormat, ExternalLayout};
+
+use super::read_external;
+
+fn format(layout: ExternalLayout, columns: &[(&str, &str, f64)]) -> ExternalFormat {
+    ExternalFormat {
+        layout: Some(layout),
+        columns: columns
+            .iter()
+            .map(|(a, b, s)| ColumnMap {
+                from: a.to_string(),
+                to: b.to_string(),
+                scale: *s,
+            })
+            .collect(),
+        ..Default::default()
+    }
+}
+
+/// Write `text` as `name` in a fresh folder and read it with `format`.
+fn read(
+    name: &str,
+    text: &str,
+    format: &ExternalFormat,
+) -> Result<rockslide_core::case::ExternalTrace, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, text).unwrap();
+    read_external(&path, format).map_err(|e| {
+        let prefix = format!("{}:", path.display());
+        e.to_string().replace(&prefix, &format!("{name}:"))
+    })
+}
+
+/// A SAP2000 export: BOM, CRLF, `;` with decimal commas, two tables, a units row, a
+/// repeated page header, an envelope row, a second output case.
+const SAP: &str = "\u{feff}TABLE:  \"Joint Displacements\"\r\n\
+Joint;OutputCase;CaseType;StepType;StepNum;U1;U2;U3\r\n\
+Text;Text;Text;Text;Sec;mm;mm;mm\r\n\
+1;TH;LinDirHist;Time;0;0;0;0\r\n\
+2;TH;LinDirHist;Time;0;0;0;0\r\n\
+2;TH;LinDirHist;Time;0,01;1,5;0;0\r\n\
+Joint;OutputCase;CaseType;StepType;StepNum;U1;U2;U3\r\n\
+Text;Text;Text;Text;Sec;mm;mm;mm\r\n\
+2;TH;LinDirHist;Time;0,02;2,5;0;0\r\n\
+2;TH;LinDirHist;Max;;2,5;0;0\r\n\
+2;DEAD;LinStatic;;;9;9;9\r\n\
+\r\n\
+TABLE:  \"Element Forces - Links\"\r\n\
+Link;LinkElem;OutputCase;CaseType;StepType;StepNum;P;V2\r\n\
+Text;Text;Text;Text;Text;Sec;KN;KN\r\n\
+1;1;TH;LinDirHist;Time;0;-1000;0\r\n\
+1;1;TH;LinDirHist;Time;0,01;-1000;250\r\n\
+1;1;TH;LinDirHist;Time;0,02;-1000;500\r\n";
+
+fn sap_format() -> ExternalFormat {
+    let mut f = format(
+        ExternalLayout::CsiTables,
+        &[
+            ("Joint 2: U1", "rel_disp", 1.0),
+            ("Link 1: P", "normal", -1.0),
+            ("Link 1: V2", "resistance [kN]", 1.0),
+        ],
+    );
+    f.output_case = Some("TH".into());
+    f
+}
+
+#[test]
+fn a_sap2000_long_table_is_pivoted_with_its_units_row_and_the_map_s_sign() {
+    let t = read("sap.csv", SAP, &sap_format()).unwrap();
+    assert_eq!(t.trace.time, [0.0, 0.01, 0.02]);
+    assert_eq!(t.trace.column("rel_disp").unwrap(), [0.0, 0.0015, 0.0025]);
+    assert_eq!(t.trace.column("normal").unwrap(), [1e6, 1e6, 1e6]);
+    assert_eq!(t.trace.column("resistance").unwrap(), [0.0, 250e3, 500e3]);
+    let notes = t.notes.join("\n");
+    for said in [
+        "tables \"Joint Displacements\", \"Element Forces - Links\", OutputCase \"TH\" (1 rows of other output cases skipped)",
+        "1 envelope rows (Max, Min) skipped",
+        "converted to SI: rel_disp [mm], normal [kN], resistance [kN]",
+        "sign and scale: \"Link 1: P\" × -1 → normal",
+        "decimal commas read as decimal points",
+    ] {
+        assert!(notes.contains(said), "{said}\n{notes}");
+    }
+    // recognised without `format`
+    let mut f = sap_format();
+    f.layout = None;
+    assert_eq!(read("sap.csv", SAP, &f).unwrap().trace, t.trace);
+}
+
+#[test]
+fn malformed_sap2000_exports_are_located() {
+    let e = |text: &str, f: &ExternalFormat| read("sap.csv", text, f).unwrap_err();
+    let f = sap_format();
+    assert_eq!(
+        e(&SAP.replace("0,01;1,5", "0,01;1,5x"), &f),
+        "sap.csv:6:27: table \"Joint Displacements\", field \"U1\": \"1,5x\" is not a number"
+    );
+    assert_eq!(
+        e(&SAP.replace("Time;0,02;2,5", "Time;0,005;2,5"), &f),
+        "sap.csv:9:22: StepNum: time 0.005 does not increase for \"Joint 2: U1\" (its row before, line 6, is at 0.01)"
+    );
+    assert_eq!(
+        e(
+            &SAP.replace(
+                "1;1;TH;LinDirHist;Time;0;-1000;0",
+                "1;1;TH;LinDirHist;Time;0;-1000"
+            ),
+            &f
+        ),
+        "sap.csv:16:26: table \"Element Forces - Links\": has 7 fields, but its field names have 8"
+    );
+    assert_eq!(
+        e(&SAP.replace("Time;0,01;1,5", "Step By Step;1;1,5"), &f),
+        "sap.csv:6:17: StepType \"Step By Step\": the rows are not times; export the time history step by step with StepType `Time` (SAP2000: Direct History Results, Step-by-Step)"
+    );
+    let mut any_case = sap_format();
+    any_case.output_case = None;
+    assert_eq!(
+        e(SAP, &any_case),
+        "sap.csv:11:3: OutputCase \"DEAD\": the file has several output cases (\"TH\", \"DEAD\"); name the one to read with `output_case`"
+    );
+    let mut wrong_unit = sap_format();
+    wrong_unit.columns[0].to = "rel_disp [m]".into();
+    assert_eq!(
+        e(SAP, &wrong_unit),
+        "sap.csv:5:24: \"Joint 2: U1\": the map says [m], the file's units say \"mm\""
+    );
+    let mut unknown = sap_format();
+    unknown.columns[0].from = "Joint 3: U1".into();
+    assert!(e(SAP, &unknown).starts_with(
+        "sap.csv:1:1: the column map names \"Joint 3: U1\", but the file has no such series; its series: \"Joint 1: U1\""
+    ));
+    assert_eq!(
+        e("Joint,OutputCase\n1,TH\n", &f),
+        "sap.csv:1:1: is not in a table: an export starts each table with a `TABLE: \"…\"` line"
+    );
+    assert!(
+        e("TABLE: \"Joint Displacements\"\nJoint,OutputCase,U1\n", &f)
+            .starts_with("sap.csv:2:1: table \"Joint Displacements\": the field names have no OutputCase, StepType and StepNum")
+    );
+}
+
+/// An ANSYS POST26 listing over two pages, with the item labels under the names and an
+/// output file's text around it.
+const PRVAR: &str = " /OUTPUT FILE= file.out\n\
+\n\
+ ***** ANSYS POST26 VARIABLE LISTING *****\n\
+\n\
+  TIME        2 UX_2         3 FX_1         4 SLIP_1\n\
+              UX             FX             SLIDE\n\
+  0.0000       0.0000        0.0000         0.0000\n\
+  0.10000E-01  0.12345E-02  -0.25000E+06    0.0000\n\
+\n\
+ ***** ANSYS POST26 VARIABLE LISTING *****\n\
+\n\
+  TIME        2 UX_2         3 FX_1         4 SLIP_1\n\
+              UX             FX             SLIDE\n\
+  0.20000E-01  0.25000E-02  -0.50000E+06    0.50000E-03\n\
+\n\
+ PRINTOUT RESUMED BY /GOP\n";
+
+fn ansys_format() -> ExternalFormat {
+    format(
+        ExternalLayout::AnsysPrvar,
+        &[
+            ("UX_2", "rel_disp [m]", 1.0),
+            ("FX_1", "resistance [N]", -1.0),
+            ("SLIP_1", "slide", 1.0),
+        ],
+    )
+}
+
+#[test]
+fn an_ansys_prvar_listing_is_read_across_its_pages() {
+    let t = read("file.out", PRVAR, &ansys_format()).unwrap();
+    assert_eq!(t.trace.time, [0.0, 0.01, 0.02]);
+    assert_eq!(
+        t.trace.column("rel_disp").unwrap(),
+        [0.0, 0.0012345, 0.0025]
+    );
+    assert_eq!(t.trace.column("resistance").unwrap(), [0.0, 250e3, 500e3]);
+    assert_eq!(t.trace.column("slide").unwrap(), [0.0, 0.0, 0.0005]);
+    assert!(t.notes.iter().any(|n| n == "2 listing page(s) joined"));
+    let mut f = ansys_format();
+    f.layout = None;
+    assert_eq!(read("file.out", PRVAR, &f).unwrap().trace, t.trace);
+}
+
+#[test]
+fn malformed_ansys_listings_are_located() {
+    let e = |text: &str| read("file.out", text, &ansys_format()).unwrap_err();
+    assert_eq!(
+        e(&PRVAR.replace("0.12345E-02", "0.12345E-0Z")),
+        "file.out:8:14: \"0.12345E-0Z\" is not a number"
+    );
+    assert_eq!(
+        e(&PRVAR.replace("-0.50000E+06    0.50000E-03", "-0.50000E+06")),
+        "file.out:14:27: has 3 fields, but the header (line 12) has 4"
+    );
+    assert_eq!(
+        e(&PRVAR.replace("0.20000E-01", "0.50000E-02")),
+        "file.out:14:1: TIME: time 0.005 does not increase for \"UX_2\" (its row before, line 8, is at 0.01)"
+    );
+    assert_eq!(
+        e(&PRVAR.replace("3 FX_1", "3 UX_2")),
+        "file.out:5:30: variable name \"UX_2\" appears twice in the header: give each variable its own name (the Name argument of NSOL, ESOL, RFORCE)"
+    );
+    assert!(e("TIME UX\n0 0\n").starts_with("file.out:1:1: has no `***** ANSYS POST26"));
+}
+
+/// An Abaqus XY report: a curve name with blanks, `NoValue` in a mapped and an unmapped
+/// curve, Abaqus's number forms.
+const RPT: &str = "\n\
+                X          U:U1 PI: MASS-1 N: 2      RF:RF1 PI: GROUND-1 N: 1             ALLKE\n\
+\n\
+               0.                        0.                       NoValue                0.\n\
+           10.E-03               1.2345E-03               -250.E+03           NoValue\n\
+           20.E-03                2.500E-03               -500.E+03                1.\n";
+
+fn abaqus_format() -> ExternalFormat {
+    format(
+        ExternalLayout::AbaqusReport,
+        &[
+            ("U:U1 PI: MASS-1 N: 2", "rel_disp [m]", 1.0),
+            ("RF:RF1 PI: GROUND-1 N: 1", "resistance [N]", -1.0),
+        ],
+    )
+}
+
+#[test]
+fn an_abaqus_report_is_read_with_its_gaps_skipped() {
+    let t = read("x.rpt", RPT, &abaqus_format()).unwrap();
+    assert_eq!(t.trace.time, [0.01, 0.02]);
+    assert_eq!(t.trace.column("rel_disp").unwrap(), [0.0012345, 0.0025]);
+    assert_eq!(t.trace.column("resistance").unwrap(), [250e3, 500e3]);
+    let notes = t.notes.join("\n");
+    assert!(notes.contains("2 `NoValue` entries"), "{notes}");
+    assert!(
+        notes.contains("1 times skipped where a mapped series has no value (the first at 0)"),
+        "{notes}"
+    );
+}
+
+#[test]
+fn malformed_abaqus_reports_are_located() {
+    let e = |text: &str| read("x.rpt", text, &abaqus_format()).unwrap_err();
+    assert_eq!(
+        e(&RPT.replace("-500.E+03", "-500.E+0x")),
+        "x.rpt:6:48: \"-500.E+0x\" is not a number (nor `NoValue`)"
+    );
+    assert_eq!(
+        e(&RPT.replace("                1.\n", "\n")),
+        "x.rpt:6:48: has 3 fields, but the header (line 2) has 4"
+    );
+    assert!(e("0. 1.\n").starts_with("x.rpt:1:1: has no `X` header line"));
+}
+
+fn opensees_format(recorder: &str) -> ExternalFormat {
+    let mut f = format(
+        ExternalLayout::OpenSeesRecorder,
+        &[("node 2 dof 1 disp", "rel_disp [m]", 1.0)],
+    );
+    f.recorder = Some(recorder.into());
+    f
+}
+
+#[test]
+fn an_opensees_recorder_file_is_named_by_its_command_or_script() {
+    let text = "0 0 0\n0.01 0.0012345 7\n0.02 0.0025 7\n";
+    let f = opensees_format("recorder Node -file disp.out -time -node 2 -dof 1 2 disp");
+    let t = read("disp.out", text, &f).unwrap();
+    assert_eq!(
+        t.trace.column("rel_disp").unwrap(),
+        [0.0, 0.0012345, 0.0025]
+    );
+    // from the script's recorder command writing this file
+    let dir = tempfile::tempdir().unwrap();
+    let script = dir.path().join("model.py");
+    std::fs::write(
+        &script,
+        "ops.recorder('Node', '-file', 'other.out', '-time', '-node', 3, '-dof', 1, 'disp')\n\
+         ops.recorder('Node', '-file', 'disp.out', '-time', '-node', 2, '-dof', 1, 2, 'disp')\n",
+    )
+    .unwrap();
+    let data = dir.path().join("disp.out");
+    std::fs::write(&data, text).unwrap();
+    let mut by_script = opensees_format("");
+    by_script.recorder = None;
+    by_script.script = Some(script.clone());
+    assert_eq!(read_external(&data, &by_script).unwrap().trace, t.trace);
+    // without either, by position
+    let mut positional = format(
+        ExternalLayout::OpenSeesRecorder,
+        &[("column 2", "rel_disp [m]", 1.0)],
+    );
+    positional.recorder = None;
+    assert_eq!(read("disp.out", text, &positional).unwrap().trace, t.trace);
+    // a script without this file's recorder
+    std::fs::write(
+        &script,
+        "recorder Node -file a.out -time -node 1 -dof 1 disp\n",
+    )
+    .unwrap();
+    let e = read_external(&data, &by_script).unwrap_err().to_string();
+    assert!(
+        e.contains("model.py: script: has no Node or Element recorder writing \"disp.out\"; its recorders write: a.out (line 1)"),
+        "{e}"
+    );
+}
+
+#[test]
+fn malformed_opensees_files_are_located() {
+    let f = opensees_format("recorder Node -file disp.out -time -node 2 -dof 1 disp");
+    let e = |text: &str| read("disp.out", text, &f).unwrap_err();
+    assert_eq!(
+        e("0 0\n0.01 0.001 5\n"),
+        "disp.out:2:12: has 3 fields, but line 1 of the data has 2"
+    );
+    assert_eq!(
+        e("0 0\n0.01 1e-3q\n"),
+        "disp.out:2:6: \"1e-3q\" is not a number"
+    );
+    assert_eq!(
+        e("0 0 1\n"),
+        "disp.out:1:1: has 2 values a row, but the recorder (1 nodes × 1 DOFs) writes 1"
+    );
+    let no_time = opensees_format("recorder Node -file disp.out -node 2 -dof 1 disp");
+    assert!(
+        read("disp.out", "0\n", &no_time)
+            .unwrap_err()
+            .ends_with("recorder: the recorder writes no time column: add `-time` to it")
+    );
+}
+
+#[test]
+fn a_csv_with_decimal_commas_and_a_sign_in_the_map() {
+    let mut f = format(
+        ExternalLayout::Csv,
+        &[("t", "time [s]", 1.0), ("P", "normal [kN]", -1.0)],
+    );
+    f.delimiter = Some(';');
+    let t = read("p.csv", "t;P\n0;-1000\n0,5;-999,5\n", &f).unwrap();
+    assert_eq!(t.trace.time, [0.0, 0.5]);
+    assert_eq!(t.trace.column("normal").unwrap(), [1e6, 999.5e3]);
+    assert!(
+        t.notes
+            .iter()
+            .any(|n| n == "sign and scale: \"P\" × -1 → normal")
+    );
+    assert!(
+        t.notes
+            .iter()
+            .any(|n| n == "decimal commas read as decimal points")
+    );
+}
+
+#[test]
+fn a_program_s_file_without_a_map_is_refused_with_its_series() {
+    let e = read("file.out", PRVAR, &format(ExternalLayout::AnsysPrvar, &[])).unwrap_err();
+    assert_eq!(
+        e,
+        "file.out:1:1: needs a column map (`columns`) saying which of its series is which quantity (ANSYS POST26 PRVAR listing); its series: \"UX_2\", \"FX_1\", \"SLIP_1\""
+    );
+}
