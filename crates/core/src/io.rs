@@ -4,13 +4,19 @@
 //!   that may not be absolute, may not climb (`..`) and may not pass through a symbolic
 //!   link leading out of the folder — a case file from someone else cannot make rockslide
 //!   write anywhere but the output folder.
+//! - [`output_target`]: the file a path names is written as the user means it — a new
+//!   name or a regular file is replaced, a symbolic link is followed (its target is
+//!   written, the link kept), and a folder, a device, a FIFO or a socket is refused with
+//!   the reason, never replaced by a regular file.
 //! - [`write_atomically`]: every file is written to a temporary sibling and renamed into
 //!   place, so a reader never sees a half-written report, trace or JUnit file. The
-//!   temporary sibling has a fixed name (`.<file>.rockslide-tmp`), so one left behind by an
-//!   interrupted run is reused and renamed away by the next run writing that file, and
-//!   [`remove_stale_temporaries`] clears the others from a folder. Only temporaries
-//!   untouched for [`STALE_AFTER`] are stale: another process writing into the same folder
-//!   (the shards of a study share one) keeps its temporary for milliseconds only.
+//!   temporary sibling's name is unique to the process and the write
+//!   (`.<file>.<pid>-<n>.rockslide-tmp`), so two runs writing into one folder at once
+//!   (parallel CI jobs) never take each other's temporary: both succeed, the last rename
+//!   of a file wins, and every file is whole. [`remove_stale_temporaries`] clears the
+//!   temporaries an interrupted run left. Only temporaries untouched for [`STALE_AFTER`]
+//!   are stale: another process writing into the same folder keeps its temporary for
+//!   milliseconds only.
 
 use std::io::Write;
 use std::path::{Component, Path, PathBuf};
@@ -58,13 +64,93 @@ pub fn inside(root: &Path, relative: impl AsRef<Path>) -> Result<PathBuf, Error>
     Ok(joined)
 }
 
-/// The temporary sibling `path` is written to before being renamed into place.
+/// Writes made by this process so far: the second part of a temporary name, so that two
+/// threads writing one file never share a temporary.
+static WRITES: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+
+/// A temporary sibling `path` is written to before being renamed into place, unique to
+/// this process and this call: `.<file>.<pid>-<n>.rockslide-tmp`.
 pub fn temporary_for(path: &Path) -> PathBuf {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    path.with_file_name(format!(".{name}{TEMP_SUFFIX}"))
+    let n = WRITES.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let pid = std::process::id();
+    path.with_file_name(format!(".{name}.{pid}-{n}{TEMP_SUFFIX}"))
+}
+
+/// The file `path` is written to, or why it is not written: a new name or a regular file
+/// is itself; a symbolic link is followed to its target (the link is kept, its target
+/// replaced) — a link to nothing is refused; a folder (or a path ending in `/`), a device,
+/// a FIFO or a socket is refused, never replaced by a regular file.
+pub fn output_target(path: &Path) -> Result<PathBuf, Error> {
+    let refuse = |why: String| Error::Other(format!("{}: {why}", path.display()));
+    if names_a_folder(path) {
+        return Err(refuse(
+            "names a folder (it ends in `/`, `.` or `..`): give a file name".into(),
+        ));
+    }
+    let meta = match path.symlink_metadata() {
+        Ok(meta) => meta,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(path.to_path_buf()),
+        Err(e) => return Err(Error::io(path, e)),
+    };
+    if meta.file_type().is_symlink() {
+        return match std::fs::canonicalize(path) {
+            Ok(real) => output_target(&real),
+            Err(_) => Err(refuse(format!(
+                "is a symbolic link to {}, which does not exist: rockslide follows a link \
+                 to a file but does not replace the link; name its target instead",
+                std::fs::read_link(path).map_or("?".into(), |t| t.display().to_string())
+            ))),
+        };
+    }
+    match file_kind(&meta.file_type()) {
+        None => Ok(path.to_path_buf()),
+        Some(kind) => Err(refuse(format!(
+            "is {kind}, not a regular file: rockslide writes only regular files (or new names), \
+             and never replaces anything else"
+        ))),
+    }
+}
+
+/// A path that can only name a folder: it ends in a separator, `.` or `..`.
+fn names_a_folder(path: &Path) -> bool {
+    let text = path.as_os_str().to_string_lossy();
+    text.ends_with(std::path::MAIN_SEPARATOR)
+        || text.ends_with('/')
+        || matches!(
+            path.components().next_back(),
+            None | Some(Component::CurDir | Component::ParentDir | Component::RootDir)
+        )
+}
+
+/// What a file that is not regular is, in words (`None`: a regular file).
+fn file_kind(kind: &std::fs::FileType) -> Option<&'static str> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        if kind.is_char_device() {
+            return Some("a character device");
+        }
+        if kind.is_block_device() {
+            return Some("a block device");
+        }
+        if kind.is_fifo() {
+            return Some("a FIFO (named pipe)");
+        }
+        if kind.is_socket() {
+            return Some("a socket");
+        }
+    }
+    if kind.is_dir() {
+        Some("a folder")
+    } else if kind.is_file() {
+        None
+    } else {
+        Some("not a regular file")
+    }
 }
 
 /// Write `bytes` to `path` atomically, creating parent folders ([`write_atomically_with`]
@@ -84,6 +170,7 @@ pub fn write_atomically_with(
     path: &Path,
     write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> Result<(), Error>,
 ) -> Result<(), Error> {
+    let path = &output_target(path)?;
     let dir = path
         .parent()
         .filter(|p| !p.as_os_str().is_empty())
@@ -103,7 +190,8 @@ fn stream_and_rename(
     path: &Path,
     write: impl FnOnce(&mut std::io::BufWriter<std::fs::File>) -> Result<(), Error>,
 ) -> Result<(), Error> {
-    // never follow a symbolic link planted where the temporary file goes
+    // never follow a symbolic link planted where the temporary file goes (or a file a
+    // dead process of the same id left)
     if tmp.symlink_metadata().is_ok() {
         std::fs::remove_file(tmp).map_err(|e| Error::io(tmp, e))?;
     }
@@ -185,6 +273,106 @@ mod tests {
         for bad in ["", ".", "..", "../x", "a/../../x", "/etc/x", "./a"] {
             assert!(inside(root, bad).is_err(), "{bad:?} accepted");
         }
+    }
+
+    fn scratch(name: &str) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("rockslide-io-{name}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        dir
+    }
+
+    /// `newmark --csv /dev/full` left a 454-byte regular file where the device was: a
+    /// device is refused before anything is written (asked of the target only, so that
+    /// this test cannot replace the system's device even if it regressed).
+    #[test]
+    fn a_device_given_as_output_is_refused_not_replaced() {
+        let e = output_target(Path::new("/dev/null"))
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("is a character device"), "{e}");
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn a_fifo_given_as_output_is_refused_and_kept() {
+        let dir = scratch("fifo");
+        let fifo = dir.join("pipe");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        assert!(made.is_ok_and(|s| s.success()), "mkfifo failed");
+        let e = write_atomically(&fifo, b"x").unwrap_err().to_string();
+        assert!(e.contains("is a FIFO"), "{e}");
+        use std::os::unix::fs::FileTypeExt;
+        assert!(fifo.symlink_metadata().unwrap().file_type().is_fifo());
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    /// A symbolic link given as `--csv` was replaced by a regular file and its target left
+    /// untouched: the link is followed, its target written and the link kept; a link to
+    /// nothing is refused.
+    #[cfg(unix)]
+    #[test]
+    fn a_symbolic_link_given_as_output_is_followed_not_replaced() {
+        let dir = scratch("link");
+        let target = dir.join("target.csv");
+        std::fs::write(&target, "old").unwrap();
+        let link = dir.join("link.csv");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        write_atomically(&link, b"new").unwrap();
+        assert!(link.symlink_metadata().unwrap().file_type().is_symlink());
+        assert_eq!(std::fs::read_to_string(&target).unwrap(), "new");
+        let dangling = dir.join("dangling.csv");
+        std::os::unix::fs::symlink(dir.join("nowhere.csv"), &dangling).unwrap();
+        let e = write_atomically(&dangling, b"x").unwrap_err().to_string();
+        assert!(e.contains("does not exist"), "{e}");
+        assert!(
+            dangling
+                .symlink_metadata()
+                .unwrap()
+                .file_type()
+                .is_symlink()
+        );
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    /// `--csv out/` said "Not a directory": a folder, or a path that can only name one,
+    /// is refused with that reason.
+    #[test]
+    fn a_folder_or_trailing_slash_given_as_output_says_so() {
+        let dir = scratch("folder");
+        let e = write_atomically(&dir, b"x").unwrap_err().to_string();
+        assert!(e.contains("is a folder"), "{e}");
+        let slash = PathBuf::from(format!("{}/new/", dir.display()));
+        let e = write_atomically(&slash, b"x").unwrap_err().to_string();
+        assert!(e.contains("names a folder"), "{e}");
+        assert!(!dir.join("new").exists());
+        std::fs::remove_dir_all(dir).unwrap();
+    }
+
+    /// Two runs into one folder failed with "….mcap: No such file or directory": each
+    /// took the other's fixed-name temporary. Temporaries are unique per process and
+    /// write, so concurrent writers of one file all succeed and the file is whole.
+    #[test]
+    fn concurrent_writers_of_one_file_all_succeed() {
+        let dir = scratch("concurrent");
+        let path = dir.join("trace.csv");
+        assert_ne!(temporary_for(&path), temporary_for(&path));
+        let texts: Vec<String> = (0..8).map(|i| format!("{i}").repeat(100_000)).collect();
+        std::thread::scope(|s| {
+            for text in &texts {
+                let path = &path;
+                s.spawn(move || {
+                    for _ in 0..20 {
+                        write_atomically(path, text.as_bytes()).unwrap();
+                    }
+                });
+            }
+        });
+        let last = std::fs::read_to_string(&path).unwrap();
+        assert!(texts.contains(&last), "a mixed or truncated file");
+        let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+        assert_eq!(left.len(), 1, "temporaries left behind");
+        std::fs::remove_dir_all(dir).unwrap();
     }
 
     #[test]

@@ -9,7 +9,8 @@
 //!   per-contact block — that engines fill. Its files (CSV, MCAP, the Foxglove scene) and
 //!   other programs' results are `rockslide-formats`', which engines do not need.
 //! - [`study_grid`]: study grid files → validated, expanded grids of points.
-//! - [`error`]: input errors and run-time errors; [`io`]: atomic writes.
+//! - [`error`]: input errors and run-time errors; [`io`]: atomic writes into the paths
+//!   the user means; [`serde_real`]: non-finite numbers through JSON.
 //!
 //! ## Glossary (paper symbols)
 //!
@@ -33,5 +34,6 @@ pub mod case;
 pub mod error;
 pub mod io;
 pub mod response;
+pub mod serde_real;
 pub mod study_grid;
 pub mod trace;

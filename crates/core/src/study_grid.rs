@@ -65,9 +65,9 @@ pub struct GridRecord {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum Amplitude {
     /// Scaled to this peak ground acceleration, m/s².
-    Pga(f64),
+    Pga(#[serde(with = "crate::serde_real::real")] f64),
     /// Multiplied by this factor (1 = as recorded).
-    Scale(f64),
+    Scale(#[serde(with = "crate::serde_real::real")] f64),
 }
 
 /// One point of the grid: what one set of runs is driven by.
@@ -79,7 +79,9 @@ pub struct GridPoint {
     pub record: usize,
     /// Amplitude setting.
     pub amplitude: Amplitude,
-    /// Friction coefficient, `None` = the base case's.
+    /// Friction coefficient, `None` = the base case's (∞ included: it round-trips
+    /// through JSON as `"inf"`).
+    #[serde(with = "crate::serde_real::real_opt")]
     pub mu: Option<f64>,
     /// +1 as recorded, −1 inverted.
     pub polarity: f64,

@@ -34,6 +34,7 @@
 
 #![warn(missing_docs)]
 
+mod budget;
 mod contact_forces;
 mod describe;
 mod drive;
@@ -185,6 +186,7 @@ impl Rapier {
         let drive = drive_of(variant);
         let kinematic = drive == Drive::KinematicGround;
         let settings = RapierSettings::for_run(case, kinematic).map_err(|mut e| e.remove(0))?;
+        budget::check(case, drive, dt, &settings)?;
         match case.scene.spatial() {
             Some(spatial) => space::run(case, spatial, drive, (variant, dt), settings, None, sink),
             None => planar_scene::run(case, (variant, drive), dt, settings, sink),

@@ -30,70 +30,11 @@ pub fn read<T: DeserializeOwned>(path: &Path) -> Result<T, String> {
     serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// An `f64` that may be non-finite: `#[serde(with = "crate::json::real")]`.
-pub mod real {
-    use serde::{Deserialize, Deserializer, Serializer};
-
-    /// A number, or `"NaN"`, `"inf"`, `"-inf"`.
-    #[derive(serde::Deserialize)]
-    #[serde(untagged)]
-    enum Repr {
-        Number(f64),
-        Text(String),
-        Null(()),
-    }
-
-    /// Write a finite value as a number, a non-finite one as text.
-    pub fn serialize<S: Serializer>(x: &f64, s: S) -> Result<S::Ok, S::Error> {
-        if x.is_finite() {
-            s.serialize_f64(*x)
-        } else if x.is_nan() {
-            s.serialize_str("NaN")
-        } else if *x > 0.0 {
-            s.serialize_str("inf")
-        } else {
-            s.serialize_str("-inf")
-        }
-    }
-
-    /// Read what [`serialize`] wrote (and `null` as NaN, as serde_json writes NaN).
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<f64, D::Error> {
-        match Repr::deserialize(d)? {
-            Repr::Number(x) => Ok(x),
-            Repr::Null(()) => Ok(f64::NAN),
-            Repr::Text(t) => match t.as_str() {
-                "NaN" => Ok(f64::NAN),
-                "inf" => Ok(f64::INFINITY),
-                "-inf" => Ok(f64::NEG_INFINITY),
-                other => Err(serde::de::Error::custom(format!(
-                    "\"{other}\" is not a number (expected a number, \"NaN\", \"inf\" or \"-inf\")"
-                ))),
-            },
-        }
-    }
-}
-
-/// An `Option<f64>` whose value may be non-finite: `#[serde(with = "crate::json::real_opt")]`
-/// (`null` is `None`).
-pub mod real_opt {
-    use serde::{Deserialize, Deserializer, Serializer};
-
-    #[derive(serde::Serialize, serde::Deserialize)]
-    struct Real(#[serde(with = "super::real")] f64);
-
-    /// `None` as `null`, a value as [`super::real`] writes it.
-    pub fn serialize<S: Serializer>(x: &Option<f64>, s: S) -> Result<S::Ok, S::Error> {
-        match x {
-            Some(v) => super::real::serialize(v, s),
-            None => s.serialize_none(),
-        }
-    }
-
-    /// Read what [`serialize`] wrote.
-    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Option<f64>, D::Error> {
-        Ok(Option::<Real>::deserialize(d)?.map(|r| r.0))
-    }
-}
+/// An `f64` that may be non-finite: `#[serde(with = "crate::json::real")]` (kept in core,
+/// where the study grid's points use it too).
+pub use rockslide_core::serde_real::real;
+/// An `Option<f64>` whose value may be non-finite: `#[serde(with = "crate::json::real_opt")]`.
+pub use rockslide_core::serde_real::real_opt;
 
 #[cfg(test)]
 mod tests {

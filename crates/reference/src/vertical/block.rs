@@ -125,7 +125,7 @@ impl BlockWalker {
             let used = match self.state.phase {
                 BlockPhase::Stuck => self.stuck(t0 + s, d0, ds, ge0, gs, span),
                 BlockPhase::Sliding(sigma) => self.slide(t0 + s, sigma, d0, ds, ge0, gs, span),
-                BlockPhase::Airborne => self.fly(t0 + s, d0, ds, ge0, gs, span),
+                BlockPhase::Airborne => self.fly(t0 + s, d0, ds, ge0, gs, span)?,
             };
             s += used;
         }
@@ -193,12 +193,20 @@ impl BlockWalker {
     }
 
     /// Airborne: free horizontally, ballistic vertically, until the landing.
-    fn fly(&mut self, t: f64, d0: f64, ds: f64, ge0: f64, gs: f64, span: f64) -> f64 {
+    fn fly(
+        &mut self,
+        t: f64,
+        d0: f64,
+        ds: f64,
+        ge0: f64,
+        gs: f64,
+        span: f64,
+    ) -> Result<f64, String> {
         let (z0, w0) = (self.state.z, self.state.w);
         let z = |tau: f64| z0 + w0 * tau - ge0 * tau * tau / 2.0 - gs * tau * tau * tau / 6.0;
         // −z'' = g_e, linear: its extreme on the span bounds the curvature of −z
         let curvature = ge0.abs().max((ge0 + gs * span).abs());
-        let landing = first_rise(|tau| -z(tau), span, curvature, 0.0);
+        let landing = first_rise(|tau| -z(tau), span, curvature, 0.0)?;
         let tau = landing.unwrap_or(span);
         let v0 = self.state.v;
         self.advance(
@@ -232,7 +240,7 @@ impl BlockWalker {
             self.state.z = z(tau).max(0.0);
             self.state.w = w0 - ge0 * tau - gs * tau * tau / 2.0;
         }
-        tau
+        Ok(tau)
     }
 
     fn take_off(&mut self, t: f64) {

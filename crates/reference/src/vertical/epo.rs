@@ -229,7 +229,7 @@ impl EpoWalker {
             let (d0, ge0) = (d.0 + ds * s, self.c.g + av.0 + gamma * s);
             s += if self.state.phase == EpoPhase::Open {
                 events += 1;
-                self.fly(t0 + s, (d0, ds), (ge0, gamma), h - s)
+                self.fly(t0 + s, (d0, ds), (ge0, gamma), h - s)?
             } else {
                 self.closed(t0 + s, (d0, ds), (ge0, gamma), h - s, &mut events)?
             };
@@ -257,7 +257,7 @@ impl EpoWalker {
         // The contact opens where N falls below zero by more than a rounding residue (1e-12
         // of the weight): a contact that has just closed starts at N = 0 to rounding.
         let residue = 1e-12 * self.c.m * self.c.g;
-        let opening = first_rise(|x| -law.at(x) - residue, span, curvature, law.wz);
+        let opening = first_rise(|x| -law.at(x) - residue, span, curvature, law.wz)?;
         if opening.is_some() && self.c.kz.is_none() {
             return Err(format!(
                 "g + a_v < 0 at t ≈ {:.6} s: a rigid vertical contact would lift off, which this oscillator reference does not model",
@@ -274,8 +274,8 @@ impl EpoWalker {
             let local = law.shifted(s);
             let d_s = d0 + ds * s;
             s += match self.state.phase {
-                EpoPhase::Slipping(dir) => self.slip(t + s, dir, &local, d_s, ds, sub - s),
-                _ => self.stuck(t + s, &local, d_s, ds, sub - s),
+                EpoPhase::Slipping(dir) => self.slip(t + s, dir, &local, d_s, ds, sub - s)?,
+                _ => self.stuck(t + s, &local, d_s, ds, sub - s)?,
             };
         }
         // the vertical oscillator over the span (independent of the horizontal)
@@ -299,11 +299,17 @@ impl EpoWalker {
     /// The contact open: ballistic vertically (δ'' = g_e), free horizontally (u'' = d), the
     /// stick point with the mass, until the gap closes or the span ends; returns the time
     /// used. At closure the contact is closed and unstressed (e = 0), δ = 0.
-    fn fly(&mut self, t: f64, (d0, ds): (f64, f64), (ge0, gamma): (f64, f64), span: f64) -> f64 {
+    fn fly(
+        &mut self,
+        t: f64,
+        (d0, ds): (f64, f64),
+        (ge0, gamma): (f64, f64),
+        span: f64,
+    ) -> Result<f64, String> {
         let (u0, v0, z0, w0) = (self.state.u, self.state.v, self.state.dz, self.state.vz);
         let dz = |x: f64| z0 + w0 * x + ge0 * x * x / 2.0 + gamma * x * x * x / 6.0;
         let curvature = ge0.abs().max((ge0 + gamma * span).abs());
-        let closing = first_rise(dz, span, curvature, 0.0);
+        let closing = first_rise(dz, span, curvature, 0.0)?;
         let tau = closing.unwrap_or(span);
         let u = u0 + v0 * tau + d0 * tau * tau / 2.0 + ds * tau * tau * tau / 6.0;
         self.state.v = v0 + d0 * tau + ds * tau * tau / 2.0;
@@ -320,11 +326,18 @@ impl EpoWalker {
         } else {
             self.state.dz = dz(tau).min(0.0);
         }
-        tau
+        Ok(tau)
     }
 
     /// Elastic until an onset or the span's end; returns the time used.
-    fn stuck(&mut self, t: f64, law: &NormalLaw, d0: f64, ds: f64, span: f64) -> f64 {
+    fn stuck(
+        &mut self,
+        t: f64,
+        law: &NormalLaw,
+        d0: f64,
+        ds: f64,
+        span: f64,
+    ) -> Result<f64, String> {
         let (k, mu, w) = (self.c.k, self.c.mu, self.c.omega());
         let w2 = w * w;
         let e0 = self.state.u - self.state.up;
@@ -345,7 +358,7 @@ impl EpoWalker {
         let excess = |t: f64| k * e(t).abs() - mu * law.at(t) - margin;
         let curvature = k * w2 * cc.hypot(dd) + mu * law.wz * law.wz * law.amplitude();
         let onset = if mu.is_finite() {
-            first_rise(excess, span, curvature, w.max(law.wz))
+            first_rise(excess, span, curvature, w.max(law.wz))?
         } else {
             None
         };
@@ -362,11 +375,19 @@ impl EpoWalker {
                 distance: 0.0,
             });
         }
-        tau
+        Ok(tau)
     }
 
     /// Slipping in direction `dir` until the slip rate returns to zero or the span ends.
-    fn slip(&mut self, t: f64, dir: f64, law: &NormalLaw, d0: f64, ds: f64, span: f64) -> f64 {
+    fn slip(
+        &mut self,
+        t: f64,
+        dir: f64,
+        law: &NormalLaw,
+        d0: f64,
+        ds: f64,
+        span: f64,
+    ) -> Result<f64, String> {
         let (m, k, mu) = (self.c.m, self.c.k, self.c.mu);
         let (u0, v0) = (self.state.u, self.state.v);
         let f = dir * mu / m;
@@ -377,7 +398,7 @@ impl EpoWalker {
         let amp = law.amplitude();
         let curvature =
             ds.abs() + (mu / m) * (law.n1.abs() + wz * amp) + (mu / k) * wz.powi(3) * amp;
-        let stop = first_rise(|t| -rate(t), span, curvature, wz);
+        let stop = first_rise(|t| -rate(t), span, curvature, wz)?;
         let tau = stop.unwrap_or(span);
         self.state.u = u(tau);
         self.state.v = v(tau);
@@ -391,7 +412,7 @@ impl EpoWalker {
         if stop.is_some() {
             self.state.phase = EpoPhase::Stuck;
         }
-        tau
+        Ok(tau)
     }
 }
 

@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use super::grid::Grid;
-use super::runner::{PointResult, RunSummary, read_result, result_path};
+use super::runner::{PointResult, RunSummary, matches, read_result, result_path};
 use rockslide_core::error::Error;
 use rockslide_core::io::write_atomically;
 
@@ -97,11 +97,10 @@ pub fn collect(grid: &Grid, from: &[PathBuf], out: &Path) -> Result<Study, Error
     let mut results = Vec::with_capacity(grid.points.len());
     let mut missing = Vec::new();
     for p in &grid.points {
-        let hash = grid.point_hash(p);
         let mut found = None;
         for dir in std::iter::once(out).chain(from.iter().map(PathBuf::as_path)) {
             let path = result_path(dir, p);
-            if let Some(r) = read_result(&path).filter(|r| r.hash == hash) {
+            if let Some(r) = read_result(&path).filter(|r| matches(grid, r, p)) {
                 if dir != out {
                     let bytes = std::fs::read(&path).map_err(|e| Error::io(&path, e))?;
                     write_atomically(&result_path(out, p), &bytes)?;

@@ -35,22 +35,28 @@ pub struct RunSummary {
     /// completed.
     pub status: String,
     /// Sliding at the end of the run, m (mass minus ground, the PEPO's xp).
+    #[serde(with = "crate::json::real_opt")]
     pub residual_sliding: Option<f64>,
     /// Largest |sliding| during the run, m.
+    #[serde(with = "crate::json::real_opt")]
     pub peak_abs_sliding: Option<f64>,
     /// Largest |relative displacement|, m.
+    #[serde(with = "crate::json::real_opt")]
     pub peak_relative_displacement: Option<f64>,
     /// Number of slip episodes (the exact references count them; engines leave it empty).
     #[serde(default)]
     pub slip_episodes: Option<u64>,
     /// Total distance slid, m (sum of |slip| over the episodes; exact references only).
     #[serde(default)]
+    #[serde(with = "crate::json::real_opt")]
     pub total_slid: Option<f64>,
     /// First slip onset, s.
     #[serde(default)]
+    #[serde(with = "crate::json::real_opt")]
     pub slip_start: Option<f64>,
     /// Last slip stop, s.
     #[serde(default)]
+    #[serde(with = "crate::json::real_opt")]
     pub slip_end: Option<f64>,
     /// Steps taken (deterministic counter).
     pub steps: u64,
@@ -72,7 +78,8 @@ pub struct PointResult {
     pub pga: f64,
     /// Factor applied to the record as recorded (× polarity excluded).
     pub scale_factor: f64,
-    /// Friction coefficient it ran with.
+    /// Friction coefficient it ran with (∞ for no slip, written `"inf"`).
+    #[serde(with = "crate::json::real")]
     pub mu: f64,
     /// The excitation's label (file, scaling, polarity, resampling note).
     pub excitation: String,
@@ -124,9 +131,14 @@ pub fn read_result(path: &Path) -> Option<PointResult> {
     serde_json::from_str(&text).ok()
 }
 
-/// Whether a point already has a result matching its hash in `out`.
+/// Whether `r` is the result of point `p` of `grid`: its hash and its point both match.
+pub fn matches(grid: &Grid, r: &PointResult, p: &GridPoint) -> bool {
+    r.hash == grid.point_hash(p) && r.point == *p
+}
+
+/// Whether a point already has a result matching it in `out`.
 pub fn is_done(grid: &Grid, out: &Path, p: &GridPoint) -> bool {
-    read_result(&result_path(out, p)).is_some_and(|r| r.hash == grid.point_hash(p))
+    read_result(&result_path(out, p)).is_some_and(|r| matches(grid, &r, p))
 }
 
 /// Run the grid's points (or those of one shard) that have no matching result yet.

@@ -4,6 +4,7 @@
 use super::super::raw::{RawContact, RawDouble, RawModel};
 use super::super::scene::{Contact, DoubleContact, Model, Oscillator, RigidBlock, RockingBody};
 use super::validator::{Rule, Validator};
+use crate::case::limits::MAX_SUPPORTS;
 
 impl Validator<'_> {
     pub(super) fn model(&mut self, m: &RawModel) -> Option<Model> {
@@ -61,9 +62,19 @@ impl Validator<'_> {
         ] {
             self.forbid(f, p, "rocking-body");
         }
-        let cm_height = self.number("model.cm_height", m.cm_height, Rule::positive("m"));
-        let half_width = self.number("model.half_width", m.half_width, Rule::positive("m"));
+        let cm_height = self.number("model.cm_height", m.cm_height, Rule::extent("m"));
+        let half_width = self.number("model.half_width", m.half_width, Rule::extent("m"));
         let supports = match m.supports {
+            Some(n) if n > MAX_SUPPORTS as i64 => {
+                self.fail(
+                    "model.supports",
+                    format!(
+                        "is {n}, but must be at most {MAX_SUPPORTS} (each support is a contact \
+                         the engines model and record at every step)"
+                    ),
+                );
+                2
+            }
             Some(n) if n >= 2 => n as usize,
             Some(n) => {
                 self.fail("model.supports", format!("is {n}, but must be at least 2"));
@@ -107,8 +118,8 @@ impl Validator<'_> {
         ] {
             self.forbid(f, p, "rigid-block");
         }
-        let half_width = self.number("model.half_width", m.half_width, Rule::positive("m"));
-        let half_height = self.number("model.half_height", m.half_height, Rule::positive("m"));
+        let half_width = self.number("model.half_width", m.half_width, Rule::extent("m"));
+        let half_height = self.number("model.half_height", m.half_height, Rule::extent("m"));
         let mu = self.number("model.mu", m.mu, Rule::non_negative(""));
         let initial_tilt = match m.initial_tilt {
             None => 0.0,

@@ -8,6 +8,7 @@ use super::super::scene::Model;
 use super::super::signal::Signal;
 use super::super::spatial::{Depth, Spatial};
 use super::validator::{Rule, SignalKeys, Validator};
+use crate::case::limits::{MAX_SUPPORT_GRID, MAX_SUPPORT_ROWS};
 
 /// Whether the case gives any key of a bidirectional scene.
 fn gives_spatial_keys(m: &RawModel, e: &RawExcitation) -> bool {
@@ -108,9 +109,31 @@ impl Validator<'_> {
                 let half_depth = self.number(
                     "model.half_depth",
                     m.half_depth,
-                    Rule::positive("m (half-depth of the base along y, needed in a 3D scene)"),
+                    Rule::extent("m (half-depth of the base along y, needed in a 3D scene)"),
                 );
+                let supports = match model {
+                    Model::RockingBody(r) => r.supports,
+                    _ => 1,
+                };
                 let support_rows = match m.support_rows {
+                    Some(n) if n > MAX_SUPPORT_ROWS as i64 => {
+                        self.fail(
+                            "model.support_rows",
+                            format!("is {n}, but must be at most {MAX_SUPPORT_ROWS}"),
+                        );
+                        1
+                    }
+                    Some(n) if n as u64 * supports as u64 > MAX_SUPPORT_GRID => {
+                        self.fail(
+                            "model.support_rows",
+                            format!(
+                                "is {n}: {n} rows of {supports} supports make {} supports, but \
+                                 a base may have at most {MAX_SUPPORT_GRID}",
+                                n as u64 * supports as u64
+                            ),
+                        );
+                        1
+                    }
                     Some(n) if n >= 1 => n as usize,
                     Some(n) => {
                         self.fail(
@@ -141,7 +164,7 @@ impl Validator<'_> {
                 let half_depth = self.number(
                     "model.half_depth",
                     m.half_depth,
-                    Rule::positive("m (half-depth of the base along y, needed in a 3D scene)"),
+                    Rule::extent("m (half-depth of the base along y, needed in a 3D scene)"),
                 );
                 Some(Depth {
                     half_depth,

@@ -99,6 +99,17 @@ impl Rule {
             unit: "",
         }
     }
+    /// A body's geometric extent (a half size or a height): positive and at most
+    /// [`MAX_EXTENT`](crate::case::limits::MAX_EXTENT) metres.
+    pub(super) fn extent(unit: &'static str) -> Self {
+        Rule {
+            lo: 0.0,
+            lo_open: true,
+            hi: crate::case::limits::MAX_EXTENT,
+            allow_inf: false,
+            unit,
+        }
+    }
     pub(super) fn range(lo: f64, hi: f64, unit: &'static str) -> Self {
         Rule {
             lo,
@@ -139,6 +150,9 @@ impl Rule {
                 } else {
                     "zero or positive and finite".to_string()
                 }
+            }
+            (lo, _) if lo == 0.0 && self.lo_open => {
+                format!("positive and at most {}", self.hi)
             }
             (lo, _) => format!("between {lo} and {}", self.hi),
         };
