@@ -17,18 +17,41 @@ pub(crate) const DEFAULT_CASE_FOLDERS: &[&str] =
     &["cases", "cases/records", "cases/vertical", "cases/spatial"];
 
 /// Expand case arguments: files as given, folders to their `*.toml`; with none, every
-/// folder of [`DEFAULT_CASE_FOLDERS`] that exists (`cases/` itself must).
+/// folder of [`DEFAULT_CASE_FOLDERS`] that exists (`cases/` itself must), found from the
+/// current folder or, run from inside a checkout, from the nearest parent that has them.
 pub(crate) fn case_paths(args: &[PathBuf]) -> Result<Vec<PathBuf>, Error> {
     if !args.is_empty() {
         return case_paths_or(args, "cases");
     }
-    let mut out = case_paths_or(&[], DEFAULT_CASE_FOLDERS[0])?;
+    let root = checkout_root();
+    // in the current folder the paths stay as written (`cases/x.toml`), as reports show them
+    let at = |f: &str| match &root {
+        Some(r) => r.join(f),
+        None => PathBuf::from(f),
+    };
+    let first = at(DEFAULT_CASE_FOLDERS[0]);
+    let mut out = case_paths_or(&[], &first.to_string_lossy())?;
     for folder in &DEFAULT_CASE_FOLDERS[1..] {
-        if Path::new(folder).is_dir() {
-            out.extend(case_paths_or(&[], folder)?);
+        let folder = at(folder);
+        if folder.is_dir() {
+            out.extend(case_paths_or(&[], &folder.to_string_lossy())?);
         }
     }
     Ok(out)
+}
+
+/// Where the default cases are read from when not from the current folder: the nearest
+/// parent with `cases/` and `Cargo.toml` (run from a subfolder of the checkout). `None`:
+/// the current folder (which has `cases/`, or its absence is reported).
+pub(crate) fn checkout_root() -> Option<PathBuf> {
+    if Path::new(DEFAULT_CASE_FOLDERS[0]).is_dir() {
+        return None;
+    }
+    let cwd = std::env::current_dir().ok()?;
+    cwd.ancestors()
+        .skip(1)
+        .find(|d| d.join(DEFAULT_CASE_FOLDERS[0]).is_dir() && d.join("Cargo.toml").is_file())
+        .map(Path::to_path_buf)
 }
 
 /// Expand case arguments: files as given, folders to their `*.toml`, default `default`.
@@ -49,13 +72,19 @@ pub(crate) fn case_paths_or(args: &[PathBuf], default: &str) -> Result<Vec<PathB
     Ok(out)
 }
 
-/// Load every case first, so that all input errors are reported before any work.
+/// Load every case first, so that all input errors are reported before any work; each
+/// case's plausibility warnings (likely mistakes in valid values) go to stderr.
 pub(crate) fn load_all(paths: &[PathBuf]) -> Result<Vec<Case>, Error> {
     let mut cases = Vec::new();
     let mut errors = Vec::new();
     for p in paths {
         match load_case(p) {
-            Ok(c) => cases.push(c),
+            Ok(c) => {
+                for w in rockslide_core::case::plausibility::warnings(&c) {
+                    eprintln!("{w}");
+                }
+                cases.push(c)
+            }
             Err(e) => errors.extend(e.0),
         }
     }

@@ -97,9 +97,10 @@ pub(crate) fn finish(
         if !quiet {
             let name = &result.case.name;
             let passed = gate::failures(std::slice::from_ref(&result)).is_empty();
+            let runs = result.runs.len();
             say!(
-                "{name}: {} runs, gate {} → {}",
-                result.runs.len(),
+                "{name}: {runs} run{}, gate {} → {}",
+                if runs == 1 { "" } else { "s" },
                 if passed { "PASS" } else { "FAIL" },
                 case_written.dir.join("report.html").display()
             );
@@ -119,7 +120,7 @@ pub(crate) fn finish(
         annotate(f);
     }
     if !quiet {
-        for f in gate::informative(&results) {
+        for f in rockslide_verify::verdict::informative_notes(&results) {
             say!("{f}");
         }
     }

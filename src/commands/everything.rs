@@ -6,7 +6,7 @@
 //! sweep is written once its sweep is; the others as soon as they are run. Output order
 //! is the cases' order, whatever finished first.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Mutex;
 
@@ -20,7 +20,7 @@ use rockslide_verify::sweep::{Options, StabilityResult, SweepResult};
 use rockslide_verify::timings;
 
 use crate::commands::{stability, sweep};
-use crate::input::{case_paths_or, load_all};
+use crate::input::{case_paths_or, checkout_root, load_all};
 use crate::schedule::longest_first;
 use crate::suite_run::{finish, prepare_cases};
 
@@ -59,16 +59,18 @@ struct Work {
 
 /// Load the stability scenes, the oscillators to sweep and the cases to run.
 fn load(out: &Path) -> Result<Work, Error> {
-    let stability_folder = Path::new("cases/stability");
+    // from a subfolder of the checkout, its cases (as `run` finds them)
+    let at = |f: &str| checkout_root().map_or_else(|| PathBuf::from(f), |r| r.join(f));
+    let stability_folder = at("cases/stability");
     let stability = match stability_folder.is_dir() {
-        true => load_all(&case_paths_or(&[stability_folder.to_path_buf()], "")?)?,
+        true => load_all(&case_paths_or(&[stability_folder.clone()], "")?)?,
         false => Vec::new(),
     };
     if stability_folder.is_dir() && stability.is_empty() {
         return Err(Error::Other("stability: no case files found".into()));
     }
     // Sweeps of the top-level oscillators only: a record case's Δt ladder is minutes long.
-    let oscillators: Vec<Case> = load_all(&case_paths_or(&[], "cases")?)?
+    let oscillators: Vec<Case> = load_all(&case_paths_or(&[], &at("cases").to_string_lossy())?)?
         .into_iter()
         .filter(|c| matches!(c.scene.model, Model::Oscillator(_)))
         .collect();

@@ -112,11 +112,17 @@ pub fn merge_command(
     let grid = load_grid(grid_path)?;
     let study = collect(&grid, from, out)?;
     if !quiet {
+        let folders: Vec<String> = from.iter().map(|f| f.display().to_string()).collect();
         say!(
-            "{}: merged {} points from {} folder(s)",
+            "{}: merged {} points into {}{}",
             grid.title,
             study.results.len(),
-            from.len() + 1
+            out.display(),
+            if folders.is_empty() {
+                String::new()
+            } else {
+                format!(" from {}", folders.join(", "))
+            }
         );
     }
     write(&study, out, quiet)?;

@@ -46,6 +46,7 @@ mod references;
 mod references_records;
 mod references_rigid;
 mod report_outputs;
+mod report_print;
 mod report_sections;
 mod robustness;
 mod stability_classify;

@@ -287,6 +287,18 @@ fn assert_foxglove_subset(schema: &Value, path: &str) {
 
 fn assert_schemas_in_foxglove_subset(path: &Path) -> usize {
     let bytes = std::fs::read(path).unwrap();
+    // the header names the ros2 profile its ros2msg schemas and CDR messages follow
+    let header = mcap::read::LinearReader::new(&bytes)
+        .unwrap()
+        .find_map(|r| match r.unwrap() {
+            mcap::records::Record::Header(h) => Some(h),
+            _ => None,
+        })
+        .unwrap();
+    assert_eq!(
+        (header.profile.as_str(), header.library.as_str()),
+        ("ros2", "rockslide")
+    );
     let summary = mcap::read::Summary::read(&bytes).unwrap().unwrap();
     for s in summary.schemas.values() {
         if s.encoding == "ros2msg" && s.name.starts_with("foxglove_msgs/msg/") {

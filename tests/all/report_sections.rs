@@ -367,7 +367,10 @@ fn rpepo_report_compares_up_to_first_liftoff_and_draws_figs_8_to_11() {
         "- rapier/applied-force: not audited — energy audit not available for a rocking body"
     ));
     // Engines that did not run get a reason under the table, not an n/a column.
-    assert!(md.contains("| Quantity | Unit | fe/single | fe/double | rapier/applied-force | Tolerance | Result |"), "{md}");
+    assert!(
+        md.contains("| Quantity | Unit | fe/single | fe/double | rapier/applied-force | Result |"),
+        "{md}"
+    );
     assert!(md.contains("- predictor-corrector: not applicable — "));
 }
 

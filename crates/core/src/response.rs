@@ -199,8 +199,15 @@ pub fn quantity_def(key: &str) -> Option<&'static QuantityDef> {
     DEFS.iter().find(|d| d.key == key)
 }
 
+/// Below this magnitude (SI) a value is round-off and shown as 0 (a minimum sliding of
+/// −5.3e-23 m is no sliding).
+const ROUND_OFF: f64 = 1e-12;
+
 /// A value of response quantity `key` in its display unit, 4 significant digits.
 pub fn show(key: &str, si: f64) -> String {
+    if si.abs() < ROUND_OFF {
+        return "0".into();
+    }
     if quantity_def(key).is_some_and(|d| d.is_count()) && si.fract() == 0.0 {
         return format!("{si:.0}");
     }

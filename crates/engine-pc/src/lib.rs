@@ -51,7 +51,7 @@ impl Engine for PredictorCorrector {
             Model::Oscillator(_) => {}
             other => {
                 return Err(NotApplicable(format!(
-                    "the predictor-corrector is a single-degree-of-freedom sliding method; a {} has rotation",
+                    "the predictor-corrector solves the paper's oscillator (one horizontal degree of freedom on an elastic-plastic contact); a {} is another model",
                     other.kind()
                 )));
             }

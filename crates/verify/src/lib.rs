@@ -13,6 +13,8 @@
 //! - [`analysis`]: response quantities, discrepancies, tolerance checks, the energy audit,
 //!   Δt ladders and observed orders, stability classes — numbers, no I/O.
 //! - [`external`]: other programs' results as runs, gated like an engine's.
+//! - [`disagreement`]: design quantities of each participant against the basis, declared
+//!   or failing.
 //! - [`verdict`]: the one pass/fail rule; [`record`]: a case result as a typed record
 //!   (`result.json`).
 //! - [`timings`]: opt-in wall and CPU time of a command's stages (`--timings`).
@@ -23,6 +25,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod disagreement;
 pub mod external;
 pub mod footprint;
 pub mod invariants;

@@ -51,26 +51,43 @@ impl fmt::Display for Failure {
 /// What a check found, in words: the discrepancy and both values in display units.
 pub fn describe(c: &Check) -> String {
     match (c.value, c.basis_value) {
-        (Some(v), Some(b)) => {
-            let both = format!(
-                "{} vs {} {}",
-                show_value(&c.quantity, v).0,
-                show_value(&c.quantity, b).0,
-                show_value(&c.quantity, b).1
-            );
-            match c.percent {
-                Some(p) => format!("Δ {p:+.3} % ({})", both.trim_end()),
-                None => {
-                    let (d, unit) = show_value(&c.quantity, v - b);
-                    format!("Δ {d} {unit} ({})", both.trim_end())
-                }
-            }
-        }
+        (Some(v), Some(b)) => difference_words(&c.quantity, v, b),
         (None, _) => {
             "missing: the run has no value (did not complete or lacks the quantity)".to_string()
         }
         (Some(_), None) => "missing: the basis has no value".to_string(),
     }
+}
+
+/// A difference in words with both values in display units: in per cent for a value
+/// (`Δ −49.8 % (1.891 vs 3.766 mm)`), as a difference for a count or an event time
+/// (`Δ −1 (32 vs 33)`, `Δ +0.0010 s (0.8430 vs 0.8420 s)`): never both in one phrase.
+pub fn difference_words(quantity: &str, v: f64, b: f64) -> String {
+    let def = rockslide_core::response::quantity_def(quantity);
+    let (vs, unit) = show_value(quantity, v);
+    let both = format!("{vs} vs {} {unit}", show_value(quantity, b).0);
+    let both = both.trim_end();
+    if def.is_some_and(|d| d.is_count()) {
+        return format!("Δ {:+} ({both})", v - b);
+    }
+    match crate::analysis::discrepancy_percent(v, b) {
+        Some(p) if !def.is_some_and(|d| d.is_time()) => format!("Δ {} % ({both})", percent3(p)),
+        _ => {
+            let (d, unit) = show_value(quantity, v - b);
+            let sign = if v >= b { "+" } else { "" };
+            format!("Δ {sign}{d} {unit} ({both})")
+        }
+    }
+}
+
+/// A signed percentage to three significant digits (`-0.617`, `-49.8`, `+12215`).
+fn percent3(p: f64) -> String {
+    let digits = if p == 0.0 {
+        1
+    } else {
+        (2 - p.abs().log10().floor() as i32).max(0) as usize
+    };
+    format!("{p:+.digits$}")
 }
 
 /// The tolerance of a check in words with the quantity's display unit (`≤ 1 %`,
@@ -85,7 +102,12 @@ pub fn limit_text(r: &CaseResult, c: &Check) -> String {
 
 /// A tolerance in words, absolute limits in the quantity's display unit.
 fn tolerance_words(t: &Tolerance) -> String {
+    let is_count =
+        rockslide_core::response::quantity_def(&t.quantity).is_some_and(|d| d.is_count());
     let abs = t.absolute.map(|a| {
+        if is_count {
+            return format!("≤ {a}");
+        }
         let (v, unit) = show_value(&t.quantity, a);
         format!("≤ {v} {unit}").trim_end().to_string()
     });
@@ -129,6 +151,29 @@ pub fn informative(results: &[CaseResult]) -> Vec<Failure> {
         .collect()
 }
 
+/// The informative findings a reader has not been told already: [`informative`] without
+/// the checks a declared design disagreement (a `KNOWN` line of [`warnings`]) covers.
+pub fn informative_notes(results: &[CaseResult]) -> Vec<Failure> {
+    results
+        .iter()
+        .flat_map(|r| {
+            let known = crate::disagreement::design_disagreements(r);
+            r.checks
+                .iter()
+                .filter(|c| !c.gated && c.verdict != Verdict::Pass)
+                .filter(move |c| {
+                    !known.iter().any(|d| {
+                        d.declared.is_some()
+                            && d.quantity == c.quantity
+                            && d.run == c.run
+                            && d.basis == c.basis
+                    })
+                })
+                .map(move |c| failed_check(r, c))
+        })
+        .collect()
+}
+
 /// Every gate failure of the results, in case order: failed gated checks, gated tolerances
 /// that match no run, a case whose gate checks nothing, runs that did not end as the case
 /// declares (completed unless `[[expected_outcome]]` says otherwise), and physical
@@ -155,6 +200,8 @@ pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
         }
         out.extend(unchecked_externals(r));
         out.extend(outcome_failures(r));
+        out.extend(stale_violations(r));
+        out.extend(disagreement_failures(r));
         out.extend(
             r.invariants
                 .iter()
@@ -188,6 +235,101 @@ fn unchecked_externals(r: &CaseResult) -> Vec<Failure> {
             )
         })
         .collect()
+}
+
+/// Design-quantity disagreements beyond [`crate::disagreement::DESIGN_PERCENT`] that no
+/// gated tolerance judges and the case does not declare, and declarations whose
+/// disagreement no longer happens.
+fn disagreement_failures(r: &CaseResult) -> Vec<Failure> {
+    use crate::disagreement::{
+        DESIGN_PERCENT, design_disagreements, measured_now, stale_declarations,
+    };
+    let mut out: Vec<Failure> = design_disagreements(r)
+        .into_iter()
+        .filter(|d| d.declared.is_none())
+        .map(|d| {
+            case_failure(
+                r,
+                d.quantity,
+                &format!("{} vs {}", d.run, d.basis),
+                format!(
+                    "undeclared disagreement on a design quantity: {}",
+                    difference_words(d.quantity, d.value, d.basis_value)
+                ),
+                format!(
+                    "≤ {DESIGN_PERCENT} %, or a gated [[tolerance]], or an [[expected_disagreement]] with reason and evidence"
+                ),
+                String::new(),
+                false,
+            )
+        })
+        .collect();
+    for d in stale_declarations(r) {
+        let now = measured_now(r, d).map_or_else(
+            || "no run of this case matches it".to_string(),
+            |m| format!("measured {m}"),
+        );
+        out.push(case_failure(
+            r,
+            &d.quantity,
+            &format!("{} vs {}", d.runs, d.against),
+            format!(
+                "declared disagreement no longer happens: {now}; remove the declaration or say why it should still happen"
+            ),
+            format!("beyond {DESIGN_PERCENT} %, declared: {}", d.reason),
+            d.field.clone(),
+            false,
+        ));
+    }
+    out
+}
+
+/// Declared violations that no longer happen: an `[[expected_violation]]` none of whose
+/// engine's runs breaks the invariant is a wrong record of the engine's limits and fails
+/// like an unexpected pass, with the largest measured value.
+fn stale_violations(r: &CaseResult) -> Vec<Failure> {
+    r.case
+        .expected_violations
+        .iter()
+        .filter_map(|v| {
+            let measured: Vec<&InvariantCheck> = r
+                .invariants
+                .iter()
+                .filter(|i| i.expected.as_ref().is_some_and(|(f, _)| *f == v.field))
+                .collect();
+            if measured.iter().any(|i| !i.holds()) {
+                return None;
+            }
+            let value = match measured.iter().max_by(|a, b| a.worst.total_cmp(&b.worst)) {
+                Some(worst) => format!(
+                    "declared violation no longer happens: measured {} on {} (limit {}); remove the declaration or say why it should still happen",
+                    show_measure(worst.worst),
+                    worst.run,
+                    show_measure(worst.limit)
+                ),
+                None => "checks nothing: no run of this case measures the declared violation".into(),
+            };
+            Some(case_failure(
+                r,
+                &v.invariant,
+                &v.engine,
+                value,
+                format!("declared: {}", v.reason),
+                v.field.clone(),
+                measured.is_empty(),
+            ))
+        })
+        .collect()
+}
+
+/// An invariant's dimensionless measure for people: four significant digits, a value
+/// below 1e-9 (round-off) as 0.
+pub fn show_measure(x: f64) -> String {
+    if x.abs() < 1e-9 {
+        "0".into()
+    } else {
+        rockslide_core::response::sig(x)
+    }
 }
 
 /// Whether the case's gate checks anything: a gated tolerance check or a declared outcome.
@@ -231,13 +373,26 @@ fn unmatched_tolerances(r: &CaseResult) -> Vec<Failure> {
                 r,
                 &t.quantity,
                 &t.runs.clone().unwrap_or_else(|| "any run".into()),
-                "checks nothing: no run of this case matches the tolerance".into(),
+                unmatched_reason(r, t.runs.as_deref()),
                 tolerance_words(t),
                 t.field.clone(),
                 true,
             )
         })
         .collect()
+}
+
+/// Why a tolerance matched no run, naming the participant that did not run and why when
+/// the registry or the live participant said so (`opensees: OpenSeesPy not found …`).
+fn unmatched_reason(r: &CaseResult, runs: Option<&str>) -> String {
+    let engine = runs.map(|s| s.split('/').next().unwrap_or(s));
+    let why = r
+        .not_applicable
+        .iter()
+        .find(|(id, _)| Some(*id) == engine)
+        .map(|(id, why)| format!(" ({id} did not run: {why})"))
+        .unwrap_or_default();
+    format!("checks nothing: no run of this case matches the tolerance{why}")
 }
 
 /// Runs that did not end as declared: a run that did not complete without an
@@ -313,56 +468,67 @@ fn invariant_failure(r: &CaseResult, i: &InvariantCheck) -> Failure {
     )
 }
 
-/// Ungated disagreements at least this large (in per cent) are warnings, shown first.
+/// Ungated checks outside their limit by at least this much (in per cent) are marked
+/// `WARN` among the informative findings, the others `INFO`.
 pub const WARN_PERCENT: f64 = 10.0;
 
-/// What must not hide under a green PASS, one line each starting `WARN`: informative
-/// (ungated) checks whose discrepancy is at least [`WARN_PERCENT`], with their verdict in
-/// the report table's words (`info: PASS` / `info: FAIL` against the informative limit),
-/// and declared invariant violations with their measured size.
+/// What must not hide under a green PASS, each said once: the design-quantity
+/// disagreements the case declares (`KNOWN`, with reason and evidence) and the invariant
+/// violations it declares, one line per declaration with every run's measured size
+/// (`KNOWN housner-pulse: rapier breaks stick_slip: kinematic-ground 0.8399, …`).
 pub fn warnings(results: &[CaseResult]) -> Vec<String> {
     let mut out = Vec::new();
     for r in results {
-        for c in r.checks.iter().filter(|c| !c.gated) {
-            if let Some(p) = c.percent.filter(|p| p.abs() >= WARN_PERCENT) {
+        for d in crate::disagreement::design_disagreements(r) {
+            if let Some(x) = &d.declared {
                 out.push(format!(
-                    "WARN {}: {}: {} vs {}: disagree by {} (not gated; info: {} against {}) [{}: {}]",
+                    "KNOWN {}: {}: {} vs {} differ: {} — {}; evidence: {} [{}: {}]",
                     r.case.name,
-                    c.quantity,
-                    c.run,
-                    c.basis,
-                    disagreement(c, p),
-                    c.verdict.label(),
-                    c.limit,
+                    d.quantity,
+                    d.run,
+                    d.basis,
+                    difference_words(d.quantity, d.value, d.basis_value),
+                    x.reason,
+                    x.evidence,
                     r.case.path.display(),
-                    c.field
+                    x.field
                 ));
             }
         }
-        for i in r.invariants.iter().filter(|i| !i.holds()) {
-            if let Some((field, reason)) = &i.expected {
-                out.push(format!(
-                    "WARN {}: {}: {}: {} — declared known: {reason} [{}: {field}]",
-                    r.case.name,
-                    i.invariant,
-                    i.run,
-                    i.describe(),
-                    r.case.path.display()
-                ));
+        for v in &r.case.expected_violations {
+            let broken: Vec<String> = r
+                .invariants
+                .iter()
+                .filter(|i| !i.holds())
+                .filter(|i| i.expected.as_ref().is_some_and(|(f, _)| *f == v.field))
+                .map(|i| {
+                    let variant = i.run.split_once('/').map_or(i.run.as_str(), |x| x.1);
+                    format!("{variant} {}", show_measure(i.worst))
+                })
+                .collect();
+            if broken.is_empty() {
+                continue; // a stale declaration: a gate failure, not a note
             }
+            let limit = r
+                .invariants
+                .iter()
+                .find(|i| i.expected.as_ref().is_some_and(|(f, _)| *f == v.field))
+                .map_or(String::new(), |i| {
+                    format!(" (limit {})", show_measure(i.limit))
+                });
+            out.push(format!(
+                "KNOWN {}: {} breaks {}: {}{limit} — declared: {} [{}: {}]",
+                r.case.name,
+                v.engine,
+                v.invariant,
+                broken.join(", "),
+                v.reason,
+                r.case.path.display(),
+                v.field
+            ));
         }
     }
     out
-}
-
-/// The size of a disagreement in words: an event time's in seconds (its percentage
-/// depends on where t = 0 is), any other quantity's in per cent.
-fn disagreement(c: &Check, percent: f64) -> String {
-    let is_time = rockslide_core::response::quantity_def(&c.quantity).is_some_and(|q| q.is_time());
-    match (is_time, c.value, c.basis_value) {
-        (true, Some(v), Some(b)) => format!("{:+.4} s ({v:.4} vs {b:.4} s)", v - b),
-        _ => format!("{percent:+.1} %"),
-    }
 }
 
 impl CaseResult {
@@ -513,9 +679,28 @@ dt = 0.1
         );
         let w = warnings(std::slice::from_ref(&known));
         assert!(
-            w[0].starts_with("WARN t: friction_bound: fe/v: friction_bound 2.000e-1"),
+            w[0].starts_with("KNOWN t: fe breaks friction_bound: v 0.2000 (limit "),
             "{w:?}"
         );
+    }
+
+    /// A declared violation the run no longer shows fails the gate with the measured value,
+    /// like an unexpected pass: |T| = 1 kN stays under μN = 5 kN (friction_bound 0).
+    #[test]
+    fn a_declared_violation_that_no_longer_happens_fails() {
+        let declared = "[[expected_outcome]]\nengine = \"fe\"\nstatus = \"diverged\"\n[[expected_violation]]\nengine = \"fe\"\ninvariant = \"friction_bound\"\nreason = \"measured 0.2\"";
+        let r = result(case(declared), vec![run("fe", diverged(), STUCK)]);
+        let f = failures(std::slice::from_ref(&r));
+        assert_eq!(f.len(), 1, "{f:?}");
+        assert_eq!(f[0].quantity, "friction_bound");
+        assert_eq!(f[0].field, "t.toml: expected_violation[0]");
+        assert!(
+            f[0].value
+                .starts_with("declared violation no longer happens: measured 0 on fe/v"),
+            "{}",
+            f[0].value
+        );
+        assert!(!r.gate_passed());
     }
 
     #[test]
@@ -565,43 +750,21 @@ dt = 0.1
         );
     }
 
-    /// An ungated disagreement on an event time is a warning in seconds; on a peak, in
-    /// per cent.
+    /// A difference reads in per cent for a value, in seconds for an event time (its
+    /// percentage depends on where t = 0 is) and as a difference for a count.
     #[test]
-    fn event_time_warnings_are_in_seconds() {
-        let check = |quantity: &str, value: f64, basis: f64| Check {
-            quantity: quantity.into(),
-            run: "rapier/a".into(),
-            basis: "fe/single".into(),
-            value: Some(value),
-            basis_value: Some(basis),
-            percent: Some(100.0 * (value / basis - 1.0)),
-            limit: "≤ 1 %".into(),
-            gated: false,
-            verdict: Verdict::Fail,
-            field: "tolerance[0]".into(),
-        };
-        let mut r = result(case(""), vec![run("fe", RunStatus::Completed, STUCK)]);
-        r.checks = vec![
-            check("first_liftoff", 0.75, 0.85),
-            check("peak_sliding", 1.2, 1.0),
-        ];
-        let w = warnings(std::slice::from_ref(&r));
-        assert!(
-            w[0].contains("disagree by -0.1000 s (0.7500 vs 0.8500 s)"),
-            "{w:?}"
+    fn differences_never_mix_percentages_and_counts() {
+        assert_eq!(
+            difference_words("first_liftoff", 0.75, 0.85),
+            "Δ -0.1000 s (0.7500 vs 0.8500 s)"
         );
-        assert!(w[1].contains("disagree by +20.0 %"), "{w:?}");
-        // the same words as the report table's result cell for an ungated check
-        assert!(
-            w[1].contains("(not gated; info: FAIL against ≤ 1 %)"),
-            "{w:?}"
+        assert_eq!(
+            difference_words("residual_sliding", 0.001891, 0.003766),
+            "Δ -49.8 % (1.891 vs 3.766 mm)"
         );
-        r.checks[1].verdict = Verdict::Pass;
-        let w = warnings(std::slice::from_ref(&r));
-        assert!(
-            w[1].contains("(not gated; info: PASS against ≤ 1 %)"),
-            "{w:?}"
+        assert_eq!(
+            difference_words("slip_episodes", 32.0, 33.0),
+            "Δ -1 (32 vs 33)"
         );
     }
 }

@@ -1,7 +1,8 @@
 //! Case files: the TOML a user writes (`raw`), the validated scene every engine reads
 //! (`scene`), the excitations that drive it (`signal`), recorded ground motions
 //! (`record`), bidirectional (3D) scenes (`spatial`), and loading with located errors
-//! (`load`), other programs' results taking part (`external`). Engines never see TOML:
+//! (`load`), other programs' results taking part (`external`), warnings about values that
+//! are valid but likely mistakes (`plausibility`). Engines never see TOML:
 //! they see [`Case`] and [`Scene`].
 
 mod external;
@@ -9,6 +10,7 @@ mod invariant;
 pub mod limits;
 mod load;
 mod locate;
+pub mod plausibility;
 mod raw;
 pub mod record;
 mod scene;
@@ -27,9 +29,10 @@ pub use load::{
 };
 pub use locate::Locator;
 pub use scene::{
-    Case, Contact, DoubleContact, EXPECTED_STATUSES, EngineRequest, Excitation, ExpectedOutcome,
-    ExpectedViolation, INVARIANT_KEYS, Model, NormalForce, OptionValue, Oscillator, RigidBlock,
-    RockingBody, RunSettings, Scene, Tolerance, ToleranceBasis, Vertical,
+    Case, Contact, DESIGN_QUANTITIES, DoubleContact, EXPECTED_STATUSES, EngineRequest, Excitation,
+    ExpectedDisagreement, ExpectedOutcome, ExpectedViolation, INVARIANT_KEYS, Model, NormalForce,
+    OptionValue, Oscillator, RigidBlock, RockingBody, RunSettings, Scene, Tolerance,
+    ToleranceBasis, Vertical,
 };
 pub use signal::{Jump, Signal};
 pub use spatial::{Depth, Spatial};

@@ -25,6 +25,8 @@ pub struct RawCase {
     #[serde(default)]
     pub expected_violation: Vec<RawExpectedViolation>,
     #[serde(default)]
+    pub expected_disagreement: Vec<RawExpectedDisagreement>,
+    #[serde(default)]
     pub external: Vec<RawExternal>,
 }
 
@@ -83,6 +85,18 @@ pub struct RawExpectedViolation {
     pub engine: String,
     pub invariant: String,
     pub reason: String,
+}
+
+/// `[[expected_disagreement]]`: two participants known to differ on a design quantity by
+/// more than is acceptable, with the reason and the evidence for it.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawExpectedDisagreement {
+    pub quantity: String,
+    pub engine: String,
+    pub against: Option<String>,
+    pub reason: String,
+    pub evidence: String,
 }
 
 #[derive(Debug, Deserialize)]

@@ -388,6 +388,42 @@ pub struct ExpectedViolation {
     pub field: String,
 }
 
+/// The design quantities (the report's first table; a disagreement on one beyond what the
+/// case accepts fails the gate unless declared).
+pub const DESIGN_QUANTITIES: &[&str] = &[
+    "peak_sliding",
+    "residual_sliding",
+    "peak_uplift",
+    "peak_rotation",
+];
+
+/// Two participants known to differ on a design quantity beyond what is acceptable
+/// (`[[expected_disagreement]]`): shown at the top of the report with its reason and
+/// evidence instead of failing the gate.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ExpectedDisagreement {
+    /// Design quantity key (`residual_sliding`).
+    pub quantity: String,
+    /// The run, `engine/variant` or an engine id (every variant).
+    pub runs: String,
+    /// What it is compared with: `reference` (also when not given) or a run label.
+    pub against: String,
+    /// Why the difference is accepted.
+    pub reason: String,
+    /// What shows it (a convergence study, a finding), in words.
+    pub evidence: String,
+    /// Where it is in the case file (`expected_disagreement[i]`).
+    pub field: String,
+}
+
+impl ExpectedDisagreement {
+    /// Whether this declaration is about `quantity` of run `label` against `basis`.
+    pub fn covers(&self, quantity: &str, label: &str, basis: &str) -> bool {
+        let run_matches = self.runs == label || label.split('/').next() == Some(&*self.runs);
+        self.quantity == quantity && run_matches && self.against == basis
+    }
+}
+
 /// Run statuses an `[[expected_outcome]]` may name.
 pub const EXPECTED_STATUSES: &[&str] = &["diverged", "not converged"];
 
@@ -420,6 +456,8 @@ pub struct Case {
     pub expected_outcomes: Vec<ExpectedOutcome>,
     /// Invariant violations declared known (`[[expected_violation]]`), in file order.
     pub expected_violations: Vec<ExpectedViolation>,
+    /// Design-quantity disagreements declared known (`[[expected_disagreement]]`).
+    pub expected_disagreements: Vec<ExpectedDisagreement>,
     /// Locates fields of the file for error messages.
     pub locator: Locator,
     /// Other programs' results taking part like engines (`[[external]]`, `--external`).

@@ -108,7 +108,10 @@ fn read_external_mcap(path: &Path, topic: Option<&str>) -> Result<ExternalTrace,
         let topics: Vec<&str> = contents.states.iter().map(|(t, _)| t.as_str()).collect();
         let what = match topic {
             Some(t) => format!("has no state topic \"{t}\""),
-            None => "has several state topics: name one with `topic`".to_string(),
+            None => format!(
+                "has several state topics: name one (`{}#<topic>` on the command line, `topic = \"<topic>\"` in an [[external]] section)",
+                path.display()
+            ),
         };
         return Err(InputError::new(
             path,

@@ -182,7 +182,7 @@ impl<W: Write> McapWriter<W> {
         };
         me.sink.write(MAGIC)?;
         let mut body = Vec::new();
-        body.string("");
+        body.string("ros2"); // profile: ros2msg schemas, CDR messages (the state and 3D scene)
         body.string("rockslide");
         me.top_level(op::HEADER, &body)?;
         Ok(me)

@@ -79,14 +79,46 @@ pub(crate) fn channel_points(
 /// One legend entry: label, colour, dashed line.
 pub(crate) type Entry = (String, RGBColor, bool);
 
-/// Entries per legend row for a figure `width` pixels wide.
-fn per_row(width: u32) -> usize {
-    ((width / 250) as usize).max(1)
+/// Height of a legend row, pixels.
+const LEGEND_ROW: i32 = 18;
+/// The legend's font size, pixels.
+const LEGEND_FONT: f64 = 13.0;
+
+/// A generous estimate of `label`'s width in the legend's sans-serif, pixels: 0.62 em a
+/// character (wider than the average glyph), so that estimated boxes that do not touch
+/// never touch on screen either.
+pub(crate) fn label_width(label: &str) -> i32 {
+    (label.chars().count() as f64 * LEGEND_FONT * 0.62).ceil() as i32
 }
 
-/// Height in pixels of the legend strip for `n` entries.
-pub(crate) fn legend_height(n: usize, width: u32) -> u32 {
-    (n.div_ceil(per_row(width)) as u32) * 18 + 10
+/// Where each legend entry goes in a strip `width` pixels wide: `(x, y)` of its swatch,
+/// in rows of equal columns as wide as the widest entry (swatch, gap, label, margin), so
+/// that no label runs into the next entry.
+pub(crate) fn legend_layout(entries: &[Entry], width: u32) -> Vec<(i32, i32)> {
+    let widest = entries
+        .iter()
+        .map(|(label, _, _)| 30 + label_width(label) + 16)
+        .max()
+        .unwrap_or(1);
+    let available = (width as i32 - 20).max(1);
+    let cols = (available / widest).max(1) as usize;
+    let col_w = available / cols as i32;
+    (0..entries.len())
+        .map(|k| {
+            (
+                20 + (k % cols) as i32 * col_w,
+                8 + (k / cols) as i32 * LEGEND_ROW,
+            )
+        })
+        .collect()
+}
+
+/// Height in pixels of the legend strip of `entries` in a figure `width` pixels wide.
+pub(crate) fn legend_height(entries: &[Entry], width: u32) -> u32 {
+    let rows = legend_layout(entries, width)
+        .last()
+        .map_or(0, |&(_, y)| (y - 8) / LEGEND_ROW + 1);
+    (rows * LEGEND_ROW) as u32 + 10
 }
 
 /// Draw a legend strip (a short line and the label per entry, in rows) on `area`.
@@ -95,11 +127,7 @@ pub(crate) fn draw_legend<DB: DrawingBackend>(
     entries: &[Entry],
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
     let (w, _) = area.dim_in_pixel();
-    let cols = per_row(w);
-    let col_w = (w as i32 - 20) / cols as i32;
-    for (k, (label, c, dashed)) in entries.iter().enumerate() {
-        let x = 20 + (k % cols) as i32 * col_w;
-        let y = 8 + (k / cols) as i32 * 18;
+    for ((label, c, dashed), (x, y)) in entries.iter().zip(legend_layout(entries, w)) {
         if *dashed {
             for s in 0..3 {
                 area.draw(&PathElement::new(
@@ -141,6 +169,20 @@ pub(crate) fn log_range(values: impl Iterator<Item = f64>) -> Option<(f64, f64)>
             1.25 * 10f64.powf(hi.log10().ceil().max(lo.log10().floor() + 1.0)),
         )
     })
+}
+
+/// Colour of a limit line drawn over classed markers: blue, purple, brown, pink, cyan,
+/// grey — never the green, orange, red or dark grey of the classes.
+pub(crate) fn limit_colour(i: usize) -> RGBColor {
+    const P: [RGBColor; 6] = [
+        RGBColor(0x1f, 0x77, 0xb4),
+        RGBColor(0x94, 0x67, 0xbd),
+        RGBColor(0x8c, 0x56, 0x4b),
+        RGBColor(0xe3, 0x77, 0xc2),
+        RGBColor(0x17, 0xbe, 0xcf),
+        RGBColor(0x9a, 0x9a, 0x9a),
+    ];
+    P[i % P.len()]
 }
 
 /// Colour of a stability class.
@@ -418,6 +460,65 @@ pub(crate) fn dash_marked(svg: &str) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Legend entries as boxes (swatch and label, estimated generously) never touch one
+    /// another, however long their labels: the stability map's limit lines and a force
+    /// plot's participants included.
+    #[test]
+    fn legend_entries_never_overlap() {
+        let labels = [
+            "accurate",
+            "inaccurate",
+            "diverged",
+            "not converged",
+            "predictor-corrector/paper limit Δt/T = 0.0500",
+            "fe/double limit Δt/T = 0.1000",
+            "rapier/kinematic-ground limit Δt/T = 0.02500",
+            "reference (Newmark rigid block, two-way)",
+            "fe/single resistance T",
+            "external/opensees-zeroLength μN",
+        ];
+        for width in [500_u32, 800, 1100] {
+            let entries: Vec<Entry> = labels
+                .iter()
+                .map(|l| (l.to_string(), BLACK, false))
+                .collect();
+            let at = legend_layout(&entries, width);
+            let boxes: Vec<(i32, i32, i32)> = at
+                .iter()
+                .zip(&labels)
+                .map(|(&(x, y), l)| (y, x, x + 30 + label_width(l)))
+                .collect();
+            for (i, a) in boxes.iter().enumerate() {
+                assert!(
+                    a.2 <= width as i32,
+                    "{width}: {} runs off the figure",
+                    labels[i]
+                );
+                for (j, b) in boxes.iter().enumerate().skip(i + 1) {
+                    let same_row = a.0 == b.0;
+                    let apart = a.2 < b.1 || b.2 < a.1;
+                    assert!(
+                        !same_row || apart,
+                        "{width}: \"{}\" runs into \"{}\"",
+                        labels[i],
+                        labels[j]
+                    );
+                }
+            }
+            let rows = boxes.iter().map(|b| b.0).max().unwrap();
+            assert!(legend_height(&entries, width) as i32 >= rows + LEGEND_ROW);
+        }
+    }
+
+    /// The stability map's limit lines use no colour of the classes they are drawn over.
+    #[test]
+    fn limit_lines_differ_from_every_class() {
+        let classes = ["accurate", "inaccurate", "diverged", "not converged"].map(class_colour);
+        for i in 0..12 {
+            assert!(!classes.contains(&limit_colour(i)), "limit colour {i}");
+        }
+    }
 
     /// The points a path `d` written by [`relative_d`] draws, back in absolute pixels.
     fn points_of(d: &str) -> Vec<(i64, i64)> {

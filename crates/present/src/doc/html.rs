@@ -30,10 +30,16 @@ figcaption { font-size: .88rem; color: #444; }
 pre { background: #f6f6f6; padding: .6rem; overflow-x: auto; font-size: .82rem; }
 section.case { border-top: 3px double #999; margin-top: 2.5rem; }
 ul.facts li { margin: .1rem 0; }
-@page { size: A4 landscape; margin: 12mm 10mm; }
+@page { size: A4 landscape; margin: 14mm 10mm 12mm; }
+@page { @bottom-right { content: "page " counter(page) " of " counter(pages); font: 8pt system-ui, sans-serif; color: #444; } }
+.print-only { display: none; }
 @media print {
+  /* The case file in full (a closed <details> prints as its summary line alone). */
+  details { display: none; }
+  .print-only { display: block; }
   /* Every column on the page: tables shrink and wrap instead of scrolling. */
-  body { margin: 0; max-width: none; padding: 0; font-size: 9pt; line-height: 1.3; }
+  body { margin: 0; max-width: none; padding: 0; font-size: 8.5pt; line-height: 1.25; }
+  h1 { font-size: 14pt; margin: 0 0 .3rem; } h2 { font-size: 11pt; margin: .8rem 0 .3rem; } h3 { font-size: 9.5pt; margin: .5rem 0 .2rem; }
   table { display: table; overflow: visible; width: 100%; font-size: 7pt; table-layout: auto; }
   /* Words break only where one alone is wider than its column; a number never breaks
      inside itself (it may wrap at a space, before its unit or mark). */
@@ -42,7 +48,15 @@ ul.facts li { margin: .1rem 0; }
   td.num { white-space: normal; overflow-wrap: normal; word-break: keep-all; }
   tr, figure, .verdict, ul.facts { break-inside: avoid; page-break-inside: avoid; }
   h1, h2, h3, h4 { break-after: avoid; page-break-after: avoid; }
-  figure svg, figure img { max-width: 100%; max-height: 170mm; }
+  /* Figures two to a row, two rows to a page: each at most half the width and a little
+     under half the printable height. */
+  figure { display: inline-block; vertical-align: top; width: 49%; margin: .2rem 0 .4rem; }
+  figure svg, figure img { max-width: 100%; max-height: 80mm; width: auto; }
+  figcaption { font-size: 7pt; }
+  /* Lists of facts (settings, provenance) and the case file in columns. */
+  ul.facts { columns: 3; column-gap: 6mm; font-size: 7pt; }
+  ul.facts li { break-inside: avoid; }
+  .print-only pre { columns: 2; column-gap: 6mm; font-size: 6pt; line-height: 1.15; }
   pre { white-space: pre-wrap; overflow: visible; font-size: 7pt; }
   details > summary { list-style: none; }
   td.pass, td.fail, td.warn, .verdict { -webkit-print-color-adjust: exact; print-color-adjust: exact; }
@@ -195,7 +209,7 @@ pub(crate) fn render_with(blocks: &[Block], figures: &Figures) -> String {
             Block::Details { summary, text } => {
                 let _ = writeln!(
                     s,
-                    "<details><summary>{}</summary><pre>{}</pre></details>",
+                    "<details><summary>{}</summary><pre>{}</pre></details>\n<div class=\"print-only\"><p>{0}</p><pre>{1}</pre></div>",
                     esc(summary),
                     esc(text)
                 );
@@ -205,12 +219,34 @@ pub(crate) fn render_with(blocks: &[Block], figures: &Figures) -> String {
     s
 }
 
-/// A whole page around body content.
+/// A whole page around body content; printed, the title is its running header.
 pub(crate) fn page(title: &str, body: &str) -> String {
+    page_with_header(title, title, body)
+}
+
+/// A whole page around body content with `header` on every printed page (a CSS
+/// paged-media margin box; "page X of Y" at the foot is the stylesheet's).
+pub(crate) fn page_with_header(title: &str, header: &str, body: &str) -> String {
     format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n{body}</body>\n</html>\n",
-        esc(title)
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n<title>{}</title>\n<style>{STYLE}@page {{ @top-left {{ content: \"{}\"; font: 8pt system-ui, sans-serif; color: #444; }} }}\n</style>\n</head>\n<body>\n{body}</body>\n</html>\n",
+        esc(title),
+        css_string(header)
     )
+}
+
+/// Text as the inside of a CSS string: quotes and backslashes escaped, markup characters
+/// as CSS escapes (the style element ends at `</`).
+fn css_string(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '"' | '\\' | '<' | '>' | '&' | '\n' => {
+                let _ = write!(out, "\\{:x} ", c as u32);
+            }
+            c => out.push(c),
+        }
+    }
+    out
 }
 
 /// A case's rendered body as a section of the suite page (its anchor is the summary
@@ -222,11 +258,11 @@ pub(crate) fn case_section(case: &str, body: &str) -> String {
     )
 }
 
-/// The suite page: the summary, then every case's section.
-pub(crate) fn suite_page(blocks: &[Block], sections: &[String]) -> String {
+/// The suite page: the summary, then every case's section; `header` on every printed page.
+pub(crate) fn suite_page(blocks: &[Block], sections: &[String], header: &str) -> String {
     let mut body = render(blocks);
     for section in sections {
         body.push_str(section);
     }
-    page("rockslide — verification suite", &body)
+    page_with_header("rockslide — verification suite", header, &body)
 }

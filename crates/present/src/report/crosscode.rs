@@ -3,7 +3,7 @@
 //! response quantities (peaks in %, event times in ms) and on the whole history of the
 //! relative displacement (normalised RMS difference). For scenes that lift off, the history
 //! difference is also given up to the first full lift-off, since the airborne phase and the
-//! landing amplify small differences (SPEC §1.1, RPEPO).
+//! landing amplify small differences (the paper's RPEPO, docs/findings.md).
 
 use rockslide_core::trace::Trace;
 use rockslide_verify::analysis::{QUANTITY_KEYS, Responses, discrepancy_percent, quantity_def};

@@ -72,8 +72,9 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
         }
     }
     notes.extend(rockslide_verify::external::report_notes(r));
-    header.extend(["Tolerance".to_string(), "Result".into()]);
-    numeric.extend([false, false]);
+    // each run's tolerance is in the tolerance checks' table, one row per check
+    header.push("Result".into());
+    numeric.push(false);
     let mut rows = Vec::new();
     for row in &t.rows {
         let mut cells: Vec<Cell> = vec![row.label.into(), row.unit.into()];
@@ -110,7 +111,6 @@ fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
                 Column::Absent { .. } => {}
             }
         }
-        cells.push(row.tolerance.clone().into());
         cells.push(Cell::toned(row.result.label(), row.result.tone()));
         rows.push(cells);
     }
@@ -389,6 +389,47 @@ pub(crate) fn inputs_sha256(c: &rockslide_core::case::Case) -> String {
     format!("{:x}", h.finalize())
 }
 
+/// The inputs' hash and the case file's, each once: the same hash when the case file is
+/// the only input.
+fn inputs_text(c: &rockslide_core::case::Case, inputs: &str) -> String {
+    if inputs == c.sha256 {
+        return format!("sha256 {inputs} (the case file {})", c.path.display());
+    }
+    format!(
+        "sha256 {inputs} (the case file {} with the record's samples as used; the case file alone sha256 {})",
+        c.path.display(),
+        c.sha256
+    )
+}
+
+/// The document ID of a case report: `RS-<case>-<12 hex of the inputs' SHA-256>`.
+fn document_id(c: &rockslide_core::case::Case) -> String {
+    format!("RS-{}-{}", c.name, &inputs_sha256(c)[..12])
+}
+
+/// The running header of a printed case report: its document ID and revision.
+pub(crate) fn running_header(c: &rockslide_core::case::Case, prov: &Provenance) -> String {
+    format!(
+        "{} · {}, commit {}",
+        document_id(c),
+        prov.tool,
+        short_commit(&prov.commit)
+    )
+}
+
+/// The running header of the printed suite summary: what it is and its revision.
+pub(crate) fn suite_header(prov: &Provenance) -> String {
+    format!(
+        "rockslide verification suite · {}, commit {}",
+        prov.tool,
+        short_commit(&prov.commit)
+    )
+}
+
+fn short_commit(commit: &str) -> &str {
+    commit.get(..12).unwrap_or(commit)
+}
+
 /// The document-control block of a case report: document ID `RS-<case>-<12 hex of the
 /// inputs' SHA-256>` (the same inputs give the same ID), revision (the build stamp), date,
 /// the inputs' hashes, and the prepared / checked / approved fields left to sign.
@@ -396,31 +437,13 @@ fn document_control(c: &rockslide_core::case::Case, prov: &Provenance) -> Block 
     let inputs = inputs_sha256(c);
     let blank = "________________  date ________".to_string();
     Block::Facts(vec![
-        (
-            "Document ID".into(),
-            format!("RS-{}-{}", c.name, &inputs[..12]),
-        ),
+        ("Document ID".into(), document_id(c)),
         (
             "Revision".into(),
             format!("{}, commit {}", prov.tool, prov.commit),
         ),
         ("Date".into(), prov.date.clone()),
-        (
-            "Inputs".into(),
-            format!(
-                "sha256 {inputs} (case file {} sha256 {}{})",
-                c.path.display(),
-                c.sha256,
-                if matches!(
-                    c.scene.excitation.signal(),
-                    Some(rockslide_core::case::Signal::Record { .. })
-                ) {
-                    ", with the record's samples as used"
-                } else {
-                    ""
-                }
-            ),
-        ),
+        ("Inputs".into(), inputs_text(c, &inputs)),
         ("Prepared by".into(), blank.clone()),
         ("Checked by".into(), blank.clone()),
         ("Approved by".into(), blank),
@@ -430,9 +453,12 @@ fn document_control(c: &rockslide_core::case::Case, prov: &Provenance) -> Block 
 pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments) -> Vec<Block> {
     let c = &r.case;
     let mut b = vec![Block::Heading(1, format!("{} — {}", c.name, c.title))];
+    b.extend(verdict_blocks(r));
+    b.extend(super::design::case_design_blocks(r));
+    b.extend(notes_blocks(std::slice::from_ref(r)));
+    b.push(Block::Heading(2, "Document".into()));
     b.push(document_control(c, prov));
     b.push(case_facts(c));
-    b.extend(verdict_blocks(r));
     b.extend(response_blocks(r));
 
     if !r.checks.is_empty() {
@@ -522,35 +548,60 @@ fn case_facts(c: &rockslide_core::case::Case) -> Block {
     Block::Facts(facts)
 }
 
-/// The gate's verdict of the case, its warnings, its failures and its informative findings.
+/// The gate's verdict of the case and its failures, if any.
 fn verdict_blocks(r: &CaseResult) -> Vec<Block> {
-    let mut b = Vec::new();
     let gated = r.checks.iter().filter(|c| c.gated).count();
-    let failed = gated_failures(r);
+    let failures = verdict::failures(std::slice::from_ref(r));
     let informative = r.checks.len() - gated;
-    b.push(Block::Verdict {
-        passed: failed == 0,
+    let mut b = vec![Block::Verdict {
+        passed: failures.is_empty(),
         text: format!(
-            "{gated} gated checks, {failed} failed; {informative} informative (not gated) checks"
+            "{}, {} failed; {}",
+            count(gated, "gated check", "gated checks"),
+            failures.len(),
+            count(
+                informative,
+                "informative (not gated) check",
+                "informative (not gated) checks"
+            )
         ),
-    });
-    let warnings = rockslide_verify::verdict::warnings(std::slice::from_ref(r));
-    if !warnings.is_empty() {
-        b.push(Block::List(warnings));
-    }
-    let lines: Vec<String> = verdict::failures(std::slice::from_ref(r))
-        .iter()
-        .map(|f| f.to_string())
-        .collect();
-    if !lines.is_empty() {
-        b.push(Block::List(lines));
-    }
-    let notes = verdict::informative(std::slice::from_ref(r));
-    if !notes.is_empty() {
-        b.push(Block::Para(
-            "Informative findings — checks outside their tolerance that are not gated (a known property of a method, reported rather than failed):".into(),
+    }];
+    if !failures.is_empty() {
+        b.push(Block::List(
+            failures.iter().map(|f| f.to_string()).collect(),
         ));
-        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
+    }
+    b
+}
+
+/// `1 case`, `2 cases`: a count with its noun.
+pub(crate) fn count(n: usize, one: &str, many: &str) -> String {
+    format!("{n} {}", if n == 1 { one } else { many })
+}
+
+/// The notes after the design quantities, each said once: what the cases declare known
+/// (disagreements with their reason and evidence, invariant violations grouped per
+/// declaration), then the informative checks outside their limit.
+fn notes_blocks(results: &[CaseResult]) -> Vec<Block> {
+    let known = verdict::warnings(results);
+    let informative = verdict::informative_notes(results);
+    if known.is_empty() && informative.is_empty() {
+        return Vec::new();
+    }
+    let mut b = vec![Block::Heading(2, "Notes".into())];
+    if !known.is_empty() {
+        b.push(Block::Para(
+            "Known and declared in the case files (not gate failures; a declaration that stops holding fails the gate):".into(),
+        ));
+        b.push(Block::List(known));
+    }
+    if !informative.is_empty() {
+        b.push(Block::Para(
+            "Informative checks outside their limit (not gated: a known property of a method, reported rather than failed):".into(),
+        ));
+        b.push(Block::List(
+            informative.iter().map(|f| f.to_string()).collect(),
+        ));
     }
     b
 }
@@ -562,7 +613,7 @@ fn response_blocks(r: &CaseResult) -> Vec<Block> {
     let (table, notes) = response_table(r);
     b.push(Block::Table(table));
     let mut foot = vec![
-        "Δ % = 100·(run/reference − 1) (the SAP2000 verification convention); ✓ within a gated tolerance, ✗ outside it, (✗) outside an informative one.".to_string(),
+        "Δ % = 100·(run/reference − 1) (the SAP2000 verification convention); ✓ within a gated tolerance, ✗ outside it, (✗) outside an informative one; each run's tolerance is in the tolerance checks below.".to_string(),
     ];
     foot.extend(notes);
     match &r.reference {
@@ -583,7 +634,7 @@ fn runs_blocks(r: &CaseResult) -> Vec<Block> {
     for run in &r.runs {
         b.push(Block::Heading(3, run.label()));
         let mut facts = vec![("status".to_string(), run.status.to_string())];
-        facts.extend(run.settings.iter().map(|s| (s.label(), s.value_text())));
+        facts.extend(run.settings.iter().map(|s| (s.label(), setting_text(s))));
         facts.extend(
             run.stats
                 .entries()
@@ -600,18 +651,40 @@ fn runs_blocks(r: &CaseResult) -> Vec<Block> {
     b
 }
 
+/// A setting's value for people: numbers to six significant digits (`0.0000666667`,
+/// `21.3542`, `-985973`), anything else as the engine words it.
+fn setting_text(s: &rockslide_engine_api::Setting) -> String {
+    use rockslide_engine_api::SettingValue;
+    let readable = |x: &f64| {
+        let rounded: f64 = format!("{x:.5e}").parse().unwrap_or(*x);
+        format!("{rounded}")
+    };
+    match &s.value {
+        SettingValue::Number(x) => readable(x),
+        SettingValue::Numbers(xs) => xs.iter().map(readable).collect::<Vec<_>>().join(", "),
+        _ => s.value_text(),
+    }
+}
+
 /// One row per invariant and run: measured worst value, where, the engine's limit, verdict.
 fn invariants_table(r: &CaseResult) -> Table {
     let mut t = Table {
-        header: ["Invariant", "Run", "Worst", "At t (s)", "Limit", "Verdict"]
-            .map(String::from)
-            .to_vec(),
+        header: [
+            "Invariant",
+            "Run",
+            "Worst excess (0: never)",
+            "At t (s)",
+            "Limit",
+            "Verdict",
+        ]
+        .map(String::from)
+        .to_vec(),
         numeric: vec![false, false, true, true, true, false],
         rows: Vec::new(),
     };
     for i in &r.invariants {
         let verdict = match (i.holds(), &i.expected) {
-            (true, _) => Cell::toned("PASS", Tone::Pass),
+            (true, _) => Cell::toned("PASS: holds", Tone::Pass),
             (false, Some((field, reason))) => {
                 Cell::toned(format!("declared ({field})"), Tone::Warn).hint(reason.clone())
             }
@@ -620,9 +693,10 @@ fn invariants_table(r: &CaseResult) -> Table {
         t.rows.push(vec![
             Cell::plain(i.invariant.key()),
             Cell::plain(i.run.clone()),
-            Cell::plain(format!("{:.3e}", i.worst)),
+            // a measure at or below zero never broke the law (compression −1: N ≥ M·g)
+            Cell::plain(verdict::show_measure(i.worst.max(0.0))),
             Cell::plain(i.at.map_or("—".into(), |t| format!("{t:.4}"))),
-            Cell::plain(format!("{:.1e}", i.limit)),
+            Cell::plain(verdict::show_measure(i.limit)),
             verdict,
         ]);
     }
@@ -640,27 +714,30 @@ pub(crate) fn suite_document(
     b.push(Block::Verdict {
         passed: all.is_empty(),
         text: format!(
-            "{} cases, {} gated checks, {} gate failures",
-            results.len(),
-            results
-                .iter()
-                .map(|r| r.checks.iter().filter(|c| c.gated).count())
-                .sum::<usize>(),
-            all.len()
+            "{}, {}, {}",
+            count(results.len(), "case", "cases"),
+            count(
+                results
+                    .iter()
+                    .map(|r| r.checks.iter().filter(|c| c.gated).count())
+                    .sum::<usize>(),
+                "gated check",
+                "gated checks"
+            ),
+            count(all.len(), "gate failure", "gate failures")
         ),
     });
-    let warnings = rockslide_verify::verdict::warnings(results);
-    if !warnings.is_empty() {
-        b.push(Block::List(warnings));
-    }
     if !all.is_empty() {
         b.push(Block::List(all.iter().map(|f| f.to_string()).collect()));
     }
-    let notes = verdict::informative(results);
-    if !notes.is_empty() {
-        b.push(Block::Para("Informative findings (not gated):".into()));
-        b.push(Block::List(notes.iter().map(|f| f.to_string()).collect()));
-    }
+    b.push(Block::Heading(2, "Design quantities".into()));
+    b.push(Block::Table(super::design::suite_design_table(results)));
+    b.push(Block::List(vec![format!(
+        "Each case's basis (its reference, or its first run) and the largest difference of any participant from it on a design quantity; a difference beyond {} % is declared in the case file (its report gives the reason and the evidence) or fails the gate.",
+        rockslide_verify::disagreement::DESIGN_PERCENT
+    )]));
+    b.extend(notes_blocks(results));
+    b.push(Block::Heading(2, "Cases".into()));
     let mut t = Table {
         header: [
             "Case",

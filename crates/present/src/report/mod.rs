@@ -10,7 +10,8 @@
 //! - `table`: the paper-style table as data; `crosscode`: pairwise discrepancies;
 //!   `plots`: time-history figures (plotters, SVG); `figure`: the palette and legend
 //!   strip every figure shares; `provenance`: tool, commit, machine, date;
-//! - `document`: the report content; `doc`: the document model;
+//! - `document`: the report content; `design`: the design quantities first; `doc`: the
+//!   document model;
 //! - `markdown`, `html`, `summary_csv`: the renderers; `files`: writing a document and
 //!   CSV files; `format`: number formatting;
 //! - `sections`: the energy audit section; `attachments`: the typed results of `sweep`
@@ -19,6 +20,7 @@
 
 mod attachments;
 mod crosscode;
+mod design;
 mod document;
 mod mcap_log;
 mod orbit_plot;
@@ -228,8 +230,9 @@ fn write_case_pages(result: &CaseResult, dir: &Path, set: OutputSet) -> Result<S
         true => html::Figures::Inline,
         false => html::Figures::Linked(prefix.to_string()),
     };
-    let page = html::page(
+    let page = html::page_with_header(
         &format!("rockslide — {}", result.case.name),
+        &document::running_header(&result.case, Provenance::current()),
         &html::render_with(&blocks, &figures("")),
     );
     write_atomically(&dir.join("report.html"), page.as_bytes())?;
@@ -293,7 +296,11 @@ fn write_suite_pages(
         let blocks = document::suite_document(results, Provenance::current(), &att);
         write_figures_and_markdown(&blocks, out, "summary.md")?;
         let html = out.join("summary.html");
-        let page = html::suite_page(&blocks, sections);
+        let page = html::suite_page(
+            &blocks,
+            sections,
+            &document::suite_header(Provenance::current()),
+        );
         write_atomically(&html, page.as_bytes())?;
         write_atomically(&out.join("summary.csv"), &summary_csv(results)?)?;
         Ok(html)

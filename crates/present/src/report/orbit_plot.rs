@@ -139,7 +139,7 @@ fn draw(orbits: &[Orbit], extent: f64) -> String {
         .iter()
         .map(|o| (o.label.clone(), o.colour, false))
         .collect();
-    let legend = legend_height(entries.len(), SIDE);
+    let legend = legend_height(&entries, SIDE);
     let mut svg = String::new();
     {
         let root =

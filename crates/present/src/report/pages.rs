@@ -36,8 +36,9 @@ pub fn suite_markdown_with(results: &[CaseResult], links: &Links) -> String {
 /// The self-contained HTML report of one case.
 pub fn case_html(r: &CaseResult) -> String {
     let blocks = case_document(r, Provenance::current(), &Attachments::default());
-    html::page(
+    html::page_with_header(
         &format!("rockslide — {}", r.case.name),
+        &super::document::running_header(&r.case, Provenance::current()),
         &html::render(&blocks),
     )
 }
@@ -52,7 +53,11 @@ pub(crate) fn suite_html_in(results: &[CaseResult], out: Option<&Path>) -> Strin
     let att = out.map_or_else(Attachments::default, Attachments::for_suite);
     let blocks = suite_document(results, Provenance::current(), &att);
     let sections: Vec<String> = results.iter().map(|r| case_section_in(r, out)).collect();
-    html::suite_page(&blocks, &sections)
+    html::suite_page(
+        &blocks,
+        &sections,
+        &super::document::suite_header(Provenance::current()),
+    )
 }
 
 /// A case's section of the suite page, figures inline, with its sweep found under `out`

@@ -332,7 +332,7 @@ fn draw(
 
     // Legend entries, drawn in a strip below the plot so that no box hides a curve.
     let entries = legend_entries(spec, all, &series, has_reference);
-    let legend_h = legend_height(entries.len(), SIZE.0);
+    let legend_h = legend_height(&entries, SIZE.0);
 
     let mut svg = String::new();
     {

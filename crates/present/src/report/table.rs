@@ -48,8 +48,6 @@ pub(crate) struct Row {
     pub reference: Option<f64>,
     /// One per `Column::Run`, in column order (absent columns have no cell).
     pub cells: Vec<Cell>,
-    /// Tolerances applied to this quantity, in words.
-    pub tolerance: String,
     /// The row's verdict: its gated checks' and its informative checks'.
     pub result: RowVerdict,
 }
@@ -186,19 +184,6 @@ pub(crate) fn paper_table(r: &CaseResult) -> PaperTable {
                 }
             })
             .collect();
-        let mut limits: Vec<String> = Vec::new();
-        for c in &checks {
-            let mut s = rockslide_verify::verdict::limit_text(r, c);
-            if c.basis != "reference" {
-                s.push_str(&format!(" vs {}", c.basis));
-            }
-            if !c.gated {
-                s.push_str(" (not gated)");
-            }
-            if !limits.contains(&s) {
-                limits.push(s);
-            }
-        }
         let gated: Vec<&Check> = checks.iter().copied().filter(|c| c.gated).collect();
         let informative: Vec<&Check> = checks.iter().copied().filter(|c| !c.gated).collect();
         let result = RowVerdict {
@@ -211,11 +196,6 @@ pub(crate) fn paper_table(r: &CaseResult) -> PaperTable {
             unit: d.display().0,
             reference,
             cells,
-            tolerance: if limits.is_empty() {
-                "—".into()
-            } else {
-                limits.join("; ")
-            },
             result,
         });
     }

@@ -114,7 +114,7 @@ fn draw(lines: &[Participant<'_>], mu: f64, duration: f64) -> String {
             ]
         })
         .collect();
-    let legend = legend_height(entries.len(), SIZE.0);
+    let legend = legend_height(&entries, SIZE.0);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (SIZE.0, SIZE.1 + legend)).into_drawing_area();

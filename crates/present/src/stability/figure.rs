@@ -1,13 +1,13 @@
 //! The stability map, drawn from the typed result: one row per `scene · engine/variant`,
 //! one marker per run at its Δt/T (log scale) coloured by class, and each engine
-//! variant's practical limit as a dashed vertical line. `stability.svg` beside the study
+//! variant's practical limit as a dashed vertical line in a colour no class uses. `stability.svg` beside the study
 //! and `stability-map.svg` in the suite report are this figure.
 
 use plotters::prelude::*;
 
 use crate::doc::figure::{
-    Entry, GRID, class_colour, compact_svg, draw_legend, failed_svg, legend_height, log_range,
-    palette,
+    Entry, GRID, class_colour, compact_svg, draw_legend, failed_svg, legend_height, limit_colour,
+    log_range,
 };
 use rockslide_verify::sweep::StabilityResult;
 
@@ -37,9 +37,9 @@ pub(crate) fn figure(st: &StabilityResult) -> Option<String> {
         limits
             .iter()
             .enumerate()
-            .map(|(i, (l, x))| (format!("{l} limit Δt/T = {x:.4}"), palette(i), true)),
+            .map(|(i, (l, x))| (format!("{l} limit Δt/T = {x:.4}"), limit_colour(i), true)),
     );
-    let lh = legend_height(entries.len(), W);
+    let lh = legend_height(&entries, W);
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (W, plot_h + lh)).into_drawing_area();
@@ -86,7 +86,7 @@ pub(crate) fn figure(st: &StabilityResult) -> Option<String> {
                     [(*x, -0.5), (*x, n as f64 - 0.5)],
                     6,
                     4,
-                    palette(i).stroke_width(2),
+                    limit_colour(i).stroke_width(2),
                 ))?;
             }
             draw_legend(&legend, &entries)?;

@@ -17,9 +17,8 @@ pub fn sentence(h: &Headline) -> String {
             value,
             point,
         } => format!(
-            "{label}: largest |residual sliding| {:.2} cm ({:.4} m) — {} at PGA {:.3} g, μ = {}, polarity {:+}",
-            value * 100.0,
-            value,
+            "{label}: largest |residual sliding| {} mm — {} at PGA {:.3} g, μ = {}, polarity {:+}",
+            rockslide_core::response::sig(value * 1000.0),
             short_name(&point.record),
             point.pga / STANDARD_GRAVITY,
             point.mu,
@@ -98,15 +97,17 @@ pub(crate) fn document(c: &Study) -> Vec<Block> {
             "pol.",
             "run",
             "status",
-            "residual sliding [cm]",
-            "peak abs. sliding [cm]",
+            "residual sliding [mm]",
+            "peak abs. sliding [mm]",
         ]
         .map(String::from)
         .to_vec(),
         numeric: vec![false, false, true, true, true, false, false, true, true],
         rows: Vec::new(),
     };
-    let cm = |x: Option<f64>| x.map_or_else(|| "—".into(), |v| format!("{:.3}", v * 100.0));
+    let mm = |x: Option<f64>| {
+        x.map_or_else(|| "—".into(), |v| rockslide_core::response::sig(v * 1000.0))
+    };
     for (r, run) in c.rows() {
         t.rows.push(vec![
             r.point.id().into(),
@@ -116,8 +117,8 @@ pub(crate) fn document(c: &Study) -> Vec<Block> {
             format!("{:+}", r.point.polarity).into(),
             format!("{}/{}", run.engine, run.variant).into(),
             run.status.clone().into(),
-            cm(run.residual_sliding).into(),
-            cm(run.peak_abs_sliding).into(),
+            mm(run.residual_sliding).into(),
+            mm(run.peak_abs_sliding).into(),
         ]);
     }
     b.push(Block::Table(t));

@@ -35,12 +35,12 @@ fn distinct(it: impl Iterator<Item = u64>) -> usize {
     v.len()
 }
 
-/// |Residual sliding| (cm) against PGA (g) of one run label `engine/variant` and, beside
+/// |Residual sliding| (mm) against PGA (g) of one run label `engine/variant` and, beside
 /// it, the rigid block; `None`: every run.
 pub(crate) fn residual_vs_pga(c: &Study, only: Option<&str>) -> String {
     let vary_mu = distinct(c.results.iter().map(|r| r.mu.to_bits())) > 1;
     let vary_pol = distinct(c.results.iter().map(|r| r.point.polarity.to_bits())) > 1;
-    // Series key → points (PGA in g, |residual| in cm).
+    // Series key → points (PGA in g, |residual| in mm).
     let mut series: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
     for (r, run) in c.rows() {
         let Some(res) = run.residual_sliding else {
@@ -60,7 +60,7 @@ pub(crate) fn residual_vs_pga(c: &Study, only: Option<&str>) -> String {
         series
             .entry(key)
             .or_default()
-            .push((r.pga / STANDARD_GRAVITY, res.abs() * 100.0));
+            .push((r.pga / STANDARD_GRAVITY, res.abs() * 1000.0));
     }
     for pts in series.values_mut() {
         pts.sort_by(|a, b| a.0.total_cmp(&b.0));
@@ -81,7 +81,7 @@ pub(crate) fn residual_vs_pga(c: &Study, only: Option<&str>) -> String {
         .enumerate()
         .map(|(i, k)| (k.clone(), palette(i), false))
         .collect();
-    let lh = legend_height(entries.len(), W);
+    let lh = legend_height(&entries, W);
     let caption = match only {
         Some(l) => format!("{}: residual sliding against PGA, {l}", c.title),
         None => format!("{}: residual sliding against PGA", c.title),
@@ -101,7 +101,7 @@ pub(crate) fn residual_vs_pga(c: &Study, only: Option<&str>) -> String {
             chart
                 .configure_mesh()
                 .x_desc("PGA [g]")
-                .y_desc("|residual sliding| [cm]")
+                .y_desc("|residual sliding| [mm]")
                 .label_style(("sans-serif", 13))
                 .light_line_style(GRID)
                 .draw()?;

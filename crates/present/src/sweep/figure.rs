@@ -36,7 +36,7 @@ pub(crate) fn figure(sweep: &SweepResult) -> Option<String> {
             (format!("{} ({order})", s.label), palette(i), false)
         })
         .collect();
-    let lh = legend_height(entries.len(), W);
+    let lh = legend_height(&entries, W);
     let case = &sweep.case;
     let mut svg = String::new();
     {

@@ -15,7 +15,7 @@ pub fn characteristic_period(case: &Case) -> (f64, String) {
             "T = 2π·√(M/Kx) of the oscillator (single element; the double element's series stiffness is the same by design)".into(),
         ),
         Model::RockingBody(r) => {
-            // Shear (n·Kx) in series with rocking (Kz·Σxᵢ²/h²): SPEC §1.1, ωX = 10π.
+            // Shear (n·Kx) in series with rocking (Kz·Σxᵢ²/h²): the paper's RPEPO, ωX = 10π.
             let n = r.supports as f64;
             let k_shear = n * r.contact.kx;
             let k_rock = r.contact.kz * r.support_positions().iter().map(|x| x * x).sum::<f64>()

@@ -14,7 +14,7 @@
 //! | `spatial` | 3D scenes: azimuth, `[excitation.y]`, depth, inertias |
 //! | `run` | `name`, `[run]`: duration, steps, output step |
 //! | `engines` | `[engines.<id>]`: step, variants, options |
-//! | `tolerances` | `[[tolerance]]`, `[[expected_outcome]]`, `[[expected_violation]]` |
+//! | `tolerances` | `[[tolerance]]`, `[[expected_outcome]]`, `[[expected_violation]]`, `[[expected_disagreement]]` |
 //! | `external` | `[[external]]`: label, layout, the results file (read by the given reader) |
 
 use std::path::{Path, PathBuf};
@@ -168,6 +168,12 @@ pub fn parse_case_with(
         .enumerate()
         .map(|(i, o)| v.expected_violation(i, o))
         .collect();
+    let expected_disagreements = raw
+        .expected_disagreement
+        .iter()
+        .enumerate()
+        .map(|(i, o)| v.expected_disagreement(i, o))
+        .collect();
     let externals = v.externals(&raw.external, path);
     if !v.errors.is_empty() {
         return Err(InputErrors(v.errors));
@@ -194,6 +200,7 @@ pub fn parse_case_with(
         tolerances,
         expected_outcomes,
         expected_violations,
+        expected_disagreements,
         locator,
         externals: Vec::new(),
     };

@@ -1,12 +1,16 @@
 //! `[[tolerance]]` (a response quantity, the runs it applies to, its basis and bounds),
 //! `[[expected_outcome]]` (a run expected not to complete) and `[[expected_violation]]`
-//! (an invariant violation accepted, with its reason).
+//! (an invariant violation accepted, with its reason), `[[expected_disagreement]]` (a
+//! design-quantity disagreement accepted, with its reason and evidence).
 
-use super::super::raw::{RawExpectedOutcome, RawExpectedViolation, RawTolerance};
-use super::super::scene::{
-    EXPECTED_STATUSES, ExpectedOutcome, ExpectedViolation, INVARIANT_KEYS, Tolerance,
-    ToleranceBasis, quoted,
+use super::super::raw::{
+    RawExpectedDisagreement, RawExpectedOutcome, RawExpectedViolation, RawTolerance,
 };
+use super::super::scene::{
+    DESIGN_QUANTITIES, EXPECTED_STATUSES, ExpectedDisagreement, ExpectedOutcome, ExpectedViolation,
+    INVARIANT_KEYS, Tolerance, ToleranceBasis, quoted,
+};
+
 use super::validator::{Rule, Validator};
 
 impl Validator<'_> {
@@ -61,6 +65,44 @@ impl Validator<'_> {
             engine: o.engine.clone(),
             invariant: o.invariant.clone(),
             reason: o.reason.clone(),
+            field,
+        }
+    }
+
+    pub(super) fn expected_disagreement(
+        &mut self,
+        i: usize,
+        o: &RawExpectedDisagreement,
+    ) -> ExpectedDisagreement {
+        let field = format!("expected_disagreement[{i}]");
+        let engine = o.engine.split('/').next().unwrap_or_default();
+        if !self.external_labels.contains(&o.engine) {
+            self.engine_id(&format!("{field}.engine"), engine);
+        }
+        if !DESIGN_QUANTITIES.contains(&o.quantity.as_str()) {
+            self.fail(
+                &format!("{field}.quantity"),
+                format!(
+                    "\"{}\" is not a design quantity; one of: {}",
+                    o.quantity,
+                    quoted(DESIGN_QUANTITIES)
+                ),
+            );
+        }
+        for (key, text) in [("reason", &o.reason), ("evidence", &o.evidence)] {
+            if text.trim().is_empty() {
+                self.fail(
+                    &format!("{field}.{key}"),
+                    "must say why the disagreement is accepted and what shows it",
+                );
+            }
+        }
+        ExpectedDisagreement {
+            quantity: o.quantity.clone(),
+            runs: o.engine.clone(),
+            against: o.against.clone().unwrap_or_else(|| "reference".into()),
+            reason: o.reason.clone(),
+            evidence: o.evidence.clone(),
             field,
         }
     }
