@@ -12,7 +12,8 @@
 //!   tolerances.
 //! - [`analysis`]: response quantities, discrepancies, tolerance checks, the energy audit,
 //!   Δt ladders and observed orders, stability classes — numbers, no I/O.
-//! - [`external`]: other programs' results as runs, gated like an engine's.
+//! - [`external`]: other programs' results as runs, gated like an engine's;
+//!   [`opensees`] and [`calculix`]: those programs run live on the exported scene.
 //! - [`verdict`]: the one pass/fail rule; [`record`]: a case result as a typed record
 //!   (`result.json`).
 //! - [`timings`]: opt-in wall and CPU time of a command's stages (`--timings`).
@@ -23,6 +24,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod calculix;
 pub mod external;
 pub mod footprint;
 pub mod invariants;
