@@ -59,9 +59,12 @@ pub enum Command {
     /// diverged, not converged); the typed result, map and stability limits in
     /// `<out>/stability/`.
     Stability(StabilityArgs),
-    /// Write a case's scene as another program's input: `--to opensees` writes an
-    /// OpenSeesPy script (and its record samples) into `<out>/<case>/` that records
-    /// rockslide's own trace CSV (read back with `--external opensees=…`).
+    /// Write a case's scene as another program's input into `<out>/<case>/`: `--to
+    /// opensees` an OpenSeesPy script (and its record samples) that records rockslide's
+    /// own trace CSV (read back with `--external opensees=…`); `--to calculix` a CalculiX
+    /// `.inp` deck whose `.dat` output rockslide reads (`[engines.calculix]` runs it);
+    /// `--to ansys` an ANSYS APDL deck of the paper's CONTA178 models that writes
+    /// rockslide's CSV (not executed by rockslide).
     Export(ExportArgs),
 }
 
@@ -235,6 +238,10 @@ pub struct ExportArgs {
 pub enum Target {
     /// OpenSeesPy (Python) script.
     Opensees,
+    /// CalculiX (`ccx`) input deck.
+    Calculix,
+    /// ANSYS Mechanical APDL input deck (not executed by rockslide).
+    Ansys,
 }
 
 impl Command {

@@ -1,15 +1,18 @@
-//! `rockslide export CASE --to opensees [-o DIR]`: the case's scene as an OpenSeesPy
-//! script (and its record samples) in `<DIR>/<case>/`, each file written atomically inside
-//! the output folder. The single contact arrangement always; for an oscillator the double
-//! one too when the case defines `[model.double]` (or only the one `[engines.opensees]
-//! variants` names).
+//! `rockslide export CASE --to opensees|calculix|ansys [-o DIR]`: the case's scene as the
+//! program's input — an OpenSeesPy script (and its record samples), a CalculiX `.inp`
+//! deck, an ANSYS APDL deck (not executed by rockslide) — in `<DIR>/<case>/`, each file written atomically inside the output folder. The
+//! single contact arrangement always; for an oscillator the double one too when the case
+//! defines `[model.double]` (or only the one `[engines.<program>] variants` names).
 
 use std::path::Path;
 use std::process::ExitCode;
 
+use rockslide_core::case::{Case, Model};
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::io::{inside, write_atomically};
-use rockslide_export::opensees::{Samples, Settings, export_with};
+use rockslide_export::deck::DeckSettings;
+use rockslide_export::opensees::{Samples, Settings};
+use rockslide_export::{Export, ansys, calculix, opensees};
 
 use crate::args::{ExportArgs, Target};
 
@@ -21,32 +24,13 @@ pub fn run(args: &ExportArgs, quiet: bool) -> Result<ExitCode, Error> {
 /// Export one case to `target` under `out`.
 fn export(case_path: &Path, target: Target, out: &Path, quiet: bool) -> Result<ExitCode, Error> {
     let case = rockslide_verify::registry::load_case(case_path)?;
-    match target {
-        Target::Opensees => {}
-    }
-    let settings = Settings::from_case(&case).map_err(InputErrors::from)?;
-    let asked = case
-        .engine("opensees")
-        .and_then(|r| r.variants.as_ref())
-        .is_some();
-    // the double arrangement of an oscillator (a rocking body's is not exported)
-    let has_double = match &case.scene.model {
-        rockslide_core::case::Model::Oscillator(o) => o.double.is_some(),
-        _ => false,
-    };
-    let mut arrangements = vec![settings.clone()];
-    if !asked && has_double {
-        arrangements.push(Settings {
-            double: true,
-            ..settings
-        });
-    }
     // every export first (an unsupported scene writes nothing), then the files
-    let exports = arrangements
-        .iter()
-        .map(|s| export_with(&case, s, Samples::Beside))
-        .collect::<Result<Vec<_>, _>>()
-        .map_err(InputErrors::from)?;
+    let exports = match target {
+        Target::Opensees => opensees_exports(&case),
+        Target::Calculix => deck_exports(&case, calculix::SECTION, calculix::export_with),
+        Target::Ansys => deck_exports(&case, ansys::SECTION, ansys::export_with),
+    }
+    .map_err(InputErrors::from)?;
     for export in &exports {
         for file in &export.files {
             let path = inside(out, Path::new(&case.name).join(&file.name))?;
@@ -57,10 +41,67 @@ fn export(case_path: &Path, target: Target, out: &Path, quiet: bool) -> Result<E
         }
     }
     if !quiet {
-        println!(
-            "run: python3 <script> (needs OpenSeesPy), then: rockslide check {} --external opensees=<results>.csv",
-            case_path.display()
-        );
+        let how = match target {
+            Target::Opensees => format!(
+                "run: python3 <script> (needs OpenSeesPy), then: rockslide check {} --external opensees=<results>.csv",
+                case_path.display()
+            ),
+            Target::Calculix => "run: ccx -i <deck without .inp> (apt-get install calculix-ccx); a case with [engines.calculix] runs it live".to_string(),
+            Target::Ansys => format!(
+                "not executed by rockslide: run it in ANSYS, then: rockslide check {} --external ansys=<results>.csv",
+                case_path.display()
+            ),
+        };
+        println!("{how}");
     }
     Ok(ExitCode::SUCCESS)
+}
+
+/// Whether the double arrangement is written after the single one: when the case has one
+/// and `[engines.<section>] variants` names none (for a rocking body only in the ANSYS
+/// deck: OpenSees does not converge with it, and CalculiX's deck is the PEPO's).
+fn with_double(case: &Case, section: &str) -> bool {
+    let asked = case
+        .engine(section)
+        .and_then(|r| r.variants.as_ref())
+        .is_some();
+    let has_double = match &case.scene.model {
+        Model::Oscillator(o) => o.double.is_some(),
+        Model::RockingBody(r) => section == ansys::SECTION && r.double.is_some(),
+        Model::RigidBlock(_) => false,
+    };
+    !asked && has_double
+}
+
+fn opensees_exports(case: &Case) -> Result<Vec<Export>, rockslide_core::error::InputError> {
+    let settings = Settings::from_case(case)?;
+    let mut arrangements = vec![settings.clone()];
+    if with_double(case, opensees::SECTION) {
+        arrangements.push(Settings {
+            double: true,
+            ..settings
+        });
+    }
+    arrangements
+        .iter()
+        .map(|s| opensees::export_with(case, s, Samples::Beside))
+        .collect()
+}
+
+/// The decks of a case (CalculiX, ANSYS): the single arrangement, and the double one too
+/// when [`with_double`] says so.
+fn deck_exports(
+    case: &Case,
+    section: &str,
+    export_with: fn(&Case, &DeckSettings) -> rockslide_export::ExportResult,
+) -> Result<Vec<Export>, rockslide_core::error::InputError> {
+    let settings = DeckSettings::from_case(case, section)?;
+    let mut arrangements = vec![settings.clone()];
+    if with_double(case, section) {
+        arrangements.push(DeckSettings {
+            double: true,
+            ..settings
+        });
+    }
+    arrangements.iter().map(|s| export_with(case, s)).collect()
 }

@@ -6,6 +6,7 @@ mod bad_input;
 mod bidirectional_independent;
 mod bidirectional_refs;
 mod bidirectional_scene;
+mod calculix;
 mod cli;
 mod common;
 mod contact_block;

@@ -5,11 +5,20 @@
 //!
 //! - [`opensees`]: an OpenSeesPy script (PEPO single and double, RPEPO single,
 //!   pulses and records) that writes a CSV in rockslide's own trace format.
+//! - [`ansys`]: an ANSYS APDL deck of the paper's CONTA178 models (PEPO single and
+//!   double, RPEPO on its supports) that writes rockslide's CSV; not executed by rockslide.
+//! - [`calculix`]: a CalculiX `.inp` deck of the PEPO (single and double) whose `.dat`
+//!   output rockslide reads back (CalculiX live).
+//! - [`deck`]: what the decks share (numbers that read back exactly, settings, the scenes
+//!   they model).
 //!
 //! An export is a list of [`ExportFile`]s (names and bytes); the caller writes them
 //! atomically inside its output folder. A scene the exporter cannot represent is an
 //! [`InputError`] naming the case field and the reason.
 
+pub mod ansys;
+pub mod calculix;
+pub mod deck;
 pub mod opensees;
 
 use rockslide_core::error::InputError;

@@ -12,11 +12,13 @@
 //!   and a 3D view of scenes with geometry ([`scene3d`]).
 //! - `external`: other programs' results read as traces (rockslide CSV in any catalogued
 //!   unit, foreign CSV with a column map, MCAP); `case`: a case loaded with them read.
+//! - [`calculix_dat`]: CalculiX's `.dat` results file, read as blocks (CalculiX live).
 //!
 //! [`Trace`]: rockslide_core::trace::Trace
 
 #![warn(missing_docs)]
 
+pub mod calculix_dat;
 mod case;
 mod cdr;
 mod contacts;

@@ -12,9 +12,10 @@
 //!   tolerances.
 //! - [`analysis`]: response quantities, discrepancies, tolerance checks, the energy audit,
 //!   Δt ladders and observed orders, stability classes — numbers, no I/O.
-//! - [`external`]: other programs' results as runs, gated like an engine's.
 //! - [`disagreement`]: design quantities of each participant against the basis, declared
 //!   or failing.
+//! - [`external`]: other programs' results as runs, gated like an engine's;
+//!   [`opensees`] and [`calculix`]: those programs run live on the exported scene.
 //! - [`verdict`]: the one pass/fail rule; [`record`]: a case result as a typed record
 //!   (`result.json`).
 //! - [`timings`]: opt-in wall and CPU time of a command's stages (`--timings`).
@@ -25,6 +26,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod calculix;
 pub mod disagreement;
 pub mod external;
 pub mod footprint;

@@ -13,9 +13,16 @@ use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink, Variant};
 /// Ids of every engine, as written in case files (`[engines.<id>]`), in report column order.
 pub const ENGINE_IDS: &[&str] = &["predictor-corrector", "fe", "rapier"];
 
-/// Sections a case may have under `[engines.<id>]`: the engines, and `opensees` (the
-/// live OpenSees participant, [`crate::opensees`]: exported, run and read back).
-pub const CASE_SECTION_IDS: &[&str] = &["predictor-corrector", "fe", "rapier", "opensees"];
+/// Sections a case may have under `[engines.<id>]`: the engines, `opensees` (the live
+/// OpenSees participant, [`crate::opensees`]) and `calculix` (the live CalculiX
+/// participant, [`crate::calculix`]): each exported, run and read back.
+pub const CASE_SECTION_IDS: &[&str] = &[
+    "predictor-corrector",
+    "fe",
+    "rapier",
+    "opensees",
+    "calculix",
+];
 
 /// Every engine, in report column order (the order of [`ENGINE_IDS`]), each behind the
 /// spatial gate ([`PlanGate`]).

@@ -175,7 +175,16 @@ fn run_case_streaming_where(
 ) -> Result<CaseResult, InputErrors> {
     let plan = plan(&case, engines)?;
     let opensees = crate::opensees::prepare(&case)?;
+    let calculix = crate::calculix::prepare(&case)?;
     let name = case.name.clone();
+    // the live participants (other programs run on the exported scene), beside the engines
+    let live_all = || {
+        let (o, c) = rayon::join(
+            || crate::opensees::live(&case, opensees.as_ref()),
+            || crate::calculix::live(&case, calculix.as_ref()),
+        );
+        vec![(crate::opensees::LABEL, o), (crate::calculix::LABEL, c)]
+    };
     let run_all = |solution: Option<&dyn ExactSolution>| {
         timings::time("engines", &name, || {
             plan.runs
@@ -191,19 +200,11 @@ fn run_case_streaming_where(
         // a streamed run compares with the reference at every step as it runs: solved first
         let reference = timings::time("reference", &name, || solve_reference(&case));
         let solution = reference.as_ref().ok().map(|r| r.solution.as_ref());
-        let both = rayon::join(
-            || run_all(solution),
-            || crate::opensees::live(&case, opensees.as_ref()),
-        );
+        let both = rayon::join(|| run_all(solution), live_all);
         (both, reference)
     } else {
         rayon::join(
-            || {
-                rayon::join(
-                    || run_all(None),
-                    || crate::opensees::live(&case, opensees.as_ref()),
-                )
-            },
+            || rayon::join(|| run_all(None), live_all),
             || timings::time("reference", &name, || solve_reference(&case)),
         )
     };
@@ -218,7 +219,7 @@ fn analyse(
     case: Case,
     not_applicable: Vec<(&'static str, String)>,
     runs: Vec<Result<(Run, Option<StreamedSummary>), InputError>>,
-    live: crate::opensees::Live,
+    live: Vec<(&'static str, crate::opensees::Live)>,
     reference: Result<ReferenceResult, String>,
 ) -> Result<CaseResult, InputErrors> {
     let (mut case, mut not_applicable) = (case, not_applicable);
@@ -230,13 +231,13 @@ fn analyse(
         .into_iter()
         .unzip();
     let mut runs = runs;
-    match live {
-        crate::opensees::Live::NotAsked => {}
-        crate::opensees::Live::NotApplicable(why) => {
-            not_applicable.push((crate::opensees::LABEL, why))
+    for (label, live) in live {
+        match live {
+            crate::opensees::Live::NotAsked => {}
+            crate::opensees::Live::NotApplicable(why) => not_applicable.push((label, why)),
+            crate::opensees::Live::Participant(e) => case.add_external(*e),
+            crate::opensees::Live::Failed(run) => runs.push(*run),
         }
-        crate::opensees::Live::Participant(e) => case.add_external(*e),
-        crate::opensees::Live::Failed(run) => runs.push(*run),
     }
     let runs = crate::external::with_external_runs(&case, runs);
     streamed.resize(runs.len(), None);

@@ -1,0 +1,387 @@
+//! CalculiX as a live participant. A case that has an `[engines.calculix]` section asks
+//! for it: the scene is exported ([`rockslide_export::calculix`]) into a fresh temporary
+//! folder, `ccx` runs it there bounded in time (`timeout`, default 600 s), its `.dat`
+//! results are read ([`rockslide_formats::calculix_dat`]) into rockslide's trace columns
+//! and the folder is removed; the run takes part as the external participant `calculix`,
+//! gated like any external run (by the tolerances that name it, else at the SAP2000
+//! "Acceptable" limit).
+//!
+//! Without `ccx` the case says "calculix: not applicable — CalculiX not found (apt-get
+//! install calculix-ccx)". A run that fails or times out is a run that did not converge,
+//! the last lines of CalculiX's output among its findings. `ROCKSLIDE_CCX` names another
+//! `ccx` executable.
+
+use std::io::Read;
+use std::path::Path;
+use std::process::{Command, Stdio};
+use std::sync::OnceLock;
+use std::time::{Duration, Instant};
+
+use rockslide_core::case::{Case, EXTERNAL_VARIANT, Excitation, External, ExternalFormat, Model};
+use rockslide_core::error::InputErrors;
+use rockslide_core::trace::Trace;
+use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
+use rockslide_export::calculix::{
+    self as export, SECTION, SET_BODY, SET_GROUND, SET_GROUND_REF, SET_MIDDLE,
+};
+use rockslide_export::deck::DeckSettings;
+use rockslide_formats::calculix_dat::{read_calculix_dat, series};
+use rockslide_formats::{MAX_EXTERNAL_BYTES, read_external_csv};
+
+use crate::opensees::Live;
+
+/// The participant's label (its run is `calculix/external`).
+pub const LABEL: &str = SECTION;
+
+/// Why CalculiX does not take part when `ccx` is missing.
+pub const NOT_FOUND: &str = "CalculiX not found (apt-get install calculix-ccx)";
+
+/// Bytes of CalculiX's standard output kept for a failed run's findings (its last lines).
+const OUTPUT_TAIL_BYTES: usize = 16 * 1024;
+
+/// Lines of CalculiX's output kept in a failed run's findings.
+const OUTPUT_LINES: usize = 20;
+
+/// The `ccx` executable to run.
+fn ccx() -> String {
+    std::env::var("ROCKSLIDE_CCX").unwrap_or_else(|_| "ccx".into())
+}
+
+/// CalculiX's version, when `ccx` runs (asked once per process).
+pub fn available() -> Option<&'static str> {
+    static VERSION: OnceLock<Option<String>> = OnceLock::new();
+    VERSION
+        .get_or_init(|| {
+            let out = Command::new(ccx())
+                .arg("-v")
+                .stdin(Stdio::null())
+                .output()
+                .ok()?;
+            let text = String::from_utf8_lossy(&out.stdout);
+            let version = text.split("Version").nth(1)?.split_whitespace().next()?;
+            Some(version.to_string())
+        })
+        .as_deref()
+}
+
+/// Check the case's `[engines.calculix]` before any work (an input error if the scene or
+/// the settings cannot be exported); `None` when the case does not ask for CalculiX. A
+/// live run prints every increment, as the engines' analysis records every step.
+pub fn prepare(case: &Case) -> Result<Option<DeckSettings>, InputErrors> {
+    if case.engine(SECTION).is_none() {
+        return Ok(None);
+    }
+    let settings = DeckSettings {
+        output_every: 1,
+        ..export::settings(case)?
+    };
+    export::export_with(case, &settings)?;
+    Ok(Some(settings))
+}
+
+/// Export, run and read back the live participant (see the module docs).
+pub fn live(case: &Case, settings: Option<&DeckSettings>) -> Live {
+    let Some(settings) = settings else {
+        return Live::NotAsked;
+    };
+    let Some(version) = available() else {
+        return Live::NotApplicable(NOT_FOUND.into());
+    };
+    let started = Instant::now();
+    let text = match run_deck(case, settings) {
+        Ok(text) => text,
+        Err((why, output)) => return Live::Failed(Box::new(failed(settings, why, output))),
+    };
+    let source = Path::new("calculix (live run)");
+    let csv = read_dat(source, &text, case, settings);
+    match csv.and_then(|csv| read_external_csv(source, &csv, &ExternalFormat::default())) {
+        Ok(mut read) => {
+            read.notes.push(format!(
+                "CalculiX ran live in {:.1} s (exported deck, dt = {} s)",
+                started.elapsed().as_secs_f64(),
+                settings.dt
+            ));
+            Live::Participant(Box::new(External {
+                label: LABEL.into(),
+                program: format!("CalculiX {version} (live)"),
+                element: element(settings),
+                file: source.to_path_buf(),
+                read,
+                field: format!("engines.{SECTION}"),
+            }))
+        }
+        Err(e) => Live::Failed(Box::new(failed(
+            settings,
+            format!("its results could not be read: {e}"),
+            Vec::new(),
+        ))),
+    }
+}
+
+/// The model, in a few words, for the report.
+fn element(settings: &DeckSettings) -> String {
+    format!(
+        "C3D8 cube in simple shear, perfectly plastic at mu*M*g (Newmark, dt = {} s), {} arrangement",
+        settings.dt,
+        if settings.double { "double" } else { "single" }
+    )
+}
+
+/// Write the deck into a fresh temporary folder, run `ccx` there, return its `.dat` text;
+/// or why not, with the last lines CalculiX printed. The folder is removed either way.
+fn run_deck(case: &Case, settings: &DeckSettings) -> Result<String, (String, Vec<String>)> {
+    let export = export::export_with(case, settings).map_err(|e| (e.to_string(), Vec::new()))?;
+    let folder = tempfile::Builder::new()
+        .prefix("rockslide-calculix-")
+        .tempdir()
+        .map_err(|e| (format!("cannot make a temporary folder: {e}"), Vec::new()))?;
+    let deck = &export.files[0];
+    std::fs::write(folder.path().join(&deck.name), &deck.bytes)
+        .map_err(|e| (format!("cannot write the deck: {e}"), Vec::new()))?;
+    let job = deck.name.trim_end_matches(".inp");
+    let out = run_ccx(
+        folder.path(),
+        job,
+        Duration::from_secs_f64(settings.timeout),
+    )
+    .map_err(|why| (why, Vec::new()))?;
+    let output = tail(&out.output);
+    if out.timed_out {
+        return Err((
+            format!(
+                "CalculiX did not finish within {} s (engines.{SECTION}.timeout)",
+                settings.timeout
+            ),
+            output,
+        ));
+    }
+    if !out.ok {
+        return Err(("CalculiX stopped with an error".into(), output));
+    }
+    let dat = folder.path().join(&export.results);
+    let size = std::fs::metadata(&dat).map(|m| m.len()).unwrap_or(0);
+    if size > MAX_EXTERNAL_BYTES {
+        return Err((
+            format!("CalculiX wrote more than {MAX_EXTERNAL_BYTES} bytes of results"),
+            output,
+        ));
+    }
+    std::fs::read_to_string(&dat)
+        .map_err(|e| (format!("cannot read {}: {e}", export.results), output))
+}
+
+/// The trace columns (rockslide's CSV) from the `.dat` blocks: the body's displacement
+/// and velocity relative to the ground, the slider's force (the ground's reaction, sign
+/// reversed), slip = deformation − force/Kx; the double arrangement's middle node.
+fn read_dat(
+    source: &Path,
+    text: &str,
+    case: &Case,
+    settings: &DeckSettings,
+) -> Result<String, InputErrors> {
+    let blocks = read_calculix_dat(source, text)?;
+    let Model::Oscillator(o) = &case.scene.model else {
+        unreachable!("the CalculiX export writes oscillators only")
+    };
+    let kx = match (&o.double, settings.double) {
+        (Some(d), true) => d.lower.kx,
+        _ => o.contact.kx,
+    };
+    let moving_ground = matches!(case.scene.excitation, Excitation::GroundDisplacement(_));
+    let column = |quantity: &str, set: &str, node: Option<u64>, c: usize| {
+        series(&blocks, quantity, set, node, c)
+    };
+    let body_node = if settings.double { 9 } else { 5 };
+    let u = column("displacements", SET_BODY, Some(body_node), 0);
+    let v = column("velocities", SET_BODY, Some(body_node), 0);
+    let reaction = column("total force", SET_GROUND, None, 0);
+    let middle = column("displacements", SET_MIDDLE, Some(5), 0);
+    let (ug, vg) = if moving_ground {
+        (
+            column("displacements", SET_GROUND_REF, Some(1), 0),
+            column("velocities", SET_GROUND_REF, Some(1), 0),
+        )
+    } else {
+        (Vec::new(), Vec::new())
+    };
+    let rows = u.len();
+    let complete = v.len() == rows
+        && reaction.len() == rows
+        && (!settings.double || middle.len() == rows)
+        && (!moving_ground || (ug.len() == rows && vg.len() == rows));
+    if rows == 0 || !complete {
+        return Err(rockslide_core::error::InputError::new(
+            source,
+            "",
+            format!("the .dat file lacks printed blocks: {rows} displacement blocks of the body, {} velocity, {} ground force{}", v.len(), reaction.len(), if settings.double { format!(", {} middle node", middle.len()) } else { String::new() }),
+        )
+        .into());
+    }
+    let mut csv = String::from("time [s],rel_disp [m],slide [m],resistance [N],vel [m/s]");
+    if settings.double {
+        csv.push_str(",node_disp [m]");
+    }
+    if moving_ground {
+        csv.push_str(",ground_disp [m]");
+    }
+    csv.push_str(&zero_row(settings.double, moving_ground));
+    let out_dt = settings.dt * settings.output_every as f64;
+    for i in 0..rows {
+        let ground = if moving_ground { ug[i].1 } else { 0.0 };
+        let rel = u[i].1 - ground;
+        let force = -reaction[i].1;
+        let node = if settings.double {
+            middle[i].1 - ground
+        } else {
+            rel
+        };
+        let vel = v[i].1 - if moving_ground { vg[i].1 } else { 0.0 };
+        csv.push_str(&format!(
+            "\n{:?},{rel:?},{:?},{force:?},{vel:?}",
+            on_grid(u[i].0, out_dt),
+            node - force / kx
+        ));
+        if settings.double {
+            csv.push_str(&format!(",{node:?}"));
+        }
+        if moving_ground {
+            csv.push_str(&format!(",{ground:?}"));
+        }
+    }
+    csv.push('\n');
+    Ok(csv)
+}
+
+/// The state at rest at t = 0 (CalculiX prints from the first increment on).
+fn zero_row(double: bool, moving_ground: bool) -> String {
+    let columns = 5 + usize::from(double) + usize::from(moving_ground);
+    format!("\n{}", vec!["0.0"; columns].join(","))
+}
+
+/// A printed time (7 significant digits) put back on the output grid it was printed from.
+fn on_grid(t: f64, dt: f64) -> f64 {
+    let k = (t / dt).round();
+    if (t - k * dt).abs() <= 1e-6 * t.abs().max(dt) {
+        k * dt
+    } else {
+        t
+    }
+}
+
+/// The run of a live participant that failed.
+fn failed(settings: &DeckSettings, reason: String, output: Vec<String>) -> Run {
+    let mut findings = vec![format!("CalculiX live run failed: {reason}")];
+    findings.extend(output.into_iter().map(|l| format!("ccx: {l}")));
+    Run {
+        engine: LABEL,
+        variant: EXTERNAL_VARIANT.to_string(),
+        arrangement: Arrangement::Single,
+        dt: settings.dt,
+        settings: vec![Setting::text("program", "CalculiX (live)")],
+        stats: SolverStats::default(),
+        findings,
+        trace: Trace::default(),
+        status: RunStatus::NotConverged {
+            time: f64::NAN,
+            reason,
+        },
+        wall_seconds: 0.0,
+    }
+}
+
+/// The last non-blank lines of CalculiX's output.
+fn tail(output: &str) -> Vec<String> {
+    let lines: Vec<String> = output
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .map(str::to_string)
+        .collect();
+    lines[lines.len().saturating_sub(OUTPUT_LINES)..].to_vec()
+}
+
+/// What a `ccx` run did.
+struct Output {
+    ok: bool,
+    timed_out: bool,
+    /// The last [`OUTPUT_TAIL_BYTES`] of its standard output and error.
+    output: String,
+}
+
+/// Run `ccx -i job` in `folder`, killed after `timeout`; its output (megabytes for a long
+/// run) is drained as it comes, only its end kept.
+fn run_ccx(folder: &Path, job: &str, timeout: Duration) -> Result<Output, String> {
+    let program = ccx();
+    let mut child = Command::new(&program)
+        .args(["-i", job])
+        .current_dir(folder)
+        .env("OMP_NUM_THREADS", "1")
+        .stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("cannot start {program}: {e}"))?;
+    let mut stdout = child.stdout.take().ok_or("no standard output")?;
+    let mut stderr = child.stderr.take().ok_or("no standard error")?;
+    let out_reader = std::thread::spawn(move || keep_tail(&mut stdout));
+    let err_reader = std::thread::spawn(move || keep_tail(&mut stderr));
+    let started = Instant::now();
+    let (status, timed_out) = loop {
+        match child.try_wait() {
+            Ok(Some(status)) => break (Some(status), false),
+            Ok(None) if started.elapsed() >= timeout => {
+                let _ = child.kill();
+                let _ = child.wait();
+                break (None, true);
+            }
+            Ok(None) => std::thread::sleep(Duration::from_millis(20)),
+            Err(e) => return Err(format!("waiting for {program}: {e}")),
+        }
+    };
+    let output = out_reader.join().unwrap_or_default() + &err_reader.join().unwrap_or_default();
+    // ccx exits 0 even after some fatal errors: its own words decide
+    let error = output.contains("*ERROR");
+    Ok(Output {
+        ok: status.is_some_and(|s| s.success()) && !error,
+        timed_out,
+        output,
+    })
+}
+
+/// The stream read to its end, only its last [`OUTPUT_TAIL_BYTES`] kept.
+fn keep_tail(stream: &mut impl Read) -> String {
+    let mut kept: Vec<u8> = Vec::new();
+    let mut buffer = [0u8; 8192];
+    while let Ok(n) = stream.read(&mut buffer) {
+        if n == 0 {
+            break;
+        }
+        kept.extend_from_slice(&buffer[..n]);
+        if kept.len() > 2 * OUTPUT_TAIL_BYTES {
+            kept.drain(..kept.len() - OUTPUT_TAIL_BYTES);
+        }
+    }
+    let start = kept.len().saturating_sub(OUTPUT_TAIL_BYTES);
+    String::from_utf8_lossy(&kept[start..]).into_owned()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn printed_times_go_back_on_the_grid() {
+        assert_eq!(on_grid(0.1234000e-1, 1e-4), 123.0 * 1e-4);
+        assert_eq!(on_grid(0.9999999, 1e-4), 10000.0 * 1e-4);
+        // off the grid: kept as printed
+        assert_eq!(on_grid(0.12345, 1e-3), 0.12345);
+    }
+
+    #[test]
+    fn only_the_end_of_a_long_output_is_kept() {
+        let long = "x".repeat(5 * OUTPUT_TAIL_BYTES) + "\nthe end";
+        let kept = keep_tail(&mut long.as_bytes());
+        assert_eq!(kept.len(), OUTPUT_TAIL_BYTES);
+        assert!(kept.ends_with("the end"));
+    }
+}
