@@ -42,6 +42,7 @@ mod records_block;
 mod records_formats;
 mod records_input;
 mod records_newmark;
+mod records_stations;
 mod records_study;
 mod references;
 mod references_records;

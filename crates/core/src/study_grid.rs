@@ -1,6 +1,7 @@
-//! A study grid file read and validated: one base case (the model), and lists of records,
-//! PGA targets or scale factors, friction coefficients and polarities whose Cartesian
-//! product is the set of points. [`read_grid`] turns the grid's text into a typed, expanded
+//! A study grid file read and validated: one base case (the model), and lists of records
+//! (or station files with the compass azimuths of the scene's +x), PGA targets or scale
+//! factors, friction coefficients and polarities whose Cartesian product is the set of
+//! points. [`read_grid`] turns the grid's text into a typed, expanded
 //! [`GridSpec`] with every error located in the grid file (or in the base case or record
 //! it names); what the points then run is the `verify` crate's business. Kept here, free
 //! of the engines, so that the reader can be fuzzed on its own (`fuzz/`).
@@ -11,7 +12,9 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 use sha2::{Digest, Sha256};
 
-use crate::case::record::{AccelUnit, MAX_RECORD_BYTES, Record, STANDARD_GRAVITY, read_record};
+use crate::case::record::{
+    AccelUnit, MAX_RECORD_BYTES, Record, STANDARD_GRAVITY, read_record, read_station,
+};
 use crate::case::{Case, Locator, limits};
 use crate::error::{InputError, InputErrors, io_reason, line_col};
 
@@ -37,6 +40,10 @@ struct RawGrid {
     polarity: Option<Vec<f64>>,
     tail: Option<f64>,
     newmark: Option<bool>,
+    /// Station files (a base case with `[excitation.station]`), instead of `records`.
+    stations: Option<Vec<RawStationEntry>>,
+    /// Compass azimuths of the scene's +x, degrees (stations only).
+    x_azimuth_deg: Option<Vec<f64>>,
 }
 
 #[derive(Debug, Deserialize)]
@@ -44,6 +51,15 @@ struct RawGrid {
 enum RawRecord {
     Path(String),
     Table { path: String, unit: Option<String> },
+}
+
+/// A station of a grid: its file, and where its run's window starts when not where the
+/// base case's does.
+#[derive(Debug, Deserialize)]
+#[serde(untagged)]
+enum RawStationEntry {
+    Path(String),
+    Table { path: String, start: Option<f64> },
 }
 
 /// One record of a grid, read once.
@@ -57,8 +73,13 @@ pub struct GridRecord {
     pub unit: Option<String>,
     /// SHA-256 of the record file.
     pub sha256: String,
-    /// The record as read (SI, unscaled), for its PGA and length.
+    /// The record as read (SI, unscaled), for its PGA and length; a station's first
+    /// horizontal channel.
     pub record: Record,
+    /// Whether it is a station file (`stations`), run through `[excitation.station]`.
+    pub station: bool,
+    /// A station's own window start, s, when the grid gives one.
+    pub start: Option<f64>,
 }
 
 /// How the record amplitude of a point is set.
@@ -85,6 +106,9 @@ pub struct GridPoint {
     pub mu: Option<f64>,
     /// +1 as recorded, −1 inverted.
     pub polarity: f64,
+    /// Compass azimuth of the scene's +x, degrees (a station grid's `x_azimuth_deg`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub x_azimuth_deg: Option<f64>,
 }
 
 impl GridPoint {
@@ -204,6 +228,12 @@ fn check_lists(raw: &RawGrid, loc: &Locator, errors: &mut Vec<InputError>) {
         "zero or positive (`inf` for no slip)",
     );
     list(
+        "x_azimuth_deg",
+        &raw.x_azimuth_deg,
+        &|x: f64| (-360.0..=360.0).contains(&x),
+        "between -360 and 360, degrees clockwise from north",
+    );
+    list(
         "polarity",
         &raw.polarity,
         &|x: f64| x == 1.0 || x == -1.0,
@@ -211,6 +241,12 @@ fn check_lists(raw: &RawGrid, loc: &Locator, errors: &mut Vec<InputError>) {
     );
     if let Some(old) = &raw.pga {
         errors.push(loc.error("pga", old_pga_message(old)));
+    }
+    if raw.x_azimuth_deg.is_some() && raw.stations.is_none() {
+        errors.push(loc.error(
+            "x_azimuth_deg",
+            "applies only to `stations` (the compass azimuth of the scene's +x)",
+        ));
     }
     if raw.pga_g.is_some() && raw.scale.is_some() {
         errors.push(loc.error(
@@ -263,6 +299,9 @@ fn read_records(
     loc: &Locator,
     errors: &mut Vec<InputError>,
 ) -> Vec<GridRecord> {
+    if let Some(stations) = &raw.stations {
+        return read_stations(stations, raw, base_excitation, dir, loc, errors);
+    }
     let named: Vec<NamedRecord> = match &raw.records {
         Some(list) => list
             .iter()
@@ -326,6 +365,8 @@ fn read_records(
                 unit: r.unit,
                 sha256,
                 record,
+                station: false,
+                start: None,
             }),
             // Located at the grid's field and inside the record.
             Err(e) => errors.extend(
@@ -335,6 +376,85 @@ fn read_records(
         }
     }
     records
+}
+
+/// A station grid's files, each read once (its first horizontal channel kept for the
+/// tables); the base case must drive its scene by `[excitation.station]`, and the
+/// amplitude is a `scale` (a station has three peaks, not one).
+fn read_stations(
+    stations: &[RawStationEntry],
+    raw: &RawGrid,
+    base: &BaseExcitation,
+    dir: &Path,
+    loc: &Locator,
+    errors: &mut Vec<InputError>,
+) -> Vec<GridRecord> {
+    if !base.station {
+        errors.push(loc.error(
+            "stations",
+            "needs a base case whose excitation is an `[excitation.station]`",
+        ));
+    }
+    if raw.records.is_some() {
+        errors.push(loc.error("records", "give `records` or `stations`, not both"));
+    }
+    if raw.pga_g.is_some() {
+        errors.push(loc.error(
+            "pga_g",
+            "does not apply to stations (three components, three peaks): give `scale` factors",
+        ));
+    }
+    let mut out = Vec::new();
+    for (i, entry) in stations.iter().enumerate() {
+        let (name, start) = match entry {
+            RawStationEntry::Path(p) => (p, None),
+            RawStationEntry::Table { path, start } => (path, *start),
+        };
+        let path = dir.join(name);
+        let field = format!("stations[{i}]");
+        if let Some(s) = start
+            && !(s.is_finite() && s >= 0.0)
+        {
+            errors.push(loc.error(
+                &format!("{field}.start"),
+                format!("is {s}, but must be zero or positive, in s"),
+            ));
+        }
+        let read = read_station(&path).and_then(|s| {
+            let sha256 = file_sha256(&path).map_err(|e| {
+                InputError::new(
+                    &path,
+                    "",
+                    format!("cannot read the station: {}", io_reason(&e)),
+                )
+            })?;
+            Ok((s, sha256))
+        });
+        match read {
+            Ok((s, sha256)) => {
+                let Some(first) = s.channels.into_iter().find(|c| {
+                    matches!(c.orientation, crate::case::record::Orientation::Azimuth(_))
+                }) else {
+                    errors.push(loc.error(&field, "the station file has no horizontal channel"));
+                    continue;
+                };
+                out.push(GridRecord {
+                    name: name.clone(),
+                    path,
+                    unit: None,
+                    sha256,
+                    record: first.record,
+                    station: true,
+                    start,
+                });
+            }
+            Err(e) => errors.extend(
+                e.0.into_iter()
+                    .map(|err| err.named_by(loc.error(&field, ""))),
+            ),
+        }
+    }
+    out
 }
 
 /// SHA-256 of a file's bytes, streamed (at most [`MAX_RECORD_BYTES`] + 1 read).
@@ -379,14 +499,15 @@ fn check_sizes(
     let points = records.len().max(1) as f64
         * len(&raw.pga_g).max(len(&raw.scale))
         * len(&raw.mu)
-        * len(&raw.polarity);
+        * len(&raw.polarity)
+        * len(&raw.x_azimuth_deg);
     if let Err(why) = limits::check_count(points, MAX_POINTS, "points") {
         errors.push(loc.error("records", format!("the grid {why}")));
     }
 }
 
-/// Every point, record-major, then μ, polarity and amplitude (the order fixes the indices
-/// that result files are named by: never change it).
+/// Every point, record-major, then μ, polarity, amplitude and (stations) azimuth (the
+/// order fixes the indices that result files are named by: never change it).
 fn expand(raw: &RawGrid, n_records: usize, base: &BaseExcitation) -> Vec<GridPoint> {
     let amplitudes: Vec<Amplitude> = match (&pga_targets(raw), &raw.scale) {
         (Some(p), _) => p.iter().map(|&x| Amplitude::Pga(x)).collect(),
@@ -401,18 +522,25 @@ fn expand(raw: &RawGrid, n_records: usize, base: &BaseExcitation) -> Vec<GridPoi
         None => vec![None],
     };
     let polarities = raw.polarity.clone().unwrap_or_else(|| vec![base.polarity]);
+    let azimuths: Vec<Option<f64>> = match &raw.x_azimuth_deg {
+        Some(a) => a.iter().map(|&x| Some(x)).collect(),
+        None => vec![None],
+    };
     let mut points = Vec::new();
     for record in 0..n_records {
         for &mu in &mus {
             for &polarity in &polarities {
                 for &amplitude in &amplitudes {
-                    points.push(GridPoint {
-                        index: points.len(),
-                        record,
-                        amplitude,
-                        mu,
-                        polarity,
-                    });
+                    for &x_azimuth_deg in &azimuths {
+                        points.push(GridPoint {
+                            index: points.len(),
+                            record,
+                            amplitude,
+                            mu,
+                            polarity,
+                            x_azimuth_deg,
+                        });
+                    }
                 }
             }
         }
@@ -422,6 +550,8 @@ fn expand(raw: &RawGrid, n_records: usize, base: &BaseExcitation) -> Vec<GridPoi
 
 /// What the base case's excitation says about its record.
 struct BaseExcitation {
+    /// Whether it is an `[excitation.station]`.
+    station: bool,
     record: Option<String>,
     unit: Option<String>,
     pga: Option<f64>,
@@ -433,6 +563,7 @@ fn base_excitation(base: &Case) -> BaseExcitation {
     let e = table.get("excitation").and_then(|e| e.as_table());
     let get = |k: &str| e.and_then(|e| e.get(k));
     BaseExcitation {
+        station: get("station").is_some(),
         record: get("record").and_then(|v| v.as_str()).map(String::from),
         unit: get("record_unit")
             .and_then(|v| v.as_str())

@@ -167,6 +167,31 @@ pub struct RawExcitation {
     pub azimuth_deg: Option<f64>,
     /// `[excitation.y]`: the second horizontal component (see [`RawSecond`]).
     pub y: Option<RawSecond>,
+    /// `[excitation.station]`: a station's three channels as one excitation.
+    pub station: Option<RawStation>,
+}
+
+/// `[excitation.station]`: a station file (COSMOS, CSMIP V1/V2, USGS SMC) whose channels
+/// drive x, y and z.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RawStation {
+    /// One file of all three channels.
+    pub file: Option<String>,
+    /// Or one file a channel (USGS SMC).
+    pub files: Option<Vec<String>>,
+    /// Compass azimuth of the scene's +x, degrees clockwise from north.
+    pub x_azimuth_deg: Option<f64>,
+    /// The scene axes the station drives: "xyz" (default), "xy", "xz" or "x".
+    pub components: Option<String>,
+    /// The baseline correction of an uncorrected record: "cubic" (default) or "none".
+    pub baseline: Option<String>,
+    /// One factor for all three components.
+    pub scale: Option<f64>,
+    pub polarity: Option<f64>,
+    /// Seconds of the file skipped before the run's t = 0.
+    pub start: Option<f64>,
+    pub normal_force: Option<String>,
 }
 
 /// `[excitation.y]`: the second horizontal component, the signal keys of the first.

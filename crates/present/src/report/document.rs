@@ -536,6 +536,11 @@ fn case_facts(c: &rockslide_core::case::Case) -> Block {
             label.clone(),
         ));
     }
+    if let Some(rockslide_core::case::Signal::Record { label, .. }) =
+        c.scene.vertical.as_ref().map(|v| &v.signal)
+    {
+        facts.push(("Record, vertical (up)".to_string(), label.clone()));
+    }
     facts.push((
         "Scene".into(),
         format!(

@@ -7,7 +7,7 @@
 use super::figure::{residual_vs_pga, run_slug};
 use crate::doc::{Block, Table};
 use rockslide_core::case::record::STANDARD_GRAVITY;
-use rockslide_verify::study::{Headline, Study, headline, short_name};
+use rockslide_verify::study::{Headline, Statistics, Study, headline, short_name, statistics};
 
 /// A headline item as a sentence.
 pub fn sentence(h: &Headline) -> String {
@@ -43,6 +43,28 @@ pub fn sentence(h: &Headline) -> String {
             "{label} / newmark-rigid |residual sliding|: median {median:.2}, range {min:.2}–{max:.2} over {points} points with rigid-block sliding > 0.1 mm"
         ),
     }
+}
+
+/// One quantity's statistics over the study as a sentence.
+pub fn statistics_sentence(s: &Statistics) -> String {
+    let g = &s.governing;
+    format!(
+        "{}: {} over {} points — mean {:.3} cm, median {:.3} cm, 84th percentile {:.3} cm, max {:.3} cm ({} at PGA {:.3} g, μ = {}, polarity {:+}{})",
+        s.label,
+        s.quantity,
+        s.points,
+        s.mean * 100.0,
+        s.median * 100.0,
+        s.p84 * 100.0,
+        s.max * 100.0,
+        short_name(&g.record),
+        g.pga / STANDARD_GRAVITY,
+        g.mu,
+        g.point.polarity,
+        g.point
+            .x_azimuth_deg
+            .map_or_else(String::new, |a| format!(", +x at compass {a}°"))
+    )
 }
 
 /// The headline of a study as sentences.
@@ -86,6 +108,8 @@ pub(crate) fn document(c: &Study) -> Vec<Block> {
         ]),
         Block::Heading(2, "Headline".into()),
         Block::List(headline_sentences(c)),
+        Block::Heading(2, "Statistics".into()),
+        Block::List(statistics(c).iter().map(statistics_sentence).collect()),
         Block::Heading(2, "Runs".into()),
     ];
     let mut t = Table {

@@ -175,12 +175,12 @@ pub enum Headline {
         /// The point it happened at.
         point: PointResult,
     },
-    /// One engine against the first engine planned, point by point (residual sliding,
-    /// points where |basis| > 0.1 mm).
+    /// One engine against the exact reference where it ran (else the first engine
+    /// planned), point by point (residual sliding, points where |basis| > 0.1 mm).
     Against {
         /// `engine/variant`.
         label: String,
-        /// The first engine planned.
+        /// The exact reference's label, or the first engine planned.
         basis: String,
         /// Median |Δ|, %.
         median: f64,
@@ -205,8 +205,97 @@ pub enum Headline {
     },
 }
 
+/// The statistics of one quantity of one run label over every point of a study where it
+/// has a value: the qualification's mean, median, 84th percentile and maximum, and the
+/// point that governs (the largest).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Statistics {
+    /// `engine/variant`.
+    pub label: String,
+    /// The quantity ("|residual sliding|", "peak |sliding|").
+    pub quantity: &'static str,
+    /// Points with a value.
+    pub points: usize,
+    /// Mean, m.
+    pub mean: f64,
+    /// Median, m (the mean of the two middle values for an even count).
+    pub median: f64,
+    /// 84th percentile, m (linear between order statistics, rank 0.84·(n − 1)).
+    pub p84: f64,
+    /// Maximum, m.
+    pub max: f64,
+    /// The point of the maximum: record, PGA, μ, polarity.
+    pub governing: PointResult,
+}
+
+/// Mean, median, 84th percentile and maximum of `values` (not empty), sorted in place.
+pub fn summary_statistics(values: &mut [f64]) -> [f64; 4] {
+    values.sort_by(f64::total_cmp);
+    let n = values.len();
+    let at = |q: f64| {
+        let r = q * (n - 1) as f64;
+        let (i, f) = (r.floor() as usize, r.fract());
+        if i + 1 < n {
+            values[i] + f * (values[i + 1] - values[i])
+        } else {
+            values[n - 1]
+        }
+    };
+    let mean = values.iter().sum::<f64>() / n as f64;
+    [mean, at(0.5), at(0.84), values[n - 1]]
+}
+
+/// Per run label, the statistics of |residual sliding| and peak |sliding| over the
+/// study's points.
+pub fn statistics(c: &Study) -> Vec<Statistics> {
+    type Pick = fn(&RunSummary) -> Option<f64>;
+    let quantities: [(&'static str, Pick); 2] = [
+        ("|residual sliding|", |r| r.residual_sliding.map(f64::abs)),
+        ("peak |sliding|", |r| r.peak_abs_sliding),
+    ];
+    let mut out = Vec::new();
+    for l in c.run_labels() {
+        for (quantity, pick) in quantities {
+            let rows: Vec<(f64, &PointResult)> = c
+                .rows()
+                .filter(|(_, run)| label(run) == l)
+                .filter_map(|(r, run)| pick(run).map(|v| (v, r)))
+                .collect();
+            let Some(&(_, governing)) = rows.iter().max_by(|a, b| a.0.total_cmp(&b.0)) else {
+                continue;
+            };
+            let mut values: Vec<f64> = rows.iter().map(|(v, _)| *v).collect();
+            let [mean, median, p84, max] = summary_statistics(&mut values);
+            out.push(Statistics {
+                label: l.clone(),
+                quantity,
+                points: values.len(),
+                mean,
+                median,
+                p84,
+                max,
+                governing: governing.clone(),
+            });
+        }
+    }
+    out
+}
+
+/// The basis engines are compared with: the exact reference when the study has it, else
+/// the first engine planned.
+fn basis(c: &Study) -> Option<String> {
+    let engines = c.engine_labels();
+    let exact = format!("{}/", super::runner::EXACT);
+    engines
+        .iter()
+        .find(|l| l.starts_with(&exact))
+        .or(engines.first())
+        .cloned()
+}
+
 /// The headline: per run label the largest |residual sliding| and where; each engine
-/// against the first one planned; and engine-to-rigid-block ratios when both are present.
+/// against the exact reference (or the first engine planned when no reference ran); and
+/// engine-to-rigid-block ratios when both are present.
 pub fn headline(c: &Study) -> Vec<Headline> {
     let mut out = Vec::new();
     for l in c.run_labels() {
@@ -224,9 +313,9 @@ pub fn headline(c: &Study) -> Vec<Headline> {
         }
     }
     let engines = c.engine_labels();
-    if let Some((basis, others)) = engines.split_first() {
-        for l in others {
-            let mut d: Vec<f64> = agreement(c, l, basis).iter().map(|x| x.abs()).collect();
+    if let Some(basis) = basis(c) {
+        for l in engines.iter().filter(|l| **l != basis) {
+            let mut d: Vec<f64> = agreement(c, l, &basis).iter().map(|x| x.abs()).collect();
             if d.is_empty() {
                 continue;
             }

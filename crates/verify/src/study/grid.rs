@@ -93,6 +93,12 @@ impl Grid {
             )
             .as_bytes(),
         );
+        if let Some(a) = p.x_azimuth_deg {
+            h.update(format!("|x_azimuth_deg {}", a.to_bits()).as_bytes());
+        }
+        if let Some(s) = self.records[p.record].start {
+            h.update(format!("|start {}", s.to_bits()).as_bytes());
+        }
         format!("{:x}", h.finalize())
     }
 
@@ -102,49 +108,11 @@ impl Grid {
         let mut table: toml::Table = toml::from_str(&self.base.text)
             .map_err(|e| InputError::new(&self.base.path, "", e.to_string()))?;
         let rec = &self.records[p.record];
-        let set = |t: &mut toml::Table, path: &[&str], v: toml::Value| {
-            let mut cur = t;
-            for k in &path[..path.len() - 1] {
-                cur = cur
-                    .entry(k.to_string())
-                    .or_insert_with(|| toml::Value::Table(toml::Table::new()))
-                    .as_table_mut()
-                    .expect("case sections are tables");
-            }
-            cur.insert(path[path.len() - 1].to_string(), v);
-        };
-        let abs = std::path::absolute(&rec.path).unwrap_or_else(|_| rec.path.clone());
-        set(
-            &mut table,
-            &["excitation", "record"],
-            abs.to_string_lossy().into_owned().into(),
-        );
-        match &rec.unit {
-            Some(u) => set(&mut table, &["excitation", "record_unit"], u.clone().into()),
-            // The grid's record replaces the base's: the base's unit must not carry over
-            // (a record without a stated unit is an AT2, which says its own).
-            None => {
-                if let Some(e) = table.get_mut("excitation").and_then(|e| e.as_table_mut()) {
-                    e.remove("record_unit");
-                }
-            }
+        if rec.station {
+            self.set_station(&mut table, p)?;
+        } else {
+            self.set_record(&mut table, p);
         }
-        // A pulse-driven base model may be studied under records: drop the pulse's fields.
-        if let Some(e) = table.get_mut("excitation").and_then(|e| e.as_table_mut()) {
-            for k in ["shape", "amplitude", "omega", "cycles"] {
-                e.remove(k);
-            }
-        }
-        set(
-            &mut table,
-            &["excitation", "scale_to_pga_g"],
-            (self.pga(p) / STANDARD_GRAVITY).into(),
-        );
-        set(
-            &mut table,
-            &["excitation", "polarity"],
-            (p.polarity as i64).into(),
-        );
         if let Some(mu) = p.mu {
             let model = table
                 .get_mut("model")
@@ -159,11 +127,13 @@ impl Grid {
                 }
             }
         }
-        set(
-            &mut table,
-            &["run", "duration"],
-            (rec.record.duration() + self.tail).into(),
-        );
+        if !rec.station {
+            set(
+                &mut table,
+                &["run", "duration"],
+                (rec.record.duration() + self.tail).into(),
+            );
+        }
         let text = toml::to_string(&table)
             .map_err(|e| InputError::new(&self.base.path, "", e.to_string()))?;
         // Errors are about the generated text: drop its line numbers, name the point.
@@ -190,6 +160,77 @@ impl Grid {
         Ok(case)
     }
 
+    /// A record point: the record, its unit, its PGA target and polarity in `[excitation]`.
+    fn set_record(&self, table: &mut toml::Table, p: &GridPoint) {
+        let rec = &self.records[p.record];
+        let abs = std::path::absolute(&rec.path).unwrap_or_else(|_| rec.path.clone());
+        set(
+            table,
+            &["excitation", "record"],
+            abs.to_string_lossy().into_owned().into(),
+        );
+        match &rec.unit {
+            Some(u) => set(table, &["excitation", "record_unit"], u.clone().into()),
+            // The grid's record replaces the base's: the base's unit must not carry over
+            // (a record without a stated unit is an AT2, which says its own).
+            None => {
+                if let Some(e) = table.get_mut("excitation").and_then(|e| e.as_table_mut()) {
+                    e.remove("record_unit");
+                }
+            }
+        }
+        // A pulse-driven base model may be studied under records: drop the pulse's fields.
+        if let Some(e) = table.get_mut("excitation").and_then(|e| e.as_table_mut()) {
+            for k in ["shape", "amplitude", "omega", "cycles"] {
+                e.remove(k);
+            }
+        }
+        set(
+            table,
+            &["excitation", "scale_to_pga_g"],
+            (self.pga(p) / STANDARD_GRAVITY).into(),
+        );
+        set(
+            table,
+            &["excitation", "polarity"],
+            (p.polarity as i64).into(),
+        );
+    }
+
+    /// A station point: the file, the azimuth of +x, the scale and polarity in
+    /// `[excitation.station]`; the base's window (`start`, `duration`) kept.
+    fn set_station(&self, table: &mut toml::Table, p: &GridPoint) -> Result<(), InputErrors> {
+        let rec = &self.records[p.record];
+        let station = table
+            .get_mut("excitation")
+            .and_then(|e| e.as_table_mut())
+            .and_then(|e| e.get_mut("station"))
+            .and_then(|s| s.as_table_mut())
+            .ok_or_else(|| {
+                InputError::new(
+                    &self.path,
+                    "stations",
+                    "the base case has no [excitation.station]",
+                )
+            })?;
+        let abs = std::path::absolute(&rec.path).unwrap_or_else(|_| rec.path.clone());
+        station.remove("files");
+        station.insert("file".into(), abs.to_string_lossy().into_owned().into());
+        if let Some(a) = p.x_azimuth_deg {
+            station.insert("x_azimuth_deg".into(), a.into());
+        }
+        if let Some(start) = rec.start {
+            station.insert("start".into(), start.into());
+        }
+        let factor = match p.amplitude {
+            Amplitude::Scale(f) => f,
+            Amplitude::Pga(x) => x / rec.record.pga(),
+        };
+        station.insert("scale".into(), factor.into());
+        station.insert("polarity".into(), (p.polarity as i64).into());
+        Ok(())
+    }
+
     /// The points of shard `k` of `n` (0-based): every n-th point from the k-th.
     pub fn shard(&self, k: usize, n: usize) -> Vec<&GridPoint> {
         self.points.iter().filter(|p| p.index % n == k).collect()
@@ -203,4 +244,17 @@ impl Grid {
             .map(|(i, r)| (i, short_name(&r.name)))
             .collect()
     }
+}
+
+/// Set the value at the dotted `path` of a case's table, making the tables on the way.
+fn set(t: &mut toml::Table, path: &[&str], v: toml::Value) {
+    let mut cur = t;
+    for k in &path[..path.len() - 1] {
+        cur = cur
+            .entry(k.to_string())
+            .or_insert_with(|| toml::Value::Table(toml::Table::new()))
+            .as_table_mut()
+            .expect("case sections are tables");
+    }
+    cur.insert(path[path.len() - 1].to_string(), v);
 }

@@ -10,7 +10,10 @@ mod grid;
 mod newmark;
 mod runner;
 
-pub use collect::{FILE, Headline, RIGID, Stamp, Study, agreement, collect, headline, label};
+pub use collect::{
+    FILE, Headline, RIGID, Stamp, Statistics, Study, agreement, collect, headline, label,
+    statistics, summary_statistics,
+};
 pub use grid::{Amplitude, DEFAULT_TAIL, Grid, GridPoint, GridRecord, load_grid, short_name};
 pub use newmark::{NewmarkArgs, newmark_command};
 pub use runner::{

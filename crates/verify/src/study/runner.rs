@@ -191,6 +191,10 @@ fn exact_summary(case: &rockslide_core::case::Case) -> Option<RunSummary> {
     let Model::Oscillator(osc) = &case.scene.model else {
         return None;
     };
+    // The planar record solution: no vertical component, no plan motion.
+    if case.scene.vertical.is_some() || case.scene.spatial().is_some() {
+        return None;
+    }
     let start = Instant::now();
     let dt = match case.scene.excitation.signal() {
         Some(Signal::Record { dt, .. }) => *dt,

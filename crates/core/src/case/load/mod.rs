@@ -12,6 +12,7 @@
 //! | `record_signal` | a recorded excitation: unit, polarity, PGA, column, the file |
 //! | `vertical` | `[excitation.vertical]`: vertical ground motion, normal force |
 //! | `spatial` | 3D scenes: azimuth, `[excitation.y]`, depth, inertias |
+//! | `station` | `[excitation.station]`: a station file's channels on x, y and z |
 //! | `run` | `name`, `[run]`: duration, steps, output step |
 //! | `engines` | `[engines.<id>]`: step, variants, options |
 //! | `tolerances` | `[[tolerance]]`, `[[expected_outcome]]`, `[[expected_violation]]`, `[[expected_disagreement]]` |
@@ -23,7 +24,7 @@ use sha2::{Digest, Sha256};
 
 use super::external::{ExternalFormat, ExternalTrace, ReadExternal};
 use super::locate::Locator;
-use super::scene::{Case, Scene};
+use super::scene::{Case, Excitation, Scene};
 use crate::error::{InputError, InputErrors};
 
 mod engines;
@@ -33,6 +34,7 @@ mod model;
 mod record_signal;
 mod run;
 mod spatial;
+mod station;
 mod syntax;
 mod tolerances;
 mod validator;
@@ -140,13 +142,25 @@ pub fn parse_case_with(
         read_external,
     };
     let model = v.model(&raw.model);
-    let excitation = v.excitation(&raw.excitation, path);
-    let vertical = raw
-        .excitation
-        .vertical
-        .as_ref()
-        .and_then(|r| v.vertical(r, &raw.excitation, model.as_ref(), path));
-    let spatial = v.spatial(&raw.model, &raw.excitation, model.as_ref(), path);
+    let (excitation, vertical, station_y) = match &raw.excitation.station {
+        Some(s) => {
+            let signals = v.station(s, &raw.excitation, model.as_ref(), raw.run.duration, path);
+            match signals {
+                Some(s) => (Some(Excitation::GroundAcceleration(s.x)), s.vertical, s.y),
+                None => (None, None, None),
+            }
+        }
+        None => {
+            let excitation = v.excitation(&raw.excitation, path);
+            let vertical = raw
+                .excitation
+                .vertical
+                .as_ref()
+                .and_then(|r| v.vertical(r, &raw.excitation, model.as_ref(), path));
+            (excitation, vertical, None)
+        }
+    };
+    let spatial = v.spatial(&raw.model, &raw.excitation, model.as_ref(), station_y, path);
     let run = v.run(raw.run.duration, raw.run.dt, raw.run.output_dt);
     let engines = v.engines(&raw.engines, raw.run.duration, raw.run.output_dt);
     let name = v.name(raw.name.as_deref(), path);

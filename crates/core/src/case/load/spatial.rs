@@ -22,8 +22,9 @@ fn gives_spatial_keys(m: &RawModel, e: &RawExcitation) -> bool {
 }
 
 impl Validator<'_> {
-    /// The plan-motion part of a scene: `None` when the case gives none of its keys (a
-    /// planar scene); else the azimuth, the second component (same kind as the first;
+    /// The plan-motion part of a scene: `None` when the case gives none of its keys and
+    /// no station drives y (a planar scene); else the azimuth, the second component (a
+    /// station's y, `station_y`, when it drives y) (same kind as the first;
     /// a record is its own file with its own scale), the depth along y of a body (required
     /// for a rocking body or rigid block in a 3D scene) and the inertias when given.
     pub(super) fn spatial(
@@ -31,9 +32,10 @@ impl Validator<'_> {
         m: &RawModel,
         e: &RawExcitation,
         model: Option<&Model>,
+        station_y: Option<Signal>,
         case_path: &Path,
     ) -> Option<Spatial> {
-        if !gives_spatial_keys(m, e) {
+        if !gives_spatial_keys(m, e) && station_y.is_none() {
             return None;
         }
         let azimuth_deg = match e.azimuth_deg {
@@ -57,7 +59,10 @@ impl Validator<'_> {
                 }
             }
         }
-        let second = e.y.as_ref().and_then(|y| self.second(y, e, case_path));
+        let second = match station_y {
+            Some(y) => Some(y),
+            None => e.y.as_ref().and_then(|y| self.second(y, e, case_path)),
+        };
         let depth = self.depth(m, model?);
         let inertia = self.inertias(m, model?);
         Some(Spatial {

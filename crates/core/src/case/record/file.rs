@@ -55,7 +55,7 @@ pub fn read_record_column(
 
 /// The text of a record file: a regular file of at most [`MAX_RECORD_BYTES`], UTF-8, its
 /// byte-order mark removed.
-fn read_text(path: &Path) -> Result<String, InputError> {
+pub(super) fn read_text(path: &Path) -> Result<String, InputError> {
     use std::io::Read;
     let cannot = |e: std::io::Error| {
         InputError::new(

@@ -29,9 +29,14 @@
 //!   refused.
 
 mod at2;
+mod cosmos;
+mod csmip;
 mod csv;
 mod file;
+mod fixed;
 mod integrate;
+mod smc;
+mod station;
 mod token;
 mod unit;
 
@@ -40,4 +45,8 @@ pub use csv::{parse_csv, parse_csv_column};
 pub(crate) use file::first_invalid_utf8;
 pub use file::{MAX_RECORD_BYTES, read_record, read_record_column};
 pub use integrate::{Baseline, GroundMotion, integrate};
+pub use station::{
+    Channel, Drift, Level, Orientation, PRE_EVENT_S, PreparedStation, StationRecord, parse_station,
+    prepare, prepare_window, read_station,
+};
 pub use unit::{AccelUnit, MIN_DT, Record, STANDARD_GRAVITY};

@@ -1,0 +1,410 @@
+//! `[excitation.station]`: a station's record (COSMOS, CSMIP V1/V2, USGS SMC) as one
+//! excitation. Its two horizontal channels, at their compass azimuths α₁ and α₂
+//! (perpendicular), are projected on the scene's axes: +x at the compass azimuth ρ
+//! (`x_azimuth_deg`, default 90: x east), +y 90° anticlockwise from it seen from above
+//! (at ρ − 90: y north by default), so a_x = Σ aᵢ·cos(αᵢ − ρ), a_y = Σ aᵢ·sin(ρ − αᵢ); the
+//! vertical channel is upward positive (a "down" channel is negated). The record is
+//! prepared first (see [`crate::case::record::prepare`]): channels trimmed to one length,
+//! an uncorrected record's pre-event mean removed, the window from `start` for the run's
+//! duration cut, then its baseline corrected — every step written in the labels the
+//! report shows, with the velocity and displacement drift before and after.
+
+use std::path::Path;
+
+use super::super::raw::{RawExcitation, RawStation};
+use super::super::record::{
+    Baseline, Channel, Orientation, PreparedStation, StationRecord, prepare_window, read_station,
+};
+use super::super::scene::{Model, NormalForce, Vertical};
+use super::super::signal::Signal;
+use super::validator::{Rule, Validator};
+use crate::error::InputError;
+
+/// A station's channels on the scene's axes.
+pub(super) struct StationSignals {
+    /// Along +x.
+    pub x: Signal,
+    /// Along +y, when the station drives y.
+    pub y: Option<Signal>,
+    /// Upward, when the station drives z.
+    pub vertical: Option<Vertical>,
+}
+
+/// The station keys, checked.
+struct StationKeys {
+    x_azimuth: f64,
+    drives_y: bool,
+    drives_z: bool,
+    baseline: Baseline,
+    factor: f64,
+    start: f64,
+}
+
+const P: &str = "excitation.station";
+
+impl Validator<'_> {
+    /// `[excitation.station]`: the file read, prepared and projected on x, y and z.
+    /// `None` (with the errors recorded) when anything is wrong.
+    pub(super) fn station(
+        &mut self,
+        raw: &RawStation,
+        e: &RawExcitation,
+        model: Option<&Model>,
+        duration: f64,
+        case_path: &Path,
+    ) -> Option<StationSignals> {
+        self.nothing_beside_station(e);
+        let keys = self.station_keys(raw)?;
+        let (files, field) = match (&raw.file, &raw.files) {
+            (Some(f), None) => (vec![f.clone()], format!("{P}.file")),
+            (None, Some(f)) if !f.is_empty() => (f.clone(), format!("{P}.files")),
+            _ => {
+                self.fail(
+                    P,
+                    "needs `file` (one file of the three channels) or `files` (a file a channel), not both",
+                );
+                return None;
+            }
+        };
+        let dir = case_path.parent().unwrap_or(Path::new(""));
+        let path = dir.join(&files[0]);
+        let mut station: Option<StationRecord> = None;
+        for f in &files {
+            let read = match read_station(&dir.join(f)) {
+                Ok(s) => s,
+                Err(errs) => {
+                    for err in errs.0 {
+                        self.errors.push(err.named_by(self.loc.error(&field, "")));
+                    }
+                    return None;
+                }
+            };
+            match &mut station {
+                None => station = Some(read),
+                Some(s) => s.channels.extend(read.channels),
+            }
+        }
+        let station = station?;
+        let (h1, h2, up) = match pick_channels(&path, &station) {
+            Ok(c) => c,
+            Err(err) => {
+                self.errors.push(err.named_by(self.loc.error(&field, "")));
+                return None;
+            }
+        };
+        let chosen = StationRecord {
+            channels: [h1, h2, up].map(|i| station.channels[i].clone()).to_vec(),
+            ..station.clone()
+        };
+        let prepared = prepare_window(&chosen, keys.baseline, keys.start, duration);
+        if prepared.channels[0].record.samples.len() < 2 {
+            self.fail(
+                &format!("{P}.start"),
+                format!("is {} s, at or after the end of the record", keys.start),
+            );
+            return None;
+        }
+        let normal_force = self.station_normal_force(raw, model, keys.drives_z)?;
+        Some(signals(
+            &files.join(" + "),
+            &chosen,
+            &prepared,
+            &keys,
+            normal_force,
+        ))
+    }
+
+    /// The keys beside `file`, checked.
+    fn station_keys(&mut self, raw: &RawStation) -> Option<StationKeys> {
+        let x_azimuth = match raw.x_azimuth_deg {
+            None => 90.0,
+            x => self.number(
+                &format!("{P}.x_azimuth_deg"),
+                x,
+                Rule::range(-360.0, 360.0, "degrees clockwise from north"),
+            ),
+        };
+        let (drives_y, drives_z) = match raw.components.as_deref().unwrap_or("xyz") {
+            "xyz" => (true, true),
+            "xy" => (true, false),
+            "xz" => (false, true),
+            "x" => (false, false),
+            other => {
+                self.fail(
+                    &format!("{P}.components"),
+                    format!("is \"{other}\", but must be \"xyz\", \"xy\", \"xz\" or \"x\" (the scene axes the station drives)"),
+                );
+                return None;
+            }
+        };
+        let baseline = match raw.baseline.as_deref().unwrap_or("cubic") {
+            "cubic" => Baseline::Cubic,
+            "none" => Baseline::None,
+            other => {
+                self.fail(
+                    &format!("{P}.baseline"),
+                    format!("is \"{other}\", but must be \"cubic\" (a least-squares c2·t² + c3·t³ fit of the displacement removed) or \"none\""),
+                );
+                return None;
+            }
+        };
+        let scale = match raw.scale {
+            None => 1.0,
+            x => self.number(&format!("{P}.scale"), x, Rule::positive("(a factor)")),
+        };
+        let polarity = match raw.polarity {
+            None => 1.0,
+            Some(x) if x == 1.0 || x == -1.0 => x,
+            Some(x) => {
+                self.fail(
+                    &format!("{P}.polarity"),
+                    format!("is {x}, but must be 1 (as recorded) or -1 (inverted)"),
+                );
+                1.0
+            }
+        };
+        let start = match raw.start {
+            None => 0.0,
+            x => self.number(&format!("{P}.start"), x, Rule::non_negative("s")),
+        };
+        Some(StationKeys {
+            x_azimuth,
+            drives_y,
+            drives_z,
+            baseline,
+            factor: scale * polarity,
+            start,
+        })
+    }
+
+    /// Signal keys of `[excitation]` have no meaning beside a station.
+    fn nothing_beside_station(&mut self, e: &RawExcitation) {
+        for (f, given) in [
+            ("excitation.shape", e.shape.is_some()),
+            ("excitation.amplitude", e.amplitude.is_some()),
+            ("excitation.omega", e.omega.is_some()),
+            ("excitation.cycles", e.cycles.is_some()),
+            ("excitation.record", e.record.is_some()),
+            ("excitation.record_unit", e.record_unit.is_some()),
+            ("excitation.record_column", e.record_column.is_some()),
+            ("excitation.scale_to_pga_g", e.scale_to_pga_g.is_some()),
+            ("excitation.polarity", e.polarity.is_some()),
+            ("excitation.azimuth_deg", e.azimuth_deg.is_some()),
+            ("excitation.y", e.y.is_some()),
+            ("excitation.vertical", e.vertical.is_some()),
+        ] {
+            if given {
+                self.fail(
+                    f,
+                    "does not apply beside [excitation.station] (the station's channels are the signals; its keys set their scale, polarity and axes)",
+                );
+            }
+        }
+        if e.kind != "ground-acceleration" {
+            self.fail(
+                "excitation.kind",
+                format!("is \"{}\", but a station's record is a ground acceleration: use kind = \"ground-acceleration\"", e.kind),
+            );
+        }
+    }
+
+    /// How the normal force follows the vertical channel (the rules of
+    /// `[excitation.vertical]`): a rigid block always quasi-static, else dynamic unless an
+    /// oscillator asks for "quasi-static". `None` when wrong.
+    fn station_normal_force(
+        &mut self,
+        raw: &RawStation,
+        model: Option<&Model>,
+        drives_z: bool,
+    ) -> Option<NormalForce> {
+        let field = format!("{P}.normal_force");
+        if !drives_z {
+            if raw.normal_force.is_some() {
+                self.fail(
+                    &field,
+                    "applies only when the station drives z (components with \"z\")",
+                );
+            }
+            return Some(NormalForce::Dynamic);
+        }
+        let (gravity, kind) = match model? {
+            Model::Oscillator(o) => (o.gravity, "oscillator"),
+            Model::RockingBody(r) => (r.gravity, "rocking-body"),
+            Model::RigidBlock(b) => (b.gravity, "rigid-block"),
+        };
+        if gravity.is_finite() && gravity <= 0.0 {
+            self.fail(
+                P,
+                "drives z, which needs gravity (the vertical changes the normal force M·(g + a_v)), and model.gravity is 0: give components = \"xy\" or a gravity",
+            );
+        }
+        match (raw.normal_force.as_deref(), kind) {
+            (None, "rigid-block") => Some(NormalForce::QuasiStatic),
+            (None, _) | (Some("dynamic"), "oscillator" | "rocking-body") => {
+                Some(NormalForce::Dynamic)
+            }
+            (Some("quasi-static"), "oscillator") => Some(NormalForce::QuasiStatic),
+            (Some(other), kind) => {
+                self.fail(
+                    &field,
+                    format!("is \"{other}\", which does not apply to a model of kind \"{kind}\" (\"dynamic\" for an oscillator or rocking body, \"quasi-static\" for an oscillator; a rigid block is always quasi-static and takes no key)"),
+                );
+                None
+            }
+        }
+    }
+}
+
+/// The indices of the two horizontal channels and the vertical one; an error when the
+/// station has not exactly that, or its horizontals are not perpendicular.
+fn pick_channels(path: &Path, s: &StationRecord) -> Result<(usize, usize, usize), InputError> {
+    let horizontal: Vec<usize> = (0..s.channels.len())
+        .filter(|&i| matches!(s.channels[i].orientation, Orientation::Azimuth(_)))
+        .collect();
+    let vertical: Vec<usize> = (0..s.channels.len())
+        .filter(|&i| !matches!(s.channels[i].orientation, Orientation::Azimuth(_)))
+        .collect();
+    let here = |c: &Channel, reason: String| {
+        let mut e = InputError::new(path, "", reason);
+        e.line = Some(c.line);
+        e
+    };
+    if horizontal.len() != 2 || vertical.len() != 1 {
+        let first = &s.channels[0];
+        return Err(here(
+            first,
+            format!(
+                "a station excitation needs two horizontal channels and one vertical in one file; this {} has {} horizontal and {} vertical",
+                s.format,
+                horizontal.len(),
+                vertical.len()
+            ),
+        ));
+    }
+    let az = |i: usize| match s.channels[i].orientation {
+        Orientation::Azimuth(a) => a,
+        _ => unreachable!("horizontal channels have an azimuth"),
+    };
+    let (a1, a2) = (az(horizontal[0]), az(horizontal[1]));
+    if (a1 - a2).to_radians().cos().abs() > 1e-3 {
+        return Err(here(
+            &s.channels[horizontal[1]],
+            format!(
+                "the horizontal channels at {a1}° and {a2}° are not perpendicular: they cannot be projected on x and y"
+            ),
+        ));
+    }
+    Ok((horizontal[0], horizontal[1], vertical[0]))
+}
+
+/// The prepared channels on the scene's axes, labelled with the station's provenance.
+fn signals(
+    file: &str,
+    station: &StationRecord,
+    prepared: &PreparedStation,
+    keys: &StationKeys,
+    normal_force: NormalForce,
+) -> StationSignals {
+    let ch = &prepared.channels;
+    let azimuth = |c: &Channel| match c.orientation {
+        Orientation::Azimuth(a) => a,
+        _ => 0.0,
+    };
+    let rho = keys.x_azimuth;
+    let project = |weight: &dyn Fn(f64) -> f64| -> Vec<f64> {
+        let (w1, w2) = (weight(azimuth(&ch[0])), weight(azimuth(&ch[1])));
+        ch[0]
+            .record
+            .samples
+            .iter()
+            .zip(ch[1].record.samples.iter())
+            .map(|(a1, a2)| keys.factor * (w1 * a1 + w2 * a2))
+            .collect()
+    };
+    let along_x = project(&|a: f64| (a - rho).to_radians().cos());
+    let along_y = project(&|a: f64| (rho - a).to_radians().sin());
+    let up_sign = if ch[2].orientation == Orientation::Down {
+        -1.0
+    } else {
+        1.0
+    };
+    let up: Vec<f64> = ch[2]
+        .record
+        .samples
+        .iter()
+        .map(|a| keys.factor * up_sign * a)
+        .collect();
+    let dt = ch[0].record.dt;
+    let name: Vec<String> = file
+        .split(" + ")
+        .map(|f| {
+            Path::new(f)
+                .file_name()
+                .map_or_else(|| f.to_string(), |n| n.to_string_lossy().into_owned())
+        })
+        .collect();
+    let name = name.join(" + ");
+    let peak = |v: &[f64]| {
+        v.iter().fold(0.0_f64, |m, a| m.max(a.abs())) / super::super::record::STANDARD_GRAVITY
+    };
+    let provenance = provenance(&name, station, prepared, keys);
+    let label =
+        |axis: &str, v: &[f64]| format!("{name} along {axis}: PGA {:.4} g; {provenance}", peak(v));
+    let signal = |axis: &str, v: Vec<f64>| Signal::Record {
+        dt,
+        label: label(axis, &v),
+        samples: v.into(),
+    };
+    StationSignals {
+        y: keys.drives_y.then(|| {
+            signal(
+                &format!("y (compass {}°)", (rho - 90.0).rem_euclid(360.0)),
+                along_y,
+            )
+        }),
+        vertical: keys.drives_z.then(|| Vertical {
+            signal: signal("z (up)", up),
+            normal_force,
+        }),
+        x: signal(&format!("x (compass {}°)", rho.rem_euclid(360.0)), along_x),
+    }
+}
+
+/// Station, event, agency, format, channels, what was done and the drift, one line.
+fn provenance(name: &str, s: &StationRecord, p: &PreparedStation, keys: &StationKeys) -> String {
+    let channels: Vec<String> = s
+        .channels
+        .iter()
+        .map(|c| c.orientation.describe())
+        .collect();
+    let drift: Vec<String> = s
+        .channels
+        .iter()
+        .zip(&p.drift)
+        .map(|(c, d)| {
+            format!(
+                "{} {:.4} → {:.4} m/s, {:.4} → {:.4} m",
+                c.orientation.describe(),
+                d.velocity[0],
+                d.velocity[1],
+                d.displacement[0],
+                d.displacement[1]
+            )
+        })
+        .collect();
+    format!(
+        "{name}: station {}; event {}; agency {}; {} ({}), channels {}; × {} (scale × polarity); {}; ground velocity and displacement at the window's end, as read → as used: {}",
+        s.station,
+        s.event,
+        s.agency,
+        s.format,
+        match s.level {
+            super::super::record::Level::Uncorrected => "uncorrected",
+            super::super::record::Level::Corrected => "corrected",
+        },
+        channels.join(", "),
+        keys.factor,
+        p.notes.join("; "),
+        drift.join("; ")
+    )
+}
