@@ -106,11 +106,13 @@ fn manifest(path: &Path) -> (String, BTreeSet<String>) {
     (name, deps)
 }
 
-/// Every package of the workspace by folder (`crates/<name>`, and `src` for the root),
+/// Every package of the workspace by folder (`crates/<name>`, `src` for the root and
+/// `python` for the Python module),
 /// from the manifests on disk.
 fn manifests() -> BTreeMap<String, (String, BTreeSet<String>)> {
     let mut out = BTreeMap::new();
     out.insert("src".to_string(), manifest(&repo("Cargo.toml")));
+    out.insert("python".to_string(), manifest(&repo("python/Cargo.toml")));
     for entry in std::fs::read_dir(repo("crates")).unwrap() {
         let dir = entry.unwrap().path();
         if dir.join("Cargo.toml").is_file() {

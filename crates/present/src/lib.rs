@@ -13,11 +13,13 @@
 //!   stability study and a records study;
 //! - [`gate`]: gate lines, JUnit XML, the GitHub step summary (the verdict itself is
 //!   `rockslide_verify::verdict`);
-//! - [`stamp`]: the build's version and commit, fixed at build time.
+//! - [`stamp`]: the build's version and commit, fixed at build time;
+//! - [`foxglove_layout`]: the Foxglove layout beside a case's MCAP file.
 
 #![warn(missing_docs)]
 
 pub(crate) mod doc;
+pub mod foxglove_layout;
 pub mod gate;
 pub mod report;
 pub mod stability;

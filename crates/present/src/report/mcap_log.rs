@@ -1,7 +1,8 @@
 //! The MCAP trace of a case run: turns a [`CaseResult`] into a [`TraceLog`] (one state
 //! channel per engine run and for the reference, the 3D view when the scene has
 //! geometry, provenance and settings as metadata, the case file as an attachment) and
-//! writes `<case>.mcap`. The format itself lives in `rockslide-formats` (`mcap_file`).
+//! writes `<case>.mcap`, with its Foxglove layout `<case>.layout.json` beside it. The format
+//! itself lives in `rockslide-formats` (`mcap_file`).
 
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -194,7 +195,7 @@ fn scene_metadata(g: &Geometry, duration: f64) -> BTreeMap<String, String> {
 
 /// Write the case's MCAP trace to `path` atomically.
 pub fn write_case_mcap(result: &CaseResult, path: &Path) -> Result<(), Error> {
-    write_mcap(&case_trace_log(result), path)
+    write_log(&case_trace_log(result), path)
 }
 
 /// Write the case's MCAP trace of the given traces at file step `file_step` (see
@@ -206,5 +207,11 @@ pub fn write_case_mcap_of(
     file_step: Option<f64>,
     path: &Path,
 ) -> Result<(), Error> {
-    write_mcap(&case_trace_log_of(result, runs, reference, file_step), path)
+    write_log(&case_trace_log_of(result, runs, reference, file_step), path)
+}
+
+/// The MCAP file and its Foxglove layout beside it ([`crate::foxglove_layout`]).
+fn write_log(log: &TraceLog, path: &Path) -> Result<(), Error> {
+    write_mcap(log, path)?;
+    crate::foxglove_layout::write_layout(log, path)
 }
