@@ -12,6 +12,7 @@ mod common;
 mod contact_block;
 mod energy_rpepo;
 mod external;
+mod external_programs;
 mod fe_pepo;
 mod fe_rpepo;
 mod fe_space;

@@ -11,7 +11,8 @@
 //!   `mcap_file/writer.rs`; a bounded, checked reader), its step messages in CDR (`cdr`)
 //!   and a 3D view of scenes with geometry ([`scene3d`]).
 //! - `external`: other programs' results read as traces (rockslide CSV in any catalogued
-//!   unit, foreign CSV with a column map, MCAP); `case`: a case loaded with them read.
+//!   unit, foreign CSV with a column map, MCAP, and the files SAP2000/ETABS/CSiBridge,
+//!   ANSYS, Abaqus and OpenSees write); `case`: a case loaded with them read.
 //! - [`calculix_dat`]: CalculiX's `.dat` results file, read as blocks (CalculiX live).
 //!
 //! [`Trace`]: rockslide_core::trace::Trace

@@ -23,9 +23,9 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 
 use rockslide_core::case::{Case, EXTERNAL_VARIANT, External, Model};
-use rockslide_core::trace::Trace;
 use rockslide_core::error::{InputError, InputErrors};
 use rockslide_core::response::quantity_def;
+use rockslide_core::trace::Trace;
 use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
 use rockslide_formats::read_external_participant;
 
@@ -286,9 +286,17 @@ fn invariant_coverage(case: &Case, trace: &Trace) -> Vec<String> {
         }
     };
     let tangential_force = ("resistance or base_shear", tangential);
-    lack(&mut missing, "friction_bound", &[tangential_force, ("normal", normal)]);
+    lack(
+        &mut missing,
+        "friction_bound",
+        &[tangential_force, ("normal", normal)],
+    );
     lack(&mut missing, "compression", &[("normal", has("normal"))]);
-    let slip = [tangential_force, ("normal", normal), ("slide", has("slide"))];
+    let slip = [
+        tangential_force,
+        ("normal", normal),
+        ("slide", has("slide")),
+    ];
     if one_contact {
         lack(&mut missing, "stick_slip", &slip);
         lack(&mut missing, "dissipation", &slip);
@@ -296,7 +304,10 @@ fn invariant_coverage(case: &Case, trace: &Trace) -> Vec<String> {
         missing.push("stick_slip, dissipation (need each support's own forces and slip)".into());
     }
     missing.push("penetration (no per-contact gaps)".into());
-    let energy = [("energy_input", has("energy_input")), ("energy_error", has("energy_error"))];
+    let energy = [
+        ("energy_input", has("energy_input")),
+        ("energy_error", has("energy_error")),
+    ];
     lack(&mut missing, "energy_balance", &energy);
     let mut notes = vec![format!(
         "invariants not provided by the file: {}",

@@ -96,7 +96,8 @@ pub fn meaning(invariant: Invariant) -> &'static str {
     }
 }
 
-/// The summed contact data a trace offers: tangential force, normal force, slip.
+/// The summed contact data a trace offers: tangential force, normal force, slip (empty
+/// for another program's file without one).
 struct ContactSeries<'a> {
     tangential: &'a [f64],
     normal: Normal<'a>,
@@ -144,7 +145,13 @@ fn contact_series<'a>(
     let tangential = trace
         .column("base_shear")
         .or_else(|| trace.column("resistance"))?;
-    let slip = trace.column("slide")?;
+    // An engine's sums need its slip; another program's force and normal are checked
+    // without one (its stick/slip and dissipation then are not measured).
+    let slip = match (trace.column("slide"), source) {
+        (Some(s), _) => s,
+        (None, NormalSource::Own) => &[],
+        (None, NormalSource::Engine) => return None,
+    };
     // A horizontally shaken oscillator has no vertical dynamics in the scene: its normal
     // force is M·g, whatever an engine's own model of it (rapier's foot) records, so the
     // structure's resistance is held to μ·M·g. Under vertical motion N(t) is recorded.
@@ -240,7 +247,9 @@ fn check_trace(case: &Case, run: &Run, source: NormalSource) -> Vec<InvariantChe
                 Invariant::Dissipation,
                 Some((block_dissipation(block, mu, weight), None)),
             );
-        } else if let (Some(c), true) = (&summed, single_contact(case)) {
+        } else if let (Some(c), true) = (&summed, single_contact(case))
+            && !c.slip.is_empty()
+        {
             put(Invariant::StickSlip, Some((stick_slip(c, mu), None)));
             put(
                 Invariant::Dissipation,

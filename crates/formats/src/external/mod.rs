@@ -51,7 +51,12 @@ pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTra
     let text = read_text(path)?;
     // a byte-order mark, as spreadsheet programs write it, is not part of the first header
     let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
-    match format.layout.unwrap_or_else(|| recognise(text)) {
+    let layout = match (format.layout, format.skip_lines) {
+        (Some(layout), _) => layout,
+        (None, 0) => recognise(text),
+        (None, _) => ExternalLayout::Csv, // a CSV below a preamble the case skips
+    };
+    match layout {
         ExternalLayout::Csv => read_external_csv(path, text, format),
         ExternalLayout::CsiTables => csi::read(path, text, format),
         ExternalLayout::AnsysPrvar => ansys::read(path, text, format),
@@ -77,12 +82,16 @@ fn read_text(path: &Path) -> Result<String, InputErrors> {
     })
 }
 
-/// The layout a file's first lines show: a SAP2000/ETABS/CSiBridge `TABLE:` title, the
-/// ANSYS POST26 listing banner, else a CSV. Abaqus reports and OpenSees recorder files
-/// carry no mark of their program: they are named with `format`.
+/// The layout a file's first lines show: a SAP2000/ETABS/CSiBridge `TABLE:` title above
+/// field names with `OutputCase` and `StepNum`, the ANSYS POST26 listing banner, else a
+/// CSV. Abaqus reports and OpenSees recorder files carry no mark of their program: they
+/// are named with `format`.
 fn recognise(text: &str) -> ExternalLayout {
-    let first = text.lines().map(str::trim).find(|l| !l.is_empty());
-    if first.is_some_and(csi::is_title) {
+    let mut lines = text.lines().map(str::trim).filter(|l| !l.is_empty());
+    let (first, second) = (lines.next(), lines.next());
+    if first.is_some_and(csi::is_title)
+        && second.is_some_and(|l| l.contains("OutputCase") && l.contains("StepNum"))
+    {
         return ExternalLayout::CsiTables;
     }
     if text.lines().take(50).any(ansys::is_banner) {
