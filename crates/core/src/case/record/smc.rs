@@ -120,8 +120,8 @@ pub(super) fn parse_smc(path: &Path, text: &str) -> Result<StationRecord, InputE
 /// Integer 13 (0 up, 180 down, 90 horizontal) and 14 (the azimuth).
 fn orientation(ints: &[f64]) -> Option<Orientation> {
     match (ints[12], ints[13]) {
-        (v, _) if v == 0.0 => Some(Orientation::Up),
-        (v, _) if v == 180.0 => Some(Orientation::Down),
+        (0.0, _) => Some(Orientation::Up),
+        (180.0, _) => Some(Orientation::Down),
         (v, a) if v == 90.0 && (0.0..=360.0).contains(&a) => Some(Orientation::Azimuth(a)),
         _ => None,
     }
