@@ -7,7 +7,7 @@
 set -u
 SECONDS_EACH=${1:-600}
 mkdir -p fuzz/logs
-for t in ${TARGETS:-mcap_read record case_toml study_grid}; do
+for t in ${TARGETS:-mcap_read record case_toml study_grid external_csv}; do
     mkdir -p "fuzz/corpus/$t"
     # shellcheck disable=SC2086
     cargo +nightly fuzz run ${FUZZ_FLAGS--O} "$t" "fuzz/corpus/$t" -- \

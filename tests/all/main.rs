@@ -25,6 +25,7 @@ mod guarded_run;
 mod mcap_cli;
 mod mcap_space;
 mod mcap_traces;
+mod never_clobber;
 mod opensees;
 mod orbit_plot;
 mod output_step;

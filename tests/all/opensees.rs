@@ -85,6 +85,12 @@ fn export_writes_the_script_and_record_inside_the_output_folder() {
 
 #[test]
 fn scenes_the_export_cannot_write_are_located_errors() {
+    // refused when the case is read (every command validates the OpenSees section as
+    // `run` does), or by the export itself
+    let refused = |path: &std::path::Path, text: &str| match parse_case(path, text) {
+        Err(e) => e.to_string(),
+        Ok(c) => export(&c, Samples::Beside).unwrap_err().to_string(),
+    };
     let c = case("rigid-sliding-block");
     let e = export(&c, Samples::Beside).unwrap_err().to_string();
     assert!(e.contains("model.kind") && e.contains("rigid-block"), "{e}");
@@ -95,8 +101,7 @@ fn scenes_the_export_cannot_write_are_located_errors() {
     let end = start + 1 + full[start + 1..].find("\n[").unwrap();
     let text = format!("{}{}", &full[..start], &full[end..])
         + "\n[engines.opensees]\nvariants = [\"double\"]\n";
-    let c = parse_case(&path, &text).unwrap();
-    let e = export(&c, Samples::Beside).unwrap_err().to_string();
+    let e = refused(&path, &text);
     assert!(
         e.contains("engines.opensees.variants") && e.contains("[model.double]"),
         "{e}"
@@ -105,27 +110,21 @@ fn scenes_the_export_cannot_write_are_located_errors() {
     let path_r = repo("cases/rpepo-mass-accel.toml");
     let text = std::fs::read_to_string(&path_r).unwrap()
         + "\n[engines.opensees]\nvariants = [\"double\"]\n";
-    let e = export(&parse_case(&path_r, &text).unwrap(), Samples::Beside)
-        .unwrap_err()
-        .to_string();
+    let e = refused(&path_r, &text);
     assert!(
         e.contains("engines.opensees.variants") && e.contains("rocking body"),
         "{e}"
     );
     // a step that does not divide the output step; an unknown option
     let text = std::fs::read_to_string(&path).unwrap() + "\n[engines.opensees]\ndt = 3e-4\n";
-    let e = export(&parse_case(&path, &text).unwrap(), Samples::Beside)
-        .unwrap_err()
-        .to_string();
+    let e = refused(&path, &text);
     assert!(
         e.contains("engines.opensees.dt") && e.contains("whole steps"),
         "{e}"
     );
     let text =
         std::fs::read_to_string(&path).unwrap() + "\n[engines.opensees]\nintegrator = \"hht\"\n";
-    let e = export(&parse_case(&path, &text).unwrap(), Samples::Beside)
-        .unwrap_err()
-        .to_string();
+    let e = refused(&path, &text);
     assert!(e.contains("engines.opensees.integrator"), "{e}");
     // on the command line: exit code 2, nothing written
     let out = tempfile::tempdir().unwrap();

@@ -14,9 +14,10 @@
 //!   (`.<file>.<pid>-<n>.rockslide-tmp`), so two runs writing into one folder at once
 //!   (parallel CI jobs) never take each other's temporary: both succeed, the last rename
 //!   of a file wins, and every file is whole. [`remove_stale_temporaries`] clears the
-//!   temporaries an interrupted run left. Only temporaries untouched for [`STALE_AFTER`]
-//!   are stale: another process writing into the same folder keeps its temporary for
-//!   milliseconds only.
+//!   temporaries an interrupted run left, and writing a file clears its fixed-name
+//!   temporary (`.<file>.rockslide-tmp`, which earlier versions used). Only temporaries
+//!   untouched for [`STALE_AFTER`] are stale: another process writing into the same
+//!   folder keeps its temporary for milliseconds only.
 
 use std::io::Write;
 use std::path::{Component, Path, PathBuf};
@@ -181,8 +182,22 @@ pub fn write_atomically_with(
     if result.is_err() {
         // best effort: a failed write leaves nothing behind
         let _ = std::fs::remove_file(&tmp);
+    } else {
+        remove_fixed_name_temporary(path);
     }
     result
+}
+
+/// Remove `.<file>.rockslide-tmp`, the fixed-name temporary of `path` an interrupted run
+/// of an earlier version left (no writer uses that name now), once the file is whole.
+fn remove_fixed_name_temporary(path: &Path) {
+    let Some(name) = path.file_name() else {
+        return;
+    };
+    let fixed = path.with_file_name(format!(".{}{TEMP_SUFFIX}", name.to_string_lossy()));
+    if fixed.symlink_metadata().is_ok_and(|m| m.is_file()) {
+        let _ = std::fs::remove_file(fixed);
+    }
 }
 
 fn stream_and_rename(

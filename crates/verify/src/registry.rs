@@ -158,14 +158,44 @@ pub fn parse_case(path: &Path, text: &str) -> Result<Case, InputErrors> {
     rockslide_formats::parse_case(path, text, CASE_SECTION_IDS).and_then(with_valid_options)
 }
 
-/// The case, or every problem the engines find with their options in it.
+/// The case, or every problem found with its engine sections: each engine's options
+/// (whether or not it applies to the scene), variants asked of an engine that does not
+/// apply, and the OpenSees participant's settings and export — the one validation every
+/// command that reads a case goes through.
 fn with_valid_options(case: Case) -> Result<Case, InputErrors> {
-    let errors: Vec<InputError> = all().iter().flat_map(|e| e.check_options(&case)).collect();
+    let mut errors: Vec<InputError> = all().iter().flat_map(|e| e.check_options(&case)).collect();
+    errors.extend(variants_of_inapplicable(&case));
+    if let Err(e) = crate::opensees::prepare(&case) {
+        errors.extend(e.0);
+    }
     if errors.is_empty() {
         Ok(case)
     } else {
         Err(InputErrors(errors))
     }
+}
+
+/// `engines.<id>.variants` naming variants of an engine that does not apply to the
+/// scene (a planar engine on a 3D scene): nothing could check them, so they are refused.
+fn variants_of_inapplicable(case: &Case) -> Vec<InputError> {
+    all()
+        .iter()
+        .filter_map(|e| {
+            let asked = case.engine(e.id())?.variants.as_ref()?;
+            let why = e.variants(&case.scene).err()?;
+            (!asked.is_empty()).then(|| {
+                case.field_error(
+                    &format!("engines.{}.variants", e.id()),
+                    format!(
+                        "names {} of {}, which does not apply to this scene ({}): remove them",
+                        asked.join(", "),
+                        e.id(),
+                        why.0
+                    ),
+                )
+            })
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -3,6 +3,10 @@
 
 use rockslide_core::error::Error;
 
+/// Most timed repeats of one run: the median of a hundred is as steady as a timing gets,
+/// and a million repeats of a second-long run would take eleven days.
+pub const MAX_REPEATS: usize = 100;
+
 /// Settings shared by both commands.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Options {
@@ -57,8 +61,11 @@ impl Options {
                 self.ratio
             )));
         }
-        if self.repeats == 0 {
-            return Err(Error::Other("--repeats must be at least 1".into()));
+        if self.repeats == 0 || self.repeats > MAX_REPEATS {
+            return Err(Error::Other(format!(
+                "--repeats is {}, but must be from 1 to {MAX_REPEATS}",
+                self.repeats
+            )));
         }
         if let Some(b) = self.budget
             && (b.is_nan() || b <= 0.0)

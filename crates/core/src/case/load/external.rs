@@ -130,6 +130,17 @@ impl Validator<'_> {
                 }
             };
             let file = dir.join(&e.file);
+            let mcap = file
+                .extension()
+                .is_some_and(|x| x.eq_ignore_ascii_case("mcap"));
+            if e.topic.is_some() && !mcap {
+                self.fail(
+                    &format!("{field}.topic"),
+                    "applies to an MCAP results file (`.mcap`) only; this file is read as CSV, \
+                     which has no topics",
+                );
+                continue;
+            }
             match (self.read_external)(&file, &format) {
                 Ok(read) => out.push(External {
                     label: e.label.clone(),
