@@ -901,8 +901,9 @@ fn outputs_are_byte_identical_across_thread_counts() {
             }
         }
     }
-    // 6 trace CSVs + the MCAP + 7 figures + 2 summary.csv (case, suite); stability: json, csv, svg
-    assert_eq!(byte_equal, 19, "{files:?}");
+    // 6 trace CSVs + the MCAP and its Foxglove layout + 7 figures + 2 summary.csv (case,
+    // suite); stability: json, csv, svg
+    assert_eq!(byte_equal, 20, "{files:?}");
 }
 
 /// Found by the `record` fuzz target (`fuzz/regressions/record/`): three lines whose last
