@@ -16,7 +16,11 @@
 //! θ, so the stop is the smooth root of the stage speeds, located by bisection on the
 //! step's length. The one limit on the order: at a stop the direction turns toward d̂ as
 //! (t_stop − t)^α, α = |d|/(a_f − |d|), so the slide has a term (t_stop − t)^(2+α) that no
-//! polynomial step resolves (docs/bidirectional.md, "Measured").
+//! polynomial step resolves (docs/bidirectional.md, "Measured"). Where |d| > a_f nearly
+//! opposes the motion the speed dips almost to zero without stopping and the direction
+//! turns by up to 180° far inside one step (a near-stop): a step that reaches a stage
+//! speed of zero or turns sharply is taken again in substeps under error control (step
+//! doubling), so that near-stops and stops hold the accuracy of the smooth steps.
 //!
 //! With a vertical component the cone's radius follows μ·(g + a_v); the reference stops
 //! with an error if g + a_v ≤ 0 (the block would lift off, not modelled here).
@@ -31,6 +35,27 @@ use rockslide_core::trace::{Quantity, q};
 /// a fraction of h·(a_f + |d|), the largest change of speed in the step (at a stop the
 /// bisection leaves a speed of a few ε of it).
 const STOP_SPEED: f64 = 1e-9;
+
+/// A step whose least stage speed falls below this fraction of the speed it can change by
+/// (h·(a_f + |d|)) is near a stop and taken under
+/// error control ([`PlanBlock::slide_controlled`]).
+const NEAR_STOP: f64 = 0.5;
+
+/// A step whose direction turns by more than this (rad) is taken under error control.
+const TURN: f64 = 0.05;
+
+/// The largest gap of a substep's velocity (or slide per length) to two half substeps',
+/// as a fraction of h·(a_f + |d|), the most the speed can change in a grid step.
+const SUBSTEP_TOLERANCE: f64 = 1e-12;
+
+/// Most halvings of one substep (2⁻⁴⁰ of a grid step).
+const SUBSTEP_HALVINGS: usize = 40;
+
+/// Most substeps of one grid step before the reference declares it is not progressing.
+const MOST_SUBSTEPS: usize = 100_000;
+
+/// No substep is halved below this fraction of the time: 64 of its floats.
+const SMALLEST_SUBSTEP: f64 = 64.0 * f64::EPSILON;
 
 /// Stick or slide.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -154,7 +179,9 @@ impl PlanBlock {
         Ok(PlanBlockPhase::Slide)
     }
 
-    /// Sliding from `t`: one Radau IIA step to `t1`, or to the stop if it comes first.
+    /// Sliding from `t`: one Radau IIA step to `t1`, or to the stop if it comes first; a
+    /// step that turns sharply or reaches a stage speed of zero is taken again in
+    /// substeps under error control ([`Self::slide_controlled`]).
     ///
     /// The stop is the root of the stage speeds ρ (smooth through it: past it the friction
     /// keeps opposing the direction of the motion, [`radau`]), located by bisection on the
@@ -169,54 +196,182 @@ impl PlanBlock {
         let t0 = *t;
         self.law.limit(t0)?;
         self.law.limit(t1)?;
-        let (s0, v0) = ([y[0], y[1]], [y[2], y[3]]);
-        let d0 = self.law.drive.at(t0);
-        let angle = if norm(v0) > 0.0 {
-            v0[1].atan2(v0[0])
-        } else if norm(d0) > 0.0 {
-            d0[1].atan2(d0[0])
-        } else {
+        let Some(angle) = self.start_angle(t0, y) else {
             // no drive and at rest: nothing to slide
             return Ok(PlanBlockPhase::Stick);
         };
+        let h = t1 - t0;
+        let (tau, st) = self.step_or_cut(t0, y, angle, h)?;
+        if self.turns_sharply(t0, angle, h, &st) {
+            return self.slide_controlled(t, t1, y, h);
+        }
+        let stopped = self.stop_speed(t0, h);
+        Ok(self.end_step(t, y, (t0, tau < h, stopped), (tau, st))?.0)
+    }
+
+    /// The speed below which a cut step ends in a stop, for a grid step of `h` from `t0`
+    /// ([`STOP_SPEED`]).
+    fn stop_speed(&self, t0: f64, h: f64) -> f64 {
+        STOP_SPEED * h * (self.law.friction(t0) + norm(self.law.drive.at(t0)))
+    }
+
+    /// The direction the slide starts along from state `y` at `t0`: its velocity's, or at
+    /// rest the drive's (`None`: at rest with no drive).
+    fn start_angle(&self, t0: f64, y: &[f64; 4]) -> Option<f64> {
+        let (v0, d0) = ([y[2], y[3]], self.law.drive.at(t0));
+        if norm(v0) > 0.0 {
+            Some(v0[1].atan2(v0[0]))
+        } else if norm(d0) > 0.0 {
+            Some(d0[1].atan2(d0[0]))
+        } else {
+            None
+        }
+    }
+
+    /// One Radau IIA step of length `h` from state `y` at `t0`, or, when a stage speed
+    /// reaches zero inside it, the step to the last length with every stage speed positive
+    /// (the cut, by bisection): its length and result.
+    fn step_or_cut(
+        &self,
+        t0: f64,
+        y: &[f64; 4],
+        angle: f64,
+        h: f64,
+    ) -> Result<(f64, radau::Step), String> {
+        let s0 = [y[0], y[1]];
+        let speed = norm([y[2], y[3]]);
         let law = |t: f64| (self.law.drive.at(t), self.law.friction(t));
-        let solve = |tau: f64| radau::step(&law, t0, s0, norm(v0), angle, tau);
+        let solve = |tau: f64| radau::step(&law, t0, s0, speed, angle, tau);
         // the least stage speed (−1 when the step cannot be solved)
         let ahead = |st: &Option<radau::Step>| {
             st.map_or(-1.0, |st| {
                 st.speed.into_iter().fold(f64::INFINITY, f64::min)
             })
         };
-        let h = t1 - t0;
         let full = solve(h);
-        let (tau, st) = match full {
-            Some(st) if ahead(&full) > 0.0 => (h, st),
+        match full {
+            Some(st) if ahead(&full) > 0.0 => Ok((h, st)),
             _ => {
                 let (cut, _) = bracket(h, |tau| ahead(&solve(tau)));
                 match solve(cut) {
-                    Some(st) if cut > 0.0 => (cut, st),
-                    _ => {
-                        return Err(format!(
-                            "the sliding block cannot be advanced from t = {t0:.9} s (the stage equations have no solution)"
-                        ));
-                    }
+                    Some(st) if cut > 0.0 => Ok((cut, st)),
+                    _ => Err(format!(
+                        "the sliding block cannot be advanced from t = {t0:.9} s (the stage equations have no solution)"
+                    )),
                 }
             }
+        }
+    }
+
+    /// Whether a step of length `h` from `t0` (result `st`) needs error control: a stage
+    /// speed reached zero in it (a stop, or a near-stop where the speed dips almost to
+    /// zero and the direction turns), or its direction turned by more than [`TURN`].
+    fn turns_sharply(&self, t0: f64, angle: f64, h: f64, st: &radau::Step) -> bool {
+        let reach = h * (self.law.friction(t0) + norm(self.law.drive.at(t0)));
+        let slowest = st.speed.into_iter().fold(f64::INFINITY, f64::min);
+        let turned = st
+            .angle
+            .into_iter()
+            .fold(0.0_f64, |m, a| m.max((a - angle).abs()));
+        slowest < NEAR_STOP * reach || turned > TURN
+    }
+
+    /// Sliding from `t` toward `t1` in substeps whose velocity and slide agree with two
+    /// half steps' to [`SUBSTEP_TOLERANCE`] (step doubling; the single step is kept, so a
+    /// substep is a plain Radau step): each substep is halved until it does, at most
+    /// [`SUBSTEP_HALVINGS`] times, and the next one tried twice as long. Ends at `t1`, or
+    /// at a stop (a cut whose speed is nil) with the phase after it.
+    fn slide_controlled(
+        &mut self,
+        t: &mut f64,
+        t1: f64,
+        y: &mut [f64; 4],
+        h: f64,
+    ) -> Result<PlanBlockPhase, String> {
+        let scale = h * (self.law.friction(*t) + norm(self.law.drive.at(*t)));
+        let stopped = self.stop_speed(*t, h);
+        let mut tau = 0.5 * h;
+        let mut substeps = 0;
+        while *t < t1 {
+            let t0 = *t;
+            let Some(angle) = self.start_angle(t0, y) else {
+                return Ok(PlanBlockPhase::Stick);
+            };
+            let mut halvings = 0;
+            let (tried, len, st) = loop {
+                let tried = tau.min(t1 - t0);
+                let (len, st) = self.step_or_cut(t0, y, angle, tried)?;
+                let tolerance = SUBSTEP_TOLERANCE * scale;
+                if halvings == SUBSTEP_HALVINGS
+                    || len <= SMALLEST_SUBSTEP * t1.abs()
+                    || self.agrees_with_halves(t0, y, (angle, len, tolerance), &st)
+                {
+                    break (tried, len, st);
+                }
+                tau = 0.5 * len;
+                halvings += 1;
+            };
+            let reached = tried == t1 - t0 && len == tried;
+            let (phase, stop) = self.end_step(t, y, (t0, len < tried, stopped), (len, st))?;
+            substeps += 1;
+            if substeps > MOST_SUBSTEPS {
+                return Err(format!("no progress at t = {t0:.9} s"));
+            }
+            if stop || reached {
+                return Ok(phase);
+            }
+            tau = 2.0 * len;
+        }
+        Ok(PlanBlockPhase::Slide)
+    }
+
+    /// Whether one step of length `len` from `y` (result `st`) agrees with two of half
+    /// that length to `tolerance` (m/s) in velocity, and in slide to `tolerance`·`len`
+    /// beyond the slide's round-off.
+    fn agrees_with_halves(
+        &self,
+        t0: f64,
+        y: &[f64; 4],
+        (angle, len, tolerance): (f64, f64, f64),
+        st: &radau::Step,
+    ) -> bool {
+        let law = |t: f64| (self.law.drive.at(t), self.law.friction(t));
+        let half = 0.5 * len;
+        let Some(a) = radau::step(&law, t0, [y[0], y[1]], norm([y[2], y[3]]), angle, half) else {
+            return false;
         };
+        let Some(b) = radau::step(&law, t0 + half, a.pos, a.speed[2], a.angle[2], half) else {
+            return false;
+        };
+        let (v, w) = (st.velocity(), b.velocity());
+        let dv = norm([v[0] - w[0], v[1] - w[1]]);
+        let ds = norm([st.pos[0] - b.pos[0], st.pos[1] - b.pos[1]]);
+        dv <= tolerance && ds <= tolerance * len + 8.0 * f64::EPSILON * norm(st.pos)
+    }
+
+    /// Take the step (result `st`) from `t0`, its length `tau`: slide on from its end, or,
+    /// at a cut (`cut`) whose speed is at most `stopped`, stop there and stick or slide on
+    /// along the drive. The phase after, and whether it stopped.
+    fn end_step(
+        &mut self,
+        t: &mut f64,
+        y: &mut [f64; 4],
+        (t0, cut, stopped): (f64, bool, f64),
+        (tau, st): (f64, radau::Step),
+    ) -> Result<(PlanBlockPhase, bool), String> {
         *t = t0 + tau;
         // a stop: the speed falls linearly into it and the bisection ends within a float
         // of it, so it is nil there to round-off; anything else (a stage equation without
         // a solution, a speed that dips to zero inside the step and rises again) goes on
         // sliding from the last solvable length
-        let stopped = STOP_SPEED * h * (self.law.friction(t0) + norm(d0));
-        if tau == h || st.speed[2] > stopped {
+        if !cut || st.speed[2] > stopped {
             let v = st.velocity();
             *y = [st.pos[0], st.pos[1], v[0], v[1]];
             let d = self.law.drive.at(*t);
             let af = self.law.friction(*t);
             let (sn, cs) = st.angle[2].sin_cos();
             Self::push(&mut self.samples, *t, y, [d[0] - af * cs, d[1] - af * sn]);
-            return Ok(PlanBlockPhase::Slide);
+            return Ok((PlanBlockPhase::Slide, false));
         }
         *y = [st.pos[0], st.pos[1], 0.0, 0.0];
         if let Some(last) = self.slides.last_mut() {
@@ -225,10 +380,10 @@ impl PlanBlock {
         Self::push(&mut self.samples, *t, y, [0.0; 2]);
         let d = self.law.drive.at(*t);
         if norm(d) <= self.law.limit(*t)? {
-            Ok(PlanBlockPhase::Stick)
+            Ok((PlanBlockPhase::Stick, true))
         } else {
             self.slides.push((*t, f64::NAN));
-            Ok(PlanBlockPhase::Slide)
+            Ok((PlanBlockPhase::Slide, true))
         }
     }
 
