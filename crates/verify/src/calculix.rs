@@ -371,7 +371,7 @@ mod tests {
 
     #[test]
     fn printed_times_go_back_on_the_grid() {
-        assert_eq!(on_grid(0.1234000e-1, 1e-4), 123.0 * 1e-4);
+        assert_eq!(on_grid(0.1230000e-1, 1e-4), 123.0 * 1e-4);
         assert_eq!(on_grid(0.9999999, 1e-4), 10000.0 * 1e-4);
         // off the grid: kept as printed
         assert_eq!(on_grid(0.12345, 1e-3), 0.12345);
