@@ -26,7 +26,7 @@ use serde_json::Value;
 
 const RPEPO: &str = r#"
 title = "RPEPO geometry (illustration)"
-source = "SPEC §1.1"
+source = "AL-Shawaf & Rahman, Fig. 3"
 requirement = "picture only"
 [model]
 kind = "rocking-body"

@@ -1,4 +1,4 @@
-//! Engine 2: an implicit penalty finite-element contact model (SPEC §2, engine 2).
+//! Engine 2: an implicit penalty finite-element contact model.
 //! CONTA178-like contact elements (compression-only normal penalty, tangential penalty
 //! capped by μ times the element's own normal force, slip by return mapping) join the
 //! ground, massless intermediate nodes and a rigid body (point mass at the centre of

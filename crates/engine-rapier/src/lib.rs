@@ -1,7 +1,7 @@
 //! Engine 3: sliding and rocking bodies as rigid bodies in rapier (rapier3d-f64,
 //! parry3d-f64 shapes), with Coulomb friction at exactly the scene's μ and ground motion
-//! as a moving kinematic ground or as an inertial force on a fixed-ground model (SPEC §2,
-//! engine 3). Shares nothing with the other engines but the scene and the trace.
+//! as a moving kinematic ground or as an inertial force on a fixed-ground model.
+//! Shares nothing with the other engines but the scene and the trace.
 //!
 //! Each model's contact, by default (`contact_model` names the others):
 //! - the rigid block: rapier's own contact between the block's collider and the ground;

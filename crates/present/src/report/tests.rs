@@ -137,7 +137,10 @@ fn reports_have_run_columns_na_column_figures_and_the_run_vs_run_failure() {
         md.contains("| Quantity | Unit | fe/single | rapier/inertial | Result |"),
         "{md}"
     );
-    assert!(md.contains("- predictor-corrector: not applicable — the predictor-corrector solves the paper's oscillator"));
+    assert!(
+        md.contains("- predictor-corrector: not applicable — the predictor-corrector is a single-degree-of-freedom sliding method"),
+        "{md}"
+    );
     assert!(md.contains("Reference: none — no exact solution exists for the rocking oscillator."));
     assert!(md.contains(
         "FAIL synthetic-rocking: peak_cm_x: rapier/inertial vs fe/single: Δ +3.00 % (10.30 vs 10.00 mm) (tolerance ≤ 1 %) [synthetic-rocking.toml: tolerance[0]]"

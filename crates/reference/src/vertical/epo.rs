@@ -351,7 +351,7 @@ impl EpoWalker {
             ds / w2 + w * (-cc * s + dd * c)
         };
         // An onset must rise through the limit, not touch it: an undamped oscillator that
-        // has stopped slipping touches μN every half period (SPEC §2) and a rounding residue
+        // has stopped slipping touches μN every half period and a rounding residue
         // there is no slip. The margin, 1e-10 of the friction limit, moves a true onset by
         // ~1e-10 of the time the force takes to rise by the limit.
         let margin = 1e-10 * mu * (law.n0.abs() + law.amplitude());
