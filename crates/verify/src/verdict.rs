@@ -685,18 +685,20 @@ dt = 0.1
     }
 
     /// A declared violation the run no longer shows fails the gate with the measured value,
-    /// like an unexpected pass: |T| = 1 kN stays under μN = 5 kN (friction_bound 0).
+    /// like an unexpected pass: |T| = 1 kN stays under μN = 5 kN, so friction_bound
+    /// measures |T|/(μN) − 1 = −0.8 (a case with nothing else gated also checks nothing).
     #[test]
     fn a_declared_violation_that_no_longer_happens_fails() {
-        let declared = "[[expected_outcome]]\nengine = \"fe\"\nstatus = \"diverged\"\n[[expected_violation]]\nengine = \"fe\"\ninvariant = \"friction_bound\"\nreason = \"measured 0.2\"";
-        let r = result(case(declared), vec![run("fe", diverged(), STUCK)]);
-        let f = failures(std::slice::from_ref(&r));
-        assert_eq!(f.len(), 1, "{f:?}");
+        let declared = "[[expected_violation]]\nengine = \"fe\"\ninvariant = \"friction_bound\"\nreason = \"measured 0.2\"";
+        let r = result(case(declared), vec![run("fe", RunStatus::Completed, STUCK)]);
+        let all = failures(std::slice::from_ref(&r));
+        let f: Vec<&Failure> = all.iter().filter(|f| !f.checks_nothing).collect();
+        assert_eq!(f.len(), 1, "{all:?}");
         assert_eq!(f[0].quantity, "friction_bound");
         assert_eq!(f[0].field, "t.toml: expected_violation[0]");
         assert!(
             f[0].value
-                .starts_with("declared violation no longer happens: measured 0 on fe/v"),
+                .starts_with("declared violation no longer happens: measured -0.8000 on fe/v"),
             "{}",
             f[0].value
         );
