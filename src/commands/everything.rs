@@ -63,7 +63,7 @@ fn load(out: &Path) -> Result<Work, Error> {
     let at = |f: &str| checkout_root().map_or_else(|| PathBuf::from(f), |r| r.join(f));
     let stability_folder = at("cases/stability");
     let stability = match stability_folder.is_dir() {
-        true => load_all(&case_paths_or(&[stability_folder.clone()], "")?)?,
+        true => load_all(&case_paths_or(std::slice::from_ref(&stability_folder), "")?)?,
         false => Vec::new(),
     };
     if stability_folder.is_dir() && stability.is_empty() {
