@@ -12,19 +12,16 @@ use rockslide::case::{Model, parse_case};
 use rockslide::export::{ansys, calculix};
 use rockslide::suite::{CaseResult, run_case};
 
-use crate::common::{case, repo, rockslide};
+use crate::common::{case, present_or_skip, repo, rockslide};
 
-/// Whether the live tests can run; prints why not, or fails where CalculiX is required.
+/// Whether the live tests can run (`ccx` found), or why not.
 fn live(test: &str) -> bool {
-    let found = available().is_some();
-    if !found {
-        assert!(
-            std::env::var_os("ROCKSLIDE_REQUIRE_CALCULIX").is_none(),
-            "{test}: CalculiX is required here (ROCKSLIDE_REQUIRE_CALCULIX) — {NOT_FOUND}"
-        );
-        eprintln!("{test}: SKIPPED, not passed — {NOT_FOUND}");
-    }
-    found
+    present_or_skip(
+        test,
+        available().is_some(),
+        "ROCKSLIDE_REQUIRE_CALCULIX",
+        NOT_FOUND,
+    )
 }
 
 fn run_index(r: &CaseResult, label: &str) -> usize {

@@ -84,3 +84,20 @@ pub fn into_closed_pipe(args: &[&str]) -> Output {
     drop(child.stdout.take());
     child.wait_with_output().unwrap()
 }
+
+/// Whether the outside program a test needs (OpenSeesPy, CalculiX, Chromium) is here.
+/// Where it is required — `CI=true`, or its own `require_var` (`ROCKSLIDE_REQUIRE_*`, as
+/// `.ci/run` sets) — its absence fails the test; elsewhere the test prints SKIPPED with
+/// the reason and returns early (the harness still lists it as ok: it has no runtime skip).
+pub fn present_or_skip(test: &str, found: bool, require_var: &str, missing: &str) -> bool {
+    if !found {
+        let required = std::env::var_os(require_var).is_some()
+            || std::env::var("CI").is_ok_and(|v| v == "true");
+        assert!(
+            !required,
+            "{test}: required here ({require_var} or CI=true) — {missing}"
+        );
+        eprintln!("{test}: SKIPPED, not passed — {missing}");
+    }
+    found
+}

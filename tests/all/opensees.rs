@@ -10,23 +10,16 @@ use rockslide::opensees::{NOT_FOUND, available};
 use rockslide::suite::{CaseResult, run_case};
 use rockslide::trace::Trace;
 
-use crate::common::{case, repo, rockslide};
+use crate::common::{case, present_or_skip, repo, rockslide};
 
-/// Whether the live tests can run; prints why not. Where OpenSeesPy is required
-/// (`ROCKSLIDE_REQUIRE_OPENSEES` set, as `.ci/run` does, or `CI=true`), its absence fails
-/// the test instead: a skipped live test must never read as a passed one there.
+/// Whether the live tests can run (OpenSeesPy found), or why not.
 fn live(test: &str) -> bool {
-    let found = available().is_some();
-    if !found {
-        let required = std::env::var_os("ROCKSLIDE_REQUIRE_OPENSEES").is_some()
-            || std::env::var("CI").is_ok_and(|v| v == "true");
-        assert!(
-            !required,
-            "{test}: OpenSeesPy is required here (ROCKSLIDE_REQUIRE_OPENSEES or CI=true) — {NOT_FOUND}"
-        );
-        eprintln!("{test}: SKIPPED, not passed — {NOT_FOUND}");
-    }
-    found
+    present_or_skip(
+        test,
+        available().is_some(),
+        "ROCKSLIDE_REQUIRE_OPENSEES",
+        NOT_FOUND,
+    )
 }
 
 fn run_index(r: &CaseResult, label: &str) -> usize {
