@@ -17,10 +17,9 @@ use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-use rockslide_core::case::{Case, EXTERNAL_VARIANT, Excitation, External, ExternalFormat, Model};
+use rockslide_core::case::{Case, Excitation, External, ExternalFormat, Model};
 use rockslide_core::error::InputErrors;
-use rockslide_core::trace::Trace;
-use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
+use rockslide_engine_api::Run;
 use rockslide_export::calculix::{
     self as export, SECTION, SET_BODY, SET_GROUND, SET_GROUND_REF, SET_MIDDLE,
 };
@@ -28,7 +27,7 @@ use rockslide_export::deck::DeckSettings;
 use rockslide_formats::calculix_dat::{read_calculix_dat, series};
 use rockslide_formats::{MAX_EXTERNAL_BYTES, read_external_csv};
 
-use crate::opensees::Live;
+use crate::live::{Live, failed_run};
 
 /// The participant's label (its run is `calculix/external`).
 pub const LABEL: &str = SECTION;
@@ -268,27 +267,6 @@ fn on_grid(t: f64, dt: f64) -> f64 {
     }
 }
 
-/// The run of a live participant that failed.
-fn failed(settings: &DeckSettings, reason: String, output: Vec<String>) -> Run {
-    let mut findings = vec![format!("CalculiX live run failed: {reason}")];
-    findings.extend(output.into_iter().map(|l| format!("ccx: {l}")));
-    Run {
-        engine: LABEL,
-        variant: EXTERNAL_VARIANT.to_string(),
-        arrangement: Arrangement::Single,
-        dt: settings.dt,
-        settings: vec![Setting::text("program", "CalculiX (live)")],
-        stats: SolverStats::default(),
-        findings,
-        trace: Trace::default(),
-        status: RunStatus::NotConverged {
-            time: f64::NAN,
-            reason,
-        },
-        wall_seconds: 0.0,
-    }
-}
-
 /// The last non-blank lines of CalculiX's output.
 fn tail(output: &str) -> Vec<String> {
     let lines: Vec<String> = output
@@ -363,6 +341,11 @@ fn keep_tail(stream: &mut impl Read) -> String {
     }
     let start = kept.len().saturating_sub(OUTPUT_TAIL_BYTES);
     String::from_utf8_lossy(&kept[start..]).into_owned()
+}
+
+/// The run of a live CalculiX participant that failed.
+fn failed(settings: &DeckSettings, reason: String, output: Vec<String>) -> Run {
+    failed_run(LABEL, "CalculiX", settings.dt, reason, "ccx", output)
 }
 
 #[cfg(test)]

@@ -15,7 +15,8 @@
 //! - [`disagreement`]: design quantities of each participant against the basis, declared
 //!   or failing.
 //! - [`external`]: other programs' results as runs, gated like an engine's;
-//!   [`opensees`] and [`calculix`]: those programs run live on the exported scene.
+//!   [`opensees`] and [`calculix`]: those programs run live on the exported scene, what
+//!   they share in [`live`].
 //! - [`verdict`]: the one pass/fail rule; [`record`]: a case result as a typed record
 //!   (`result.json`).
 //! - [`timings`]: opt-in wall and CPU time of a command's stages (`--timings`).
@@ -32,6 +33,7 @@ pub mod external;
 pub mod footprint;
 pub mod invariants;
 pub mod json;
+pub mod live;
 pub mod opensees;
 pub mod plan;
 pub mod progress;

@@ -17,11 +17,13 @@ use std::process::{Command, Stdio};
 use std::sync::OnceLock;
 use std::time::{Duration, Instant};
 
-use rockslide_core::case::{Case, EXTERNAL_VARIANT, External, ExternalFormat};
+use rockslide_core::case::{Case, External, ExternalFormat};
 use rockslide_core::error::InputErrors;
-use rockslide_core::trace::Trace;
-use rockslide_engine_api::{Arrangement, Run, RunStatus, Setting, SolverStats};
+use rockslide_engine_api::Run;
 use rockslide_export::opensees::{self as export, SECTION, Samples, Settings};
+
+pub use crate::live::Live;
+use crate::live::failed_run;
 use rockslide_formats::{MAX_EXTERNAL_BYTES, read_external_csv};
 
 /// The participant's label (its run is `opensees/external`).
@@ -33,18 +35,6 @@ pub const NOT_FOUND: &str = "OpenSeesPy not found (pip install openseespy; on De
 
 /// Lines of the script's standard error kept in a failed run's findings.
 const STDERR_LINES: usize = 20;
-
-/// What became of the live participant of a case.
-pub enum Live {
-    /// The case does not ask for it.
-    NotAsked,
-    /// Asked, but OpenSeesPy is not available: the reason.
-    NotApplicable(String),
-    /// Ran and was read back: add it to the case.
-    Participant(Box<External>),
-    /// Ran and failed (or timed out): a run that did not converge.
-    Failed(Box<Run>),
-}
 
 /// The Python interpreter to run.
 fn python() -> String {
@@ -152,27 +142,6 @@ fn element(case: &Case, settings: &Settings) -> String {
     }
 }
 
-/// The run of a live participant that failed.
-fn failed(settings: &Settings, reason: String, stderr: Vec<String>) -> Run {
-    let mut findings = vec![format!("OpenSees live run failed: {reason}")];
-    findings.extend(stderr.into_iter().map(|l| format!("stderr: {l}")));
-    Run {
-        engine: LABEL,
-        variant: EXTERNAL_VARIANT.to_string(),
-        arrangement: Arrangement::Single,
-        dt: settings.dt,
-        settings: vec![Setting::text("program", "OpenSeesPy (live)")],
-        stats: SolverStats::default(),
-        findings,
-        trace: Trace::default(),
-        status: RunStatus::NotConverged {
-            time: f64::NAN,
-            reason,
-        },
-        wall_seconds: 0.0,
-    }
-}
-
 /// The last lines of a standard error, without OpenSees's exit banner.
 fn tail(stderr: &str) -> Vec<String> {
     let lines: Vec<String> = stderr
@@ -249,6 +218,11 @@ fn read_bounded(stream: &mut impl Read, limit: u64) -> (String, bool) {
     let _ = stream.by_ref().take(limit).read_to_end(&mut bytes);
     let rest = std::io::copy(stream, &mut std::io::sink()).unwrap_or(0);
     (String::from_utf8_lossy(&bytes).into_owned(), rest > 0)
+}
+
+/// The run of a live OpenSees participant that failed.
+fn failed(settings: &Settings, reason: String, stderr: Vec<String>) -> Run {
+    failed_run(LABEL, "OpenSeesPy", settings.dt, reason, "stderr", stderr)
 }
 
 #[cfg(test)]

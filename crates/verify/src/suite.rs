@@ -219,7 +219,7 @@ fn analyse(
     case: Case,
     not_applicable: Vec<(&'static str, String)>,
     runs: Vec<Result<(Run, Option<StreamedSummary>), InputError>>,
-    live: Vec<(&'static str, crate::opensees::Live)>,
+    live: Vec<(&'static str, crate::live::Live)>,
     reference: Result<ReferenceResult, String>,
 ) -> Result<CaseResult, InputErrors> {
     let (mut case, mut not_applicable) = (case, not_applicable);
@@ -233,10 +233,10 @@ fn analyse(
     let mut runs = runs;
     for (label, live) in live {
         match live {
-            crate::opensees::Live::NotAsked => {}
-            crate::opensees::Live::NotApplicable(why) => not_applicable.push((label, why)),
-            crate::opensees::Live::Participant(e) => case.add_external(*e),
-            crate::opensees::Live::Failed(run) => runs.push(*run),
+            crate::live::Live::NotAsked => {}
+            crate::live::Live::NotApplicable(why) => not_applicable.push((label, why)),
+            crate::live::Live::Participant(e) => case.add_external(*e),
+            crate::live::Live::Failed(run) => runs.push(*run),
         }
     }
     let runs = crate::external::with_external_runs(&case, runs);
