@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use pyo3::exceptions::PyTypeError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
 
@@ -116,7 +116,7 @@ pub fn case_from_toml(text: &str, path: Option<PathBuf>) -> PyResult<Case> {
 #[pyfunction]
 #[pyo3(signature = (tables, path=None))]
 pub fn case_from_dict(tables: &Bound<'_, PyDict>, path: Option<PathBuf>) -> PyResult<Case> {
-    let table = table_of(tables, "")?;
+    let table = table_of(tables, "", 0)?;
     let text = toml::to_string(&table).map_err(|e| {
         PyTypeError::new_err(format!("the case dict cannot be written as TOML: {e}"))
     })?;
@@ -129,8 +129,14 @@ fn parse(path: &Path, text: &str) -> PyResult<Case> {
         .map_err(|e| input_error(&e))
 }
 
+/// Deepest nesting of dicts and lists a case dict may have: a case file's deepest value
+/// is a list inside a table inside a table (`[engines.fe] variants = [...]`), so this is
+/// ample, and it keeps a pathologically deep dict from exhausting the stack.
+const MAX_DEPTH: usize = 32;
+
 /// A dict as a TOML table; `at` is its dotted place in the case, for errors.
-fn table_of(d: &Bound<'_, PyDict>, at: &str) -> PyResult<toml::Table> {
+fn table_of(d: &Bound<'_, PyDict>, at: &str, depth: usize) -> PyResult<toml::Table> {
+    within_depth(at, depth)?;
     let mut table = toml::Table::new();
     for (key, value) in d.iter() {
         let key: String = key.extract().map_err(|_| {
@@ -144,9 +150,20 @@ fn table_of(d: &Bound<'_, PyDict>, at: &str) -> PyResult<toml::Table> {
         if value.is_none() {
             continue;
         }
-        table.insert(key, value_of(&value, &here)?);
+        table.insert(key, value_of(&value, &here, depth + 1)?);
     }
     Ok(table)
+}
+
+/// `Err` when a dict or list at `at` lies `depth` levels deep, beyond [`MAX_DEPTH`].
+fn within_depth(at: &str, depth: usize) -> PyResult<()> {
+    if depth > MAX_DEPTH {
+        return Err(PyValueError::new_err(format!(
+            "case dict{}: nested more than {MAX_DEPTH} levels deep; a case file is never this deep",
+            place(at)
+        )));
+    }
+    Ok(())
 }
 
 fn place(at: &str) -> String {
@@ -158,13 +175,19 @@ fn place(at: &str) -> String {
 }
 
 /// A Python value as a TOML value: bool, int, float, str, dict, list or tuple.
-fn value_of(v: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
+fn value_of(v: &Bound<'_, PyAny>, at: &str, depth: usize) -> PyResult<toml::Value> {
     use toml::Value;
     if v.is_instance_of::<PyBool>() {
         return Ok(Value::Boolean(v.extract()?));
     }
     if v.is_instance_of::<PyInt>() {
-        return Ok(Value::Integer(v.extract()?));
+        return v.extract().map(Value::Integer).map_err(|_| {
+            PyValueError::new_err(format!(
+                "case dict{}: the integer {} does not fit a case file's 64-bit integers",
+                place(at),
+                v.str().map(|s| s.to_string()).unwrap_or_default()
+            ))
+        });
     }
     if v.is_instance_of::<PyFloat>() {
         return Ok(Value::Float(v.extract()?));
@@ -173,14 +196,15 @@ fn value_of(v: &Bound<'_, PyAny>, at: &str) -> PyResult<toml::Value> {
         return Ok(Value::String(v.extract()?));
     }
     if let Ok(d) = v.cast::<PyDict>() {
-        return Ok(Value::Table(table_of(d, at)?));
+        return Ok(Value::Table(table_of(d, at, depth)?));
     }
     if v.is_instance_of::<PyList>() || v.is_instance_of::<PyTuple>() {
+        within_depth(at, depth)?;
         let items: Vec<Bound<'_, PyAny>> = v.try_iter()?.collect::<PyResult<_>>()?;
         let values = items
             .iter()
             .enumerate()
-            .map(|(i, item)| value_of(item, &format!("{at}[{i}]")))
+            .map(|(i, item)| value_of(item, &format!("{at}[{i}]"), depth + 1))
             .collect::<PyResult<_>>()?;
         return Ok(Value::Array(values));
     }

@@ -3,19 +3,16 @@
 //! block under a record, sliding both ways or one way (Newmark, SLAMMER's rigid block);
 //! Housner's rocking block under a ground-acceleration sine pulse; the block and the
 //! oscillator on an isotropic friction cone under two horizontal components (plan motion).
-//! Each solves with the GIL released and returns its trace as a dict of arrays (SI).
-
-use std::f64::consts::PI;
-use std::sync::Arc;
+//! Each checks its numbers first (`rockslide_reference::plain`: a reason, never a crash),
+//! solves with the GIL released and returns its trace as a dict of arrays (SI).
 
 use numpy::{PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use rockslide_core::case::{Contact, Oscillator, RigidBlock, Signal};
-use rockslide_reference::bidirectional::{DEFAULT_STEP, PlanBlock, PlanDrive, PlanEpo};
+use rockslide_reference::bidirectional::DEFAULT_STEP;
 use rockslide_reference::newmark_record::{Sliding, rigid_block as solve_block};
-use rockslide_reference::{EpoRecord, ExactSolution, HousnerRocking, SineForcing, sample};
+use rockslide_reference::{ExactSolution, plain, sample};
 
 use crate::arrays::trace_dict;
 use crate::errors::refused;
@@ -32,8 +29,7 @@ fn sampled<'py>(
     end: f64,
     n: usize,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let times =
-        times.unwrap_or_else(|| (0..=n).map(|i| end * i as f64 / n.max(1) as f64).collect());
+    let times = plain::times(times, end, n).map_err(refused)?;
     let trace = py.detach(|| sample(solution, &times));
     let d = trace_dict(py, &trace)?;
     let exact = PyDict::new(py);
@@ -52,13 +48,9 @@ fn samples(a: &PyReadonlyArray1<'_, f64>) -> PyResult<Vec<f64>> {
     Ok(a.as_slice()?.to_vec())
 }
 
-/// Intervals of a record of `len` samples every `dt` s up to `end`.
-fn intervals(end: f64, dt: f64) -> usize {
-    (end / dt).round().max(1.0) as usize
-}
-
-fn record_end(dt: f64, len: usize) -> f64 {
-    dt * len.saturating_sub(1) as f64
+/// Intervals of a uniform grid of step about `dt` over `[0, end]`, within the step limit.
+fn intervals(end: f64, dt: f64) -> PyResult<usize> {
+    plain::intervals(end, dt).map_err(refused)
 }
 
 /// The exact reference of a case (the one its report compares with), sampled at `times`
@@ -74,7 +66,7 @@ pub fn reference<'py>(
     let solution = py
         .detach(|| rockslide_reference::for_case(c))
         .map_err(refused)?;
-    let n = intervals(c.run.duration, c.run.dt);
+    let n = intervals(c.run.duration, c.run.dt)?;
     sampled(py, solution.as_ref(), owned(times)?, c.run.duration, n)
 }
 
@@ -97,26 +89,11 @@ pub fn epo_record<'py>(
     times: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let ground = samples(&acceleration)?;
-    let end = duration.unwrap_or_else(|| record_end(dt, ground.len()));
-    let osc = oscillator(mass, stiffness, mu, gravity);
-    let solution = py
-        .detach(|| EpoRecord::new(&osc, dt, ground, end))
+    let osc = plain::oscillator(mass, stiffness, mu, gravity).map_err(refused)?;
+    let (solution, end) = py
+        .detach(|| plain::epo_record(dt, ground, &osc, duration))
         .map_err(refused)?;
-    sampled(py, &solution, owned(times)?, end, intervals(end, dt))
-}
-
-fn oscillator(mass: f64, stiffness: f64, mu: f64, gravity: f64) -> Oscillator {
-    Oscillator {
-        mass,
-        gravity,
-        damping_ratio: 0.0,
-        contact: Contact {
-            kx: stiffness,
-            kz: stiffness,
-            mu,
-        },
-        double: None,
-    }
+    sampled(py, &solution, owned(times)?, end, intervals(end, dt)?)
 }
 
 /// The rigid block under the drive `acceleration` (m/s², every `dt` s, linear in between,
@@ -178,43 +155,21 @@ pub fn housner<'py>(
     samples: usize,
     times: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let mass = 1.0;
-    let block = RigidBlock {
-        mass,
-        gravity,
-        half_width,
-        half_height,
-        mu: f64::INFINITY,
-        initial_tilt,
-    };
-    let forcing = SineForcing {
-        // a ground acceleration a is a force −M·a on the body in relative coordinates
-        p0: -mass * amplitude,
-        theta: omega,
-        td: cycles * 2.0 * PI / omega,
-        velocity_jumps: vec![],
-        ground_amplitude: None,
-    };
     let solution = py
-        .detach(|| HousnerRocking::new(&block, forcing, duration))
+        .detach(|| {
+            plain::housner(
+                half_width,
+                half_height,
+                amplitude,
+                omega,
+                duration,
+                cycles,
+                gravity,
+                initial_tilt,
+            )
+        })
         .map_err(refused)?;
     sampled(py, &solution, owned(times)?, duration, samples)
-}
-
-/// The plan drive of two ground-acceleration components along x and y.
-fn plan_drive(dt: f64, x: Vec<f64>, y: Vec<f64>) -> PlanDrive {
-    let record = |samples: Vec<f64>, label: &str| Signal::Record {
-        dt,
-        samples: Arc::from(samples),
-        label: label.to_string(),
-    };
-    PlanDrive::new(
-        Some(record(x, "x")),
-        [1.0, 0.0],
-        Some(record(y, "y")),
-        [0.0, 1.0],
-        -1.0,
-    )
 }
 
 /// The rigid block on an isotropic friction cone (`mu`) under the ground accelerations
@@ -235,12 +190,10 @@ pub fn plan_block<'py>(
     times: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (x, y) = (samples(&acceleration_x)?, samples(&acceleration_y)?);
-    let end = duration.unwrap_or_else(|| record_end(dt, x.len().max(y.len())));
-    let drive = plan_drive(dt, x, y);
-    let solution = py
-        .detach(|| PlanBlock::solve(mu, gravity, &drive, end, step))
+    let (solution, end) = py
+        .detach(|| plain::plan_block(dt, x, y, mu, gravity, duration, step))
         .map_err(refused)?;
-    sampled(py, &solution, owned(times)?, end, intervals(end, dt))
+    sampled(py, &solution, owned(times)?, end, intervals(end, dt)?)
 }
 
 /// The elastic-perfectly-plastic oscillator on an isotropic friction cone (stiffness
@@ -263,11 +216,9 @@ pub fn plan_oscillator<'py>(
     times: Option<PyReadonlyArray1<'py, f64>>,
 ) -> PyResult<Bound<'py, PyDict>> {
     let (x, y) = (samples(&acceleration_x)?, samples(&acceleration_y)?);
-    let end = duration.unwrap_or_else(|| record_end(dt, x.len().max(y.len())));
-    let drive = plan_drive(dt, x, y);
-    let osc = oscillator(mass, stiffness, mu, gravity);
-    let solution = py
-        .detach(|| PlanEpo::solve(&osc, &drive, end, step))
+    let osc = plain::oscillator(mass, stiffness, mu, gravity).map_err(refused)?;
+    let (solution, end) = py
+        .detach(|| plain::plan_oscillator(dt, x, y, &osc, duration, step))
         .map_err(refused)?;
-    sampled(py, &solution, owned(times)?, end, intervals(end, dt))
+    sampled(py, &solution, owned(times)?, end, intervals(end, dt)?)
 }

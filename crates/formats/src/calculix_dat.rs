@@ -105,7 +105,8 @@ fn parse_fortran(token: &str) -> Option<f64> {
     if let Ok(x) = t.parse::<f64>() {
         return x.is_finite().then_some(x);
     }
-    let at = t[1..].rfind(['+', '-'])? + 1;
+    // after the first character (a sign there is the mantissa's), which may be any char
+    let at = t.get(1..)?.rfind(['+', '-'])? + 1;
     if t[..at].contains(['E', 'e']) {
         return None;
     }
@@ -203,5 +204,17 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(e.contains("time \"soon\""), "{e}");
+    }
+
+    /// Found by the `calculix_dat` fuzz target: a value whose first character takes more
+    /// than one byte panicked when its Fortran exponent was looked for after that byte.
+    #[test]
+    fn a_value_starting_with_a_multibyte_character_is_located_not_a_panic() {
+        let bad = DAT.replace("7.853160E-06", "é7.85-06");
+        let e = read_calculix_dat(Path::new("job.dat"), &bad)
+            .unwrap_err()
+            .to_string();
+        assert!(e.starts_with("job.dat:8:13:"), "{e}");
+        assert!(e.contains("\"é7.85-06\" is not a number"), "{e}");
     }
 }

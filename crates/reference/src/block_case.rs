@@ -74,7 +74,7 @@ impl BlockOnRecord {
         let x = (t / self.dt).max(0.0);
         let i = x.floor() as usize;
         let f = x - i as f64;
-        at(i) * (1.0 - f) + at(i + 1) * f
+        at(i) * (1.0 - f) + at(i.saturating_add(1)) * f
     }
 
     /// (displacement, velocity, sliding direction) at `t`: the sample before `t`, then

@@ -11,6 +11,8 @@
 //! or changes the phase in a way that must advance time next, and a pass that does
 //! neither ends the run with an error rather than a silent skip.
 
+use rockslide_core::case::limits;
+
 /// Whether the block may slide both ways or only with σ = +1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum Sliding {
@@ -124,10 +126,14 @@ fn check_inputs(dt: f64, acc: &[f64], ky: f64, tail: f64) -> Result<(), String> 
     if let Some(i) = acc.iter().position(|a| !a.is_finite()) {
         return Err(format!("sample {i} of the record is not finite"));
     }
+    // each sample keeps a velocity and a displacement: held to the step limit
     let intervals = tail / dt + acc.len() as f64;
-    if intervals > 1e9 {
+    let limit = limits::max_steps();
+    if intervals > limit as f64 {
         return Err(format!(
-            "{intervals:.3e} sample intervals (record plus a {tail} s tail at {dt} s): more than 1e9"
+            "{intervals:.3e} sample intervals (record plus a {tail:e} s tail at {dt:e} s): \
+             more than the limit of {limit} (set {} to raise it)",
+            limits::MAX_STEPS_VARIABLE
         ));
     }
     Ok(())
@@ -309,6 +315,17 @@ pub(crate) fn stop_time(w0: f64, r0: f64, rho: f64, span: f64) -> Option<f64> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Found by the `python_references` fuzz target: a tail of 1e9 s at 0.01 s passed the
+    /// old bound of 1e9 intervals and reserved 3.4 GB before solving.
+    #[test]
+    fn a_tail_beyond_the_step_limit_is_refused_before_allocating() {
+        let why = BlockRecord::solve(0.01, &[1.0; 3], 0.1, Sliding::TwoWay, 1e9).unwrap_err();
+        assert!(why.starts_with("1.000e11 sample intervals"), "{why}");
+        assert!(why.contains("more than the limit of"), "{why}");
+        // within the limit it solves: 1e5 s of tail at 0.01 s is 1e7 intervals
+        assert!(BlockRecord::solve(0.01, &[1.0; 3], 0.1, Sliding::TwoWay, 1e4).is_ok());
+    }
 
     #[test]
     fn constant_drive_from_rest_is_exact() {

@@ -458,6 +458,9 @@ fn check(omega: f64, ru: f64, dt: f64, samples: &[f64], duration: f64) -> Result
     if !(duration.is_finite() && duration >= 0.0) {
         return Err(format!("duration {duration} s is not a finite number ≥ 0"));
     }
+    if samples.is_empty() {
+        return Err("the record has no samples".into());
+    }
     if let Some(i) = samples.iter().position(|a| !a.is_finite()) {
         return Err(format!("record sample {i} is not finite"));
     }

@@ -15,7 +15,7 @@
 //! I₀·φ'' = −s·M·g·R·sin(α − s·φ) − M·p(t)·R·cos(α − s·φ)      (Housner 1963, Eq. 1)
 
 use super::{ExactSolution, SineForcing};
-use rockslide_core::case::RigidBlock;
+use rockslide_core::case::{RigidBlock, limits};
 use rockslide_core::trace::{Quantity, q};
 
 /// Integration step of the reference, s (RK4: local error ~ (p·Δt)⁵, negligible).
@@ -46,6 +46,16 @@ impl HousnerRocking {
             return Err(
                 "Housner's rocking reference does not take ground-velocity jumps (use a ground-acceleration pulse)".into(),
             );
+        }
+        // a sample is kept every STEP: their count is held to the step limit
+        let steps = duration / STEP;
+        if !(duration >= 0.0 && steps <= limits::max_steps() as f64) {
+            return Err(format!(
+                "Housner's rocking reference over {duration:e} s keeps a sample every {STEP:e} s: \
+                 {steps:.3e} samples, more than the limit of {} (set {} to raise it)",
+                limits::max_steps(),
+                limits::MAX_STEPS_VARIABLE
+            ));
         }
         let (b, hh) = (block.half_width, block.half_height);
         let alpha = (b / hh).atan();
@@ -286,6 +296,35 @@ mod tests {
             ground_amplitude: None,
         };
         HousnerRocking::new(&block, none, 3.0).unwrap()
+    }
+
+    /// A duration of 1e15 s (from a script) grew memory until the system killed the
+    /// process: the samples are now counted against the step limit first.
+    #[test]
+    fn a_duration_beyond_the_step_limit_is_refused_before_solving() {
+        let block = RigidBlock {
+            mass: 1.0,
+            gravity: 9.81,
+            half_width: 0.2,
+            half_height: 1.0,
+            mu: f64::INFINITY,
+            initial_tilt: 0.0,
+        };
+        let pulse = SineForcing {
+            p0: -5.0,
+            theta: 10.0,
+            td: 0.1 * std::f64::consts::PI,
+            velocity_jumps: vec![],
+            ground_amplitude: None,
+        };
+        let why = HousnerRocking::new(&block, pulse.clone(), 1e15)
+            .err()
+            .unwrap();
+        assert!(
+            why.contains("5.000e19 samples, more than the limit"),
+            "{why}"
+        );
+        assert!(HousnerRocking::new(&block, pulse, f64::NAN).is_err());
     }
 
     #[test]

@@ -14,6 +14,7 @@ mod epo_record;
 mod housner;
 mod newmark_block;
 pub mod newmark_record;
+pub mod plain;
 mod root;
 pub mod vertical;
 

@@ -64,6 +64,10 @@ impl Signal {
                     return 0.0;
                 }
                 let x = t / dt;
+                // beyond the last sample (or past usize's range, where `as` saturates)
+                if x >= samples.len() as f64 {
+                    return 0.0;
+                }
                 let i = x.floor() as usize;
                 if i + 1 >= samples.len() {
                     return if i + 1 == samples.len() && x == i as f64 {

@@ -49,8 +49,18 @@ pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTra
         return read_external_mcap(path, format.topic.as_deref());
     }
     let text = read_text(path)?;
+    parse_external(path, &text, format)
+}
+
+/// [`read_external`] from a text file's contents (`path` names it in errors; a script the
+/// format names is read from its own path).
+pub fn parse_external(
+    path: &Path,
+    text: &str,
+    format: &ExternalFormat,
+) -> Result<ExternalTrace, InputErrors> {
     // a byte-order mark, as spreadsheet programs write it, is not part of the first header
-    let text = text.strip_prefix('\u{feff}').unwrap_or(&text);
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
     let layout = match (format.layout, format.skip_lines) {
         (Some(layout), _) => layout,
         (None, 0) => recognise(text),
