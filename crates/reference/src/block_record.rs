@@ -12,6 +12,7 @@
 //! neither ends the run with an error rather than a silent skip.
 
 use rockslide_core::case::limits;
+use rockslide_core::case::record::MIN_DT;
 
 /// Whether the block may slide both ways or only with σ = +1.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -113,6 +114,11 @@ fn check_inputs(dt: f64, acc: &[f64], ky: f64, tail: f64) -> Result<(), String> 
     if !(dt.is_finite() && dt > 0.0) {
         return Err(format!(
             "sample interval {dt} s is not a positive finite number"
+        ));
+    }
+    if dt < MIN_DT {
+        return Err(format!(
+            "sample interval {dt:e} s is below the smallest a record may have ({MIN_DT:e} s)"
         ));
     }
     if !(ky.is_finite() && ky >= 0.0) {

@@ -11,6 +11,7 @@
 use std::sync::Arc;
 
 use rockslide_core::case::limits;
+use rockslide_core::case::record::MIN_DT;
 use rockslide_core::case::{Contact, Oscillator, RigidBlock, Signal};
 
 use crate::bidirectional::{PlanBlock, PlanDrive, PlanEpo};
@@ -55,10 +56,15 @@ fn within_limit(what: &str, count: f64) -> Result<usize, String> {
     Ok(count as usize)
 }
 
-/// A record's accelerations, m/s², every `dt` s: `dt` positive, at least one sample, each
-/// finite, at most the step limit of them.
+/// A record's accelerations, m/s², every `dt` s: `dt` at least a record's smallest sample
+/// interval ([`MIN_DT`]), at least one sample, each finite, at most the step limit of them.
 pub fn record(dt: f64, samples: &[f64]) -> Result<(), String> {
     positive("the sample interval", dt)?;
+    if dt < MIN_DT {
+        return Err(format!(
+            "the sample interval {dt:e} s is below the smallest a record may have ({MIN_DT:e} s)"
+        ));
+    }
     if samples.is_empty() {
         return Err("the record has no samples".into());
     }
@@ -249,6 +255,13 @@ mod tests {
         assert_eq!(
             record(0.0, &[1.0]).unwrap_err(),
             "the sample interval 0e0 is not a positive finite number"
+        );
+        // found by the fuzz target: 8e-317 s, a subnormal, with a tail of 7e-310 s was 8.8e6
+        // legitimate steps, seconds of work for nothing a record can be sampled at
+        assert!(
+            record(8.3e-317, &[1.0])
+                .unwrap_err()
+                .contains("below the smallest a record may have (1e-6 s)")
         );
         assert!(
             times(Some(vec![0.0, f64::NAN]), 1.0, 1)
