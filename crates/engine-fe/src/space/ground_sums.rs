@@ -5,8 +5,7 @@
 
 use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
-use super::contact::ConeContact;
-use crate::element::{Element, Status};
+use crate::element::{ConeContact, Element, Status};
 
 /// 3×3 matrices as rows of plain scalars.
 type M3 = [[f64; 3]; 3];
