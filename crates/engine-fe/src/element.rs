@@ -310,9 +310,36 @@ impl<T: Tangential> Contact<T> {
         self.trial_as(d, false)
     }
 
-    /// The return mapping at trial displacement `d`, bonded or not as `bonded` says.
+    /// The force of [`Element::trial`] alone, for an element known not to be bonded: the
+    /// trial state (and, slipping, [`Contact::slip_tangent`]) is set, the tangent left to
+    /// the caller (`space::ground_sums` reads it from the status).
+    #[inline(always)]
+    pub(crate) fn trial_force(&mut self, d: T::Vector) -> T::Vector {
+        debug_assert!(!self.bonded);
+        self.return_map(d, false)
+    }
+
+    /// The return mapping at trial displacement `d`, bonded or not as `bonded` says, and
+    /// its consistent tangent.
     #[inline(always)]
     fn trial_as(&mut self, d: T::Vector, bonded: bool) -> (T::Vector, T::Tangent) {
+        let force = self.return_map(d, bonded);
+        let tangent = match self.trial.status {
+            Status::Open => T::no_tangent(),
+            Status::Stick => T::stick_tangent(self.kt, self.kz),
+            Status::Slip => {
+                let (ratio, dir) = self.slip_tangent;
+                T::slip_tangent(ratio, dir, self.mu, self.kz)
+            }
+        };
+        (force, tangent)
+    }
+
+    /// The return mapping at trial displacement `d`, bonded or not as `bonded` says: sets
+    /// the trial state (and, slipping, the slip tangent's ratio and direction) and
+    /// returns the force.
+    #[inline(always)]
+    fn return_map(&mut self, d: T::Vector, bonded: bool) -> T::Vector {
         let (kt, kz) = (self.kt, self.kz);
         let p = self.committed.slip;
         let (dt, dz) = T::split(&d);
@@ -326,7 +353,7 @@ impl<T: Tangential> Contact<T> {
                 force: zero,
                 status: Status::Open,
             };
-            return (zero, T::no_tangent());
+            return zero;
         }
         let n = -kz * dz; // normal compression, N = −kz·δz
         let t_trial = (dt - p) * kt; // elastic predictor
@@ -341,7 +368,7 @@ impl<T: Tangential> Contact<T> {
                 force,
                 status: Status::Stick,
             };
-            return (force, T::stick_tangent(kt, kz));
+            return force;
         }
         // Return mapping onto the limit: T = μN·n, slip = δt − T/kt.
         let dir = t_trial.direction(size);
@@ -353,9 +380,8 @@ impl<T: Tangential> Contact<T> {
             force,
             status: Status::Slip,
         };
-        let ratio = cap / size * kt;
-        self.slip_tangent = (ratio, dir);
-        (force, T::slip_tangent(ratio, dir, self.mu, kz))
+        self.slip_tangent = (cap / size * kt, dir);
+        force
     }
 }
 

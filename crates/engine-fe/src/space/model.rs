@@ -202,19 +202,15 @@ impl SpaceModel {
     ) {
         a.singular = false;
         if self.condensed {
-            let sums = if self.nodes == 0 {
+            let out = (&mut a.pb, &mut a.kbb);
+            if self.nodes == 0 {
                 let elements = self.supports.iter_mut().map(|s| (s.offset, &mut s.lower));
-                assemble_direct(elements, &pose.x, &pose.r, ground)
+                assemble_direct(elements, &pose.x, &pose.r, ground, out);
             } else {
                 let offsets = self.supports.iter().map(|s| s.offset);
-                assemble_direct(
-                    offsets.zip(self.equivalents.iter_mut()),
-                    &pose.x,
-                    &pose.r,
-                    ground,
-                )
-            };
-            (a.pb, a.kbb) = sums;
+                let elements = offsets.zip(self.equivalents.iter_mut());
+                assemble_direct(elements, &pose.x, &pose.r, ground, out);
+            }
         } else {
             self.assemble_with_nodes(pose, un, ground, a);
         }
