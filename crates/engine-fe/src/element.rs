@@ -59,6 +59,10 @@ pub trait Tangential:
     type Vector: Copy + Debug + PartialEq + Sub<Output = Self::Vector>;
     /// The tangent ∂force/∂δ.
     type Tangent: Copy + Debug + PartialEq;
+    /// Whether a slipping trial keeps its tangent's ratio and direction
+    /// ([`Contact::slip_tangent`], read by the 3D assembly); the plane's tangent has no
+    /// tangential term and needs neither.
+    const KEEPS_SLIP_TANGENT: bool;
     /// No displacement.
     fn zero() -> Self;
     /// The tangential part and the vertical of `v`.
@@ -83,6 +87,7 @@ pub trait Tangential:
 impl Tangential for f64 {
     type Vector = Vector2<f64>;
     type Tangent = Matrix2<f64>;
+    const KEEPS_SLIP_TANGENT: bool = false;
 
     #[inline(always)]
     fn zero() -> Self {
@@ -126,6 +131,7 @@ impl Tangential for f64 {
 impl Tangential for Vector2<f64> {
     type Vector = Vector3<f64>;
     type Tangent = Matrix3<f64>;
+    const KEEPS_SLIP_TANGENT: bool = true;
 
     #[inline(always)]
     fn zero() -> Self {
@@ -295,7 +301,7 @@ impl<T: Tangential> Contact<T> {
 
     /// The last trial's tangent when it slipped, as D = diag(ρ, ρ, kz) − (n, 0)·wᵀ with
     /// ρ = μN/|T*|·kt, n = T*/|T*| and w = (ρ·n, μ·kz): returns (ρ, n). Meaningful only
-    /// after a trial whose status is `Slip`.
+    /// after a trial whose status is `Slip`, and only in 3D (`KEEPS_SLIP_TANGENT`).
     pub fn slip_tangent(&self) -> (f64, T) {
         self.slip_tangent
     }
@@ -316,30 +322,28 @@ impl<T: Tangential> Contact<T> {
     #[inline(always)]
     pub(crate) fn trial_force(&mut self, d: T::Vector) -> T::Vector {
         debug_assert!(!self.bonded);
-        self.return_map(d, false)
+        self.return_map(d, false).0
     }
 
     /// The return mapping at trial displacement `d`, bonded or not as `bonded` says, and
     /// its consistent tangent.
     #[inline(always)]
     fn trial_as(&mut self, d: T::Vector, bonded: bool) -> (T::Vector, T::Tangent) {
-        let force = self.return_map(d, bonded);
-        let tangent = match self.trial.status {
+        let (force, status, (ratio, dir)) = self.return_map(d, bonded);
+        let tangent = match status {
             Status::Open => T::no_tangent(),
             Status::Stick => T::stick_tangent(self.kt, self.kz),
-            Status::Slip => {
-                let (ratio, dir) = self.slip_tangent;
-                T::slip_tangent(ratio, dir, self.mu, self.kz)
-            }
+            Status::Slip => T::slip_tangent(ratio, dir, self.mu, self.kz),
         };
         (force, tangent)
     }
 
     /// The return mapping at trial displacement `d`, bonded or not as `bonded` says: sets
-    /// the trial state (and, slipping, the slip tangent's ratio and direction) and
-    /// returns the force.
+    /// the trial state (and, slipping, the slip tangent where `T` keeps it) and returns
+    /// the force, the status and, slipping, the tangent's ratio μN/|T*|·kt (0 in the
+    /// plane, where no term uses it) and direction.
     #[inline(always)]
-    fn return_map(&mut self, d: T::Vector, bonded: bool) -> T::Vector {
+    fn return_map(&mut self, d: T::Vector, bonded: bool) -> (T::Vector, Status, (f64, T)) {
         let (kt, kz) = (self.kt, self.kz);
         let p = self.committed.slip;
         let (dt, dz) = T::split(&d);
@@ -353,7 +357,7 @@ impl<T: Tangential> Contact<T> {
                 force: zero,
                 status: Status::Open,
             };
-            return zero;
+            return (zero, Status::Open, (0.0, T::zero()));
         }
         let n = -kz * dz; // normal compression, N = −kz·δz
         let t_trial = (dt - p) * kt; // elastic predictor
@@ -368,7 +372,7 @@ impl<T: Tangential> Contact<T> {
                 force,
                 status: Status::Stick,
             };
-            return force;
+            return (force, Status::Stick, (0.0, T::zero()));
         }
         // Return mapping onto the limit: T = μN·n, slip = δt − T/kt.
         let dir = t_trial.direction(size);
@@ -380,8 +384,14 @@ impl<T: Tangential> Contact<T> {
             force,
             status: Status::Slip,
         };
-        self.slip_tangent = (cap / size * kt, dir);
-        force
+        let ratio = if T::KEEPS_SLIP_TANGENT {
+            let ratio = cap / size * kt;
+            self.slip_tangent = (ratio, dir);
+            ratio
+        } else {
+            0.0
+        };
+        (force, Status::Slip, (ratio, dir))
     }
 }
 
