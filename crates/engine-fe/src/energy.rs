@@ -67,7 +67,7 @@ impl EnergyBook {
         Self {
             prev: vec![
                 ElementEnergy {
-                    state: ContactState::AT_REST,
+                    state: ContactState::at_rest(),
                     strain: 0.0,
                     springs: (false, false),
                 };
@@ -155,13 +155,13 @@ impl EnergyBook {
                 prev.springs
             } else {
                 let spring = |k: f64| k.is_finite() && k > 0.0;
-                (spring(e.kx), spring(e.kz))
+                (spring(e.kt), spring(e.kz))
             };
             // A zero force stores nothing: the term would be +0 (skipped, the same bits;
             // no division for an open element).
             let mut u = 0.0;
             if t != 0.0 && springs.0 {
-                u += 0.5 * t * t / e.kx;
+                u += 0.5 * t * t / e.kt;
             }
             if n != 0.0 && springs.1 {
                 u += 0.5 * n * n / e.kz;

@@ -7,7 +7,10 @@
 //! consistent tangent; gravity is a static preload. Single- and double-element
 //! arrangements of the paper's PEPO and RPEPO (AL-Shawaf & Rahman, Figs 1 and 7).
 //!
-//! - `element`: the element trait and the contact element (trial/commit).
+//! - `element`: the element trait and the contact element of both dimensions
+//!   (trial/commit).
+//! - `series`: double supports condensed into one series-equivalent element, and the
+//!   node's exact equilibrium, in both dimensions.
 //! - `model`: body, nodes, supports; assembly; the condensed Newton solve.
 //! - `stepper`: static preload and the time loop.
 //! - `modes`: the model's own eigenfrequencies.
@@ -31,6 +34,7 @@ mod model;
 mod modes;
 mod options;
 mod recording;
+mod series;
 mod simulate;
 pub mod space;
 mod stepper;
@@ -38,7 +42,9 @@ pub mod variant;
 mod vertical;
 mod whole_run;
 
-pub use element::{Contact178, ContactState, Element, Status};
+pub use element::{
+    ConeContact, ConeState, Contact, Contact178, ContactState, Element, Status, Tangential,
+};
 pub use model::{Model, default_rotational_inertia};
 pub use modes::{Modes, eigenfrequencies};
 pub use options::{FeOptions, Integrator, Kinematics, Newton, OPTION_KEYS};

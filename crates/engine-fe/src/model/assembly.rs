@@ -14,10 +14,10 @@ use nalgebra::{Matrix2, Matrix2x3, Matrix3, Matrix3x2, Vector2, Vector3};
 
 use super::body::{Model, Point};
 use super::kinematics::{PointKin, point_kin};
-use super::series::split_equivalent;
 use crate::element::{Contact178, Element};
 use crate::lu::{Lu2, Lu3};
 use crate::options::Kinematics;
+use crate::series::{node_equilibrium, split_equivalent};
 
 /// Preallocated results of one assembly.
 #[derive(Debug, Clone)]
@@ -262,17 +262,10 @@ impl Model {
     }
 
     /// Put every intermediate node at its exact equilibrium for the current body
-    /// position and ground (a local solve, exact for the double arrangement: element 1
-    /// compression-only with friction from the ground, element 2 bonded with μ2 = ∞).
-    ///
-    /// The node's two equations f1(δ1) = f2(δt − δ1) are piecewise linear; Newton on them
-    /// cycles between stick and slip (a saturating force plus a soft spring behaves like
-    /// arctan), so they are solved in closed form:
-    ///   closed (δtz ≤ 0): δ1z = kz2·δtz/(kz1 + kz2);  open: δ1 = δt (no force).
-    ///   stick: T = ks(δtx − s1), δ1x = (kx1·s1 + kx2·δtx)/(kx1 + kx2), ks = series kx;
-    ///   slip (|T| > μ1·N): T = ±μ1·N, δ1x = δtx − T/kx2.
-    /// The global Newton then iterates on the body alone with the condensed (Schur)
-    /// tangent, which is the derivative of this local solution.
+    /// position and ground (`series::node_equilibrium`: exact for the double
+    /// arrangement, element 1 compression-only with friction from the ground, element 2
+    /// bonded with μ2 = ∞). The global Newton then iterates on the body alone with the
+    /// condensed (Schur) tangent, which is the derivative of this local solution.
     fn relax_nodes(&self, points: &[PointKin], un: &mut [Vector2<f64>], xg: f64) {
         for sup in &self.supports {
             let Some(k) = sup.node else { continue };
@@ -285,25 +278,8 @@ impl Model {
             if !(e2.bonded && e2.mu.is_infinite()) || e1.bonded {
                 continue;
             }
-            let ub = points[i].u;
-            let dt = ub - Vector2::new(xg, 0.0);
-            let d1 = if dt.y > 0.0 {
-                dt
-            } else {
-                let z1 = e2.kz * dt.y / (e1.kz + e2.kz);
-                let n = -e1.kz * z1;
-                let s1 = e1.state().slip;
-                let ks = e1.kx * e2.kx / (e1.kx + e2.kx);
-                let t = ks * (dt.x - s1);
-                let cap = e1.mu * n;
-                let x1 = if e1.mu.is_infinite() || t.abs() <= cap {
-                    (e1.kx * s1 + e2.kx * dt.x) / (e1.kx + e2.kx)
-                } else {
-                    dt.x - t.signum() * cap / e2.kx
-                };
-                Vector2::new(x1, z1)
-            };
-            un[k] = d1 + Vector2::new(xg, 0.0);
+            let ground = Vector2::new(xg, 0.0);
+            un[k] = node_equilibrium(e1, e2, points[i].u - ground) + ground;
         }
     }
 }

@@ -7,9 +7,9 @@
 use nalgebra::{Vector2, Vector3};
 
 use super::kinematics::point_kin;
-use super::series::series_equivalent;
 use crate::element::Contact178;
 use crate::options::Kinematics;
+use crate::series::series_equivalent;
 use rockslide_core::case::{Contact, DoubleContact, Oscillator, RockingBody};
 
 /// Where an element end sits.

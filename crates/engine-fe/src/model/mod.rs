@@ -10,7 +10,6 @@
 //! - `body`: the body, nodes, links and supports; building a scene's model.
 //! - `kinematics`: a body point's displacement and Jacobian (exact, small rotations,
 //!   P-Delta).
-//! - `series`: double supports condensed into one series-equivalent element.
 //! - `assembly`: internal forces and tangents; commit and restore.
 //! - `solve`: the condensed 3×3 Newton solve.
 //! - `drive`: the excitation's loads; what an observer is shown.
@@ -22,7 +21,6 @@ mod body;
 mod drive;
 mod kinematics;
 mod mechanics;
-mod series;
 mod slider;
 mod solve;
 

@@ -5,8 +5,7 @@
 
 use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
-use super::contact::ConeContact;
-use crate::element::{Element, Status};
+use crate::element::{ConeContact, Status};
 
 /// 3×3 matrices as rows of plain scalars.
 type M3 = [[f64; 3]; 3];
@@ -147,7 +146,7 @@ impl GroundSums {
     /// The body's internal force (force, body-frame moment Rᵀ·Σc × f) and its tangent with
     /// respect to (X, W): with G = −R·d̂ = −ĉ·R,
     /// [[ΣD, −ΣD·ĉ·R], [Rᵀ·Σĉ·D, −Rᵀ·Σĉ·D·ĉ·R + Rᵀ·Σf·dᵀ − (Σc·f)·I]].
-    fn into_matrices(mut self, rm: &M3) -> (Vector6<f64>, Matrix6<f64>) {
+    fn write_matrices(&mut self, rm: &M3, p: &mut Vector6<f64>, k: &mut Matrix6<f64>) {
         self.fold_sticking();
         let m = &self.c_cross_f;
         let moment: [f64; 3] =
@@ -156,7 +155,6 @@ impl GroundSums {
         let k10 = tr_mul(rm, &self.c_d);
         let rt_cdc_r = tr_mul(rm, &mul(&self.c_d_c, rm));
         let rt_fdt = tr_mul(rm, &self.f_dt);
-        let mut k = Matrix6::zeros();
         for i in 0..3 {
             for j in 0..3 {
                 k[(i, j)] = self.d[i][j];
@@ -166,15 +164,14 @@ impl GroundSums {
             }
             k[(3 + i, 3 + i)] -= self.c_dot_f;
         }
-        let p = Vector6::new(
+        *p = Vector6::new(
             self.f[0], self.f[1], self.f[2], moment[0], moment[1], moment[2],
         );
-        (p, k)
     }
 }
 
-/// Internal force on the body and its tangent (before J_r) from elements joining the
-/// ground to the body points at the given offsets (the single arrangement, or condensed
+/// Internal force on the body and its tangent (before J_r), written into `(p, k)`, from
+/// elements joining the ground to the body points at the given offsets (the single arrangement, or condensed
 /// double supports). Σ(f, d × Rᵀf) and [[ΣD, ΣD·G], [ΣGᵀD, ΣGᵀDG + (Rᵀf)·dᵀ − (d·Rᵀf)·I]]
 /// with G = −R·d̂ (the module docs), summed in the ground frame with R·d̂ = ĉ·R (c = R·d)
 /// and turned into the body frame once (`GroundSums`): an open element adds nothing, a
@@ -184,7 +181,8 @@ pub(crate) fn assemble_direct<'e>(
     x: &Vector3<f64>,
     r: &Matrix3<f64>,
     ground: &Vector3<f64>,
-) -> (Vector6<f64>, Matrix6<f64>) {
+    (p, k): (&mut Vector6<f64>, &mut Matrix6<f64>),
+) {
     let rm: M3 = std::array::from_fn(|i| [r[(i, 0)], r[(i, 1)], r[(i, 2)]]);
     let mut sums = GroundSums::default();
     for (d, e) in elements {
@@ -192,19 +190,19 @@ pub(crate) fn assemble_direct<'e>(
         let c: [f64; 3] =
             std::array::from_fn(|i| rm[i][0] * d[0] + rm[i][1] * d[1] + rm[i][2] * d[2]);
         let delta = Vector3::from_fn(|i, _| (x[i] + (c[i] - d[i])) - ground[i]);
-        let (f, dm) = e.trial(delta);
+        let f = e.trial_force(delta);
         let status = e.trial_state().status;
         if status == Status::Open {
             continue;
         }
         sums.add_force(&[f.x, f.y, f.z], &d, &c);
         if status == Status::Stick {
-            // Sticking (or bonded): D = diag(kt, kt, kz).
-            sums.add_sticking(dm[(0, 0)], dm[(2, 2)], &c);
+            // Sticking: D = diag(kt, kt, kz).
+            sums.add_sticking(e.kt, e.kz, &c);
         } else {
             let (rho, n) = e.slip_tangent();
             sums.add_slipping(rho, e.kz, &n, e.mu * e.kz, &c);
         }
     }
-    sums.into_matrices(&rm)
+    sums.write_matrices(&rm, p, k);
 }

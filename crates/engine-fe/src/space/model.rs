@@ -15,7 +15,7 @@
 //! A node links only to the ground and the body, so each node's 3×3 block is condensed
 //! out exactly, leaving a 6×6 body system (fixed-size arrays, nothing allocated).
 //!
-//! Condensed supports (as in 2D, `crate::model::series_equivalent`): when element 2 of the
+//! Condensed supports (`crate::series`): when element 2 of the
 //! double arrangement is bonded with μ2 = ∞ (every shipped case), the pair in series *is*
 //! one cone contact with the series stiffnesses and element 1's friction and slip
 //! (`series_equivalent`, derived there for the circular cone). The time loop then iterates
@@ -23,15 +23,14 @@
 //! (`assemble_direct`): no node relaxation, no node blocks, no series tangent. The node and
 //! both elements are set from it once per converged step (`commit_step`).
 
-use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
+use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 
 use super::body::SpaceBody;
-use super::contact::ConeContact;
 use super::ground_sums::assemble_direct;
 use super::rotation::{right_jacobian, skew};
-use super::series::{series_equivalent, split_equivalent};
-use crate::element::Element;
+use crate::element::{ConeContact, Element};
 use crate::lu::Lu6;
+use crate::series::{node_equilibrium, series_equivalent, split_equivalent};
 use rockslide_core::case::Contact;
 
 /// One support: element 1 from the ground (to the node, or to the body), and element 2
@@ -193,7 +192,7 @@ impl SpaceModel {
     /// Evaluate every element at `pose` (nodes `un`, ground at `ground`) and assemble the
     /// internal forces and the consistent tangent into `a`. Condensed: the ground-to-body
     /// elements alone (`assemble_direct`); else the massless nodes are first put at their
-    /// exact local equilibrium (`relax_node`) and condensed out.
+    /// exact local equilibrium (`series::node_equilibrium`) and condensed out.
     pub fn assemble(
         &mut self,
         pose: &Pose,
@@ -203,19 +202,15 @@ impl SpaceModel {
     ) {
         a.singular = false;
         if self.condensed {
-            let sums = if self.nodes == 0 {
+            let out = (&mut a.pb, &mut a.kbb);
+            if self.nodes == 0 {
                 let elements = self.supports.iter_mut().map(|s| (s.offset, &mut s.lower));
-                assemble_direct(elements, &pose.x, &pose.r, ground)
+                assemble_direct(elements, &pose.x, &pose.r, ground, out);
             } else {
                 let offsets = self.supports.iter().map(|s| s.offset);
-                assemble_direct(
-                    offsets.zip(self.equivalents.iter_mut()),
-                    &pose.x,
-                    &pose.r,
-                    ground,
-                )
-            };
-            (a.pb, a.kbb) = sums;
+                let elements = offsets.zip(self.equivalents.iter_mut());
+                assemble_direct(elements, &pose.x, &pose.r, ground, out);
+            }
         } else {
             self.assemble_with_nodes(pose, un, ground, a);
         }
@@ -247,7 +242,7 @@ impl SpaceModel {
             let (f, dm) = match &mut sup.upper {
                 None => sup.lower.trial(u - ground),
                 Some(upper) => {
-                    un[k] = relax_node(&sup.lower, upper, &u, ground);
+                    un[k] = node_equilibrium(&sup.lower, upper, u - ground) + ground;
                     let (f1, d1) = sup.lower.trial(un[k] - ground);
                     let (f2, d2) = upper.trial(u - un[k]);
                     a.pn[k] = f1 - f2;
@@ -359,40 +354,6 @@ fn tangent_times_g(dm: &Matrix3<f64>, g: &Matrix3<f64>) -> (Matrix3<f64>, Matrix
     } else {
         (dm * g, g.tr_mul(dm))
     }
-}
-
-/// The exact equilibrium position of a massless node between element 1 (friction on the
-/// circular cone, compression-only) and the bonded element 2 (μ = ∞), for the body point
-/// at `u` and the ground at `ground` — the 2D closed form with the tangential pair as a
-/// vector (radial return of the series spring):
-///   closed (δz ≤ 0): z1 = kz2·δz/(kz1 + kz2);  open: the node sits at the body point;
-///   stick: p1 + (δt − p1)·kt2/(kt1 + kt2);  slip (|T| > μ1·N): δt − μ1·N·T/|T|/kt2.
-#[inline]
-fn relax_node(
-    e1: &ConeContact,
-    e2: &ConeContact,
-    u: &Vector3<f64>,
-    ground: &Vector3<f64>,
-) -> Vector3<f64> {
-    let dt = u - ground;
-    let d1 = if dt.z > 0.0 {
-        dt
-    } else {
-        let z1 = e2.kz * dt.z / (e1.kz + e2.kz);
-        let n = -e1.kz * z1;
-        let s1 = e1.state().slip;
-        let ks = e1.kt * e2.kt / (e1.kt + e2.kt);
-        let t: Vector2<f64> = (dt.xy() - s1) * ks;
-        let cap = e1.mu * n;
-        let size = t.norm();
-        let x1 = if e1.mu.is_infinite() || size <= cap {
-            (s1 * e1.kt + dt.xy() * e2.kt) / (e1.kt + e2.kt)
-        } else {
-            dt.xy() - (t / size) * cap / e2.kt
-        };
-        Vector3::new(x1.x, x1.y, z1)
-    };
-    d1 + ground
 }
 
 /// Coefficients of the Newton system of one step:
