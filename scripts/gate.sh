@@ -25,7 +25,7 @@ bin="${ROCKSLIDE_BIN:-$root/bin/rockslide}"
 # cache key of an install, the same for the same sources whether or not they are a git
 # checkout (an action's files are not).
 fingerprint() {
-    (cd "$source_dir" && find Cargo.toml Cargo.lock src crates -type f \( -name '*.rs' -o -name '*.toml' -o -name '*.lock' -o -name '*.py' \) -print0 \
+    (cd "$source_dir" && find Cargo.toml Cargo.lock build.rs src crates -type f \( -name '*.rs' -o -name '*.toml' -o -name '*.lock' -o -name '*.py' \) -print0 \
         | LC_ALL=C sort -z | xargs -0 sha256sum | sha256sum | cut -c1-16)
 }
 

@@ -86,9 +86,12 @@ pub fn into_closed_pipe(args: &[&str]) -> Output {
 }
 
 /// Whether the outside program a test needs (OpenSeesPy, CalculiX, Chromium) is here.
-/// Where it is required — `CI=true`, or its own `require_var` (`ROCKSLIDE_REQUIRE_*`, as
-/// `.ci/run` sets) — its absence fails the test; elsewhere the test prints SKIPPED with
-/// the reason and returns early (the harness still lists it as ok: it has no runtime skip).
+/// Such a test is compiled as ignored, with the reason, when the build script (`build.rs`)
+/// did not find the program and nothing requires it, so `cargo test` lists it as ignored.
+/// This is the check when it runs anyway: where the program is required — `CI=true`, or
+/// its own `require_var` (`ROCKSLIDE_REQUIRE_*`, as `.ci/run` sets) — its absence fails
+/// the test; elsewhere (run with `--include-ignored`, or the program removed since the
+/// build) the test prints SKIPPED with the reason and returns early.
 pub fn present_or_skip(test: &str, found: bool, require_var: &str, missing: &str) -> bool {
     if !found {
         let required = std::env::var_os(require_var).is_some()

@@ -9,7 +9,8 @@
 //! - each `LABEL=PATH` line of the external input joins the case as a participant;
 //! - `install` reuses an install built from the same sources (the cache) without running
 //!   cargo, and puts the binary's folder on the job's PATH;
-//! - `action.yml` runs these steps and nothing else.
+//! - `action.yml` runs these steps and nothing else, on its own files;
+//! - the sample workflows name rockslide's repository in one line.
 
 use std::path::Path;
 use std::process::{Command, Output};
@@ -165,4 +166,35 @@ fn the_action_runs_the_scripts_steps() {
     }
     assert!(action.contains("actions/upload-artifact@"));
     assert!(action.contains("actions/cache@"));
+    // it builds from its own files: the fingerprint and the install read the action's path
+    assert_eq!(
+        action
+            .matches("ROCKSLIDE_SOURCE: ${{ github.action_path }}")
+            .count(),
+        2
+    );
+}
+
+/// The samples name rockslide's repository once: the GitHub workflow on its `uses:` line
+/// only, the GitLab job in one variable.
+#[test]
+fn the_sample_workflows_name_the_repository_once() {
+    let github = read(&repo("examples/ci/github-workflow.yml"));
+    let named: Vec<&str> = github
+        .lines()
+        .filter(|l| l.contains("OWNER/rockslide"))
+        .collect();
+    assert_eq!(named.len(), 1, "{named:?}");
+    assert!(
+        named[0]
+            .trim_start()
+            .starts_with("- uses: OWNER/rockslide@")
+    );
+    let gitlab = read(&repo("examples/ci/gitlab-ci.yml"));
+    let named: Vec<&str> = gitlab
+        .lines()
+        .filter(|l| l.contains("OWNER/rockslide"))
+        .collect();
+    assert_eq!(named.len(), 1, "{named:?}");
+    assert!(named[0].trim_start().starts_with("ROCKSLIDE_REPO: "));
 }

@@ -16,6 +16,7 @@ mod external_programs;
 mod fe_pepo;
 mod fe_rpepo;
 mod fe_space;
+mod figure_legends;
 mod footprint;
 mod foxglove_layout;
 mod gate_check;

@@ -454,6 +454,7 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     let c = &r.case;
     let mut b = vec![Block::Heading(1, format!("{} — {}", c.name, c.title))];
     b.extend(verdict_blocks(r));
+    b.extend(super::input_warnings::case_blocks(r));
     b.extend(super::design::case_design_blocks(r));
     b.extend(notes_blocks(std::slice::from_ref(r)));
     b.push(Block::Heading(2, "Document".into()));
@@ -735,6 +736,7 @@ pub(crate) fn suite_document(
     if !all.is_empty() {
         b.push(Block::List(all.iter().map(|f| f.to_string()).collect()));
     }
+    b.extend(super::input_warnings::suite_blocks(results));
     b.push(Block::Heading(2, "Design quantities".into()));
     b.push(Block::Table(super::design::suite_design_table(results)));
     b.push(Block::List(vec![format!(

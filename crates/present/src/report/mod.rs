@@ -10,7 +10,8 @@
 //! - `table`: the paper-style table as data; `crosscode`: pairwise discrepancies;
 //!   `plots`: time-history figures (plotters, SVG); `figure`: the palette and legend
 //!   strip every figure shares; `provenance`: tool, commit, machine, date;
-//! - `document`: the report content; `design`: the design quantities first; `doc`: the
+//! - `document`: the report content; `design`: the design quantities first;
+//!   `input_warnings`: the case files' likely mistakes, under the verdict; `doc`: the
 //!   document model;
 //! - `markdown`, `html`, `summary_csv`: the renderers; `files`: writing a document and
 //!   CSV files; `format`: number formatting;
@@ -22,6 +23,7 @@ mod attachments;
 mod crosscode;
 mod design;
 mod document;
+mod input_warnings;
 mod mcap_log;
 mod orbit_plot;
 mod pages;

@@ -78,7 +78,12 @@ fn run(engine: &'static str, variant: &str, s: f64, liftoff: f64) -> Run {
 }
 
 fn result() -> CaseResult {
-    let case = parse_case(Path::new("synthetic-rocking.toml"), CASE).expect("valid case");
+    result_of(CASE)
+}
+
+/// The synthetic runs under the case `text`.
+fn result_of(text: &str) -> CaseResult {
+    let case = parse_case(Path::new("synthetic-rocking.toml"), text).expect("valid case");
     let runs = vec![
         run("fe", "single", 1.0, 0.6),
         run("rapier", "inertial", 1.03, 0.65),
@@ -166,6 +171,28 @@ fn reports_have_run_columns_na_column_figures_and_the_run_vs_run_failure() {
     let html = super::case_html(&r);
     assert_eq!(html.matches("<svg").count(), 5);
     assert!(!html.contains("://"));
+}
+
+/// A pulse of 4 g (m/s² typed as g: 4 m/s² is 4 / 9.80665 = 0.408 g) is warned about at
+/// the top of the case's report and of the summary, once each, before the design
+/// quantities; the paper-like case without one has no such section.
+#[test]
+fn input_warnings_open_the_report_and_the_summary_once() {
+    let amplitude = 4.0 * rockslide_core::case::record::STANDARD_GRAVITY;
+    let text = CASE.replace("amplitude = 0.981", &format!("amplitude = {amplitude}"));
+    let r = result_of(&text);
+    let warning = "excitation.amplitude: PGA 4.000 g: was this in m/s²? (4.000 m/s² is 0.408 g)";
+    let md = super::case_markdown(&r);
+    assert_eq!(md.matches(warning).count(), 1, "{md}");
+    let at = md.find("## Input warnings").expect("the section");
+    assert!(at < md.find(warning).unwrap());
+    assert!(at < md.find("## Design quantities").expect("design quantities"));
+    assert!(md.find("**Gate: ").unwrap() < at, "{md}");
+    let summary = super::suite_markdown(std::slice::from_ref(&r));
+    let named = format!("synthetic-rocking: {warning}");
+    assert_eq!(summary.matches(&named).count(), 1, "{summary}");
+    assert!(summary.find(&named).unwrap() < summary.find("## Design quantities").unwrap());
+    assert!(!super::case_markdown(&result()).contains("Input warnings"));
 }
 
 #[test]
