@@ -48,15 +48,21 @@ pub fn sentence(h: &Headline) -> String {
 /// One quantity's statistics over the study as a sentence.
 pub fn statistics_sentence(s: &Statistics) -> String {
     let g = &s.governing;
+    // lengths in cm, rotations in mrad
+    let (unit, f) = if s.unit == "rad" {
+        ("mrad", 1e3)
+    } else {
+        ("cm", 100.0)
+    };
     format!(
-        "{}: {} over {} points — mean {:.3} cm, median {:.3} cm, 84th percentile {:.3} cm, max {:.3} cm ({} at PGA {:.3} g, μ = {}, polarity {:+}{})",
+        "{}: {} over {} points — mean {:.3} {unit}, median {:.3} {unit}, 84th percentile {:.3} {unit}, max {:.3} {unit} ({} at PGA {:.3} g, μ = {}, polarity {:+}{})",
         s.label,
         s.quantity,
         s.points,
-        s.mean * 100.0,
-        s.median * 100.0,
-        s.p84 * 100.0,
-        s.max * 100.0,
+        s.mean * f,
+        s.median * f,
+        s.p84 * f,
+        s.max * f,
         short_name(&g.record),
         g.pga / STANDARD_GRAVITY,
         g.mu,
@@ -141,8 +147,8 @@ pub(crate) fn document(c: &Study) -> Vec<Block> {
             format!("{:+}", r.point.polarity).into(),
             format!("{}/{}", run.engine, run.variant).into(),
             run.status.clone().into(),
-            mm(run.residual_sliding).into(),
-            mm(run.peak_abs_sliding).into(),
+            mm(run.residual_resultant_sliding.or(run.residual_sliding)).into(),
+            mm(run.peak_magnitude()).into(),
         ]);
     }
     b.push(Block::Table(t));

@@ -43,7 +43,7 @@ pub(crate) fn residual_vs_pga(c: &Study, only: Option<&str>) -> String {
     // Series key → points (PGA in g, |residual| in mm).
     let mut series: BTreeMap<String, Vec<(f64, f64)>> = BTreeMap::new();
     for (r, run) in c.rows() {
-        let Some(res) = run.residual_sliding else {
+        let Some(res) = run.residual_resultant_sliding.or(run.residual_sliding) else {
             continue;
         };
         let l = label(run);

@@ -20,7 +20,7 @@ use rockslide_verify::study::{Study, short_name};
 use crate::doc::files::{csv_bytes, write_document};
 
 /// Columns of `summary.csv`.
-pub const CSV_HEADER: [&str; 20] = [
+pub const CSV_HEADER: [&str; 24] = [
     "point",
     "record",
     "pga_m_s2",
@@ -41,6 +41,10 @@ pub const CSV_HEADER: [&str; 20] = [
     "slip_start_s",
     "slip_end_s",
     "steps",
+    "peak_resultant_sliding_m",
+    "residual_resultant_sliding_m",
+    "peak_uplift_m",
+    "peak_rotation_rad",
 ];
 
 /// The summary table as CSV (SI values at full precision, plus cm and g columns).
@@ -69,6 +73,10 @@ pub fn summary_csv(c: &Study) -> Result<Vec<u8>, Error> {
             opt(run.slip_start),
             opt(run.slip_end),
             run.steps.to_string(),
+            opt(run.peak_resultant_sliding),
+            opt(run.residual_resultant_sliding),
+            opt(run.peak_uplift),
+            opt(run.peak_rotation),
         ]
     });
     csv_bytes(&CSV_HEADER, rows)

@@ -16,8 +16,19 @@
 //! vertical contact N = M·(g + a_v(t)) (`normal_force = "quasi-static"`), or the contact's
 //! vertical stiffness Kz (`"dynamic"`): M·δ'' + Kz·δ = M·(g + a_v), N = Kz·δ from static
 //! rest δ = M·g/Kz, integrated with the rest — the physics of the planar vertical
-//! reference (`crate::vertical`). The contact is compression-only there; here a normal
-//! force that reaches 0 (lift-off) stops the reference with an error.
+//! reference (`crate::vertical`).
+//!
+//! Lift-off and landing (Kz only): the contact is compression-only. When δ reaches 0 the
+//! contact opens ([`PlanEpoPhase::Open`]): free flight, ü = d(t) in plan (no spring, no
+//! dashpot: they are the contact's), δ'' = g + a_v, and the tangential spring's origin
+//! follows the mass (p = u, the slip takes the flight's plan path), so the contact
+//! closes again with no tangential force. It closes when δ returns to 0 — the impact
+//! rule is the spring Kz itself, nothing lost: a linear spring while closed, integrated
+//! with the rest — elastic when the circle grows faster than the tangential force
+//! (μ·Kz·δ̇ ≥ K·|u̇|), plastic along u̇ otherwise. Both events are located by bisection
+//! like yield and unloading. A rigid vertical contact (`"quasi-static"`) whose
+//! N = M·(g + a_v) reaches 0 stops the reference with an error (a rigid contact needs
+//! an impact rule of its own, not modelled).
 
 use super::block::{SLIP_EPISODES_RESPONSE, peak_resultant, plan_channels, write_plan};
 use super::drive::PlanDrive;
@@ -33,6 +44,8 @@ pub enum PlanEpoPhase {
     Elastic,
     /// On the yield circle, slipping along the force.
     Plastic,
+    /// The contact open (δ < 0, Kz only): free flight, the slip following the mass.
+    Open,
 }
 
 /// The oscillator's history, integrated.
@@ -42,8 +55,13 @@ pub struct PlanEpo {
     pub samples: Vec<Sample>,
     /// The plastic (slip) episodes: start and end times.
     pub slips: Vec<(f64, f64)>,
+    /// The flights (the contact open, Kz only): lift-off and landing times.
+    pub flights: Vec<(f64, f64)>,
     /// The largest integration step, s.
     pub step: f64,
+    /// The vertical compression δ, its rate and acceleration at every sample (zeros
+    /// unless N comes from Kz): δ < 0 is a gap, the mass's uplift above the ground.
+    heights: Vec<[f64; 3]>,
     law: EpoLaw,
 }
 
@@ -111,7 +129,9 @@ impl PlanEpo {
         let mut e = PlanEpo {
             samples: Vec::new(),
             slips: Vec::new(),
+            flights: Vec::new(),
             step,
+            heights: Vec::new(),
             law: EpoLaw {
                 drive: drive.clone(),
                 mass: osc.mass,
@@ -127,13 +147,14 @@ impl PlanEpo {
     /// Record the state at `t`, its rates taken on the piece of the drive that holds
     /// `inside` (the step that ended there).
     fn push(
-        samples: &mut Vec<Sample>,
+        (samples, heights): (&mut Vec<Sample>, &mut Vec<[f64; 3]>),
         law: &EpoLaw,
         (t, inside): (f64, f64),
         y: &[f64; STATE],
         phase: PlanEpoPhase,
     ) {
         let r = law.rhs(phase, inside)(t, y);
+        heights.push([y[6], y[7], r[7]]);
         samples.push(Sample {
             t,
             pos: [y[0], y[1]],
@@ -149,15 +170,24 @@ impl PlanEpo {
         let mut y = self.law.rest();
         let mut phase = PlanEpoPhase::Elastic;
         let first = nodes.get(1).map_or(0.0, |t1| 0.5 * t1);
-        Self::push(&mut self.samples, &self.law, (0.0, first), &y, phase);
+        Self::push(
+            (&mut self.samples, &mut self.heights),
+            &self.law,
+            (0.0, first),
+            &y,
+            phase,
+        );
         march(&nodes, &mut y, &mut phase, |t, t1, y, phase| {
             let next = self.advance(t, t1, y, phase);
             self.law.check_contact(*t, y)?;
             Ok(next)
         })?;
-        if phase == PlanEpoPhase::Plastic
-            && let Some(last) = self.slips.last_mut()
-        {
+        let open_at_end = match phase {
+            PlanEpoPhase::Plastic => self.slips.last_mut(),
+            PlanEpoPhase::Open => self.flights.last_mut(),
+            PlanEpoPhase::Elastic => None,
+        };
+        if let Some(last) = open_at_end {
             last.1 = duration;
         }
         Ok(())
@@ -177,37 +207,37 @@ impl PlanEpo {
         let law = &self.law;
         let f = law.rhs(phase, inside);
         // the event function at τ into the step: > 0 while the phase holds
-        let g = |tau: f64, z: &[f64; STATE]| match phase {
-            PlanEpoPhase::Elastic => law.radius(t0 + tau, z) - norm(law.force(z)),
-            PlanEpoPhase::Plastic => law.lambda(t0 + tau, z, inside),
-        };
+        let g = |tau: f64, z: &[f64; STATE]| law.event(phase, (t0 + tau, inside), z);
         let end = rk4(&f, t0, y, h);
         let (tau, next) = if g(h, &end) > 0.0 {
             (h, phase)
         } else {
             let tau = locate(h, |tau| g(tau, &rk4(&f, t0, y, tau)));
-            let next = match phase {
-                PlanEpoPhase::Elastic => PlanEpoPhase::Plastic,
-                PlanEpoPhase::Plastic => PlanEpoPhase::Elastic,
-            };
-            (tau, next)
+            let at = rk4(&f, t0, y, tau);
+            (tau, law.next_phase(phase, &at))
         };
         let mut z = if tau == h { end } else { rk4(&f, t0, y, tau) };
-        if phase == PlanEpoPhase::Plastic || next == PlanEpoPhase::Plastic {
-            law.onto_circle(t0 + tau, &mut z);
+        match next {
+            PlanEpoPhase::Open => {
+                z[4] = z[0];
+                z[5] = z[1];
+            }
+            PlanEpoPhase::Plastic => law.onto_circle(t0 + tau, &mut z),
+            PlanEpoPhase::Elastic if phase == PlanEpoPhase::Plastic => {
+                law.onto_circle(t0 + tau, &mut z)
+            }
+            PlanEpoPhase::Elastic => {}
         }
         *t = t0 + tau;
         *y = z;
-        match (phase, next) {
-            (PlanEpoPhase::Elastic, PlanEpoPhase::Plastic) => self.slips.push((*t, f64::NAN)),
-            (PlanEpoPhase::Plastic, PlanEpoPhase::Elastic) => {
-                if let Some(last) = self.slips.last_mut() {
-                    last.1 = *t;
-                }
-            }
-            _ => {}
-        }
-        Self::push(&mut self.samples, &self.law, (*t, inside), y, next);
+        mark((&mut self.slips, &mut self.flights), (phase, next), *t);
+        Self::push(
+            (&mut self.samples, &mut self.heights),
+            &self.law,
+            (*t, inside),
+            y,
+            next,
+        );
         next
     }
 
@@ -224,6 +254,63 @@ impl PlanEpo {
     /// The largest resultant slip |p| over the samples, m, and its azimuth in degrees.
     pub fn peak_resultant(&self) -> (f64, f64) {
         peak_resultant(self.samples.iter().map(|s| s.slip))
+    }
+
+    /// The vertical compression δ at `t`, m (negative: the gap of a flight), by cubic
+    /// Hermite interpolation of δ and δ̇ between samples; 0 unless N comes from Kz.
+    pub fn compression(&self, t: f64) -> f64 {
+        let i = self.samples.partition_point(|s| s.t <= t);
+        if i == 0 || i == self.samples.len() {
+            return self.heights[i.saturating_sub(1)][0];
+        }
+        let (a, b) = (self.heights[i - 1], self.heights[i]);
+        let (ta, tb) = (self.samples[i - 1].t, self.samples[i].t);
+        let h = tb - ta;
+        if h <= 0.0 {
+            return b[0];
+        }
+        let x = (t - ta) / h;
+        (1.0 + 2.0 * x) * (1.0 - x) * (1.0 - x) * a[0]
+            + h * x * (1.0 - x) * (1.0 - x) * a[1]
+            + x * x * (3.0 - 2.0 * x) * b[0]
+            + h * x * x * (x - 1.0) * b[1]
+    }
+
+    /// The largest gap −δ of the flights, m (0 without one): the samples' largest, and at
+    /// each apex inside a step (δ̇ from negative to positive) δ − δ̇²/(2·δ̈) from the
+    /// sample before it (δ̈ = g + a_v there: exact to O(h³·ȧ_v)).
+    pub fn peak_uplift(&self) -> f64 {
+        let mut peak: f64 = 0.0;
+        for w in self.heights.windows(2) {
+            let [a, b] = [w[0], w[1]];
+            peak = peak.max(-a[0]).max(-b[0]);
+            if a[0] < 0.0 && a[1] < 0.0 && b[1] > 0.0 && a[2] > 0.0 {
+                peak = peak.max(-(a[0] - a[1] * a[1] / (2.0 * a[2])));
+            }
+        }
+        peak
+    }
+}
+
+/// Open or close a slip episode or a flight at a phase change at `t`.
+fn mark(
+    (slips, flights): (&mut Vec<(f64, f64)>, &mut Vec<(f64, f64)>),
+    (from, to): (PlanEpoPhase, PlanEpoPhase),
+    t: f64,
+) {
+    use PlanEpoPhase::{Open, Plastic};
+    if from == to {
+        return;
+    }
+    for (list, phase) in [(slips, Plastic), (flights, Open)] {
+        if from == phase
+            && let Some(last) = list.last_mut()
+        {
+            last.1 = t;
+        }
+        if to == phase {
+            list.push((t, f64::NAN));
+        }
     }
 }
 
@@ -246,27 +333,34 @@ impl EpoLaw {
         let drive = self.drive.remembered();
         move |t, y| {
             let d = drive.at(t);
-            let f = [self.k * (y[0] - y[4]), self.k * (y[1] - y[5])];
+            let open = phase == PlanEpoPhase::Open;
+            // the contact's forces on the mass: none while open
+            let (f, c) = if open {
+                ([0.0, 0.0], 0.0)
+            } else {
+                (self.force(y), self.c)
+            };
             let pdot = match phase {
                 PlanEpoPhase::Elastic => [0.0, 0.0],
                 PlanEpoPhase::Plastic => {
-                    let n = norm(f);
-                    let e = [f[0] / n, f[1] / n];
+                    let e = self.direction(y);
                     let lambda = dot(e, [y[2], y[3]]) - self.radius_rate(t, y, inside) / self.k;
                     [lambda * e[0], lambda * e[1]]
                 }
+                PlanEpoPhase::Open => [y[2], y[3]],
             };
             let (dz, vz) = match self.normal {
                 Normal::Dynamic { wz2, gravity, .. } => {
-                    (y[7], gravity + self.drive.vertical(t) - wz2 * y[6])
+                    let spring = if open { 0.0 } else { wz2 * y[6] };
+                    (y[7], gravity + self.drive.vertical(t) - spring)
                 }
                 _ => (0.0, 0.0),
             };
             [
                 y[2],
                 y[3],
-                d[0] - (self.c * y[2] + f[0]) / self.mass,
-                d[1] - (self.c * y[3] + f[1]) / self.mass,
+                d[0] - (c * y[2] + f[0]) / self.mass,
+                d[1] - (c * y[3] + f[1]) / self.mass,
                 pdot[0],
                 pdot[1],
                 dz,
@@ -277,6 +371,55 @@ impl EpoLaw {
 
     fn force(&self, y: &[f64; STATE]) -> [f64; 2] {
         [self.k * (y[0] - y[4]), self.k * (y[1] - y[5])]
+    }
+
+    /// The unit direction of the force, or of the velocity when the force is zero (a
+    /// plastic phase that starts at a landing, F = 0 = R), or +x.
+    fn direction(&self, y: &[f64; STATE]) -> [f64; 2] {
+        let f = self.force(y);
+        let v = [y[2], y[3]];
+        let (nf, nv) = (norm(f), norm(v));
+        if nf > 0.0 {
+            [f[0] / nf, f[1] / nf]
+        } else if nv > 0.0 {
+            [v[0] / nv, v[1] / nv]
+        } else {
+            [1.0, 0.0]
+        }
+    }
+
+    /// The event function of `phase` at `t` (`inside`: a time inside the step): > 0
+    /// while the phase holds. Closed phases under Kz also end when δ reaches 0.
+    fn event(&self, phase: PlanEpoPhase, (t, inside): (f64, f64), z: &[f64; STATE]) -> f64 {
+        let kz = matches!(self.normal, Normal::Dynamic { .. });
+        match phase {
+            PlanEpoPhase::Open => -z[6],
+            PlanEpoPhase::Elastic => {
+                let yield_gap = self.radius(t, z) - norm(self.force(z));
+                if kz { yield_gap.min(z[6]) } else { yield_gap }
+            }
+            PlanEpoPhase::Plastic => {
+                let lambda = self.lambda(t, z, inside);
+                if kz { lambda.min(z[6]) } else { lambda }
+            }
+        }
+    }
+
+    /// The phase after an event of `phase` found in state `z`: a lift-off (δ ≤ 0 under
+    /// Kz), a landing (elastic when μ·Kz·δ̇ ≥ K·|u̇|, else plastic), yield or unloading.
+    fn next_phase(&self, phase: PlanEpoPhase, z: &[f64; STATE]) -> PlanEpoPhase {
+        let kz = matches!(self.normal, Normal::Dynamic { .. });
+        match phase {
+            PlanEpoPhase::Open => match self.normal {
+                Normal::Dynamic { mu, kz, .. } if mu * kz * z[7] < self.k * norm([z[2], z[3]]) => {
+                    PlanEpoPhase::Plastic
+                }
+                _ => PlanEpoPhase::Elastic,
+            },
+            _ if kz && z[6] <= 0.0 => PlanEpoPhase::Open,
+            PlanEpoPhase::Elastic => PlanEpoPhase::Plastic,
+            PlanEpoPhase::Plastic => PlanEpoPhase::Elastic,
+        }
     }
 
     /// The normal force N at `t` in state `y`, N (M·g without a vertical component).
@@ -308,26 +451,37 @@ impl EpoLaw {
     /// λ = n·u̇ − Ṙ/K (the yield rate along the force).
     fn lambda(&self, t: f64, y: &[f64; STATE], inside: f64) -> f64 {
         let f = self.force(y);
-        dot(f, [y[2], y[3]]) / norm(f) - self.radius_rate(t, y, inside) / self.k
+        let along = match norm(f) {
+            n if n > 0.0 => dot(f, [y[2], y[3]]) / n,
+            _ => dot(self.direction(y), [y[2], y[3]]),
+        };
+        along - self.radius_rate(t, y, inside) / self.k
     }
 
-    /// Put p back on the yield circle: p = u − R·n/K.
+    /// Put p back on the yield circle: p = u − R·n/K (R ≥ 0).
     fn onto_circle(&self, t: f64, y: &mut [f64; STATE]) {
         let f = self.force(y);
+        let r = self.radius(t, y).max(0.0);
         let n = norm(f);
-        let r = self.radius(t, y);
-        y[4] = y[0] - r * f[0] / n / self.k;
-        y[5] = y[1] - r * f[1] / n / self.k;
+        let back = if n > 0.0 {
+            [r * f[0] / n / self.k, r * f[1] / n / self.k]
+        } else {
+            self.direction(y).map(|e| r * e / self.k)
+        };
+        y[4] = y[0] - back[0];
+        y[5] = y[1] - back[1];
     }
 
-    /// An error once the normal force has fallen to zero (the mass would lift off).
+    /// An error once the rigid vertical contact's normal force has fallen to zero (the
+    /// mass would lift off, with no impact rule for its landing); under Kz the contact
+    /// opens instead.
     fn check_contact(&self, t: f64, y: &[f64; STATE]) -> Result<(), String> {
         let n = self.normal_force(t, y);
-        if n > 0.0 {
+        if n > 0.0 || matches!(self.normal, Normal::Dynamic { .. }) {
             Ok(())
         } else {
             Err(format!(
-                "the normal force falls to {n:.6e} N at t = {t:.6} s: the mass would lift off, which the plan-motion oscillator reference does not model"
+                "the normal force falls to {n:.6e} N at t = {t:.6} s: the mass would lift off its rigid vertical contact, whose landing the plan-motion oscillator reference does not model (the contact's Kz, normal_force = \"dynamic\", opens and closes)"
             ))
         }
     }
@@ -340,8 +494,23 @@ impl EpoLaw {
                 "ṗ = (n·u̇ − Ṙ/K)·n on |K(u − p)| = R = μ·N(t), N = M·(g + a_v(t)), a rigid vertical contact"
             }
             Normal::Dynamic { .. } => {
-                "ṗ = (n·u̇ − Ṙ/K)·n on |K(u − p)| = R = μ·N(t), N = Kz·δ with M·δ'' + Kz·δ = M·(g + a_v) integrated with the rest, lift-off not modelled"
+                "ṗ = (n·u̇ − Ṙ/K)·n on |K(u − p)| = R = μ·N(t), N = Kz·δ with M·δ'' + Kz·δ = M·(g + a_v) integrated with the rest; compression only: free flight with the slip following the mass while δ < 0, landing on Kz"
             }
+        }
+    }
+}
+
+impl PlanEpo {
+    /// The flights in words for the method note (empty without one).
+    fn flight_note(&self) -> String {
+        match self.flights.len() {
+            0 => String::new(),
+            n => format!(
+                "; {n} flight{} (the contact open, first lift-off at {:.4} s), peak uplift {:.4} mm",
+                if n == 1 { "" } else { "s" },
+                self.flights[0].0,
+                1e3 * self.peak_uplift()
+            ),
         }
     }
 }
@@ -353,10 +522,16 @@ impl ExactSolution for PlanEpo {
 
     fn method(&self) -> String {
         format!(
-            "elastic-perfectly-plastic oscillator with a circular yield surface ({}): classical RK4, steps ≤ {} s with a node at every kink of the drive, yield and unloading located by bisection; {} plastic phases (slip episodes of the plan slip: yield to unloading). {SLIP_EPISODES_RESPONSE}",
+            "elastic-perfectly-plastic oscillator with a circular yield surface ({}): classical RK4, steps ≤ {} s with a node at every kink of the drive, yield and unloading{} located by bisection; {} plastic phases (slip episodes of the plan slip: yield to unloading){}. {SLIP_EPISODES_RESPONSE}",
             self.law.describe(),
             self.step,
-            self.slips.len()
+            if matches!(self.law.normal, Normal::Dynamic { .. }) {
+                ", lift-off and landing"
+            } else {
+                ""
+            },
+            self.slips.len(),
+            self.flight_note(),
         )
     }
 
@@ -385,9 +560,14 @@ impl ExactSolution for PlanEpo {
 
     fn exact_quantities(&self) -> Vec<(&'static str, f64)> {
         let (peak, _) = self.peak_resultant();
-        vec![
+        let mut q = vec![
             ("peak_resultant_sliding", peak),
             ("residual_resultant_sliding", norm(self.residual())),
-        ]
+        ];
+        // the flights' largest gap, when the contact opened
+        if !self.flights.is_empty() {
+            q.push(("peak_uplift", self.peak_uplift()));
+        }
+        q
     }
 }

@@ -143,8 +143,9 @@ pub fn collect(grid: &Grid, from: &[PathBuf], out: &Path) -> Result<Study, Error
     })
 }
 
-/// Residual sliding of run `label` at every point where it and `basis` both have one and
-/// |basis| > 0.1 mm: the relative differences 100·(label/basis − 1), in point order.
+/// |Residual sliding| (the resultant in plan for a 3D scene) of run `label` at every point
+/// where it and `basis` both have one and |basis| > 0.1 mm: the relative differences
+/// 100·(label/basis − 1), in point order.
 pub fn agreement(c: &Study, label: &str, basis: &str) -> Vec<f64> {
     c.results
         .iter()
@@ -155,12 +156,13 @@ pub fn agreement(c: &Study, label: &str, basis: &str) -> Vec<f64> {
         .collect()
 }
 
-/// Residual sliding of run `label` at a point.
+/// Residual sliding of run `label` at a point: signed along x for a planar scene, the
+/// resultant in plan for a 3D one.
 fn residual(r: &PointResult, l: &str) -> Option<f64> {
     r.runs
         .iter()
         .find(|x| label(x) == l)
-        .and_then(|x| x.residual_sliding)
+        .and_then(|x| x.residual_resultant_sliding.or(x.residual_sliding))
 }
 
 /// One line of a study's headline, as numbers.
@@ -212,17 +214,20 @@ pub enum Headline {
 pub struct Statistics {
     /// `engine/variant`.
     pub label: String,
-    /// The quantity ("|residual sliding|", "peak |sliding|").
+    /// The quantity ("|residual sliding|", "peak |sliding|", "peak uplift", "peak
+    /// |rotation|"; sliding is the resultant in plan for a 3D scene).
     pub quantity: &'static str,
+    /// The SI unit of the values: "m", or "rad" for rotation.
+    pub unit: &'static str,
     /// Points with a value.
     pub points: usize,
-    /// Mean, m.
+    /// Mean, in `unit`.
     pub mean: f64,
-    /// Median, m (the mean of the two middle values for an even count).
+    /// Median (the mean of the two middle values for an even count).
     pub median: f64,
-    /// 84th percentile, m (linear between order statistics, rank 0.84·(n − 1)).
+    /// 84th percentile (linear between order statistics, rank 0.84·(n − 1)).
     pub p84: f64,
-    /// Maximum, m.
+    /// Maximum.
     pub max: f64,
     /// The point of the maximum: record, PGA, μ, polarity.
     pub governing: PointResult,
@@ -245,17 +250,21 @@ pub fn summary_statistics(values: &mut [f64]) -> [f64; 4] {
     [mean, at(0.5), at(0.84), values[n - 1]]
 }
 
-/// Per run label, the statistics of |residual sliding| and peak |sliding| over the
-/// study's points.
+/// Per run label, the statistics of |residual sliding| and peak |sliding| (the
+/// resultant in plan for a 3D scene), peak uplift and peak |rotation| over the study's
+/// points where the run has them (uplift and rotation: a rocking body, and the plan
+/// reference's flights).
 pub fn statistics(c: &Study) -> Vec<Statistics> {
     type Pick = fn(&RunSummary) -> Option<f64>;
-    let quantities: [(&'static str, Pick); 2] = [
-        ("|residual sliding|", |r| r.residual_sliding.map(f64::abs)),
-        ("peak |sliding|", |r| r.peak_abs_sliding),
+    let quantities: [(&'static str, &'static str, Pick); 4] = [
+        ("|residual sliding|", "m", RunSummary::residual_magnitude),
+        ("peak |sliding|", "m", RunSummary::peak_magnitude),
+        ("peak uplift", "m", |r| r.peak_uplift),
+        ("peak |rotation|", "rad", |r| r.peak_rotation),
     ];
     let mut out = Vec::new();
     for l in c.run_labels() {
-        for (quantity, pick) in quantities {
+        for (quantity, unit, pick) in quantities {
             let rows: Vec<(f64, &PointResult)> = c
                 .rows()
                 .filter(|(_, run)| label(run) == l)
@@ -269,6 +278,7 @@ pub fn statistics(c: &Study) -> Vec<Statistics> {
             out.push(Statistics {
                 label: l.clone(),
                 quantity,
+                unit,
                 points: values.len(),
                 mean,
                 median,
@@ -302,7 +312,7 @@ pub fn headline(c: &Study) -> Vec<Headline> {
         let best = c
             .rows()
             .filter(|(_, run)| label(run) == l)
-            .filter_map(|(r, run)| run.residual_sliding.map(|v| (v.abs(), r)))
+            .filter_map(|(r, run)| run.residual_magnitude().map(|v| (v, r)))
             .max_by(|a, b| a.0.total_cmp(&b.0));
         if let Some((value, r)) = best {
             out.push(Headline::Largest {

@@ -63,6 +63,59 @@ pub struct RunSummary {
     /// Wall time of the run, s (informative only: never in summaries).
     #[serde(with = "crate::json::real")]
     pub wall_seconds: f64,
+    /// Largest resultant sliding |p| in plan, m (3D scenes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(with = "crate::json::real_opt")]
+    pub peak_resultant_sliding: Option<f64>,
+    /// Resultant sliding |p| in plan at the end of the run, m (3D scenes).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(with = "crate::json::real_opt")]
+    pub residual_resultant_sliding: Option<f64>,
+    /// Largest uplift, m (a rocking body's supports; the oscillator's flights in the
+    /// plan reference).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(with = "crate::json::real_opt")]
+    pub peak_uplift: Option<f64>,
+    /// Largest |rotation|, rad (a rocking body).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    #[serde(with = "crate::json::real_opt")]
+    pub peak_rotation: Option<f64>,
+}
+
+impl RunSummary {
+    /// A run with a status and no numbers yet.
+    fn empty(engine: &str, variant: &str, dt: f64, status: String) -> Self {
+        RunSummary {
+            engine: engine.into(),
+            variant: variant.into(),
+            dt,
+            status,
+            residual_sliding: None,
+            peak_abs_sliding: None,
+            peak_relative_displacement: None,
+            slip_episodes: None,
+            total_slid: None,
+            slip_start: None,
+            slip_end: None,
+            steps: 0,
+            wall_seconds: f64::NAN,
+            peak_resultant_sliding: None,
+            residual_resultant_sliding: None,
+            peak_uplift: None,
+            peak_rotation: None,
+        }
+    }
+
+    /// |residual sliding|: the resultant in plan for a 3D scene, else along x, m.
+    pub fn residual_magnitude(&self) -> Option<f64> {
+        self.residual_resultant_sliding
+            .or(self.residual_sliding.map(f64::abs))
+    }
+
+    /// Peak |sliding|: the resultant in plan for a 3D scene, else along x, m.
+    pub fn peak_magnitude(&self) -> Option<f64> {
+        self.peak_resultant_sliding.or(self.peak_abs_sliding)
+    }
 }
 
 /// The result file of one grid point.
@@ -185,14 +238,18 @@ pub fn run_study(grid: &Grid, opts: &StudyOptions) -> Result<StudyOutcome, Error
 }
 
 /// The study's anchor: the PEPO's exact solution under the point's record (ground
-/// acceleration piecewise linear between samples), when the model is an oscillator.
-/// A point the exact reference cannot solve gets a status saying why.
+/// acceleration piecewise linear between samples) when the model is a planar oscillator
+/// with no vertical component, the plan-motion reference for a 3D scene. A point the
+/// exact reference cannot solve gets a status saying why.
 fn exact_summary(case: &rockslide_core::case::Case) -> Option<RunSummary> {
+    if case.scene.spatial().is_some() {
+        return Some(plan_summary(case));
+    }
     let Model::Oscillator(osc) = &case.scene.model else {
         return None;
     };
     // The planar record solution: no vertical component, no plan motion.
-    if case.scene.vertical.is_some() || case.scene.spatial().is_some() {
+    if case.scene.vertical().is_some() {
         return None;
     }
     let start = Instant::now();
@@ -204,28 +261,18 @@ fn exact_summary(case: &rockslide_core::case::Case) -> Option<RunSummary> {
         Ok(exact) => exact,
         Err(why) => {
             return Some(RunSummary {
-                engine: EXACT.into(),
-                variant: "epo-record".into(),
-                dt,
-                status: format!("no exact reference: {why}"),
-                residual_sliding: None,
-                peak_abs_sliding: None,
-                peak_relative_displacement: None,
-                slip_episodes: None,
-                total_slid: None,
-                slip_start: None,
-                slip_end: None,
-                steps: 0,
                 wall_seconds: start.elapsed().as_secs_f64(),
+                ..RunSummary::empty(
+                    EXACT,
+                    "epo-record",
+                    dt,
+                    format!("no exact reference: {why}"),
+                )
             });
         }
     };
     let (_, _, _, residual) = exact.state(case.run.duration);
     Some(RunSummary {
-        engine: EXACT.into(),
-        variant: "epo-record".into(),
-        dt,
-        status: "completed".into(),
         residual_sliding: Some(residual + 0.0),
         peak_abs_sliding: Some(exact.peak_abs_slip()),
         peak_relative_displacement: Some(exact.peak_abs_u),
@@ -233,9 +280,38 @@ fn exact_summary(case: &rockslide_core::case::Case) -> Option<RunSummary> {
         total_slid: Some(exact.total_slid()),
         slip_start: exact.slips.first().map(|s| s.start),
         slip_end: exact.slips.last().map(|s| s.end),
-        steps: 0,
         wall_seconds: start.elapsed().as_secs_f64(),
+        ..RunSummary::empty(EXACT, "epo-record", dt, "completed".into())
     })
+}
+
+/// The plan-motion reference of a 3D point (the oscillator or the block on a friction
+/// cone, with N(t) and the oscillator's flights under a vertical component), its
+/// resultant sliding and peak uplift.
+fn plan_summary(case: &rockslide_core::case::Case) -> RunSummary {
+    let start = Instant::now();
+    let dt = rockslide_reference::bidirectional::DEFAULT_STEP;
+    let variant = match case.scene.model {
+        Model::RigidBlock(_) => "plan-block",
+        _ => "plan-epo",
+    };
+    match rockslide_reference::bidirectional::for_case(case) {
+        Err(why) => RunSummary {
+            wall_seconds: start.elapsed().as_secs_f64(),
+            ..RunSummary::empty(EXACT, variant, dt, format!("no exact reference: {why}"))
+        },
+        Ok(solution) => {
+            let q = solution.exact_quantities();
+            let get = |k: &str| q.iter().find(|(key, _)| *key == k).map(|(_, v)| *v);
+            RunSummary {
+                peak_resultant_sliding: get("peak_resultant_sliding"),
+                residual_resultant_sliding: get("residual_resultant_sliding"),
+                peak_uplift: get("peak_uplift").or(Some(0.0)),
+                wall_seconds: start.elapsed().as_secs_f64(),
+                ..RunSummary::empty(EXACT, variant, dt, "completed".into())
+            }
+        }
+    }
 }
 
 /// Engine id of the exact reference in a study.
@@ -299,19 +375,8 @@ fn engine_summary(
     let Ok(run) = timed.run else {
         // A panic is a result: recorded with its message, no numbers.
         return Ok(RunSummary {
-            engine: pr.engine.to_string(),
-            variant: pr.variant.clone(),
-            dt: pr.dt,
-            status,
-            residual_sliding: None,
-            peak_abs_sliding: None,
-            peak_relative_displacement: None,
-            slip_episodes: None,
-            total_slid: None,
-            slip_start: None,
-            slip_end: None,
-            steps: 0,
             wall_seconds: wall,
+            ..RunSummary::empty(pr.engine, &pr.variant, pr.dt, status)
         });
     };
     let resp = responses(&run.trace);
@@ -333,6 +398,10 @@ fn engine_summary(
         slip_end: resp.get("slip_end").copied(),
         steps: run.stats.steps,
         wall_seconds: wall,
+        peak_resultant_sliding: resp.get("peak_resultant_sliding").copied(),
+        residual_resultant_sliding: resp.get("residual_resultant_sliding").copied(),
+        peak_uplift: resp.get("peak_uplift").copied(),
+        peak_rotation: resp.get("peak_rotation").copied(),
     })
 }
 
@@ -370,6 +439,7 @@ fn newmark_summary(case: &rockslide_core::case::Case) -> Result<Option<RunSummar
         slip_end: r.slides.last().map(|s| s.end),
         steps: r.disp.len().saturating_sub(1) as u64,
         wall_seconds: start.elapsed().as_secs_f64(),
+        ..RunSummary::empty("", "", *dt, String::new())
     }))
 }
 
