@@ -6,7 +6,8 @@
 //! response, flies it ballistically, lands it, bounces it on the undamped spring for
 //! 2π − 2·atan(v·ωz/g) over ωz and flies it again for 2v/g to the same height; the slip
 //! follows the mass in flight, and the reference converges at RK4's order when the step
-//! is halved. Bounds are the measured errors (2026-11-29), stated at each assert: the events within 5.2e-13 s,
+//! is halved; along one azimuth it is the planar vertical reference (closed forms between
+//! events) through its flights. Bounds are the measured errors (2026-11-29), stated at each assert: the events within 5.2e-13 s,
 //! the apex within 1.04e-12 of 0.204 m, a convergence ratio of 15.07 per halving.
 //!
 //! rockslide shall compute the sliding in plan of an elastic-plastic oscillator whose
@@ -17,6 +18,7 @@ use std::f64::consts::PI;
 use crate::common::case;
 use rockslide::case::{Model, NormalForce, Oscillator, Signal};
 use rockslide::reference::bidirectional::{PlanDrive, PlanEpo};
+use rockslide::reference::vertical::{EpoConstants, LinearInputs, VerticalEpo};
 
 /// Gravity, m/s².
 const G: f64 = 9.81;
@@ -188,4 +190,74 @@ fn with_lift_off_the_reference_converges_at_fourth_order() {
     assert_eq!((a.1, a.2), (c.1, c.2));
     // RK4: 2⁴ = 16 per halving (measured 15.07)
     assert!(ratio > 14.0 && ratio < 18.0, "{ratio}");
+}
+
+/// Along one azimuth the plan reference with lift-off is the planar vertical reference
+/// (crates/reference/src/vertical: closed forms between events, the same compression-only
+/// Kz and the stick point following the mass in flight), an independent solver: both on
+/// the pulses sampled every 1 ms (linear in between, where the planar one is exact).
+#[test]
+fn along_one_azimuth_it_is_the_planar_reference_through_its_flights() {
+    let o = oscillator();
+    let (dt, end): (f64, f64) = (1e-3, 1.05);
+    let pulse = |amplitude: f64| {
+        move |t: f64| {
+            if t <= PI / OMEGA {
+                amplitude * (OMEGA * t).sin()
+            } else {
+                0.0
+            }
+        }
+    };
+    let (h, v) = (pulse(4.0), pulse(-A));
+    let record = |f: &dyn Fn(f64) -> f64| {
+        let n = (end / dt).round() as usize;
+        Signal::Record {
+            dt,
+            samples: (0..=n).map(|i| f(i as f64 * dt)).collect(),
+            label: "test".into(),
+        }
+    };
+    let th = 30f64.to_radians();
+    let e = [th.cos(), th.sin()];
+    let drive = PlanDrive::new(Some(record(&h)), e, None, [-e[1], e[0]], 1.0)
+        .with_vertical(record(&v))
+        .with_normal_force(NormalForce::Dynamic);
+    let plan = PlanEpo::solve(&o, &drive, end, 1e-4).unwrap();
+    let inputs = LinearInputs::sample(dt, end, "records".into(), |t| (h(t), v(t))).unwrap();
+    let constants = EpoConstants {
+        m: o.mass,
+        k: o.contact.kx,
+        mu: o.contact.mu,
+        g: o.gravity,
+        kz: Some(o.contact.kz),
+    };
+    let exact = VerticalEpo::new(constants, inputs).unwrap();
+    let mut worst: f64 = 0.0;
+    for (i, s) in exact.history.states.iter().enumerate() {
+        let t = i as f64 * dt;
+        let (u, _, p) = plan.state(t);
+        let du = (u[0] - s.u * e[0]).hypot(u[1] - s.u * e[1]);
+        let dp = (p[0] - s.up * e[0]).hypot(p[1] - s.up * e[1]);
+        worst = worst.max(du).max(dp);
+    }
+    let planar_flights: Vec<(f64, f64)> = exact
+        .history
+        .flights
+        .iter()
+        .map(|f| (f.start, f.end))
+        .collect();
+    let residual = exact.history.states.last().unwrap().up;
+    println!(
+        "flights plan {:?}, planar {planar_flights:?}; largest gap {worst:.3e} m of a {residual:.6e} m slip",
+        plan.flights
+    );
+    assert_eq!(plan.flights.len(), planar_flights.len());
+    for (a, b) in plan.flights.iter().zip(&planar_flights) {
+        assert!(
+            (a.0 - b.0).abs() < 1e-9 && (a.1 - b.1).abs() < 1e-9,
+            "{a:?} {b:?}"
+        );
+    }
+    assert!(worst < 1e-9 * residual.abs(), "{worst}");
 }

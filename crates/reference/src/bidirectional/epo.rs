@@ -292,9 +292,12 @@ impl PlanEpo {
     }
 }
 
+/// Start and end times of a phase's spans (slip episodes, flights).
+type Spans = Vec<(f64, f64)>;
+
 /// Open or close a slip episode or a flight at a phase change at `t`.
 fn mark(
-    (slips, flights): (&mut Vec<(f64, f64)>, &mut Vec<(f64, f64)>),
+    (slips, flights): (&mut Spans, &mut Spans),
     (from, to): (PlanEpoPhase, PlanEpoPhase),
     t: f64,
 ) {
