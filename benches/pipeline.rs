@@ -55,7 +55,16 @@ fn pipeline(c: &mut Criterion) {
         .find(|e| e.id() == "predictor-corrector")
         .expect("registered");
     group.bench_function("engine-only/long-1e6-steps", |b| {
-        b.iter(|| black_box(pc.run(&long, "paper", 0.001).expect("runs")))
+        b.iter(|| {
+            black_box(
+                pc.run(
+                    &long,
+                    rockslide::engine::predictor_corrector::variant::PAPER,
+                    0.001,
+                )
+                .expect("runs"),
+            )
+        })
     });
     group.finish();
 }

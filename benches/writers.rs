@@ -42,9 +42,13 @@ fn long_trace() -> Trace {
         .into_iter()
         .find(|e| e.id() == "predictor-corrector")
         .expect("registered");
-    pc.run(&pepo_case(1000.0), "paper", 0.001)
-        .expect("runs")
-        .trace
+    pc.run(
+        &pepo_case(1000.0),
+        rockslide::engine::predictor_corrector::variant::PAPER,
+        0.001,
+    )
+    .expect("runs")
+    .trace
 }
 
 /// A one-run trace log of `trace`.

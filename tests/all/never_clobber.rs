@@ -180,7 +180,11 @@ fn rapier_with_kx_1e300_is_refused_before_running() {
     let case = parse(name, &text).unwrap();
     let engine = rockslide::registry::engine("rapier").unwrap();
     let e = engine
-        .run(&case, "applied-force", case.run.dt)
+        .run(
+            &case,
+            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
+            case.run.dt,
+        )
         .err()
         .unwrap()
         .to_string();
@@ -198,7 +202,10 @@ fn rapier_with_a_mass_of_1e_300_under_a_record_is_refused_before_running() {
         .replace("kx = 9.8696e8 ", "kx = 1e-282 ");
     let case = parse(name, &text).unwrap();
     let engine = rockslide::registry::engine("rapier").unwrap();
-    for variant in ["kinematic-ground", "inertial-force"] {
+    for variant in [
+        rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
+        rockslide::engine::rigid_body::variant::INERTIAL_FORCE,
+    ] {
         let e = engine
             .run(&case, variant, case.run.dt)
             .err()

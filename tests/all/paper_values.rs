@@ -40,7 +40,13 @@ fn exact_slip_times_agree_with_the_paper_within_its_resolution() {
 fn spreadsheet_step_reproduces_the_stated_times_exactly() {
     let s = stated();
     let case = common::case("pepo-mass-accel");
-    let run = PredictorCorrector.run(&case, "paper", 0.01).unwrap();
+    let run = PredictorCorrector
+        .run(
+            &case,
+            rockslide::engine::predictor_corrector::variant::PAPER,
+            0.01,
+        )
+        .unwrap();
     let r = run.trace.column("resistance").unwrap();
     let first = r.iter().position(|&x| x >= 5.0e5 * (1.0 - 1e-12)).unwrap();
     let t_limit = run.trace.time[first];

@@ -30,7 +30,7 @@ proptest! {
             let text = case.text.replacen("mu = 0.5\n", &format!("mu = {mu}\n"), 1);
             rockslide::case::parse_case(&case.path, &text).unwrap()
         };
-        let run = PredictorCorrector.run(&case, "paper", 1e-3).unwrap();
+        let run = PredictorCorrector.run(&case, rockslide::engine::predictor_corrector::variant::PAPER, 1e-3).unwrap();
         let r = run.trace.column("resistance").unwrap();
         let xp = run.trace.column("slide").unwrap();
         let ru = mu * 1.0e6 * 1.0;

@@ -24,7 +24,7 @@ fn bad_options_are_located_errors() {
             "[engines.rapier]\nfriction_model = \"sticky\"\nfoot_mass = 3.0\npgs_iterations = 2.5",
         );
     let c = crate::common::parse_with_bad_options(Path::new("opts.toml"), &text);
-    let errors = Rapier.check_options(&c);
+    let errors = Rapier.parse_options(&c).err().unwrap_or_default();
     let text: Vec<String> = errors.iter().map(|e| e.to_string()).collect();
     println!("{text:#?}");
     assert_eq!(errors.len(), 4, "{text:?}");
@@ -51,8 +51,20 @@ fn bad_options_are_located_errors() {
 #[test]
 fn runs_record_their_settings() {
     let c = with_options("contact_hz = 120.0\npgs_iterations = 3");
-    assert!(Rapier.check_options(&c).is_empty());
-    let run = Rapier.run(&c, "fixed-ground", 0.01).unwrap();
+    assert!(
+        Rapier
+            .parse_options(&c)
+            .err()
+            .unwrap_or_default()
+            .is_empty()
+    );
+    let run = Rapier
+        .run(
+            &c,
+            rockslide::engine::rigid_body::variant::FIXED_GROUND,
+            0.01,
+        )
+        .unwrap();
     let get = |k: &str| crate::common::setting(&run, k).unwrap_or_default();
     assert_eq!(get("dt"), "0.01");
     assert_eq!(get("substeps"), "16");
@@ -64,16 +76,24 @@ fn runs_record_their_settings() {
 }
 
 /// `step_rule = "none"` (what the stability map runs) makes rapier take exactly one step
-/// per output step, and says so; `contact_model = "applied-force"` on a scene that is not
+/// per output step, and says so; `contact_model = rockslide::engine::rigid_body::variant::APPLIED_FORCE` on a scene that is not
 /// a rocking body is a located error; a bad `step_rule` lists the valid ones.
 #[test]
 fn step_rule_none_steps_once_per_output_step() {
     let c = with_options("step_rule = \"none\"");
     let dt = 2e-3;
-    let run = Rapier.run(&c, "fixed-ground", dt).unwrap();
+    let run = Rapier
+        .run(&c, rockslide::engine::rigid_body::variant::FIXED_GROUND, dt)
+        .unwrap();
     let n = rockslide::engine::step_count(c.run.duration, dt) as u64;
     assert_eq!(run.stats.steps, n, "one rapier step per output step");
-    let ruled = Rapier.run(&with_options(""), "fixed-ground", dt).unwrap();
+    let ruled = Rapier
+        .run(
+            &with_options(""),
+            rockslide::engine::rigid_body::variant::FIXED_GROUND,
+            dt,
+        )
+        .unwrap();
     assert_eq!(
         ruled.stats.steps, n,
         "the block's rule divides only record runs"
@@ -84,9 +104,19 @@ fn step_rule_none_steps_once_per_output_step() {
         parse_case(Path::new("pepo.toml"), &t).unwrap()
     };
     let none = Rapier
-        .run(&with("step_rule = \"none\""), "applied-force", 5e-3)
+        .run(
+            &with("step_rule = \"none\""),
+            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
+            5e-3,
+        )
         .unwrap();
-    let rule = Rapier.run(&with(""), "applied-force", 5e-3).unwrap();
+    let rule = Rapier
+        .run(
+            &with(""),
+            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
+            5e-3,
+        )
+        .unwrap();
     assert_eq!(
         rule.stats.steps,
         5 * none.stats.steps,
@@ -103,10 +133,14 @@ fn step_rule_none_steps_once_per_output_step() {
         let t = osc.replacen("[engines.rapier]", &format!("[engines.rapier]\n{o}"), 1);
         crate::common::parse_with_bad_options(Path::new("pepo.toml"), &t)
     };
-    let errors = Rapier.check_options(&bad("contact_model = \"applied-force\""));
+    let errors = Rapier
+        .parse_options(&bad("contact_model = \"applied-force\""))
+        .unwrap_err();
     assert_eq!(errors.len(), 1);
     assert!(errors[0].to_string().contains("rocking body only"));
-    let errors = Rapier.check_options(&bad("step_rule = \"sometimes\""));
+    let errors = Rapier
+        .parse_options(&bad("step_rule = \"sometimes\""))
+        .unwrap_err();
     assert_eq!(errors.len(), 1);
     assert!(errors[0].to_string().contains("\"none\""), "{}", errors[0]);
 }

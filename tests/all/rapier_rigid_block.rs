@@ -30,7 +30,13 @@ fn sliding_block_matches_newmark() {
     let mu_mg = 0.2 * 1000.0 * 9.81;
     // measured at dt = 1 ms, 4 substeps, Simplified friction:
     //   kinematic ground: residual −0.2815668 m vs −0.2809445 m (0.22 %), inertial 0.005 %
-    for (variant, tol) in [("kinematic-ground", 0.003), ("inertial-force", 1e-4)] {
+    for (variant, tol) in [
+        (
+            rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
+            0.003,
+        ),
+        (rockslide::engine::rigid_body::variant::INERTIAL_FORCE, 1e-4),
+    ] {
         let run = Rapier.run(&c, variant, c.dt_for("rapier")).unwrap();
         assert!(run.status.completed());
         let r = responses(&run.trace);
@@ -71,7 +77,13 @@ fn coulomb_friction_model_undershoots_mu() {
             "[engines.rapier]\nfriction_model = \"coulomb\"",
         );
     let c = rockslide::case::parse_case(Path::new("coulomb.toml"), &text).unwrap();
-    let run = Rapier.run(&c, "inertial-force", 1e-3).unwrap();
+    let run = Rapier
+        .run(
+            &c,
+            rockslide::engine::rigid_body::variant::INERTIAL_FORCE,
+            1e-3,
+        )
+        .unwrap();
     let mu_eff = responses(&run.trace)["peak_resistance"] / (1000.0 * 9.81);
     println!("effective μ with the Coulomb model: {mu_eff}");
     assert!((mu_eff - 0.1745).abs() < 0.002, "effective μ {mu_eff}");
@@ -82,7 +94,13 @@ fn coulomb_friction_model_undershoots_mu() {
 fn free_rocking_matches_housner() {
     let c = case("housner-free-rocking");
     let reference = solve_reference(&c).unwrap();
-    let run = Rapier.run(&c, "fixed-ground", c.dt_for("rapier")).unwrap();
+    let run = Rapier
+        .run(
+            &c,
+            rockslide::engine::rigid_body::variant::FIXED_GROUND,
+            c.dt_for("rapier"),
+        )
+        .unwrap();
     let r = responses(&run.trace);
     // measured at dt = 1 ms, 16 substeps: first impact 0.49644 s vs 0.49656 s (0.02 %),
     // second 1.3531 s vs 1.3585 s (0.4 %), tilt after the first impact 0.08375 rad vs
@@ -112,8 +130,16 @@ fn pulse_rocking_matches_housner_by_both_routes() {
     // measured at dt = 1 ms, 16 substeps (kinematic / inertial): first impact +0.46 % /
     // +0.13 %, second −0.49 % / −0.32 %, peak rotation −1.10 % / −0.63 %
     for (variant, tol_first, tol_rot) in [
-        ("kinematic-ground", 6e-3, 1.4e-2),
-        ("inertial-force", 2e-3, 8e-3),
+        (
+            rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
+            6e-3,
+            1.4e-2,
+        ),
+        (
+            rockslide::engine::rigid_body::variant::INERTIAL_FORCE,
+            2e-3,
+            8e-3,
+        ),
     ] {
         let run = Rapier.run(&c, variant, c.dt_for("rapier")).unwrap();
         let r = responses(&run.trace);
@@ -136,9 +162,18 @@ fn pulse_rocking_matches_housner_by_both_routes() {
 #[test]
 fn same_case_twice_gives_bit_identical_traces() {
     for (name, variant) in [
-        ("housner-pulse", "kinematic-ground"),
-        ("rigid-sliding-block", "inertial-force"),
-        ("pepo-mass-accel", "applied-force"),
+        (
+            "housner-pulse",
+            rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
+        ),
+        (
+            "rigid-sliding-block",
+            rockslide::engine::rigid_body::variant::INERTIAL_FORCE,
+        ),
+        (
+            "pepo-mass-accel",
+            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
+        ),
     ] {
         let c = case(name);
         let a = Rapier.run(&c, variant, 2e-3).unwrap();

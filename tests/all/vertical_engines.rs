@@ -1,4 +1,4 @@
-//! Vertical ground motion in fe and rapier (issue 15): each engine against the exact
+//! Vertical ground motion in fe and rapier (docs/vertical-motion.md): each engine against the exact
 //! vertical references at its stated order and at measured tolerances, the friction bound
 //! |T| ≤ μ·N(t) on every run, and the cases that only the engines run (the RPEPO under a
 //! vertical pulse).
@@ -15,7 +15,7 @@ fn vertical_case(name: &str) -> Case {
 }
 
 /// A run of `engine`'s `variant` at `dt`, completed.
-fn run(engine: &dyn Engine, c: &Case, variant: &str, dt: f64) -> Run {
+fn run(engine: &dyn Engine, c: &Case, variant: rockslide::engine::Variant, dt: f64) -> Run {
     let r = engine.run(c, variant, dt).unwrap();
     assert!(r.status.completed(), "{}", r.status);
     r
@@ -58,7 +58,7 @@ fn fe_converges_to_the_vertical_oscillator_reference_at_second_order() {
     let c = vertical_case("pepo-mass-accel-vertical");
     let runs: Vec<Run> = [2e-3, 1e-3, 5e-4]
         .iter()
-        .map(|&dt| run(&fe, &c, "single", dt))
+        .map(|&dt| run(&fe, &c, rockslide::engine::fe::variant::SINGLE_ELEMENT, dt))
         .collect();
     let e: Vec<f64> = runs.iter().map(|r| max_error(&c, r, "rel_disp")).collect();
     let es: Vec<f64> = runs.iter().map(|r| max_error(&c, r, "slide")).collect();
@@ -105,7 +105,12 @@ fn rapier_converges_to_the_vertical_oscillator_reference() {
         .iter()
         .map(|&a| {
             let c = with_rapier_accuracy("pepo-mass-accel-vertical", a);
-            run(&rapier, &c, "applied-force", 2e-3)
+            run(
+                &rapier,
+                &c,
+                rockslide::engine::rigid_body::variant::APPLIED_FORCE,
+                2e-3,
+            )
         })
         .collect();
     let c = vertical_case("pepo-mass-accel-vertical");
@@ -143,8 +148,14 @@ fn without_vertical_motion_the_engines_run_todays_scene_bit_for_bit() {
     let fe = rockslide::engine::fe::Fe;
     let rapier = rockslide::engine::rigid_body::Rapier;
     for (engine, variant) in [
-        (&fe as &dyn Engine, "single"),
-        (&rapier as &dyn Engine, "applied-force"),
+        (
+            &fe as &dyn Engine,
+            rockslide::engine::fe::variant::SINGLE_ELEMENT,
+        ),
+        (
+            &rapier as &dyn Engine,
+            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
+        ),
     ] {
         let (a, b) = (
             run(engine, &horizontal, variant, 1e-3),

@@ -64,8 +64,8 @@ pub(crate) fn rocking_validity(omega_r: f64, dt_in: f64, settings: &RapierSettin
     let omega_h = omega_r * dt_in / settings.substeps as f64;
     let bound = rocking_omega_h(settings);
     if omega_h <= bound * (1.0 + 1e-9) {
-        let measured = if settings.oscillator_contact == OscillatorContact::AppliedForce {
-            "applied-force supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 3.4 %, lift-off within 2 ms, at 31–35 ms of CPU per simulated second"
+        let measured = if settings.oscillator_contact == OscillatorContact::ComputedSupports {
+            "computed supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 3.4 %, lift-off within 2 ms, at 31–35 ms of CPU per simulated second"
         } else {
             "joint-limit supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 2.9 %, lift-off within 2 ms, at 99–110 ms of CPU per simulated second"
         };
@@ -93,9 +93,9 @@ pub(crate) fn describe_rocking_joint_limit(
     settings: &RapierSettings,
     described: &mut Vec<Setting>,
 ) {
-    let model = if settings.oscillator_contact == OscillatorContact::AppliedForce {
+    let model = if settings.oscillator_contact == OscillatorContact::ComputedSupports {
         format!(
-            "applied-force: {} supports computed by the engine from the body's pose after each rapier step (Kz compression only, Kx capped at μ·N_i in series with a massless slider) and applied to the rapier body as one force and torque over the next step; no joints, no colliders",
+            "computed-supports: {} supports computed by the engine from the body's pose after each rapier step (Kz compression only, Kx capped at μ·N_i in series with a massless slider) and applied to the rapier body as one force and torque over the next step; no joints, no colliders",
             r.supports
         )
     } else {

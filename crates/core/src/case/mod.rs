@@ -10,6 +10,7 @@ mod invariant;
 pub mod limits;
 mod load;
 mod locate;
+mod parsed_options;
 pub mod plausibility;
 mod raw;
 pub mod record;
@@ -28,6 +29,7 @@ pub use load::{
     read_input_text,
 };
 pub use locate::Locator;
+pub use parsed_options::{EngineOptions, ParsedOptions};
 pub use scene::{
     Case, Contact, DESIGN_QUANTITIES, DoubleContact, EXPECTED_STATUSES, EngineRequest, Excitation,
     ExpectedDisagreement, ExpectedOutcome, ExpectedViolation, INVARIANT_KEYS, Model, NormalForce,

@@ -293,14 +293,14 @@ fn engine_summary(
         .iter()
         .find(|e| e.id() == pr.engine)
         .expect("planned engines exist");
-    let timed = guarded(engine.as_ref(), case, &pr.variant, pr.dt, 1).map_err(InputErrors::from)?;
+    let timed = guarded(engine.as_ref(), case, pr.variant, pr.dt, 1).map_err(InputErrors::from)?;
     let wall = timed.seconds.first().copied().unwrap_or(f64::NAN);
     let status = Outcome::of(&timed.run).to_string();
     let Ok(run) = timed.run else {
         // A panic is a result: recorded with its message, no numbers.
         return Ok(RunSummary {
             engine: pr.engine.to_string(),
-            variant: pr.variant.clone(),
+            variant: pr.variant.name.to_string(),
             dt: pr.dt,
             status,
             residual_sliding: None,
