@@ -13,6 +13,7 @@ use std::path::Path;
 use rockslide::analysis::responses;
 use rockslide::case::parse_case;
 use rockslide::engine::fe::Fe;
+use rockslide::engine::fe::variant as fe_variant;
 use rockslide::engine::rigid_body::Rapier;
 use rockslide::engine::{Engine, declared};
 use rockslide::trace::Trace;
@@ -85,11 +86,7 @@ fn main() {
         let text = std::fs::read_to_string(path).expect("case file reads");
         let base = parse_case(Path::new(path), &text).expect("case parses");
         let fe = Fe
-            .run(
-                &base,
-                rockslide::engine::fe::variant::SINGLE_ELEMENT,
-                base.dt_for("fe"),
-            )
+            .run(&base, fe_variant::SINGLE_ELEMENT, base.dt_for("fe"))
             .expect("fe runs");
         let rf = responses(&fe.trace);
         let t_lift = std::env::var("T_CUT")

@@ -17,6 +17,7 @@ use std::cell::Cell;
 use std::path::Path;
 
 use rockslide::case::{Case, load_case, parse_case};
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{self, Engine};
 
 /// The system allocator, counting the allocations (and reallocations) of each thread.
@@ -218,13 +219,8 @@ fn a_streamed_predictor_corrector_run_allocates_the_same_for_ten_times_the_steps
         let solution = rockslide::reference::for_case(&case).expect("the PEPO's reference");
         let before = ALLOCATIONS.with(Cell::get);
         let mut peaks = Peaks::default();
-        pc.run_streaming(
-            &case,
-            rockslide::engine::predictor_corrector::variant::PAPER,
-            DT,
-            &mut peaks,
-        )
-        .unwrap();
+        pc.run_streaming(&case, pc_variant::PAPER, DT, &mut peaks)
+            .unwrap();
         let mut sink = Summaries::new(
             &case,
             &peaks,
@@ -233,12 +229,7 @@ fn a_streamed_predictor_corrector_run_allocates_the_same_for_ten_times_the_steps
             102,
         );
         let mut run = pc
-            .run_streaming(
-                &case,
-                rockslide::engine::predictor_corrector::variant::PAPER,
-                DT,
-                &mut sink,
-            )
+            .run_streaming(&case, pc_variant::PAPER, DT, &mut sink)
             .unwrap();
         let summary = sink.finish(&mut run);
         let after = ALLOCATIONS.with(Cell::get);

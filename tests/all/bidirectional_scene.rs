@@ -4,6 +4,7 @@
 
 use crate::common::{case, repo};
 use rockslide::case::{Case, Signal, parse_case};
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 
 /// The shipped PEPO (mass acceleration) with `extra` appended to `[excitation]` and the
 /// double arrangement dropped (its text is kept otherwise).
@@ -156,11 +157,7 @@ fn every_2d_engine_refuses_a_3d_scene() {
             )
         );
         let err = engine
-            .run(
-                &c,
-                rockslide::engine::predictor_corrector::variant::PAPER,
-                0.01,
-            )
+            .run(&c, pc_variant::PAPER, 0.01)
             .unwrap_err()
             .to_string();
         assert!(

@@ -11,6 +11,7 @@
 //!   friction or penetrates beyond its compliance fails; a correct one passes.
 
 use rockslide::case::{load_case, parse_case};
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::engine::{Run, RunStatus, SolverStats};
 use rockslide::formats::{read_contacts_csv, read_mcap};
 use rockslide::invariants::check_run;
@@ -200,11 +201,7 @@ fn the_friction_bound_catches_rapier_feet_under_a_record_without_a_reference() {
         let text = text.replace("[engines.rapier]", &format!("[engines.rapier]\n{options}"));
         let c = parse_case(path, &text).expect("parses");
         let run = Rapier
-            .run(
-                &c,
-                rockslide::engine::rigid_body::variant::INERTIAL_FORCE,
-                5e-3,
-            )
+            .run(&c, rapier_variant::INERTIAL_FORCE, 5e-3)
             .unwrap();
         let check = check_run(&c, &run)
             .into_iter()

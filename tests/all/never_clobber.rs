@@ -14,6 +14,7 @@ use rockslide::case::Case;
 use rockslide::registry::parse_case;
 
 use crate::common::{repo, rockslide};
+use rockslide::engine::rigid_body::variant as rapier_variant;
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!(
@@ -180,11 +181,7 @@ fn rapier_with_kx_1e300_is_refused_before_running() {
     let case = parse(name, &text).unwrap();
     let engine = rockslide::registry::engine("rapier").unwrap();
     let e = engine
-        .run(
-            &case,
-            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
-            case.run.dt,
-        )
+        .run(&case, rapier_variant::APPLIED_FORCE, case.run.dt)
         .err()
         .unwrap()
         .to_string();
@@ -203,8 +200,8 @@ fn rapier_with_a_mass_of_1e_300_under_a_record_is_refused_before_running() {
     let case = parse(name, &text).unwrap();
     let engine = rockslide::registry::engine("rapier").unwrap();
     for variant in [
-        rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
-        rockslide::engine::rigid_body::variant::INERTIAL_FORCE,
+        rapier_variant::KINEMATIC_GROUND,
+        rapier_variant::INERTIAL_FORCE,
     ] {
         let e = engine
             .run(&case, variant, case.run.dt)

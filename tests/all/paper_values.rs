@@ -5,6 +5,7 @@
 use crate::common;
 
 use rockslide::analysis::responses;
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{Engine, predictor_corrector::PredictorCorrector};
 use rockslide::suite::solve_reference;
 
@@ -41,11 +42,7 @@ fn spreadsheet_step_reproduces_the_stated_times_exactly() {
     let s = stated();
     let case = common::case("pepo-mass-accel");
     let run = PredictorCorrector
-        .run(
-            &case,
-            rockslide::engine::predictor_corrector::variant::PAPER,
-            0.01,
-        )
+        .run(&case, pc_variant::PAPER, 0.01)
         .unwrap();
     let r = run.trace.column("resistance").unwrap();
     let first = r.iter().position(|&x| x >= 5.0e5 * (1.0 - 1e-12)).unwrap();

@@ -15,6 +15,7 @@ use rockslide::engine::rigid_body::Rapier;
 use rockslide::suite::solve_reference;
 
 use crate::common::{case_edited, setting};
+use rockslide::engine::rigid_body::variant as rapier_variant;
 
 /// (case, residual tolerance as (relative, absolute m), peak |u| relative tolerance).
 /// Measured (kinematic / inertial): Loma Prieta (residual 28.8 mm) +0.011 / +0.013 %,
@@ -41,8 +42,8 @@ fn pepo_under_records_against_exact() {
             _ => unreachable!(),
         };
         for variant in [
-            rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
-            rockslide::engine::rigid_body::variant::INERTIAL_FORCE,
+            rapier_variant::KINEMATIC_GROUND,
+            rapier_variant::INERTIAL_FORCE,
         ] {
             let run = Rapier.run(&c, variant, c.dt_for("rapier")).unwrap();
             let r = responses(&run.trace);
@@ -83,11 +84,7 @@ fn block_on_kinematic_ground_meets_the_target_with_its_step_rule() {
     let c = load_case(Path::new("cases/records/block-northridge.toml")).unwrap();
     let reference = solve_reference(&c).unwrap();
     let run = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
-            c.dt_for("rapier"),
-        )
+        .run(&c, rapier_variant::KINEMATIC_GROUND, c.dt_for("rapier"))
         .unwrap();
     let r = responses(&run.trace);
     let slid = r["total_slid"] / reference.responses["total_slid"] - 1.0;
@@ -129,11 +126,7 @@ fn block_step_rule_beyond_its_budget_says_outside_validity() {
         ],
     );
     let run = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
-            c.dt_for("rapier"),
-        )
+        .run(&c, rapier_variant::KINEMATIC_GROUND, c.dt_for("rapier"))
         .unwrap();
     // 10^6 rapier steps over 22 s of 1 ms output steps: 45 per output step.
     let step = setting(&run, "rapier step").unwrap();
@@ -154,11 +147,7 @@ fn block_solver_on_a_kinematic_ground_holds_without_the_step_rule() {
     let short = ("duration = 22.0", "duration = 0.1");
     let c = case_edited("records/block-northridge", &[no_rule, short]);
     let run = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
-            c.dt_for("rapier"),
-        )
+        .run(&c, rapier_variant::KINEMATIC_GROUND, c.dt_for("rapier"))
         .unwrap();
     assert_eq!(setting(&run, "substeps").as_deref(), Some("1"));
     assert!(setting(&run, "contact softness (moving body)").is_some_and(|v| v.starts_with("240,")));
@@ -174,11 +163,7 @@ fn block_solver_on_a_kinematic_ground_holds_without_the_step_rule() {
     );
     let c = case_edited("records/block-northridge", &[no_rule, own, short]);
     let run = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
-            c.dt_for("rapier"),
-        )
+        .run(&c, rapier_variant::KINEMATIC_GROUND, c.dt_for("rapier"))
         .unwrap();
     assert_eq!(setting(&run, "substeps").as_deref(), Some("4"));
     let hz = setting(&run, "contact softness (moving body)");

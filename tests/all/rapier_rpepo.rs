@@ -9,7 +9,9 @@ use std::path::Path;
 use rockslide::analysis::responses;
 use rockslide::case::{Case, parse_case};
 use rockslide::engine::Engine;
+use rockslide::engine::fe::variant as fe_variant;
 use rockslide::engine::rigid_body::Rapier;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 
 /// The paper's RPEPO (AL-Shawaf & Rahman, Fig. 7) with the given excitation and extra rapier options.
 fn rpepo(excitation: &str, duration: f64, options: &str) -> Case {
@@ -44,13 +46,7 @@ fn rests_in_static_equilibrium_without_creep() {
     let c = rpepo(r#"kind = "none""#, 0.5, "");
     // dt 0.1 ms × 4 substeps resolves the rocking mode of the stated inertia (21,400 rad/s,
     // ω·h = 0.53); at 1 ms (ω·h = 5.3) the body does not rest (base shear −2.8 MN).
-    let run = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::FIXED_GROUND,
-            1e-4,
-        )
-        .unwrap();
+    let run = Rapier.run(&c, rapier_variant::FIXED_GROUND, 1e-4).unwrap();
     let t = &run.trace;
     let w = 1.0e6 * 9.81;
     let n0 = t.column("normal").unwrap()[0];
@@ -80,11 +76,7 @@ fn one_sweep_lets_loaded_feet_creep() {
         "pgs_iterations = 1\ncontact_model = \"foot\"",
     );
     let run = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::FIXED_GROUND,
-            2.5e-4,
-        )
+        .run(&c, rapier_variant::FIXED_GROUND, 2.5e-4)
         .unwrap();
     let creep = responses(&run.trace)["min_sliding"].abs();
     println!("creep with one sweep {creep:e}");
@@ -107,21 +99,13 @@ cycles = 5.0"#,
     );
     let a = responses(
         &Rapier
-            .run(
-                &c,
-                rockslide::engine::rigid_body::variant::KINEMATIC_GROUND,
-                2.5e-4,
-            )
+            .run(&c, rapier_variant::KINEMATIC_GROUND, 2.5e-4)
             .unwrap()
             .trace,
     );
     let b = responses(
         &Rapier
-            .run(
-                &c,
-                rockslide::engine::rigid_body::variant::INERTIAL_FORCE,
-                2.5e-4,
-            )
+            .run(&c, rapier_variant::INERTIAL_FORCE, 2.5e-4)
             .unwrap()
             .trace,
     );
@@ -144,20 +128,8 @@ cycles = 5.0"#,
         1.0,
         "",
     );
-    let a = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
-            5e-4,
-        )
-        .unwrap();
-    let b = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
-            5e-4,
-        )
-        .unwrap();
+    let a = Rapier.run(&c, rapier_variant::APPLIED_FORCE, 5e-4).unwrap();
+    let b = Rapier.run(&c, rapier_variant::APPLIED_FORCE, 5e-4).unwrap();
     assert!(
         responses(&a.trace)["peak_uplift"] > 1e-3,
         "the run lifts off"
@@ -189,13 +161,7 @@ cycles = 0.5"#,
         0.8,
         "",
     );
-    let run = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
-            1e-4,
-        )
-        .unwrap();
+    let run = Rapier.run(&c, rapier_variant::APPLIED_FORCE, 1e-4).unwrap();
     let t = &run.trace;
     let x = t.column("cm_x").unwrap();
     let start = (0.05 / 1e-4) as usize; // after the pulse (ends at 0.0157 s)
@@ -271,18 +237,10 @@ fn rpepo_matches_fe_before_liftoff(options: &str, liftoff: f64, peaks: [f64; 2],
     );
     let c = parse_case(Path::new("cases/rpepo-mass-accel.toml"), &text).unwrap();
     let fe = Fe
-        .run(
-            &c,
-            rockslide::engine::fe::variant::SINGLE_ELEMENT,
-            c.dt_for("fe"),
-        )
+        .run(&c, fe_variant::SINGLE_ELEMENT, c.dt_for("fe"))
         .unwrap();
     let ra = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
-            c.dt_for("rapier"),
-        )
+        .run(&c, rapier_variant::APPLIED_FORCE, c.dt_for("rapier"))
         .unwrap();
     let (f, r) = (responses(&fe.trace), responses(&ra.trace));
     let t_lift = f["first_liftoff"];
@@ -333,21 +291,9 @@ fn joint_limit_rpepo_matches_fe_before_liftoff() {
 #[test]
 fn applied_force_takes_fewer_solver_steps() {
     let c = rpepo(r#"kind = "none""#, 0.01, "");
-    let applied = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::FIXED_GROUND,
-            1e-3,
-        )
-        .unwrap();
+    let applied = Rapier.run(&c, rapier_variant::FIXED_GROUND, 1e-3).unwrap();
     let c = rpepo(r#"kind = "none""#, 0.01, "contact_model = \"joint-limit\"");
-    let joints = Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::FIXED_GROUND,
-            1e-3,
-        )
-        .unwrap();
+    let joints = Rapier.run(&c, rapier_variant::FIXED_GROUND, 1e-3).unwrap();
     let substeps = |r: &rockslide::engine::Run| r.stats.steps * r.stats.substeps_per_step.unwrap();
     // ω_r from the scene: √((n·Kx·h² + Kz·Σx²)/I), I = 1e-4·M(b² + h²)/3
     let sum_x2: f64 = (0..10).map(|i| (-0.5 + i as f64 / 9.0).powi(2)).sum();

@@ -13,6 +13,7 @@ use rockslide::analysis::energy::audit;
 use rockslide::analysis::history_difference;
 use rockslide::analysis::stability::{Class, Criteria, classify};
 use rockslide::case::{Case, Scene, load_case};
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{self, Arrangement, Engine, NotApplicable, Run};
 use rockslide::error::InputError;
 use rockslide::reference;
@@ -30,13 +31,7 @@ fn pc() -> Box<dyn Engine> {
 /// Classify the predictor-corrector on `case` at Δt = `ratio`·T.
 fn class_at(case: &Case, ratio: f64) -> Class {
     let t = characteristic_period(case).0;
-    let run = pc()
-        .run(
-            case,
-            rockslide::engine::predictor_corrector::variant::PAPER,
-            ratio * t,
-        )
-        .unwrap();
+    let run = pc().run(case, pc_variant::PAPER, ratio * t).unwrap();
     let energy = audit(&run.trace, &case.scene, Arrangement::Single).unwrap();
     let exact = reference::for_case(case).unwrap();
     let at = reference::sample(exact.as_ref(), &run.trace.time);

@@ -8,6 +8,7 @@ use std::path::Path;
 
 use rockslide::analysis::energy::audit;
 use rockslide::case::{Model, load_case};
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{self, Arrangement};
 use rockslide::suite::solve_reference;
 
@@ -64,13 +65,7 @@ fn audit_closes_on_the_predictor_corrector_at_third_order() {
         .find(|e| e.id() == "predictor-corrector")
         .unwrap();
     let rel = |dt: f64| {
-        let run = pc
-            .run(
-                &case,
-                rockslide::engine::predictor_corrector::variant::PAPER,
-                dt,
-            )
-            .unwrap();
+        let run = pc.run(&case, pc_variant::PAPER, dt).unwrap();
         let s = audit(&run.trace, &case.scene, Arrangement::Single)
             .unwrap()
             .summary();

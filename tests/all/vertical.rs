@@ -9,6 +9,9 @@
 use crate::common::{case, case_with, order, repo};
 use crate::vertical_integrator::{Y, advance};
 use rockslide::case::{Case, NormalForce, load_case};
+use rockslide::engine::fe::variant as fe_variant;
+use rockslide::engine::predictor_corrector::variant as pc_variant;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::reference::block_record::{BlockRecord, Sliding};
 use rockslide::reference::vertical::{
     BlockPhase, EpoConstants, LinearInputs, VerticalBlock, VerticalEpo,
@@ -380,11 +383,7 @@ fn without_a_vertical_motion_the_references_are_todays_to_round_off() {
 fn pc_error(c: &Case, dt: f64) -> f64 {
     use rockslide::engine::Engine;
     let run = rockslide::engine::predictor_corrector::PredictorCorrector
-        .run(
-            c,
-            rockslide::engine::predictor_corrector::variant::PAPER,
-            dt,
-        )
+        .run(c, pc_variant::PAPER, dt)
         .unwrap();
     let reference = rockslide::reference::for_case(c).unwrap();
     let exact = rockslide::reference::sample(reference.as_ref(), &run.trace.time);
@@ -424,11 +423,7 @@ fn the_friction_bound_uses_the_instantaneous_normal_force() {
     use rockslide::engine::Engine;
     let c = vertical_case("pepo-mass-accel-vertical");
     let run = rockslide::engine::predictor_corrector::PredictorCorrector
-        .run(
-            &c,
-            rockslide::engine::predictor_corrector::variant::PAPER,
-            1e-3,
-        )
+        .run(&c, pc_variant::PAPER, 1e-3)
         .unwrap();
     let block = &run.trace.contacts;
     let normal: Vec<f64> = (0..block.len()).map(|i| block.at(i, 0).normal).collect();
@@ -486,19 +481,13 @@ fn engines_say_which_vertical_scenes_they_do_not_model() {
         let (id, v) = (engine.id(), engine.variants(&dynamic.scene));
         match id {
             "predictor-corrector" => {
-                let paper = rockslide::engine::predictor_corrector::variant::PAPER;
+                let paper = pc_variant::PAPER;
                 assert_eq!(v.unwrap(), vec![paper]);
                 assert_eq!(engine.variants(&rigid.scene).unwrap(), vec![paper]);
                 continue;
             }
-            "fe" => assert_eq!(
-                v.unwrap(),
-                vec![rockslide::engine::fe::variant::SINGLE_ELEMENT]
-            ),
-            _ => assert_eq!(
-                v.unwrap(),
-                vec![rockslide::engine::rigid_body::variant::APPLIED_FORCE]
-            ),
+            "fe" => assert_eq!(v.unwrap(), vec![fe_variant::SINGLE_ELEMENT]),
+            _ => assert_eq!(v.unwrap(), vec![rapier_variant::APPLIED_FORCE]),
         }
         let why = engine.variants(&rigid.scene).unwrap_err().0;
         assert!(
@@ -514,11 +503,7 @@ fn engines_say_which_vertical_scenes_they_do_not_model() {
     );
     use rockslide::engine::Engine;
     let e = rockslide::engine::rigid_body::Rapier
-        .run(
-            &c,
-            rockslide::engine::rigid_body::variant::APPLIED_FORCE,
-            1e-3,
-        )
+        .run(&c, rapier_variant::APPLIED_FORCE, 1e-3)
         .unwrap_err()
         .to_string();
     assert!(

@@ -9,6 +9,7 @@
 
 use std::any::Any;
 
+pub use rockslide_core::case::Arrangement;
 use rockslide_core::case::{Case, EngineOptions, Invariant, Scene};
 use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactBlock, ContactState, Trace};
@@ -118,18 +119,6 @@ impl SolverStats {
             .chain(optional.into_iter().filter_map(|(k, v)| v.map(|v| (k, v))))
             .collect()
     }
-}
-
-/// How a run's supports carry the base reaction: through one contact element, or through
-/// the double element's two in series (its intermediate node between them).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Arrangement {
-    /// One contact element per support.
-    #[default]
-    Single,
-    /// The double element: two contact elements in series per support.
-    Double,
 }
 
 /// One way an engine runs a scene: its name (as in case files, trace channels and

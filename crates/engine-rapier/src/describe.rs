@@ -6,17 +6,46 @@ use super::drive::Drive;
 use super::ground::RECORD_BASELINE;
 use super::settings::{OscillatorContact, OscillatorSteps, RapierSettings, StepRule};
 use super::step_rule::{SETTLE_STEPS, peak_ground_acceleration, rocking_omega_h};
+use super::time_loop::Outcome;
 use super::world::{
     MOTOR_DAMPING_MARGIN, MU_INFINITE, Rig, SUPPORT_DAMPING_SHARE, rocking_inertia,
 };
 use rockslide_core::case::record::Baseline;
 use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Signal};
-use rockslide_engine_api::Setting;
+use rockslide_engine_api::{Arrangement, Run, Setting, SolverStats, Variant};
 
 /// What a run states besides its trace: settings and findings, as (name, value) and text.
 pub(crate) struct Statement {
     pub(crate) described: Vec<Setting>,
     pub(crate) findings: Vec<String>,
+}
+
+impl Statement {
+    /// The run this statement describes: `variant` at output step `dt`, `substeps` solver
+    /// substeps per rapier step, ended as `outcome` says (rapier's supports are single).
+    pub(crate) fn into_run(
+        self,
+        variant: Variant,
+        dt: f64,
+        substeps: usize,
+        outcome: Outcome,
+    ) -> Run {
+        Run {
+            engine: crate::settings::ID,
+            variant: variant.name.to_string(),
+            arrangement: Arrangement::Single,
+            dt,
+            settings: self.described,
+            stats: SolverStats {
+                substeps_per_step: Some(substeps as u64),
+                ..SolverStats::steps(outcome.steps)
+            },
+            findings: self.findings,
+            trace: outcome.trace,
+            status: outcome.status,
+            wall_seconds: 0.0,
+        }
+    }
 }
 
 /// The planar ground route.

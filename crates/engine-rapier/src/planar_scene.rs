@@ -21,7 +21,7 @@ use super::vertical;
 use super::world::{self, GroundKind};
 use rockslide_core::case::{Case, Model, Oscillator, RigidBlock, RockingBody, Vertical};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Arrangement, Run, Setting, SolverStats, StepSink, Variant, step_count};
+use rockslide_engine_api::{Run, Setting, StepSink, Variant, step_count};
 
 /// Run route `drive` of the planar scene of `case` at output step `dt` with `settings`,
 /// handing every row to `sink`; the run's trace is the layout only.
@@ -55,21 +55,7 @@ pub(crate) fn run(
     describe::ground_motion(drive, &mut said.described);
     said.described.extend(vertical::describe(case, drive));
     describe::record_baseline(ex, drive, &mut said.described);
-    Ok(Run {
-        engine: crate::settings::ID,
-        variant: variant.name.to_string(),
-        arrangement: Arrangement::Single,
-        dt,
-        settings: said.described,
-        stats: SolverStats {
-            substeps_per_step: Some(settings.substeps as u64),
-            ..SolverStats::steps(outcome.steps)
-        },
-        findings: said.findings,
-        trace: outcome.trace,
-        status: outcome.status,
-        wall_seconds: 0.0,
-    })
+    Ok(said.into_run(variant, dt, settings.substeps, outcome))
 }
 
 /// The route, the output step and the settings of a run.

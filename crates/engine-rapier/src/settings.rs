@@ -250,11 +250,6 @@ impl Default for RapierSettings {
 }
 
 impl RapierSettings {
-    /// Read and validate the options of a case; every problem is returned, located.
-    pub fn from_case(case: &Case) -> Result<Self, Vec<InputError>> {
-        Self::with_defaults(case, Self::for_model(&case.scene.model))
-    }
-
     /// The settings of one run of the case, on a kinematic ground or not: the case's
     /// options over the defaults of its model ([`Self::for_model`]), and for the plane
     /// rigid block on a kinematic ground under a record ([`kinematic_block_on_record`])

@@ -5,6 +5,7 @@
 //! are valid but likely mistakes (`plausibility`). Engines never see TOML:
 //! they see [`Case`] and [`Scene`].
 
+mod arrangement;
 mod external;
 mod invariant;
 pub mod limits;
@@ -19,6 +20,7 @@ mod signal;
 pub mod slug;
 mod spatial;
 
+pub use arrangement::Arrangement;
 pub use external::{
     ColumnMap, EXTERNAL_VARIANT, External, ExternalFormat, ExternalLayout, ExternalTrace,
     ReadExternal, check_label,
