@@ -32,7 +32,7 @@ fn engine_step(c: &mut Criterion) {
             let steps = engine::step_count(case.run.duration, DT) as u64;
             group.throughput(Throughput::Elements(steps));
             group.bench_function(format!("{}/{variant}/pepo-mass-accel", e.id()), |b| {
-                b.iter(|| black_box(e.run(&case, variant.name, DT).expect("runs")))
+                b.iter(|| black_box(e.run(&case, variant, DT).expect("runs")))
             });
         }
     }

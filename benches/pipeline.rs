@@ -16,6 +16,7 @@ use std::time::Duration;
 use criterion::{Criterion, criterion_group, criterion_main};
 use rockslide::case::parse_case;
 use rockslide::engine;
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::report::write_case_outputs;
 use rockslide::suite::run_case;
 
@@ -55,7 +56,7 @@ fn pipeline(c: &mut Criterion) {
         .find(|e| e.id() == "predictor-corrector")
         .expect("registered");
     group.bench_function("engine-only/long-1e6-steps", |b| {
-        b.iter(|| black_box(pc.run(&long, "paper", 0.001).expect("runs")))
+        b.iter(|| black_box(pc.run(&long, pc_variant::PAPER, 0.001).expect("runs")))
     });
     group.finish();
 }

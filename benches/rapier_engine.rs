@@ -68,7 +68,7 @@ fn bench(c: &mut Criterion) {
         for variant in variants {
             let dt = case.dt_for("rapier");
             let start = Instant::now();
-            let run = Rapier.run(&case, variant.name, dt).expect("runs");
+            let run = Rapier.run(&case, variant, dt).expect("runs");
             let wall = start.elapsed().as_secs_f64();
             let substeps = run.stats.steps * run.stats.substeps_per_step.unwrap_or(0);
             println!(
@@ -78,7 +78,7 @@ fn bench(c: &mut Criterion) {
                 1e6 * wall / (run.trace.len() - 1) as f64
             );
             group.bench_function(format!("{name}/{variant}"), |b| {
-                b.iter(|| black_box(Rapier.run(&case, variant.name, dt).expect("runs")))
+                b.iter(|| black_box(Rapier.run(&case, variant, dt).expect("runs")))
             });
         }
     }

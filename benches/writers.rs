@@ -18,6 +18,7 @@ use std::time::Duration;
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use rockslide::case::parse_case;
 use rockslide::engine;
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::formats::{
     CDR_LE_HEADER, CHUNKS, ChunkCompression, ChunkOptions, LoggedRun, McapWriter, TraceLog,
     mcap_bytes, write_csv, write_mcap,
@@ -42,7 +43,7 @@ fn long_trace() -> Trace {
         .into_iter()
         .find(|e| e.id() == "predictor-corrector")
         .expect("registered");
-    pc.run(&pepo_case(1000.0), "paper", 0.001)
+    pc.run(&pepo_case(1000.0), pc_variant::PAPER, 0.001)
         .expect("runs")
         .trace
 }

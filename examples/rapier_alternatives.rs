@@ -77,7 +77,7 @@ fn main() {
             let variants = Rapier.variants(&case.scene).expect("rapier applies");
             for variant in variants {
                 let t0 = process_cpu_seconds();
-                let run = Rapier.run(&case, variant.name, dt).expect("runs");
+                let run = Rapier.run(&case, variant, dt).expect("runs");
                 let cpu = process_cpu_seconds() - t0;
                 let r = responses(&run.trace);
                 let limit = match &case.scene.model {

@@ -12,8 +12,8 @@
 use std::path::{Path, PathBuf};
 
 use rockslide::case::load_case;
-use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
+use rockslide::engine::{Engine, declared};
 use rockslide_verify::timings::process_cpu_seconds;
 
 /// The case files named, or in the folders named, sorted.
@@ -58,11 +58,15 @@ fn main() {
         let Ok(available) = Rapier.variants(&case.scene) else {
             continue;
         };
-        let wanted: Vec<String> = request
-            .and_then(|r| r.variants.clone())
-            .unwrap_or_else(|| available.iter().map(|s| s.to_string()).collect());
+        let wanted: Vec<_> = match request.and_then(|r| r.variants.as_deref()) {
+            Some(names) => names
+                .iter()
+                .filter_map(|name| declared(&available, name))
+                .collect(),
+            None => available,
+        };
         let dt = case.dt_for("rapier");
-        for variant in &wanted {
+        for &variant in &wanted {
             let t0 = process_cpu_seconds();
             let run = Rapier.run(&case, variant, dt).expect("runs");
             let cpu = process_cpu_seconds() - t0;

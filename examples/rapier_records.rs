@@ -149,7 +149,7 @@ fn main() {
                     let dt = case.dt_for("rapier");
                     for variant in Rapier.variants(&case.scene).expect("applies") {
                         let t0 = process_cpu_seconds();
-                        let run = Rapier.run(&case, variant.name, dt).expect("runs");
+                        let run = Rapier.run(&case, variant, dt).expect("runs");
                         let cpu = process_cpu_seconds() - t0;
                         let r = responses(&run.trace);
                         let e_res = r["residual_sliding"] / ex_res - 1.0;

@@ -12,9 +12,10 @@ use std::path::Path;
 
 use rockslide::analysis::responses;
 use rockslide::case::parse_case;
-use rockslide::engine::Engine;
 use rockslide::engine::fe::Fe;
+use rockslide::engine::fe::variant as fe_variant;
 use rockslide::engine::rigid_body::Rapier;
+use rockslide::engine::{Engine, declared};
 use rockslide::trace::Trace;
 use rockslide_verify::timings::process_cpu_seconds;
 
@@ -84,7 +85,9 @@ fn main() {
     for path in &args[..split] {
         let text = std::fs::read_to_string(path).expect("case file reads");
         let base = parse_case(Path::new(path), &text).expect("case parses");
-        let fe = Fe.run(&base, "single", base.dt_for("fe")).expect("fe runs");
+        let fe = Fe
+            .run(&base, fe_variant::SINGLE_ELEMENT, base.dt_for("fe"))
+            .expect("fe runs");
         let rf = responses(&fe.trace);
         let t_lift = std::env::var("T_CUT")
             .ok()
@@ -108,12 +111,15 @@ fn main() {
             let case =
                 parse_case(Path::new(path), &with_options(&text, set)).expect("options parse");
             let dt = case.dt_for("rapier");
+            let available = Rapier.variants(&case.scene).expect("applies");
             let variants = std::env::var("VARIANTS")
-                .map(|v| v.split(',').map(str::to_string).collect::<Vec<_>>())
-                .unwrap_or_else(|_| {
-                    vec![Rapier.variants(&case.scene).expect("applies")[0].to_string()]
-                });
-            for variant in &variants {
+                .map(|v| {
+                    v.split(',')
+                        .map(|name| declared(&available, name).expect("a rapier variant"))
+                        .collect::<Vec<_>>()
+                })
+                .unwrap_or_else(|_| vec![available[0]]);
+            for &variant in &variants {
                 let t0 = process_cpu_seconds();
                 let run = Rapier.run(&case, variant, dt).expect("runs");
                 let cpu = process_cpu_seconds() - t0;

@@ -14,7 +14,7 @@ fn estimated_cost(case: &Case, engines: &[Box<dyn Engine>]) -> f64 {
             .iter()
             .map(|r| {
                 let engine = engines.iter().find(|e| e.id() == r.engine);
-                let step = engine.map_or(1.0, |e| e.step_cost(&case.scene, &r.variant));
+                let step = engine.map_or(1.0, |e| e.step_cost(&case.scene, r.variant));
                 case.run.duration / r.dt * step
             })
             .sum()

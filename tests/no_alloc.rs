@@ -1,4 +1,4 @@
-//! No allocation in the engines' time loops, counted (issue 18): a global allocator that
+//! No allocation in the engines' time loops, counted (docs/performance.md): a global allocator that
 //! counts the allocations of the calling thread, and each engine run twice on the same
 //! case, for a duration T and for 2T at the same Δt. Everything a run allocates outside its
 //! time loop (model, trace columns sized for the run, findings) is the same number of
@@ -17,6 +17,7 @@ use std::cell::Cell;
 use std::path::Path;
 
 use rockslide::case::{Case, load_case, parse_case};
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{self, Engine};
 
 /// The system allocator, counting the allocations (and reallocations) of each thread.
@@ -101,7 +102,12 @@ fn rpepo_in_space() -> Case {
 
 /// Allocations of one run of `engine`/`variant` on `case` lasting `duration`, and its
 /// step count.
-fn allocations(engine: &dyn Engine, case: &Case, variant: &str, duration: f64) -> (u64, u64) {
+fn allocations(
+    engine: &dyn Engine,
+    case: &Case,
+    variant: rockslide::engine::Variant,
+    duration: f64,
+) -> (u64, u64) {
     let mut case = case.clone();
     case.run.duration = duration;
     let before = ALLOCATIONS.with(Cell::get);
@@ -126,9 +132,9 @@ fn measured_on(id: &str, name: &str, case: &Case) -> Vec<(String, u64, u64, u64)
         .into_iter()
         .map(|variant| {
             // A first run warms whatever is set up once per process (lazy tables).
-            allocations(engine.as_ref(), case, variant.name, t);
-            let (short, steps) = allocations(engine.as_ref(), case, variant.name, t);
-            let (long, steps_long) = allocations(engine.as_ref(), case, variant.name, 2.0 * t);
+            allocations(engine.as_ref(), case, variant, t);
+            let (short, steps) = allocations(engine.as_ref(), case, variant, t);
+            let (long, steps_long) = allocations(engine.as_ref(), case, variant, 2.0 * t);
             assert_eq!(steps_long, 2 * steps, "{id}/{variant}: the long run is twice as long");
             eprintln!("{id}/{variant} on {name}: {short} allocations in {steps} steps, {long} in {steps_long}");
             (variant.to_string(), short, long, steps)
@@ -192,7 +198,7 @@ fn rapier_allocates_inside_its_pipeline() {
     }
 }
 
-/// A streamed predictor-corrector run holds nothing per step (issue 18 item 3): the
+/// A streamed predictor-corrector run holds nothing per step: the
 /// engine and the analysis's sinks — the first pass's run-wide scales, the second's
 /// summaries at every step, the history error against the reference evaluated at every
 /// step and the rows kept at the output step — allocate the same for T at output step
@@ -213,7 +219,8 @@ fn a_streamed_predictor_corrector_run_allocates_the_same_for_ten_times_the_steps
         let solution = rockslide::reference::for_case(&case).expect("the PEPO's reference");
         let before = ALLOCATIONS.with(Cell::get);
         let mut peaks = Peaks::default();
-        pc.run_streaming(&case, "paper", DT, &mut peaks).unwrap();
+        pc.run_streaming(&case, pc_variant::PAPER, DT, &mut peaks)
+            .unwrap();
         let mut sink = Summaries::new(
             &case,
             &peaks,
@@ -221,7 +228,9 @@ fn a_streamed_predictor_corrector_run_allocates_the_same_for_ten_times_the_steps
             case.run.output_dt,
             102,
         );
-        let mut run = pc.run_streaming(&case, "paper", DT, &mut sink).unwrap();
+        let mut run = pc
+            .run_streaming(&case, pc_variant::PAPER, DT, &mut sink)
+            .unwrap();
         let summary = sink.finish(&mut run);
         let after = ALLOCATIONS.with(Cell::get);
         assert!(summary.history.is_some());
@@ -256,7 +265,12 @@ impl rockslide::engine::StepSink for CountRows {
 
 /// Peak live bytes above the start of a streamed run of `engine`/`variant` on `case` for
 /// `duration` into a sink that keeps nothing, and the rows it handed on.
-fn streamed_peak(engine: &dyn Engine, case: &Case, variant: &str, duration: f64) -> (i64, u64) {
+fn streamed_peak(
+    engine: &dyn Engine,
+    case: &Case,
+    variant: rockslide::engine::Variant,
+    duration: f64,
+) -> (i64, u64) {
     let mut case = case.clone();
     case.run.duration = duration;
     let start = LIVE_BYTES.with(|c| {
@@ -290,9 +304,9 @@ fn assert_streamed_memory_bounded(id: &str, name: &str, case: &Case, duration: f
     assert!(engine.streams_natively(), "{id}");
     for variant in engine.variants(&case.scene).expect("runs the case") {
         // A first run warms whatever is set up once per process (lazy tables).
-        streamed_peak(engine.as_ref(), case, variant.name, duration);
-        let (short, rows) = streamed_peak(engine.as_ref(), case, variant.name, duration);
-        let (long, rows_long) = streamed_peak(engine.as_ref(), case, variant.name, 10.0 * duration);
+        streamed_peak(engine.as_ref(), case, variant, duration);
+        let (short, rows) = streamed_peak(engine.as_ref(), case, variant, duration);
+        let (long, rows_long) = streamed_peak(engine.as_ref(), case, variant, 10.0 * duration);
         eprintln!(
             "{id}/{variant} on {name} streamed: peak {short} bytes for {rows} rows, {long} for {rows_long}"
         );
@@ -305,7 +319,7 @@ fn assert_streamed_memory_bounded(id: &str, name: &str, case: &Case, duration: f
     }
 }
 
-/// fe streams natively (issue 18 item 3): the PEPO and the RPEPO, single and double (the
+/// fe streams natively: the PEPO and the RPEPO, single and double (the
 /// RPEPO's sensitivity reruns included), and the PEPO in plan.
 #[test]
 fn a_streamed_fe_run_holds_the_same_memory_for_ten_times_the_steps() {

@@ -7,7 +7,7 @@
 use std::path::Path;
 use std::process::ExitCode;
 
-use rockslide_core::case::{Case, Model};
+use rockslide_core::case::{Arrangement, Case, Model};
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::io::{inside, write_atomically};
 use rockslide_export::deck::DeckSettings;
@@ -77,10 +77,9 @@ fn opensees_exports(case: &Case) -> Result<Vec<Export>, rockslide_core::error::I
     let settings = Settings::from_case(case)?;
     let mut arrangements = vec![settings.clone()];
     if with_double(case, opensees::SECTION) {
-        arrangements.push(Settings {
-            double: true,
-            ..settings
-        });
+        let mut double = settings;
+        double.deck.arrangement = Arrangement::Double;
+        arrangements.push(double);
     }
     arrangements
         .iter()
@@ -99,7 +98,7 @@ fn deck_exports(
     let mut arrangements = vec![settings.clone()];
     if with_double(case, section) {
         arrangements.push(DeckSettings {
-            double: true,
+            arrangement: Arrangement::Double,
             ..settings
         });
     }

@@ -1,5 +1,5 @@
-//! A second, independent integrator for the plan-motion references (issue 16), written
-//! here from the equations of motion alone: fine uniform steps of a semi-implicit scheme
+//! A second, independent integrator for the plan-motion references
+//! (docs/bidirectional.md), written here from the equations of motion alone: fine uniform steps of a semi-implicit scheme
 //! whose friction (block) or plastic flow (oscillator) is the backward-Euler return map
 //! onto the circular cone — no event location, no stick/slip bookkeeping: sticking is the
 //! return map's zero, onset and stop happen inside a step. First order, so its error

@@ -1,4 +1,4 @@
-//! The plan-motion references (issue 16): (a) the rigid-plastic block on an isotropic
+//! The plan-motion references (docs/bidirectional.md): (a) the rigid-plastic block on an isotropic
 //! friction cone, (b) the elastic-perfectly-plastic oscillator with a circular yield
 //! surface. Invariance: a one-directional motion at an azimuth reproduces the 2D exact
 //! solution rotated (to the integrator's error, which falls at the observed order as the

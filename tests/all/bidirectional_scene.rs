@@ -1,9 +1,10 @@
-//! Bidirectional (3D) scenes (issue 16): the keys read into `Scene::spatial`, their
+//! Bidirectional (3D) scenes (docs/bidirectional.md): the keys read into `Scene::spatial`, their
 //! located errors, a planar case left planar, and every 2D engine refusing a 3D scene
 //! through the registry's one gate (never a silent planar run).
 
 use crate::common::{case, repo};
 use rockslide::case::{Case, Signal, parse_case};
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 
 /// The shipped PEPO (mass acceleration) with `extra` appended to `[excitation]` and the
 /// double arrangement dropped (its text is kept otherwise).
@@ -155,7 +156,10 @@ fn every_2d_engine_refuses_a_3d_scene() {
                 engine.id()
             )
         );
-        let err = engine.run(&c, "paper", 0.01).unwrap_err().to_string();
+        let err = engine
+            .run(&c, pc_variant::PAPER, 0.01)
+            .unwrap_err()
+            .to_string();
         assert!(
             err.contains("bidirectional (3D) scene is not modelled"),
             "{err}"

@@ -55,7 +55,7 @@ fn the_calculix_deck_carries_the_scenes_numbers_exactly() {
         panic!("an oscillator")
     };
     let settings = rockslide::export::deck::DeckSettings {
-        double: true,
+        arrangement: rockslide::case::Arrangement::Double,
         ..calculix::settings(&c).unwrap()
     };
     let export = calculix::export_with(&c, &settings).unwrap();

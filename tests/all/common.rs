@@ -50,7 +50,7 @@ pub fn parse_with_bad_options(path: &Path, text: &str) -> Case {
     let refused = parse_case(path, text).expect_err("a bad option is refused at load");
     let first = rockslide::registry::all()
         .iter()
-        .flat_map(|e| e.check_options(&c))
+        .flat_map(|e| e.parse_options(&c).err().unwrap_or_default())
         .next()
         .expect("an engine finds the bad option");
     assert_eq!(refused.0[0].to_string(), first.to_string());

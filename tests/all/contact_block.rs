@@ -1,4 +1,4 @@
-//! The per-contact block of every run's trace (issue 12, item 2).
+//! The per-contact block of every run's trace (docs/traces.md).
 //!
 //! Requirements checked:
 //! - every engine records, per contact, N, T, slip and gap at every trace row; the
@@ -11,6 +11,7 @@
 //!   friction or penetrates beyond its compliance fails; a correct one passes.
 
 use rockslide::case::{load_case, parse_case};
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::engine::{Run, RunStatus, SolverStats};
 use rockslide::formats::{read_contacts_csv, read_mcap};
 use rockslide::invariants::check_run;
@@ -181,7 +182,7 @@ fn a_contact_that_creeps_while_stuck_or_penetrates_fails_and_a_correct_one_passe
     assert!((worst(&over, "friction_bound") - 0.2).abs() < 1e-12);
 }
 
-/// Issue 12's rapier-under-record failure, caught without any reference: the former foot
+/// The rapier-under-record failure, caught without any reference: the former foot
 /// model (a 1 % foot on rapier's contact friction) at one substep under Northridge
 /// (μ = 0.1, 8 s) pushes the spring force to 1.78·μ·M·g (measured friction_bound 0.778,
 /// limit 0.05) while the foot's own contact holds |T| ≤ μN: the structure's side is held
@@ -199,7 +200,9 @@ fn the_friction_bound_catches_rapier_feet_under_a_record_without_a_reference() {
     let bound = |options: &str| {
         let text = text.replace("[engines.rapier]", &format!("[engines.rapier]\n{options}"));
         let c = parse_case(path, &text).expect("parses");
-        let run = Rapier.run(&c, "inertial-force", 5e-3).unwrap();
+        let run = Rapier
+            .run(&c, rapier_variant::INERTIAL_FORCE, 5e-3)
+            .unwrap();
         let check = check_run(&c, &run)
             .into_iter()
             .find(|k| k.invariant == "friction_bound")

@@ -1,5 +1,5 @@
-//! The energy audit of the rocking elastic-plastic oscillator (SPEC §1.1 RPEPO; issue 7:
-//! "an energy audit in every run"). The FE engine records the energy terms from its own
+//! The energy audit of the rocking elastic-plastic oscillator (the paper's RPEPO;
+//! docs/sweep-and-stability.md, "an energy audit in every run"). The FE engine records the energy terms from its own
 //! element states (`energy_*` channels) and `analysis::energy::audit` balances them.
 //! Checked independently: the static preload's strain energy in closed form, Newmark's
 //! exact discrete energy identity (with linear kinematics the balance minus the

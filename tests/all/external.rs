@@ -1,4 +1,4 @@
-//! External participants (issue 14): another program's results gated like an engine's.
+//! External participants (docs/verify-your-own-code.md): another program's results gated like an engine's.
 //!
 //! Requirements checked:
 //! - rockslide shall read its own trace CSV and MCAP back as an external participant with

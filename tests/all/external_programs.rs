@@ -1,4 +1,5 @@
-//! Other programs' result files as the programs write them (issue 31, items 1, 2 and 5).
+//! Other programs' result files as the programs write them
+//! (docs/verify-your-own-code.md).
 //!
 //! Requirements checked:
 //! - rockslide shall read a SAP2000 table export (long tables, units row, page header,

@@ -1,4 +1,5 @@
-//! The FE engine on the sliding oscillators (SPEC §1.1 PEPO, §1.2 linear SDOF), against
+//! The FE engine on the sliding oscillators (the paper's PEPO; the linear SDOF of
+//! Chopra §4.8), against
 //! the exact references: rockslide shall reproduce the closed-form and the exact
 //! elastic-plastic solutions with both contact arrangements, and its double model's
 //! intermediate node shall show the sliding to within element 1's elastic deflection.
@@ -224,7 +225,7 @@ fn bad_options_are_located_errors() {
         ("max_iterations = 2.5", "engines.fe.max_iterations"),
     ] {
         let c = case_with_bad_option("cases/pepo-mass-accel.toml", extra);
-        let errors = Fe.check_options(&c);
+        let errors = Fe.parse_options(&c).unwrap_err();
         assert_eq!(errors.len(), 1, "{extra}: {errors:?}");
         assert_eq!(errors[0].field, field);
         assert!(errors[0].line.is_some(), "{extra}: located");

@@ -1,4 +1,4 @@
-//! The FE engine on the rocking elastic-plastic oscillator (SPEC §1.1 RPEPO): rockslide
+//! The FE engine on the rocking elastic-plastic oscillator (the paper's RPEPO, Fig. 7): rockslide
 //! shall reproduce the model's design frequencies (ωX = 10π with shear and rocking in
 //! series, ωZ = 20π), start from static equilibrium under gravity, and give results that
 //! converge as Δt falls. No exact solution exists; the checks are closed-form frequencies

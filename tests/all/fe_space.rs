@@ -1,4 +1,4 @@
-//! The fe model in 3D (issue 16): it reproduces the 2D model when the motion stays in one
+//! The fe model in 3D (docs/bidirectional.md): it reproduces the 2D model when the motion stays in one
 //! vertical plane (PEPO and RPEPO, single and double), its answers rotate with the
 //! excitation and the scene, its contacts stay on or inside the circular friction cone,
 //! and it converges at second order as Δt falls under a bidirectional motion.
@@ -9,6 +9,7 @@ use std::path::Path;
 use nalgebra::{Matrix3, Rotation3, Vector2, Vector3};
 use rockslide::case::{Case, Model as SceneModel, parse_case};
 use rockslide::engine::fe::space::{BlockGrid, SpaceBody, SpaceRow, SpaceRun, run_space};
+use rockslide::engine::fe::variant::{DOUBLE_ELEMENT, SINGLE_ELEMENT};
 use rockslide::engine::fe::{FeOptions, simulate};
 use rockslide::engine::{Run, RunStatus};
 use rockslide::reference;
@@ -360,9 +361,12 @@ fn fe_runs_a_3d_scene_through_the_registry() {
         .find(|e| e.id() == "fe")
         .unwrap();
     assert!(fe.models_plan_motion());
-    assert_eq!(fe.variants(&c.scene).unwrap(), vec!["single", "double"]);
+    assert_eq!(
+        fe.variants(&c.scene).unwrap(),
+        vec![SINGLE_ELEMENT, DOUBLE_ELEMENT]
+    );
     let sol = reference::for_case(&case("cases/pepo-mass-accel.toml")).unwrap();
-    for variant in ["single", "double"] {
+    for variant in [SINGLE_ELEMENT, DOUBLE_ELEMENT] {
         let run = fe.run(&c, variant, 1e-3).unwrap();
         assert!(run.status.completed(), "{}", run.status);
         let exact = reference::sample(sol.as_ref(), &run.trace.time);
@@ -412,7 +416,7 @@ fn fe_runs_a_rocking_body_on_a_support_grid_from_the_scene() {
         .into_iter()
         .find(|e| e.id() == "fe")
         .unwrap();
-    for variant in ["single", "double"] {
+    for variant in [SINGLE_ELEMENT, DOUBLE_ELEMENT] {
         let run = fe.run(&c, variant, 1e-3).unwrap();
         assert!(run.status.completed(), "{}", run.status);
         assert_eq!(run.trace.contacts.count(), 20);
@@ -458,7 +462,11 @@ fn the_3d_oscillator_under_two_components_matches_the_plan_motion_reference() {
         .into_iter()
         .find(|e| e.id() == "fe")
         .unwrap();
-    for (variant, dt) in [("single", 1e-3), ("single", 5e-4), ("double", 1e-3)] {
+    for (variant, dt) in [
+        (SINGLE_ELEMENT, 1e-3),
+        (SINGLE_ELEMENT, 5e-4),
+        (DOUBLE_ELEMENT, 1e-3),
+    ] {
         let run = fe.run(&c, variant, dt).unwrap();
         assert!(run.status.completed(), "{}", run.status);
         let exact = reference::sample(sol.as_ref(), &run.trace.time);
@@ -512,7 +520,7 @@ fn the_3d_model_takes_a_vertical_component_as_the_2d_model_does() {
     let (cs, sn) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
     // the case has no double arrangement: the single contact
     {
-        let variant = "single";
+        let variant = SINGLE_ELEMENT;
         let flat = fe.run(&plane, variant, 1e-3).unwrap();
         let c = vertical_pepo_scene(30.0);
         assert!(c.scene.spatial.is_some() && c.scene.vertical().is_some());

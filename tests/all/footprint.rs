@@ -1,4 +1,4 @@
-//! Bounded memory and disk (issue 18): a run whose traces would not fit is refused before
+//! Bounded memory and disk (docs/performance.md): a run whose traces would not fit is refused before
 //! any work, with the case file, field, line, column and reason, and nothing written.
 //!
 //! Requirements checked:

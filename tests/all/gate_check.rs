@@ -1,6 +1,6 @@
 //! `rockslide check` as CI runs it: exit codes (0 pass, 1 gate failed, 2 bad input), one
 //! line per gated failure, and JUnit XML that an independent XML parser reads with the
-//! right counts. Requirement: SPEC §3 "Gate"; issue 6.
+//! right counts. Requirement: docs/report.md, "the gate".
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};

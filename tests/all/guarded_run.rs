@@ -1,7 +1,7 @@
 //! The one guarded run: an engine that panics is a recorded result carrying its message,
 //! under `check` as under `sweep`, `stability` and `study` — never an aborted command.
 //!
-//! Requirement (SPEC §4, issue 11): "A diverging run is a result, never a crash"; one
+//! Requirement (docs/sweep-and-stability.md): "A diverging run is a result, never a crash"; one
 //! guarded, timed function runs every engine.
 
 use rockslide::case::Scene;
@@ -26,7 +26,12 @@ impl Engine for Panicky {
     fn variants(&self, _: &Scene) -> Result<Vec<engine::Variant>, NotApplicable> {
         Ok(vec![engine::Variant::single("only")])
     }
-    fn run(&self, _: &rockslide::case::Case, _: &str, dt: f64) -> Result<engine::Run, InputError> {
+    fn run(
+        &self,
+        _: &rockslide::case::Case,
+        _: engine::Variant,
+        dt: f64,
+    ) -> Result<engine::Run, InputError> {
         panic!("element stiffness singular at dt = {dt}");
     }
 }
@@ -108,7 +113,8 @@ fn check_records_a_panicking_engine_and_runs_the_others() {
 #[test]
 fn a_guarded_run_of_a_panicking_engine_is_its_message() {
     let c = case("linear-sdof");
-    let t = guarded(&Panicky, &c, "only", 0.02, 3).expect("no input error");
+    let t =
+        guarded(&Panicky, &c, engine::Variant::single("only"), 0.02, 3).expect("no input error");
     assert_eq!(
         t.seconds.len(),
         1,

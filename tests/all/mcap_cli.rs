@@ -1,4 +1,4 @@
-//! `rockslide trace-info` on good and damaged MCAP files (issue 5; SPEC §5 "Bad input").
+//! `rockslide trace-info` on good and damaged MCAP files (docs/traces.md).
 //!
 //! Requirement: rockslide shall read back an MCAP trace it wrote and describe it; a
 //! truncated or corrupt MCAP file gives one clear message naming the file, exit code 2,

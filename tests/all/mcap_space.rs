@@ -1,4 +1,4 @@
-//! The 3D view of a bidirectional (3D) scene in the MCAP trace (issue 16): the mass moves
+//! The 3D view of a bidirectional (3D) scene in the MCAP trace (docs/traces.md): the mass moves
 //! in x and y, the body tilts and twists as its rotation vector, the ground moves with both
 //! components, every support of an nx × ny grid is drawn, for every run and the reference
 //! (a ghost in its own lane). Read back from the file and checked against the trace's
@@ -204,7 +204,7 @@ fn the_oscillator_moves_in_x_and_y_in_every_run_and_the_reference() {
 const GRID_CASE: &str = r#"
 # Test-only RPEPO-like body on a 4 × 3 grid of supports in a 3D scene, for the 3D view.
 title = "Rocking body on a grid, 3D view test"
-source = "SPEC §1.1 RPEPO geometry, extended to a grid (issue 16)"
+source = "AL-Shawaf & Rahman, Fig. 7: RPEPO geometry, extended to a grid"
 requirement = "rockslide shall draw a 3D scene's body, supports and ground in Foxglove's 3D panel"
 [model]
 kind = "rocking-body"

@@ -1,4 +1,4 @@
-//! MCAP traces (issue 5; SPEC §3 "Traces").
+//! MCAP traces (docs/traces.md).
 //!
 //! Requirements checked:
 //! - rockslide shall write one MCAP file per case run with one state channel per engine
@@ -503,9 +503,9 @@ fn pepo_case_mcap_reads_back_equal_to_csv() {
 // 3D output), with motions whose geometry is known in closed form.
 
 const ROCKING_CASE: &str = r#"
-# Test-only RPEPO-like scene (SPEC §1.1), for the 3D view; units SI.
+# Test-only RPEPO-like scene (the paper's Fig. 7), for the 3D view; units SI.
 title = "Rocking body, 3D view test"
-source = "SPEC §1.1 RPEPO geometry"
+source = "AL-Shawaf & Rahman, Fig. 7: RPEPO geometry"
 requirement = "rockslide shall draw a body with geometry in Foxglove's 3D panel"
 [model]
 kind = "rocking-body"
@@ -530,9 +530,9 @@ dt = 0.0005
 "#;
 
 const BLOCK_CASE: &str = r#"
-# Test-only Newmark sliding block (SPEC §1.2), for the 3D view; units SI.
+# Test-only Newmark sliding block (Newmark 1965), for the 3D view; units SI.
 title = "Rigid block, 3D view test"
-source = "SPEC §1.2 rigid sliding block"
+source = "Newmark 1965: rigid sliding block"
 requirement = "rockslide shall draw a sliding block without a rotation field"
 [model]
 kind = "rigid-block"

@@ -14,6 +14,7 @@ use rockslide::case::Case;
 use rockslide::registry::parse_case;
 
 use crate::common::{repo, rockslide};
+use rockslide::engine::rigid_body::variant as rapier_variant;
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!(
@@ -180,7 +181,7 @@ fn rapier_with_kx_1e300_is_refused_before_running() {
     let case = parse(name, &text).unwrap();
     let engine = rockslide::registry::engine("rapier").unwrap();
     let e = engine
-        .run(&case, "applied-force", case.run.dt)
+        .run(&case, rapier_variant::APPLIED_FORCE, case.run.dt)
         .err()
         .unwrap()
         .to_string();
@@ -198,7 +199,10 @@ fn rapier_with_a_mass_of_1e_300_under_a_record_is_refused_before_running() {
         .replace("kx = 9.8696e8 ", "kx = 1e-282 ");
     let case = parse(name, &text).unwrap();
     let engine = rockslide::registry::engine("rapier").unwrap();
-    for variant in ["kinematic-ground", "inertial-force"] {
+    for variant in [
+        rapier_variant::KINEMATIC_GROUND,
+        rapier_variant::INERTIAL_FORCE,
+    ] {
         let e = engine
             .run(&case, variant, case.run.dt)
             .err()

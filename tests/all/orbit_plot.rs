@@ -1,4 +1,4 @@
-//! The orbit plot (issue 16): the sliding path in plan, drawn for a spatial scene only,
+//! The orbit plot (docs/bidirectional.md): the sliding path in plan, drawn for a spatial scene only,
 //! its axes extending to ± the largest peak resultant sliding of any participant.
 
 use std::path::Path;

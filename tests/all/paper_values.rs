@@ -5,6 +5,7 @@
 use crate::common;
 
 use rockslide::analysis::responses;
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{Engine, predictor_corrector::PredictorCorrector};
 use rockslide::suite::solve_reference;
 
@@ -40,7 +41,9 @@ fn exact_slip_times_agree_with_the_paper_within_its_resolution() {
 fn spreadsheet_step_reproduces_the_stated_times_exactly() {
     let s = stated();
     let case = common::case("pepo-mass-accel");
-    let run = PredictorCorrector.run(&case, "paper", 0.01).unwrap();
+    let run = PredictorCorrector
+        .run(&case, pc_variant::PAPER, 0.01)
+        .unwrap();
     let r = run.trace.column("resistance").unwrap();
     let first = r.iter().position(|&x| x >= 5.0e5 * (1.0 - 1e-12)).unwrap();
     let t_limit = run.trace.time[first];

@@ -1,4 +1,4 @@
-//! Figures of a streamed run (issue 18, item 3): a run analysed as it streams keeps, for
+//! Figures of a streamed run (docs/performance.md): a run analysed as it streams keeps, for
 //! every channel, the minimum and maximum of each of `ENVELOPE_BUCKETS` time slices over
 //! every step, and its figures draw those instead of the rows kept at `output_dt`.
 //!

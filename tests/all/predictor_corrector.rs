@@ -5,17 +5,18 @@
 use crate::common;
 
 use rockslide::analysis::{history_difference, responses};
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{Engine, Run, predictor_corrector::PredictorCorrector};
 use rockslide::reference::{for_case, sample};
 
-fn run(case: &rockslide::case::Case, variant: &str, dt: f64) -> Run {
+fn run(case: &rockslide::case::Case, variant: rockslide::engine::Variant, dt: f64) -> Run {
     let r = PredictorCorrector.run(case, variant, dt).unwrap();
     assert!(r.status.completed(), "{variant} at {dt}: {}", r.status);
     r
 }
 
 /// Max |Δx| / peak against the case's reference.
-fn error(case: &rockslide::case::Case, variant: &str, dt: f64) -> f64 {
+fn error(case: &rockslide::case::Case, variant: rockslide::engine::Variant, dt: f64) -> f64 {
     let r = run(case, variant, dt);
     let exact = for_case(case).unwrap();
     let s = sample(exact.as_ref(), &r.trace.time);
@@ -28,9 +29,9 @@ fn error(case: &rockslide::case::Case, variant: &str, dt: f64) -> f64 {
 fn linear_case_converges_at_second_order() {
     let case = common::case("linear-sdof");
     let (e1, e2, e3) = (
-        error(&case, "paper", 1e-3),
-        error(&case, "paper", 1e-4),
-        error(&case, "paper", 1e-5),
+        error(&case, pc_variant::PAPER, 1e-3),
+        error(&case, pc_variant::PAPER, 1e-4),
+        error(&case, pc_variant::PAPER, 1e-5),
     );
     assert!(
         e1 < 1.8e-3 && e2 < 1.8e-5 && e3 < 1.8e-7,
@@ -54,7 +55,7 @@ fn pepo_mass_acceleration_error_falls_at_second_order() {
     let case = common::case("pepo-mass-accel");
     let errs: Vec<f64> = [1e-2, 1e-3, 1e-4, 1e-5]
         .iter()
-        .map(|&dt| error(&case, "paper", dt))
+        .map(|&dt| error(&case, pc_variant::PAPER, dt))
         .collect();
     assert!(
         errs[0] < 1.34e-2 && errs[1] < 1.59e-4 && errs[2] < 1.34e-6 && errs[3] < 1.85e-8,
@@ -72,9 +73,9 @@ fn pepo_mass_acceleration_error_falls_at_second_order() {
 fn pepo_ground_acceleration_route_converges() {
     let case = common::case("pepo-ground-disp");
     let (e1, e2, e3) = (
-        error(&case, "ground-accel", 1e-3),
-        error(&case, "ground-accel", 1e-4),
-        error(&case, "ground-accel", 1e-5),
+        error(&case, pc_variant::GROUND_ACCEL, 1e-3),
+        error(&case, pc_variant::GROUND_ACCEL, 1e-4),
+        error(&case, pc_variant::GROUND_ACCEL, 1e-5),
     );
     assert!(
         e1 < 4.1e-4 && e2 < 3.9e-6 && e3 < 5.3e-8,
@@ -91,7 +92,7 @@ fn pepo_ground_acceleration_route_converges() {
 #[test]
 fn literal_eq12_route_diverges_as_dt_falls() {
     let case = common::case("pepo-ground-disp");
-    let resid = |dt| responses(&run(&case, "eq12", dt).trace)["residual_sliding"];
+    let resid = |dt| responses(&run(&case, pc_variant::EQ12, dt).trace)["residual_sliding"];
     let (r1, r2) = (resid(1e-3), resid(1e-4));
     assert!((0.40..0.41).contains(&r1), "residual at 1e-3: {r1}");
     let ratio = r2 / r1;
@@ -105,9 +106,9 @@ fn literal_eq12_route_diverges_as_dt_falls() {
 fn eq12_with_slip_counted_once_converges_at_first_order() {
     let case = common::case("pepo-ground-disp");
     let (e1, e2, e3) = (
-        error(&case, "eq12-slip-once", 1e-3),
-        error(&case, "eq12-slip-once", 1e-4),
-        error(&case, "eq12-slip-once", 1e-5),
+        error(&case, pc_variant::EQ12_SLIP_ONCE, 1e-3),
+        error(&case, pc_variant::EQ12_SLIP_ONCE, 1e-4),
+        error(&case, pc_variant::EQ12_SLIP_ONCE, 1e-5),
     );
     assert!(
         e1 < 3.7e-2 && e2 < 3.6e-3 && e3 < 3.6e-4,
@@ -129,7 +130,7 @@ fn eq12_with_slip_counted_once_converges_at_first_order() {
 fn eq9_change_is_reported_and_shrinks() {
     let case = common::case("pepo-mass-accel");
     let change = |dt| {
-        let r = run(&case, "paper", dt);
+        let r = run(&case, pc_variant::PAPER, dt);
         let f = r
             .findings
             .iter()
@@ -156,7 +157,11 @@ fn eq9_change_is_reported_and_shrinks() {
 #[test]
 fn runs_are_deterministic() {
     let case = common::case("pepo-ground-disp");
-    for v in ["eq12", "eq12-slip-once", "ground-accel"] {
+    for v in [
+        pc_variant::EQ12,
+        pc_variant::EQ12_SLIP_ONCE,
+        pc_variant::GROUND_ACCEL,
+    ] {
         assert_eq!(run(&case, v, 1e-3).trace, run(&case, v, 1e-3).trace);
     }
 }

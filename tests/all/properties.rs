@@ -5,6 +5,7 @@ use crate::common;
 
 use proptest::prelude::*;
 use rockslide::engine::predictor_corrector::resistance;
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{Engine, predictor_corrector::PredictorCorrector};
 
 proptest! {
@@ -30,7 +31,7 @@ proptest! {
             let text = case.text.replacen("mu = 0.5\n", &format!("mu = {mu}\n"), 1);
             rockslide::case::parse_case(&case.path, &text).unwrap()
         };
-        let run = PredictorCorrector.run(&case, "paper", 1e-3).unwrap();
+        let run = PredictorCorrector.run(&case, pc_variant::PAPER, 1e-3).unwrap();
         let r = run.trace.column("resistance").unwrap();
         let xp = run.trace.column("slide").unwrap();
         let ru = mu * 1.0e6 * 1.0;

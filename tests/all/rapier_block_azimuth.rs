@@ -17,6 +17,7 @@ use std::path::Path;
 use rockslide::analysis::{Verdict, evaluate_tolerances, responses};
 use rockslide::case::{Case, load_case, parse_case};
 use rockslide::engine::rigid_body::Rapier;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::engine::{Engine, Run};
 use rockslide::suite::solve_reference;
 
@@ -32,7 +33,7 @@ fn slab_with(edits: &[(&str, &str)]) -> Case {
     parse_case(Path::new(SLAB), &text).expect("parses")
 }
 
-fn run(c: &Case, variant: &str) -> Run {
+fn run(c: &Case, variant: rockslide::engine::Variant) -> Run {
     let r = Rapier.run(c, variant, c.dt_for("rapier")).unwrap();
     assert!(r.status.completed(), "{}", r.status);
     r
@@ -69,7 +70,7 @@ fn slab_block_slides_along_its_drive_at_any_azimuth() {
             ("azimuth_deg = 30.0", &format!("azimuth_deg = {deg}")),
             ("half_depth = 0.5", &format!("half_depth = {depth}")),
         ]);
-        let s = residual(&run(&c, "inertial-force"));
+        let s = residual(&run(&c, rapier_variant::INERTIAL_FORCE));
         let drive = (deg + 180.0_f64).to_radians();
         let off = angle_between(s, [drive.cos(), drive.sin()]);
         let e = (s[0].hypot(s[1]) - exact) / exact;
@@ -121,7 +122,7 @@ fn verdicts(c: &Case, r: Run) -> Vec<(String, Verdict)> {
 #[test]
 fn gate_fails_a_block_sliding_off_its_drive() {
     let c = load_case(Path::new(SLAB)).unwrap();
-    let r = run(&c, "inertial-force");
+    let r = run(&c, rapier_variant::INERTIAL_FORCE);
     for (quantity, verdict) in verdicts(&c, r.clone()) {
         assert_eq!(verdict, Verdict::Pass, "{quantity}");
     }
@@ -141,7 +142,7 @@ fn gate_fails_a_block_sliding_off_its_drive() {
 #[test]
 fn a_block_friction_could_tip_is_stated_outside_validity() {
     let finding = |c: &Case| {
-        let r = run(c, "inertial-force");
+        let r = run(c, rapier_variant::INERTIAL_FORCE);
         r.findings
             .iter()
             .find(|f| f.contains("locked"))

@@ -11,6 +11,7 @@ use rockslide::analysis::{history_difference, responses};
 use rockslide::case::{Case, Model, load_case, parse_case};
 use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::reference;
 use rockslide::suite::solve_reference;
 
@@ -41,7 +42,9 @@ fn friction_limit(c: &Case) -> f64 {
 fn pepo_mass_acceleration_against_exact() {
     let c = case("pepo-mass-accel");
     let reference = solve_reference(&c).unwrap();
-    let run = Rapier.run(&c, "applied-force", c.dt_for("rapier")).unwrap();
+    let run = Rapier
+        .run(&c, rapier_variant::APPLIED_FORCE, c.dt_for("rapier"))
+        .unwrap();
     let r = responses(&run.trace);
     let sampled = reference::sample(reference.solution.as_ref(), &run.trace.time);
     let (max, rms) = history_difference(&run.trace, &sampled, "rel_disp").unwrap();
@@ -75,7 +78,9 @@ fn pepo_mass_acceleration_against_exact() {
 fn linear_sdof_against_duhamel() {
     let c = case("linear-sdof");
     let reference = solve_reference(&c).unwrap();
-    let run = Rapier.run(&c, "applied-force", c.dt_for("rapier")).unwrap();
+    let run = Rapier
+        .run(&c, rapier_variant::APPLIED_FORCE, c.dt_for("rapier"))
+        .unwrap();
     let r = responses(&run.trace);
     let sampled = reference::sample(reference.solution.as_ref(), &run.trace.time);
     let (max, _) = history_difference(&run.trace, &sampled, "rel_disp").unwrap();
@@ -95,7 +100,10 @@ fn pepo_ground_displacement_both_routes() {
     let c = case("pepo-ground-disp");
     let reference = solve_reference(&c).unwrap();
     let exact = reference.responses["residual_sliding"];
-    for (variant, tol) in [("kinematic-ground", 3e-4), ("inertial-force", 8e-3)] {
+    for (variant, tol) in [
+        (rapier_variant::KINEMATIC_GROUND, 3e-4),
+        (rapier_variant::INERTIAL_FORCE, 8e-3),
+    ] {
         let run = Rapier.run(&c, variant, c.dt_for("rapier")).unwrap();
         let r = responses(&run.trace);
         let res = r["residual_sliding"];
@@ -114,7 +122,7 @@ fn pepo_ground_displacement_both_routes() {
 #[test]
 fn settings_and_validity_are_stated() {
     let c = case("pepo-mass-accel");
-    let run = Rapier.run(&c, "applied-force", 0.01).unwrap();
+    let run = Rapier.run(&c, rapier_variant::APPLIED_FORCE, 0.01).unwrap();
     let setting = |key: &str| {
         crate::common::setting(&run, key)
             .unwrap_or_else(|| panic!("setting {key} missing: {:?}", run.settings))
@@ -138,7 +146,7 @@ fn settings_and_validity_are_stated() {
     // step: refused before running, located, as outside the engine's validity
     let strict = with_rapier_options("pepo-mass-accel", "accuracy = 1e-4");
     let e = Rapier
-        .run(&strict, "applied-force", 1000.0)
+        .run(&strict, rapier_variant::APPLIED_FORCE, 1000.0)
         .unwrap_err()
         .to_string();
     assert!(
@@ -154,7 +162,7 @@ fn settings_and_validity_are_stated() {
 fn foot_model_is_flagged_outside_validity() {
     let c = with_rapier_options("pepo-mass-accel", "contact_model = \"foot\"\nsubsteps = 16");
     let reference = solve_reference(&c).unwrap();
-    let run = Rapier.run(&c, "applied-force", 1e-3).unwrap();
+    let run = Rapier.run(&c, rapier_variant::APPLIED_FORCE, 1e-3).unwrap();
     let r = responses(&run.trace);
     let e = r["residual_sliding"] / reference.responses["residual_sliding"] - 1.0;
     let over = r["peak_resistance"] / friction_limit(&c);

@@ -2,7 +2,7 @@
 //! exact reference (the undamped PEPO solved exactly for the ground acceleration piecewise
 //! linear between samples), both ground routes, at the cases' own settings: output step
 //! 5 ms, the engine's step rule for an accuracy target of 1 % (1 ms rapier steps),
-//! joint-limit contact. Targets (issue 17): residual sliding within 2 % median / 5 % worst
+//! joint-limit contact. Targets (docs/rapier-engine.md): residual sliding within 2 % median / 5 % worst
 //! for slides ≥ 1 cm, peak |u| within 2 %, |R| ≤ 1.02·μ·N at every step. Tolerances are
 //! the measured errors with a small margin.
 
@@ -15,6 +15,7 @@ use rockslide::engine::rigid_body::Rapier;
 use rockslide::suite::solve_reference;
 
 use crate::common::{case_edited, setting};
+use rockslide::engine::rigid_body::variant as rapier_variant;
 
 /// (case, residual tolerance as (relative, absolute m), peak |u| relative tolerance).
 /// Measured (kinematic / inertial): Loma Prieta (residual 28.8 mm) +0.011 / +0.013 %,
@@ -40,7 +41,10 @@ fn pepo_under_records_against_exact() {
             Model::Oscillator(o) => o.friction_limit(),
             _ => unreachable!(),
         };
-        for variant in ["kinematic-ground", "inertial-force"] {
+        for variant in [
+            rapier_variant::KINEMATIC_GROUND,
+            rapier_variant::INERTIAL_FORCE,
+        ] {
             let run = Rapier.run(&c, variant, c.dt_for("rapier")).unwrap();
             let r = responses(&run.trace);
             let (res, peak) = (r["residual_sliding"], r["peak_relative_displacement"]);
@@ -72,7 +76,7 @@ fn pepo_under_records_against_exact() {
 /// The rigid block on the moving kinematic ground under the shipped Northridge record,
 /// with the block's step rule (accuracy 0.01: the error estimate K·PGA·Δt² within 1 % of
 /// the total slid) and solver (one substep, 240 Hz contact): total slid within 1 % of the
-/// exact block reference (issue 17's target), residual within 2 %. Measured: total slid
+/// exact block reference (docs/rapier-engine.md's target), residual within 2 %. Measured: total slid
 /// +0.191 %, residual −0.011 %, at 2 rapier steps of one substep per 1 ms (the first-order
 /// rule before it: +0.386 % and −0.762 % at 13 steps; at 1 ms and 4 substeps: +2.86 %).
 #[test]
@@ -80,7 +84,7 @@ fn block_on_kinematic_ground_meets_the_target_with_its_step_rule() {
     let c = load_case(Path::new("cases/records/block-northridge.toml")).unwrap();
     let reference = solve_reference(&c).unwrap();
     let run = Rapier
-        .run(&c, "kinematic-ground", c.dt_for("rapier"))
+        .run(&c, rapier_variant::KINEMATIC_GROUND, c.dt_for("rapier"))
         .unwrap();
     let r = responses(&run.trace);
     let slid = r["total_slid"] / reference.responses["total_slid"] - 1.0;
@@ -122,7 +126,7 @@ fn block_step_rule_beyond_its_budget_says_outside_validity() {
         ],
     );
     let run = Rapier
-        .run(&c, "kinematic-ground", c.dt_for("rapier"))
+        .run(&c, rapier_variant::KINEMATIC_GROUND, c.dt_for("rapier"))
         .unwrap();
     // 10^6 rapier steps over 22 s of 1 ms output steps: 45 per output step.
     let step = setting(&run, "rapier step").unwrap();
@@ -143,7 +147,7 @@ fn block_solver_on_a_kinematic_ground_holds_without_the_step_rule() {
     let short = ("duration = 22.0", "duration = 0.1");
     let c = case_edited("records/block-northridge", &[no_rule, short]);
     let run = Rapier
-        .run(&c, "kinematic-ground", c.dt_for("rapier"))
+        .run(&c, rapier_variant::KINEMATIC_GROUND, c.dt_for("rapier"))
         .unwrap();
     assert_eq!(setting(&run, "substeps").as_deref(), Some("1"));
     assert!(setting(&run, "contact softness (moving body)").is_some_and(|v| v.starts_with("240,")));
@@ -159,7 +163,7 @@ fn block_solver_on_a_kinematic_ground_holds_without_the_step_rule() {
     );
     let c = case_edited("records/block-northridge", &[no_rule, own, short]);
     let run = Rapier
-        .run(&c, "kinematic-ground", c.dt_for("rapier"))
+        .run(&c, rapier_variant::KINEMATIC_GROUND, c.dt_for("rapier"))
         .unwrap();
     assert_eq!(setting(&run, "substeps").as_deref(), Some("4"));
     let hz = setting(&run, "contact softness (moving body)");

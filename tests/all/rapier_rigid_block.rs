@@ -10,6 +10,7 @@ use rockslide::analysis::responses;
 use rockslide::case::{Case, load_case};
 use rockslide::engine::Engine;
 use rockslide::engine::rigid_body::Rapier;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::reference;
 use rockslide::suite::solve_reference;
 
@@ -30,7 +31,10 @@ fn sliding_block_matches_newmark() {
     let mu_mg = 0.2 * 1000.0 * 9.81;
     // measured at dt = 1 ms, 4 substeps, Simplified friction:
     //   kinematic ground: residual −0.2815668 m vs −0.2809445 m (0.22 %), inertial 0.005 %
-    for (variant, tol) in [("kinematic-ground", 0.003), ("inertial-force", 1e-4)] {
+    for (variant, tol) in [
+        (rapier_variant::KINEMATIC_GROUND, 0.003),
+        (rapier_variant::INERTIAL_FORCE, 1e-4),
+    ] {
         let run = Rapier.run(&c, variant, c.dt_for("rapier")).unwrap();
         assert!(run.status.completed());
         let r = responses(&run.trace);
@@ -71,7 +75,9 @@ fn coulomb_friction_model_undershoots_mu() {
             "[engines.rapier]\nfriction_model = \"coulomb\"",
         );
     let c = rockslide::case::parse_case(Path::new("coulomb.toml"), &text).unwrap();
-    let run = Rapier.run(&c, "inertial-force", 1e-3).unwrap();
+    let run = Rapier
+        .run(&c, rapier_variant::INERTIAL_FORCE, 1e-3)
+        .unwrap();
     let mu_eff = responses(&run.trace)["peak_resistance"] / (1000.0 * 9.81);
     println!("effective μ with the Coulomb model: {mu_eff}");
     assert!((mu_eff - 0.1745).abs() < 0.002, "effective μ {mu_eff}");
@@ -82,7 +88,9 @@ fn coulomb_friction_model_undershoots_mu() {
 fn free_rocking_matches_housner() {
     let c = case("housner-free-rocking");
     let reference = solve_reference(&c).unwrap();
-    let run = Rapier.run(&c, "fixed-ground", c.dt_for("rapier")).unwrap();
+    let run = Rapier
+        .run(&c, rapier_variant::FIXED_GROUND, c.dt_for("rapier"))
+        .unwrap();
     let r = responses(&run.trace);
     // measured at dt = 1 ms, 16 substeps: first impact 0.49644 s vs 0.49656 s (0.02 %),
     // second 1.3531 s vs 1.3585 s (0.4 %), tilt after the first impact 0.08375 rad vs
@@ -112,8 +120,8 @@ fn pulse_rocking_matches_housner_by_both_routes() {
     // measured at dt = 1 ms, 16 substeps (kinematic / inertial): first impact +0.46 % /
     // +0.13 %, second −0.49 % / −0.32 %, peak rotation −1.10 % / −0.63 %
     for (variant, tol_first, tol_rot) in [
-        ("kinematic-ground", 6e-3, 1.4e-2),
-        ("inertial-force", 2e-3, 8e-3),
+        (rapier_variant::KINEMATIC_GROUND, 6e-3, 1.4e-2),
+        (rapier_variant::INERTIAL_FORCE, 2e-3, 8e-3),
     ] {
         let run = Rapier.run(&c, variant, c.dt_for("rapier")).unwrap();
         let r = responses(&run.trace);
@@ -136,9 +144,9 @@ fn pulse_rocking_matches_housner_by_both_routes() {
 #[test]
 fn same_case_twice_gives_bit_identical_traces() {
     for (name, variant) in [
-        ("housner-pulse", "kinematic-ground"),
-        ("rigid-sliding-block", "inertial-force"),
-        ("pepo-mass-accel", "applied-force"),
+        ("housner-pulse", rapier_variant::KINEMATIC_GROUND),
+        ("rigid-sliding-block", rapier_variant::INERTIAL_FORCE),
+        ("pepo-mass-accel", rapier_variant::APPLIED_FORCE),
     ] {
         let c = case(name);
         let a = Rapier.run(&c, variant, 2e-3).unwrap();

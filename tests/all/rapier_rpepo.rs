@@ -1,16 +1,19 @@
 //! The rapier engine on the paper's RPEPO (rocking body on ten supports: applied-force by
 //! default, joint-limit and feet as options): static preload, no creep at rest, the two
-//! ground-motion routes agreeing, the eigenfrequency, and agreement with the FE engine. No exact reference exists (SPEC
-//! §2); the engine's own convergence is in docs/rapier-engine.md.
+//! ground-motion routes agreeing, the eigenfrequency, and agreement with the FE engine. No
+//! exact reference exists (docs/references.md); the engine's own convergence is in
+//! docs/rapier-engine.md.
 
 use std::path::Path;
 
 use rockslide::analysis::responses;
 use rockslide::case::{Case, parse_case};
 use rockslide::engine::Engine;
+use rockslide::engine::fe::variant as fe_variant;
 use rockslide::engine::rigid_body::Rapier;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 
-/// The paper's RPEPO (SPEC §1.1) with the given excitation and extra rapier options.
+/// The paper's RPEPO (AL-Shawaf & Rahman, Fig. 7) with the given excitation and extra rapier options.
 fn rpepo(excitation: &str, duration: f64, options: &str) -> Case {
     let text = format!(
         r#"
@@ -43,7 +46,7 @@ fn rests_in_static_equilibrium_without_creep() {
     let c = rpepo(r#"kind = "none""#, 0.5, "");
     // dt 0.1 ms × 4 substeps resolves the rocking mode of the stated inertia (21,400 rad/s,
     // ω·h = 0.53); at 1 ms (ω·h = 5.3) the body does not rest (base shear −2.8 MN).
-    let run = Rapier.run(&c, "fixed-ground", 1e-4).unwrap();
+    let run = Rapier.run(&c, rapier_variant::FIXED_GROUND, 1e-4).unwrap();
     let t = &run.trace;
     let w = 1.0e6 * 9.81;
     let n0 = t.column("normal").unwrap()[0];
@@ -72,7 +75,9 @@ fn one_sweep_lets_loaded_feet_creep() {
         0.5,
         "pgs_iterations = 1\ncontact_model = \"foot\"",
     );
-    let run = Rapier.run(&c, "fixed-ground", 2.5e-4).unwrap();
+    let run = Rapier
+        .run(&c, rapier_variant::FIXED_GROUND, 2.5e-4)
+        .unwrap();
     let creep = responses(&run.trace)["min_sliding"].abs();
     println!("creep with one sweep {creep:e}");
     assert!(creep > 1e-4, "expected creep, got {creep} m");
@@ -92,8 +97,18 @@ cycles = 5.0"#,
         1.0,
         "",
     );
-    let a = responses(&Rapier.run(&c, "kinematic-ground", 2.5e-4).unwrap().trace);
-    let b = responses(&Rapier.run(&c, "inertial-force", 2.5e-4).unwrap().trace);
+    let a = responses(
+        &Rapier
+            .run(&c, rapier_variant::KINEMATIC_GROUND, 2.5e-4)
+            .unwrap()
+            .trace,
+    );
+    let b = responses(
+        &Rapier
+            .run(&c, rapier_variant::INERTIAL_FORCE, 2.5e-4)
+            .unwrap()
+            .trace,
+    );
     for key in ["peak_uplift", "peak_rotation", "peak_base_shear"] {
         let e = (a[key] / b[key] - 1.0).abs();
         println!("{key}: {} vs {} ({e:.2e})", a[key], b[key]);
@@ -113,8 +128,8 @@ cycles = 5.0"#,
         1.0,
         "",
     );
-    let a = Rapier.run(&c, "applied-force", 5e-4).unwrap();
-    let b = Rapier.run(&c, "applied-force", 5e-4).unwrap();
+    let a = Rapier.run(&c, rapier_variant::APPLIED_FORCE, 5e-4).unwrap();
+    let b = Rapier.run(&c, rapier_variant::APPLIED_FORCE, 5e-4).unwrap();
     assert!(
         responses(&a.trace)["peak_uplift"] > 1e-3,
         "the run lifts off"
@@ -146,7 +161,7 @@ cycles = 0.5"#,
         0.8,
         "",
     );
-    let run = Rapier.run(&c, "applied-force", 1e-4).unwrap();
+    let run = Rapier.run(&c, rapier_variant::APPLIED_FORCE, 1e-4).unwrap();
     let t = &run.trace;
     let x = t.column("cm_x").unwrap();
     let start = (0.05 / 1e-4) as usize; // after the pulse (ends at 0.0157 s)
@@ -204,7 +219,7 @@ cycles = 0.5"#,
 }
 
 /// rockslide's rapier RPEPO shall agree with the FE engine (single CONTA178, the case's
-/// own settings) before the first full lift-off, within issue 17's 5 %, with either
+/// own settings) before the first full lift-off, within the 5 % of docs/rapier-engine.md, with either
 /// support model: measured on `cases/rpepo-mass-accel.toml` at rapier's own step rule,
 /// 1 ms output (docs/rapier-engine.md):
 /// - applied-force (the default, 15 steps of 66.7 µs): peak uplift +0.36 %, peak
@@ -221,8 +236,12 @@ fn rpepo_matches_fe_before_liftoff(options: &str, liftoff: f64, peaks: [f64; 2],
         1,
     );
     let c = parse_case(Path::new("cases/rpepo-mass-accel.toml"), &text).unwrap();
-    let fe = Fe.run(&c, "single", c.dt_for("fe")).unwrap();
-    let ra = Rapier.run(&c, "applied-force", c.dt_for("rapier")).unwrap();
+    let fe = Fe
+        .run(&c, fe_variant::SINGLE_ELEMENT, c.dt_for("fe"))
+        .unwrap();
+    let ra = Rapier
+        .run(&c, rapier_variant::APPLIED_FORCE, c.dt_for("rapier"))
+        .unwrap();
     let (f, r) = (responses(&fe.trace), responses(&ra.trace));
     let t_lift = f["first_liftoff"];
     println!("lift-off fe {t_lift} rapier {}", r["first_liftoff"]);
@@ -263,7 +282,7 @@ fn joint_limit_rpepo_matches_fe_before_liftoff() {
     );
 }
 
-/// rockslide's rapier RPEPO on applied-force supports shall cost at most issue 17's
+/// rockslide's rapier RPEPO on applied-force supports shall cost at most docs/rapier-engine.md's
 /// 50 ms of CPU per simulated second where the joint-limit supports cost about 100:
 /// rapier steps are counted, not timed — the rule ω_r·h ≤ 1.5 with one substep gives 15
 /// steps per 1 ms output on the RPEPO (ω_r = 21,400 rad/s), against 5 steps × 4 substeps
@@ -272,9 +291,9 @@ fn joint_limit_rpepo_matches_fe_before_liftoff() {
 #[test]
 fn applied_force_takes_fewer_solver_steps() {
     let c = rpepo(r#"kind = "none""#, 0.01, "");
-    let applied = Rapier.run(&c, "fixed-ground", 1e-3).unwrap();
+    let applied = Rapier.run(&c, rapier_variant::FIXED_GROUND, 1e-3).unwrap();
     let c = rpepo(r#"kind = "none""#, 0.01, "contact_model = \"joint-limit\"");
-    let joints = Rapier.run(&c, "fixed-ground", 1e-3).unwrap();
+    let joints = Rapier.run(&c, rapier_variant::FIXED_GROUND, 1e-3).unwrap();
     let substeps = |r: &rockslide::engine::Run| r.stats.steps * r.stats.substeps_per_step.unwrap();
     // ω_r from the scene: √((n·Kx·h² + Kz·Σx²)/I), I = 1e-4·M(b² + h²)/3
     let sum_x2: f64 = (0..10).map(|i| (-0.5 + i as f64 / 9.0).powi(2)).sum();

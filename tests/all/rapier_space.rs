@@ -1,4 +1,4 @@
-//! The rapier engine on bidirectional (3D) scenes (issue 16): the PEPO as an oscillator in
+//! The rapier engine on bidirectional (3D) scenes (docs/bidirectional.md): the PEPO as an oscillator in
 //! plan (applied force on a circular cone) and the rigid block on the ground slab, against
 //! the plan-motion references (crates/reference/src/bidirectional); the block under one
 //! record at several azimuths (rotation invariance, rapier's anisotropy); the friction
@@ -9,6 +9,8 @@ use std::path::Path;
 
 use rockslide::analysis::{history_difference, responses};
 use rockslide::case::{Case, Model, load_case, parse_case};
+use rockslide::engine::fe::variant as fe_variant;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::engine::rigid_body::{Rapier, RockingGrid, run_on_grid as rapier_on_grid};
 use rockslide::engine::{Engine, Run};
 use rockslide::reference;
@@ -32,7 +34,7 @@ fn rel(a: f64, b: f64) -> f64 {
     (a - b) / b.abs()
 }
 
-fn run(c: &Case, variant: &str) -> Run {
+fn run(c: &Case, variant: rockslide::engine::Variant) -> Run {
     let r = Rapier.run(c, variant, c.dt_for("rapier")).unwrap();
     assert!(r.status.completed(), "{}", r.status);
     r
@@ -75,7 +77,7 @@ const PAIR: &str = "cases/spatial/two-station/block-record-pair.toml";
 fn pepo_at_30_degrees_against_the_plan_reference() {
     let c = case(PEPO);
     let reference = solve_reference(&c).unwrap();
-    let r = run(&c, "applied-force");
+    let r = run(&c, rapier_variant::APPLIED_FORCE);
     let got = responses(&r.trace);
     let e = |k: &str| {
         let e = rel(got[k], reference.responses[k]);
@@ -121,10 +123,10 @@ fn pepo_at_30_degrees_against_the_plan_reference() {
 /// rotated by 30°, to round-off.
 #[test]
 fn pepo_in_plan_rotates_with_the_excitation() {
-    let turned = run(&case(PEPO), "applied-force");
+    let turned = run(&case(PEPO), rapier_variant::APPLIED_FORCE);
     let straight = run(
         &case_with(PEPO, &[("azimuth_deg = 30.0", "azimuth_deg = 0.0")]),
-        "applied-force",
+        rapier_variant::APPLIED_FORCE,
     );
     let mut worst: f64 = 0.0;
     for key in ["slide", "rel_disp", "vel"] {
@@ -163,8 +165,14 @@ fn block_under_the_record_pair_against_the_plan_reference() {
     // 1.10e-3, 1.13e-3; kinematic ground (4 steps of 0.25 ms per ms) −1.127e-3, −9.08e-4,
     // +7.04e-4, 1.05e-3, 1.12e-3
     for (variant, bounds) in [
-        ("inertial-force", [1.2e-3, 9.5e-4, 7.7e-4, 1.15e-3, 1.2e-3]),
-        ("kinematic-ground", [1.2e-3, 9.5e-4, 7.5e-4, 1.1e-3, 1.2e-3]),
+        (
+            rapier_variant::INERTIAL_FORCE,
+            [1.2e-3, 9.5e-4, 7.7e-4, 1.15e-3, 1.2e-3],
+        ),
+        (
+            rapier_variant::KINEMATIC_GROUND,
+            [1.2e-3, 9.5e-4, 7.5e-4, 1.1e-3, 1.2e-3],
+        ),
     ] {
         let r = run(&c, variant);
         let got = responses(&r.trace);
@@ -217,7 +225,10 @@ fn oscillator_under_the_pair() -> Case {
 fn oscillator_under_the_record_pair_against_the_plan_reference() {
     let c = oscillator_under_the_pair();
     let reference = solve_reference(&c).unwrap();
-    for variant in ["inertial-force", "kinematic-ground"] {
+    for variant in [
+        rapier_variant::INERTIAL_FORCE,
+        rapier_variant::KINEMATIC_GROUND,
+    ] {
         let r = run(&c, variant);
         let got = responses(&r.trace);
         // measured, inertial / kinematic: −9.93e-4 / −1.01e-3, +6.58e-3 / +6.54e-3,
@@ -261,7 +272,7 @@ fn block_under_one_record_at_several_azimuths() {
     let exact = planar.responses["residual_sliding"];
     let mut residuals = Vec::new();
     for deg in [0.0, 30.0, 45.0, 135.0, -72.5] {
-        let r = run(&northridge_at(deg), "inertial-force");
+        let r = run(&northridge_at(deg), rapier_variant::INERTIAL_FORCE);
         let (along, across) = along_across(&r, "slide", deg);
         let across = across.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let residual = *along.last().unwrap();
@@ -300,7 +311,7 @@ fn block_on_the_kinematic_ground_at_two_azimuths() {
     let planar = solve_reference(&case("cases/records/block-northridge.toml")).unwrap();
     let exact = planar.responses["residual_sliding"];
     for (deg, measured) in [(0.0, 1.014e-5), (135.0, 1.014e-5)] {
-        let r = run(&northridge_at(deg), "kinematic-ground");
+        let r = run(&northridge_at(deg), rapier_variant::KINEMATIC_GROUND);
         let (along, across) = along_across(&r, "slide", deg);
         let across = across.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
         let e = rel(*along.last().unwrap(), exact);
@@ -374,10 +385,10 @@ fn grid_cone_excess(r: &Run, mu: f64) -> (f64, usize) {
 /// applied-force RPEPO: same forces in the plane, same step rule.
 #[test]
 fn rocking_grid_in_plane_is_the_planar_applied_force_rpepo() {
-    let plane = run(&case(RPEPO), "applied-force");
+    let plane = run(&case(RPEPO), rapier_variant::APPLIED_FORCE);
     let grid = run(
         &rpepo_3d(2, 0.3, ("kx = 1.2e9 ", "kz = 1.97392e8 "), 0.0, 2.0),
-        "applied-force",
+        rapier_variant::APPLIED_FORCE,
     );
     assert_eq!(grid.trace.contacts.count(), 20);
     assert_eq!(grid.stats.steps, plane.stats.steps);
@@ -427,7 +438,10 @@ fn rocking_grid_in_plane_on_both_ground_routes() {
             ("cycles = 5.0 ", "cycles = 5.0\nazimuth_deg = 0.0 "),
         ],
     );
-    for variant in ["kinematic-ground", "inertial-force"] {
+    for variant in [
+        rapier_variant::KINEMATIC_GROUND,
+        rapier_variant::INERTIAL_FORCE,
+    ] {
         let (p, g) = (run(&plane, variant), run(&grid, variant));
         for key in ["cm_x", "rotation", "slide", "uplift"] {
             let (a, b) = (g.trace.column(key).unwrap(), p.trace.column(key).unwrap());
@@ -475,10 +489,10 @@ fn rocking_grid_at_30_degrees_against_the_fe_3d_model() {
         .into_iter()
         .find(|e| e.id() == "fe")
         .unwrap()
-        .run(&c, "single", 1e-3)
+        .run(&c, fe_variant::SINGLE_ELEMENT, 1e-3)
         .unwrap();
     assert!(fe.status.completed(), "{}", fe.status);
-    let r = run(&c, "applied-force");
+    let r = run(&c, rapier_variant::APPLIED_FORCE);
     let until = first_full_liftoff(&fe).min(first_full_liftoff(&r));
     println!(
         "first full lift-off: fe {} s, rapier {} s",
@@ -522,8 +536,8 @@ fn rocking_grid_rotates_with_the_scene() {
     };
     let depth = straight_case.scene.spatial().unwrap().depth.unwrap();
     let grid = RockingGrid::from_scene(body, depth, None).turned(30.0);
-    let straight = run(&straight_case, "applied-force");
-    let turned = rapier_on_grid(&turned_case, &grid, "applied-force", 1e-3).unwrap();
+    let straight = run(&straight_case, rapier_variant::APPLIED_FORCE);
+    let turned = rapier_on_grid(&turned_case, &grid, rapier_variant::APPLIED_FORCE, 1e-3).unwrap();
     assert!(turned.status.completed());
     for key in ["slide", "rel_disp", "cm"] {
         let (xk, yk) = if key == "cm" {
@@ -595,7 +609,7 @@ fn rocking_grid_rotates_with_the_scene() {
 #[test]
 fn rocking_grid_supports_stay_in_the_friction_cone() {
     let c = rpepo_3d(2, 0.3, ("kx = 2.4e9 ", "kz = 3.94784e8 "), 30.0, 2.0);
-    let r = run(&c, "applied-force");
+    let r = run(&c, rapier_variant::APPLIED_FORCE);
     let (excess, rows) = grid_cone_excess(&r, 0.5);
     let slipping = (0..r.trace.contacts.len())
         .flat_map(|i| (0..20).map(move |k| (i, k)))
@@ -630,10 +644,10 @@ fn rocking_grid_under_a_strong_pulse_against_the_fe_3d_model() {
         .into_iter()
         .find(|e| e.id() == "fe")
         .unwrap()
-        .run(&c, "single", 1e-3)
+        .run(&c, fe_variant::SINGLE_ELEMENT, 1e-3)
         .unwrap();
     assert!(fe.status.completed(), "{}", fe.status);
-    let r = run(&c, "applied-force");
+    let r = run(&c, rapier_variant::APPLIED_FORCE);
     let (lift_fe, lift_rapier) = (first_full_liftoff(&fe), first_full_liftoff(&r));
     println!("first full lift-off: fe {lift_fe} s, rapier {lift_rapier} s");
     // measured 0.589 s (rapier) against 0.590 s (fe)

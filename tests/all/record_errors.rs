@@ -1,7 +1,7 @@
 //! A record's problems located twice: at the case file's field that names the record
 //! (line and column of `excitation.record`, `excitation.y.record`,
 //! `excitation.vertical.record`), then inside the record (its own line and column).
-//! Requirements checked (SPEC §5):
+//! Requirements checked (the located errors of `cases/README.md`):
 //! - rockslide shall report a missing or broken record as
 //!   `case:line:col: field: record[:line[:col]]: reason`, exit with code 2 and write nothing;
 //! - rockslide shall read a PEER `.AT2` file as the database delivers it and as editors

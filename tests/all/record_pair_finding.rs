@@ -1,4 +1,4 @@
-//! The finding on a real record pair (issue 16): both horizontal components of one
+//! The finding on a real record pair (docs/bidirectional.md): both horizontal components of one
 //! station (2008 Chino Hills, Anaheim - Lakeview & Riverdale, PEER NGA-West2 RSN8883: 090°
 //! along x, 360° along y, as recorded) against each component alone, for the rigid block
 //! (reference and rapier) and the paper's PEPO as a 3D oscillator (reference, fe's 3D model

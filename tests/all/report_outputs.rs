@@ -1,8 +1,8 @@
 //! The reports `check` writes for a case and for the suite: a self-contained HTML page
 //! (no URL, no script, the plots inline as SVG), Markdown with the paper-style table and
 //! the n/a reasons, SVG plots with the paper's units, a summary CSV whose numbers are
-//! consistent, and provenance with the case file's SHA-256. Requirement: SPEC §3
-//! "Report"; issue 6.
+//! consistent, and provenance with the case file's SHA-256. Requirement:
+//! docs/report.md.
 
 use std::path::Path;
 use std::process::Command;
@@ -179,7 +179,7 @@ fn summary_csv_is_consistent() {
     assert_eq!(case, read(&dir.path().join("summary.csv")));
 }
 
-/// Issue 18 item 2: a run of many cases releases each case's time histories once its own
+/// A run of many cases releases each case's time histories once its own
 /// files are written (`CaseResult::release_histories`), so it holds the histories of the
 /// cases in flight, not of every case. What the suite's outputs read stays: the summary
 /// CSV, the gate's failures and informative findings, the verdict warnings and the JUnit

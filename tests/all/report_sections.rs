@@ -1,9 +1,9 @@
-//! The report sections of issues 6 and 7, checked with real numbers from small runs: the
+//! The report sections, checked with real numbers from small runs: the
 //! energy audit of every run and of the reference, the work-precision section picked up
 //! from `rockslide sweep`'s typed result `sweep.json` (not recomputed), the stability
 //! section of the suite picked up from `rockslide stability`'s `stability.json`, and the
 //! RPEPO comparison up to the first full lift-off with the paper's Figs 8–11 overlaid.
-//! Requirement: SPEC §3 "Report", §4; issues 6, 7 and 11 (typed results between
+//! Requirement: docs/report.md and docs/sweep-and-stability.md (typed results between
 //! commands).
 
 use std::path::Path;

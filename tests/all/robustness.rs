@@ -1,7 +1,7 @@
-//! Issue 19: malformed and extreme input gives a clear located error or a result with a
-//! status — never a panic, an abort, a hang or a write outside the output folder. Each
-//! defect the issue lists (in the files this module covers) is pinned here, with a
-//! proptest fuzz of the readers so that CI keeps checking what `fuzz/` explores.
+//! Malformed and extreme input gives a clear located error or a result with a status —
+//! never a panic, an abort, a hang or a write outside the output folder
+//! (`cases/README.md`). Each defect found (in the files this module covers) is pinned
+//! here, with a proptest fuzz of the readers so that CI keeps checking what `fuzz/` explores.
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -350,7 +350,7 @@ fn every_single_byte_flip_gives_contents_or_an_error() {
 
 // ── fe Newton: round-off acceptance and step cutting ─────────────────────────────────
 
-/// The issue's reproducer: fe double, exact kinematics, Newmark, I = 10 kg·m², Δt = 1e-4
+/// The reproducer: fe double, exact kinematics, Newmark, I = 10 kg·m², Δt = 1e-4
 /// on the RPEPO. Before: "not converged" at t = 0.919 s, residual 1.2e-11 of the force
 /// scale and correction 3e-14 m. Now the step is accepted at the round-off floor.
 #[test]
@@ -399,7 +399,7 @@ fn fe_cuts_steps_newton_cannot_finish() {
     assert!((a - b).abs() <= 1e-2 * a, "peak rotation {a} vs {b}");
 }
 
-// ── The issue's list, bullet by bullet: input → what happens now ─────────────────────
+// ── The defects, one by one: input → what happens now ─────────────────────
 //
 // Pinned elsewhere (kept there, named here so the table is complete):
 //   AT2 NPTS 1e19 / 1e12, DT 1e-300, /dev/zero, non-UTF-8 record → records_formats.rs

@@ -3,7 +3,7 @@
 //! measured limit matches the method's closed-form amplification, and a panicking engine
 //! is a diverged result, never a crash.
 //!
-//! Requirement (SPEC §4): "classify each run as accurate, inaccurate, diverged (NaN/Inf, or
+//! Requirement (docs/sweep-and-stability.md): "classify each run as accurate, inaccurate, diverged (NaN/Inf, or
 //! energy growth) or not converged (Newton), with the time and reason. A diverging run is
 //! a result, never a crash."
 
@@ -13,6 +13,7 @@ use rockslide::analysis::energy::audit;
 use rockslide::analysis::history_difference;
 use rockslide::analysis::stability::{Class, Criteria, classify};
 use rockslide::case::{Case, Scene, load_case};
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{self, Arrangement, Engine, NotApplicable, Run};
 use rockslide::error::InputError;
 use rockslide::reference;
@@ -30,7 +31,7 @@ fn pc() -> Box<dyn Engine> {
 /// Classify the predictor-corrector on `case` at Δt = `ratio`·T.
 fn class_at(case: &Case, ratio: f64) -> Class {
     let t = characteristic_period(case).0;
-    let run = pc().run(case, "paper", ratio * t).unwrap();
+    let run = pc().run(case, pc_variant::PAPER, ratio * t).unwrap();
     let energy = audit(&run.trace, &case.scene, Arrangement::Single).unwrap();
     let exact = reference::for_case(case).unwrap();
     let at = reference::sample(exact.as_ref(), &run.trace.time);
@@ -110,7 +111,7 @@ impl Engine for Panicky {
     fn variants(&self, _: &Scene) -> Result<Vec<engine::Variant>, NotApplicable> {
         Ok(vec![engine::Variant::single("only")])
     }
-    fn run(&self, _: &Case, _: &str, dt: f64) -> Result<Run, InputError> {
+    fn run(&self, _: &Case, _: engine::Variant, dt: f64) -> Result<Run, InputError> {
         panic!("step matrix singular at dt = {dt}");
     }
 }
@@ -118,7 +119,8 @@ impl Engine for Panicky {
 #[test]
 fn a_panicking_engine_is_a_diverged_result() {
     let case = load_case(Path::new("cases/pepo-mass-accel.toml")).unwrap();
-    let timed = guarded(&Panicky, &case, "only", 0.01, 3).expect("no input error");
+    let timed =
+        guarded(&Panicky, &case, engine::Variant::single("only"), 0.01, 3).expect("no input error");
     let msg = timed.run.as_ref().unwrap_err();
     assert!(msg.contains("singular at dt = 0.01"), "{msg}");
     let c = classify(
@@ -143,7 +145,14 @@ fn starved_newton_is_not_converged_with_time_and_residual() {
     let t = characteristic_period(&case).0;
     let exact = reference::for_case(&case).unwrap();
     let class = |ratio: f64| {
-        let timed = guarded(fe.as_ref(), &case, "double", ratio * t, 1).unwrap();
+        let timed = guarded(
+            fe.as_ref(),
+            &case,
+            engine::fe::variant::DOUBLE_ELEMENT,
+            ratio * t,
+            1,
+        )
+        .unwrap();
         let run = timed.run.unwrap();
         let at = reference::sample(exact.as_ref(), &run.trace.time);
         let error = if run.status.completed() {

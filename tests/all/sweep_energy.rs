@@ -1,13 +1,14 @@
 //! The energy audit (input = kinetic + strain + friction + damping) closes on the exact
 //! reference and on the predictor-corrector, to tolerances measured here.
 //!
-//! Requirement (SPEC §4): "An energy audit (input = kinetic + strain + friction +
+//! Requirement (docs/sweep-and-stability.md): "An energy audit (input = kinetic + strain + friction +
 //! damping) per run shows each engine's physical consistency."
 
 use std::path::Path;
 
 use rockslide::analysis::energy::audit;
 use rockslide::case::{Model, load_case};
+use rockslide::engine::predictor_corrector::variant as pc_variant;
 use rockslide::engine::{self, Arrangement};
 use rockslide::suite::solve_reference;
 
@@ -64,7 +65,7 @@ fn audit_closes_on_the_predictor_corrector_at_third_order() {
         .find(|e| e.id() == "predictor-corrector")
         .unwrap();
     let rel = |dt: f64| {
-        let run = pc.run(&case, "paper", dt).unwrap();
+        let run = pc.run(&case, pc_variant::PAPER, dt).unwrap();
         let s = audit(&run.trace, &case.scene, Arrangement::Single)
             .unwrap()
             .summary();
@@ -88,7 +89,7 @@ fn audit_names_what_it_lacks() {
     assert!(why.contains("force") && why.contains("resistance"), "{why}");
 }
 
-/// Rigid blocks (SPEC §1.2, Newmark 1965 and Housner 1963): the audit in the ground's
+/// Rigid blocks (Newmark 1965 and Housner 1963): the audit in the ground's
 /// frame (kinetic incl. rotation, potential M·g·z_cm, friction ∫R dxp, impact losses at
 /// pivot changes) closes on the exact references. Measured relative errors: Newmark
 /// sliding block 3.58e-10 (all input work to friction: 551.2 J), Housner free rocking

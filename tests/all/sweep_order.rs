@@ -2,7 +2,7 @@
 //! order of accuracy on the linear SDOF (closed-form Duhamel reference) and on the PEPO
 //! mass-acceleration problem (exact event-driven reference).
 //!
-//! Requirement (SPEC §4): "for each engine and case, a Δt ladder; per rung the error
+//! Requirement (docs/sweep-and-stability.md): "for each engine and case, a Δt ladder; per rung the error
 //! against the reference …, with the observed order of accuracy."
 //! Expectation: average acceleration is second order (Newmark 1959); with one predicting
 //! and one correcting pass the paper's method keeps that order on smooth responses. On

@@ -1,4 +1,4 @@
-//! Vertical ground motion (issue 15): the exact references against an independent
+//! Vertical ground motion (docs/vertical-motion.md): the exact references against an independent
 //! adaptive integrator (≤ 1e-8 m), their horizontal-only limit against today's references
 //! (round-off), the predictor-corrector against them at its observed order, lift-off, the
 //! friction bound on the instantaneous N, and fe and rapier saying "not applicable".
@@ -9,6 +9,9 @@
 use crate::common::{case, case_with, order, repo};
 use crate::vertical_integrator::{Y, advance};
 use rockslide::case::{Case, NormalForce, load_case};
+use rockslide::engine::fe::variant as fe_variant;
+use rockslide::engine::predictor_corrector::variant as pc_variant;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::reference::block_record::{BlockRecord, Sliding};
 use rockslide::reference::vertical::{
     BlockPhase, EpoConstants, LinearInputs, VerticalBlock, VerticalEpo,
@@ -380,7 +383,7 @@ fn without_a_vertical_motion_the_references_are_todays_to_round_off() {
 fn pc_error(c: &Case, dt: f64) -> f64 {
     use rockslide::engine::Engine;
     let run = rockslide::engine::predictor_corrector::PredictorCorrector
-        .run(c, "paper", dt)
+        .run(c, pc_variant::PAPER, dt)
         .unwrap();
     let reference = rockslide::reference::for_case(c).unwrap();
     let exact = rockslide::reference::sample(reference.as_ref(), &run.trace.time);
@@ -420,7 +423,7 @@ fn the_friction_bound_uses_the_instantaneous_normal_force() {
     use rockslide::engine::Engine;
     let c = vertical_case("pepo-mass-accel-vertical");
     let run = rockslide::engine::predictor_corrector::PredictorCorrector
-        .run(&c, "paper", 1e-3)
+        .run(&c, pc_variant::PAPER, 1e-3)
         .unwrap();
     let block = &run.trace.contacts;
     let normal: Vec<f64> = (0..block.len()).map(|i| block.at(i, 0).normal).collect();
@@ -478,12 +481,13 @@ fn engines_say_which_vertical_scenes_they_do_not_model() {
         let (id, v) = (engine.id(), engine.variants(&dynamic.scene));
         match id {
             "predictor-corrector" => {
-                assert_eq!(v.unwrap(), vec!["paper"]);
-                assert_eq!(engine.variants(&rigid.scene).unwrap(), vec!["paper"]);
+                let paper = pc_variant::PAPER;
+                assert_eq!(v.unwrap(), vec![paper]);
+                assert_eq!(engine.variants(&rigid.scene).unwrap(), vec![paper]);
                 continue;
             }
-            "fe" => assert_eq!(v.unwrap(), vec!["single"]),
-            _ => assert_eq!(v.unwrap(), vec!["applied-force"]),
+            "fe" => assert_eq!(v.unwrap(), vec![fe_variant::SINGLE_ELEMENT]),
+            _ => assert_eq!(v.unwrap(), vec![rapier_variant::APPLIED_FORCE]),
         }
         let why = engine.variants(&rigid.scene).unwrap_err().0;
         assert!(
@@ -499,7 +503,7 @@ fn engines_say_which_vertical_scenes_they_do_not_model() {
     );
     use rockslide::engine::Engine;
     let e = rockslide::engine::rigid_body::Rapier
-        .run(&c, "applied-force", 1e-3)
+        .run(&c, rapier_variant::APPLIED_FORCE, 1e-3)
         .unwrap_err()
         .to_string();
     assert!(

@@ -1,4 +1,4 @@
-//! Vertical ground motion in fe and rapier (issue 15): each engine against the exact
+//! Vertical ground motion in fe and rapier (docs/vertical-motion.md): each engine against the exact
 //! vertical references at its stated order and at measured tolerances, the friction bound
 //! |T| ≤ μ·N(t) on every run, and the cases that only the engines run (the RPEPO under a
 //! vertical pulse).
@@ -8,6 +8,8 @@
 
 use crate::common::{case, order};
 use rockslide::case::Case;
+use rockslide::engine::fe::variant as fe_variant;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::engine::{Engine, Run};
 
 fn vertical_case(name: &str) -> Case {
@@ -15,7 +17,7 @@ fn vertical_case(name: &str) -> Case {
 }
 
 /// A run of `engine`'s `variant` at `dt`, completed.
-fn run(engine: &dyn Engine, c: &Case, variant: &str, dt: f64) -> Run {
+fn run(engine: &dyn Engine, c: &Case, variant: rockslide::engine::Variant, dt: f64) -> Run {
     let r = engine.run(c, variant, dt).unwrap();
     assert!(r.status.completed(), "{}", r.status);
     r
@@ -58,7 +60,7 @@ fn fe_converges_to_the_vertical_oscillator_reference_at_second_order() {
     let c = vertical_case("pepo-mass-accel-vertical");
     let runs: Vec<Run> = [2e-3, 1e-3, 5e-4]
         .iter()
-        .map(|&dt| run(&fe, &c, "single", dt))
+        .map(|&dt| run(&fe, &c, fe_variant::SINGLE_ELEMENT, dt))
         .collect();
     let e: Vec<f64> = runs.iter().map(|r| max_error(&c, r, "rel_disp")).collect();
     let es: Vec<f64> = runs.iter().map(|r| max_error(&c, r, "slide")).collect();
@@ -105,7 +107,7 @@ fn rapier_converges_to_the_vertical_oscillator_reference() {
         .iter()
         .map(|&a| {
             let c = with_rapier_accuracy("pepo-mass-accel-vertical", a);
-            run(&rapier, &c, "applied-force", 2e-3)
+            run(&rapier, &c, rapier_variant::APPLIED_FORCE, 2e-3)
         })
         .collect();
     let c = vertical_case("pepo-mass-accel-vertical");
@@ -143,8 +145,8 @@ fn without_vertical_motion_the_engines_run_todays_scene_bit_for_bit() {
     let fe = rockslide::engine::fe::Fe;
     let rapier = rockslide::engine::rigid_body::Rapier;
     for (engine, variant) in [
-        (&fe as &dyn Engine, "single"),
-        (&rapier as &dyn Engine, "applied-force"),
+        (&fe as &dyn Engine, fe_variant::SINGLE_ELEMENT),
+        (&rapier as &dyn Engine, rapier_variant::APPLIED_FORCE),
     ] {
         let (a, b) = (
             run(engine, &horizontal, variant, 1e-3),

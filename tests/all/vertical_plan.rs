@@ -17,6 +17,8 @@ use crate::common::case;
 use rockslide::analysis::responses;
 use rockslide::case::{Case, Model, NormalForce, Oscillator, Signal, load_case};
 use rockslide::engine::Run;
+use rockslide::engine::fe::variant as fe_variant;
+use rockslide::engine::rigid_body::variant as rapier_variant;
 use rockslide::reference::bidirectional::{PlanBlock, PlanDrive, PlanEpo, rotate};
 use rockslide::reference::vertical::{EpoConstants, LinearInputs, VerticalEpo};
 use rockslide::suite::solve_reference;
@@ -223,7 +225,7 @@ fn a_constant_vertical_acceleration_moves_the_onset_to_mu_g_plus_av() {
     assert!((start - limit / 2.0).abs() < 1e-12, "{start}");
 }
 
-fn run(c: &Case, engine: &str, variant: &str) -> Run {
+fn run(c: &Case, engine: &str, variant: rockslide::engine::Variant) -> Run {
     let e = rockslide::engine::all()
         .into_iter()
         .find(|e| e.id() == engine)
@@ -262,7 +264,10 @@ fn the_shipped_case_against_its_reference() {
     assert!(gap.abs() < 1e-6, "{gap}");
     // measured: rapier −8.7e-8 (peak), +3.5e-7 (slips); fe −6.7e-5 (the planar vertical
     // case's fe errors); events at the 1 ms output step's resolution: −0.80 ms, +0.24 ms
-    for (engine, variant, bound) in [("rapier", "applied-force", 1e-6), ("fe", "single", 7e-5)] {
+    for (engine, variant, bound) in [
+        ("rapier", rapier_variant::APPLIED_FORCE, 1e-6),
+        ("fe", fe_variant::SINGLE_ELEMENT, 7e-5),
+    ] {
         let run = run(&c, engine, variant);
         let got = responses(&run.trace);
         for k in [
@@ -322,12 +327,12 @@ fn rocking_grid_in_plane_under_vertical_motion_is_the_planar_rpepo() {
     let plane = run(
         &load_case(Path::new("cases/vertical/rpepo-mass-accel-vertical.toml")).unwrap(),
         "rapier",
-        "applied-force",
+        rapier_variant::APPLIED_FORCE,
     );
     let grid = run(
         &rpepo_vertical_3d(("kx = 1.2e9 ", "kz = 1.97392e8 "), 0.0),
         "rapier",
-        "applied-force",
+        rapier_variant::APPLIED_FORCE,
     );
     // measured over the 2 s: CM x 1.27e-12 m of 7.5 mm, CM z 5.2e-14 m of 3.6 mm,
     // rotation 8.6e-9 of 11.0 mrad, sliding 3.0e-11 m of 4.9 mm, uplift 1.14e-8 m of
@@ -352,8 +357,8 @@ fn rocking_grid_in_plane_under_vertical_motion_is_the_planar_rpepo() {
 #[test]
 fn rocking_grid_at_30_degrees_under_vertical_motion_against_fe() {
     let c = rpepo_vertical_3d(("kx = 2.4e9 ", "kz = 3.94784e8 "), 30.0);
-    let fe = run(&c, "fe", "single");
-    let r = run(&c, "rapier", "applied-force");
+    let fe = run(&c, "fe", fe_variant::SINGLE_ELEMENT);
+    let r = run(&c, "rapier", rapier_variant::APPLIED_FORCE);
     let fewest = |x: &Run| {
         x.trace
             .column("contacts")

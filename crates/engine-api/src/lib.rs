@@ -7,7 +7,10 @@
 
 #![warn(missing_docs)]
 
-use rockslide_core::case::{Case, Invariant, Scene};
+use std::any::Any;
+
+pub use rockslide_core::case::Arrangement;
+use rockslide_core::case::{Case, EngineOptions, Invariant, Scene};
 use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactBlock, ContactState, Trace};
 use serde::{Deserialize, Serialize};
@@ -118,18 +121,6 @@ impl SolverStats {
     }
 }
 
-/// How a run's supports carry the base reaction: through one contact element, or through
-/// the double element's two in series (its intermediate node between them).
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Arrangement {
-    /// One contact element per support.
-    #[default]
-    Single,
-    /// The double element: two contact elements in series per support.
-    Double,
-}
-
 /// One way an engine runs a scene: its name (as in case files, trace channels and
 /// reports: `single`, `kinematic-ground`, …) and what it models.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
@@ -160,12 +151,6 @@ impl Variant {
 impl std::fmt::Display for Variant {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(self.name)
-    }
-}
-
-impl PartialEq<&str> for Variant {
-    fn eq(&self, other: &&str) -> bool {
-        self.name == *other
     }
 }
 
@@ -302,10 +287,14 @@ pub trait Engine: Send + Sync {
     fn description(&self) -> &'static str;
     /// The variants this engine can run for a scene, or why it cannot run it at all.
     fn variants(&self, scene: &Scene) -> Result<Vec<Variant>, NotApplicable>;
-    /// Problems with this engine's options in the case (located), checked at load time.
-    fn check_options(&self, case: &Case) -> Vec<InputError> {
+    /// This engine's options in `case`, parsed and validated into the engine's own type
+    /// (every problem located). The registry parses them once, when the case is loaded
+    /// and again after a sweep's or a stability map's change to them, and keeps them with
+    /// the case ([`Case::parsed_options`]); the engine reads them back on every run
+    /// ([`parsed_options`]). `None`: the engine has no options.
+    fn parse_options(&self, case: &Case) -> Result<Option<EngineOptions>, Vec<InputError>> {
         let _ = case;
-        Vec::new()
+        Ok(None)
     }
     /// Whether the engine models plan motion (a bidirectional, 3D scene: `Scene::spatial`).
     /// The registry refuses a spatial scene for every engine that does not, so that no
@@ -322,7 +311,7 @@ pub trait Engine: Send + Sync {
     /// Relative CPU cost of one time step of `variant` on `scene`, in units of 0.1 µs of
     /// single-thread CPU: what the default run's scheduler orders cases by (costliest
     /// first). An estimate, measured once; by default 1.
-    fn step_cost(&self, scene: &Scene, variant: &str) -> f64 {
+    fn step_cost(&self, scene: &Scene, variant: Variant) -> f64 {
         let _ = (scene, variant);
         1.0
     }
@@ -345,8 +334,9 @@ pub trait Engine: Send + Sync {
     fn for_stability(&self, case: &mut Case) {
         let _ = case;
     }
-    /// Run one variant at time step `dt`. Divergence is a [`RunStatus`], never a panic.
-    fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError>;
+    /// Run one variant (one of those [`Engine::variants`] declared for the case's scene)
+    /// at time step `dt`. Divergence is a [`RunStatus`], never a panic.
+    fn run(&self, case: &Case, variant: Variant, dt: f64) -> Result<Run, InputError>;
     /// Run one variant at time step `dt`, handing every row to `sink` as it is computed
     /// instead of keeping it: the returned run's trace holds the layout (channels, contact
     /// names and compliances) and no rows. By default the engine runs whole and its rows
@@ -356,7 +346,7 @@ pub trait Engine: Send + Sync {
     fn run_streaming(
         &self,
         case: &Case,
-        variant: &str,
+        variant: Variant,
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
@@ -373,9 +363,29 @@ pub trait Engine: Send + Sync {
     /// Values one row of this variant records (time, channels and the contact block's
     /// fields), when the engine knows it before running; `None`: not declared (the
     /// memory and disk estimates then count every quantity of the catalogue).
-    fn recorded_values(&self, case: &Case, variant: &str) -> Option<usize> {
+    fn recorded_values(&self, case: &Case, variant: Variant) -> Option<usize> {
         let _ = (case, variant);
         None
+    }
+}
+
+/// The variant of `available` (an engine's declared variants) named `name`, as a case file
+/// names it.
+pub fn declared(available: &[Variant], name: &str) -> Option<Variant> {
+    available.iter().find(|v| v.name == name).copied()
+}
+
+/// Engine `id`'s options as the registry parsed them when the case was loaded
+/// ([`Engine::parse_options`]), or, for a case read without the registry, parsed now by
+/// `parse` (its first problem returned).
+pub fn parsed_options<T: Any + Clone>(
+    case: &Case,
+    id: &str,
+    parse: impl FnOnce(&Case) -> Result<T, Vec<InputError>>,
+) -> Result<T, InputError> {
+    match case.parsed_options.get::<T>(id) {
+        Some(options) => Ok(options.clone()),
+        None => parse(case).map_err(|mut errors| errors.remove(0)),
     }
 }
 

@@ -20,7 +20,7 @@
 //!   engine streams natively: a whole run is the same loop into a trace sized up front).
 //! - `energy`: the energy bookkeeping of rocking runs.
 //! - `findings`: eigenfrequencies, self-checks and sensitivity reported as findings.
-//! - `variant`: the variant names (single, double).
+//! - `variant`: the variants (single, double).
 //! - `vertical`: vertical ground motion as an inertial load (issue 15).
 //! - `whole_run`: the sink of a whole run (rows kept row-major, split into columns once).
 
@@ -50,10 +50,13 @@ pub use modes::{Modes, eigenfrequencies};
 pub use options::{FeOptions, Integrator, Kinematics, Newton, OPTION_KEYS};
 pub use simulate::{simulate, simulate_into};
 
-use rockslide_core::case::OptionValue;
-use rockslide_core::case::{Case, Model as SceneModel, Scene};
+use std::sync::Arc;
+
+use rockslide_core::case::{Case, EngineOptions, Model as SceneModel, OptionValue, Scene};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Arrangement, Engine, NotApplicable, Run, StepSink, Variant};
+use rockslide_engine_api::{
+    Arrangement, Engine, NotApplicable, Run, StepSink, Variant, parsed_options,
+};
 
 /// The penalty FE contact engine.
 pub struct Fe;
@@ -73,21 +76,15 @@ impl Engine for Fe {
             Some(s) => space::variants(scene, s)?,
             None => planar_variants(scene)?,
         };
-        Ok(names
-            .into_iter()
-            .map(|name| Variant {
-                name,
-                arrangement: arrangement(name),
-            })
-            .collect())
+        Ok(names.into_iter().map(variant::declared).collect())
     }
 
-    fn check_options(&self, case: &Case) -> Vec<InputError> {
-        FeOptions::parse(case).1
+    fn parse_options(&self, case: &Case) -> Result<Option<EngineOptions>, Vec<InputError>> {
+        parse_options(case).map(|o| Some(Arc::new(o) as EngineOptions))
     }
 
     /// Newton on a small system: 0.2–1.1 µs a step on the default run's cases.
-    fn step_cost(&self, _scene: &Scene, _variant: &str) -> f64 {
+    fn step_cost(&self, _scene: &Scene, _variant: Variant) -> f64 {
         6.0
     }
 
@@ -107,25 +104,25 @@ impl Engine for Fe {
         )]
     }
 
-    fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
+    fn run(&self, case: &Case, variant: Variant, dt: f64) -> Result<Run, InputError> {
         let opts = options(case)?;
         match case.scene.spatial() {
-            Some(s) => space::simulate_space(case, s, variant, dt, &opts),
-            None => simulate(case, variant, dt, &opts),
+            Some(s) => space::simulate_space(case, s, variant.name, dt, &opts),
+            None => simulate(case, variant.name, dt, &opts),
         }
     }
 
     fn run_streaming(
         &self,
         case: &Case,
-        variant: &str,
+        variant: Variant,
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
         let opts = options(case)?;
         match case.scene.spatial() {
-            Some(s) => space::simulate_space_into(case, s, variant, dt, &opts, sink),
-            None => simulate_into(case, variant, dt, &opts, sink),
+            Some(s) => space::simulate_space_into(case, s, variant.name, dt, &opts, sink),
+            None => simulate_into(case, variant.name, dt, &opts, sink),
         }
     }
 
@@ -133,11 +130,11 @@ impl Engine for Fe {
         true
     }
 
-    fn recorded_values(&self, case: &Case, variant: &str) -> Option<usize> {
+    fn recorded_values(&self, case: &Case, variant: Variant) -> Option<usize> {
         let opts = options(case).ok()?;
         match case.scene.spatial() {
-            Some(s) => space::recorded_values_space(case, s, variant),
-            None => simulate::recorded_values(case, variant, &opts),
+            Some(s) => space::recorded_values_space(case, s, variant.name),
+            None => simulate::recorded_values(case, variant.name, &opts),
         }
     }
 
@@ -164,20 +161,23 @@ fn planar_variants(scene: &Scene) -> Result<Vec<&'static str>, NotApplicable> {
     })
 }
 
-/// How a variant's supports carry the base reaction.
+/// How the variant named `variant` carries the base reaction.
 fn arrangement(variant: &str) -> Arrangement {
-    if variant == variant::DOUBLE {
-        Arrangement::Double
-    } else {
-        Arrangement::Single
-    }
+    variant::declared(variant).arrangement
 }
 
-/// The case's `[engines.fe]` options, or the first error in them.
+/// The case's `[engines.fe]` options as parsed when it was loaded, or the first error in
+/// them.
 fn options(case: &Case) -> Result<FeOptions, InputError> {
+    parsed_options(case, options::ID, parse_options)
+}
+
+/// The case's `[engines.fe]` options parsed, or every problem with them.
+fn parse_options(case: &Case) -> Result<FeOptions, Vec<InputError>> {
     let (opts, errors) = FeOptions::parse(case);
-    match errors.into_iter().next() {
-        Some(e) => Err(e),
-        None => Ok(opts),
+    if errors.is_empty() {
+        Ok(opts)
+    } else {
+        Err(errors)
     }
 }

@@ -15,26 +15,30 @@ pub use resistance::resistance;
 pub use stepper::{GroundRoute, PcSettings, simulate, simulate_streaming, simulate_with_vertical};
 pub use vertical::NormalStepper;
 
-use rockslide_core::case::{Case, Excitation, Model, Scene};
+use std::sync::Arc;
+
+use rockslide_core::case::{Case, EngineOptions, Excitation, Model, Scene};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink, Variant};
+use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink, Variant, parsed_options};
 
 /// The paper's spreadsheet method.
 pub struct PredictorCorrector;
 
-/// Variant names.
+/// The variants, each a constant the engine matches on.
 pub mod variant {
+    use rockslide_engine_api::Variant;
+
     /// Mass acceleration (or free response): the method as the paper states it.
-    pub const PAPER: &str = "paper";
+    pub const PAPER: Variant = Variant::single("paper");
     /// Support displacement by the paper's Eq 12: effective ground displacement
     /// xg − xp, differentiated twice by finite differences.
-    pub const EQ12: &str = "eq12";
+    pub const EQ12: Variant = Variant::single("eq12");
     /// Eq 12 with the slip counted once (only through xg-eff, the resistance curve not
     /// shifted): what the paper's spreadsheet most plausibly did.
-    pub const EQ12_SLIP_ONCE: &str = "eq12-slip-once";
+    pub const EQ12_SLIP_ONCE: Variant = Variant::single("eq12-slip-once");
     /// Support motion as ground acceleration in relative coordinates (ground-velocity
     /// jumps applied as impulses): the consistent route.
-    pub const GROUND_ACCEL: &str = "ground-accel";
+    pub const GROUND_ACCEL: Variant = Variant::single("ground-accel");
 }
 
 impl Engine for PredictorCorrector {
@@ -64,31 +68,28 @@ impl Engine for PredictorCorrector {
                 variant::GROUND_ACCEL,
             ],
             Excitation::GroundAcceleration(_) => vec![variant::GROUND_ACCEL],
-        }
-        .into_iter()
-        .map(Variant::single)
-        .collect())
+        })
     }
 
-    fn check_options(&self, case: &Case) -> Vec<InputError> {
-        options::check(case)
+    fn parse_options(&self, case: &Case) -> Result<Option<EngineOptions>, Vec<InputError>> {
+        options::parse(case).map(|o| Some(Arc::new(o) as EngineOptions))
     }
 
-    fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
+    fn run(&self, case: &Case, variant: Variant, dt: f64) -> Result<Run, InputError> {
         let (osc, settings) = prepare(case, variant, dt)?;
         Ok(simulate_with_vertical(
             osc,
             &case.scene.excitation,
             case.scene.vertical(),
             &settings,
-            variant,
+            variant.name,
         ))
     }
 
     fn run_streaming(
         &self,
         case: &Case,
-        variant: &str,
+        variant: Variant,
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
@@ -98,7 +99,7 @@ impl Engine for PredictorCorrector {
             &case.scene.excitation,
             case.scene.vertical(),
             &settings,
-            variant,
+            variant.name,
             sink,
         ))
     }
@@ -107,7 +108,7 @@ impl Engine for PredictorCorrector {
         true
     }
 
-    fn recorded_values(&self, case: &Case, _variant: &str) -> Option<usize> {
+    fn recorded_values(&self, case: &Case, _variant: Variant) -> Option<usize> {
         // time, the sliding channels (ground displacement when the ground moves), the
         // Eq 9 change, N(t) under vertical motion; one contact's four fields
         let channels = 6
@@ -119,14 +120,12 @@ impl Engine for PredictorCorrector {
 }
 
 /// The oscillator and the settings of one run, or the located reason it cannot run.
-fn prepare<'a>(
-    case: &'a Case,
-    variant: &str,
+fn prepare(
+    case: &Case,
+    variant: Variant,
     dt: f64,
-) -> Result<(&'a rockslide_core::case::Oscillator, PcSettings), InputError> {
-    if let Some(e) = options::check(case).into_iter().next() {
-        return Err(e);
-    }
+) -> Result<(&rockslide_core::case::Oscillator, PcSettings), InputError> {
+    parsed_options::<options::PcOptions>(case, options::ID, options::parse)?;
     let Model::Oscillator(osc) = &case.scene.model else {
         return Err(case.field_error("model.kind", "the predictor-corrector needs an oscillator"));
     };

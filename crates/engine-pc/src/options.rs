@@ -9,8 +9,22 @@ use rockslide_core::error::InputError;
 /// The engine id as written in case files.
 pub const ID: &str = "predictor-corrector";
 
+/// The options of the paper's method: none (what a valid section parses to).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct PcOptions;
+
+/// The section parsed: every key beside `dt` and `variants` is an error.
+pub fn parse(case: &Case) -> Result<PcOptions, Vec<InputError>> {
+    let errors = unknown_keys(case);
+    if errors.is_empty() {
+        Ok(PcOptions)
+    } else {
+        Err(errors)
+    }
+}
+
 /// Every key of `[engines.predictor-corrector]` beside `dt` and `variants`, as an error.
-pub fn check(case: &Case) -> Vec<InputError> {
+fn unknown_keys(case: &Case) -> Vec<InputError> {
     let Some(request) = case.engine(ID) else {
         return Vec::new();
     };

@@ -6,17 +6,46 @@ use super::drive::Drive;
 use super::ground::RECORD_BASELINE;
 use super::settings::{OscillatorContact, OscillatorSteps, RapierSettings, StepRule};
 use super::step_rule::{SETTLE_STEPS, peak_ground_acceleration, rocking_omega_h};
+use super::time_loop::Outcome;
 use super::world::{
     MOTOR_DAMPING_MARGIN, MU_INFINITE, Rig, SUPPORT_DAMPING_SHARE, rocking_inertia,
 };
 use rockslide_core::case::record::Baseline;
 use rockslide_core::case::{Excitation, RigidBlock, RockingBody, Signal};
-use rockslide_engine_api::Setting;
+use rockslide_engine_api::{Arrangement, Run, Setting, SolverStats, Variant};
 
 /// What a run states besides its trace: settings and findings, as (name, value) and text.
 pub(crate) struct Statement {
     pub(crate) described: Vec<Setting>,
     pub(crate) findings: Vec<String>,
+}
+
+impl Statement {
+    /// The run this statement describes: `variant` at output step `dt`, `substeps` solver
+    /// substeps per rapier step, ended as `outcome` says (rapier's supports are single).
+    pub(crate) fn into_run(
+        self,
+        variant: Variant,
+        dt: f64,
+        substeps: usize,
+        outcome: Outcome,
+    ) -> Run {
+        Run {
+            engine: crate::settings::ID,
+            variant: variant.name.to_string(),
+            arrangement: Arrangement::Single,
+            dt,
+            settings: self.described,
+            stats: SolverStats {
+                substeps_per_step: Some(substeps as u64),
+                ..SolverStats::steps(outcome.steps)
+            },
+            findings: self.findings,
+            trace: outcome.trace,
+            status: outcome.status,
+            wall_seconds: 0.0,
+        }
+    }
 }
 
 /// The planar ground route.
@@ -64,8 +93,8 @@ pub(crate) fn rocking_validity(omega_r: f64, dt_in: f64, settings: &RapierSettin
     let omega_h = omega_r * dt_in / settings.substeps as f64;
     let bound = rocking_omega_h(settings);
     if omega_h <= bound * (1.0 + 1e-9) {
-        let measured = if settings.oscillator_contact == OscillatorContact::AppliedForce {
-            "applied-force supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 3.4 %, lift-off within 2 ms, at 31–35 ms of CPU per simulated second"
+        let measured = if settings.oscillator_contact == OscillatorContact::ComputedSupports {
+            "computed supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 3.4 %, lift-off within 2 ms, at 31–35 ms of CPU per simulated second"
         } else {
             "joint-limit supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 2.9 %, lift-off within 2 ms, at 99–110 ms of CPU per simulated second"
         };
@@ -93,9 +122,9 @@ pub(crate) fn describe_rocking_joint_limit(
     settings: &RapierSettings,
     described: &mut Vec<Setting>,
 ) {
-    let model = if settings.oscillator_contact == OscillatorContact::AppliedForce {
+    let model = if settings.oscillator_contact == OscillatorContact::ComputedSupports {
         format!(
-            "applied-force: {} supports computed by the engine from the body's pose after each rapier step (Kz compression only, Kx capped at μ·N_i in series with a massless slider) and applied to the rapier body as one force and torque over the next step; no joints, no colliders",
+            "computed-supports: {} supports computed by the engine from the body's pose after each rapier step (Kz compression only, Kx capped at μ·N_i in series with a massless slider) and applied to the rapier body as one force and torque over the next step; no joints, no colliders",
             r.supports
         )
     } else {

@@ -6,6 +6,7 @@ use rockslide_core::case::{Case, Invariant, Model, OptionValue, Scene};
 
 use crate::settings::{ID, OscillatorSteps};
 use crate::variant;
+use rockslide_engine_api::Variant;
 
 /// The `[engines.rapier]` option choosing the step rule.
 const STEP_RULE: &str = "step_rule";
@@ -30,7 +31,7 @@ pub fn invariant_limit(invariant: Invariant) -> f64 {
 /// Relative CPU cost of one step, in 0.1 µs: about 2 µs on a mass (the oscillator) and
 /// 25 µs on a body with corners (block, rocking body: contact manifolds, substeps), twice
 /// that with a moving kinematic ground (its contacts are rebuilt every step).
-pub fn step_cost(scene: &Scene, variant: &str) -> f64 {
+pub fn step_cost(scene: &Scene, variant: Variant) -> f64 {
     let body = match scene.model {
         Model::Oscillator(_) => 20.0,
         Model::RockingBody(_) | Model::RigidBlock(_) => 250.0,

@@ -9,13 +9,13 @@
 //!   spring Kx rapier caps at μ·N, in series with a massless slider; under a vertical
 //!   component one joint-limit support (Kz compression only); `"foot"`: a spring joint
 //!   to a light foot body that slides on the ground;
-//! - the rocking body (RPEPO): applied-force supports, each support's springs and Coulomb
+//! - the rocking body (RPEPO): computed supports, each support's springs and Coulomb
 //!   law computed by the engine from the body's pose after every step and applied to the
 //!   body as one force and torque (no joints, no colliders); `"joint-limit"`: each
 //!   support as two capped motor joints to the ground; `"foot"`: spring joints to light
 //!   foot bodies on the ground;
 //! - in a 3D scene: the block on a ground slab, the oscillator with its plan contact as an
-//!   applied force, the rocking body on an nx × ny grid of applied-force supports.
+//!   applied force, the rocking body on an nx × ny grid of computed supports.
 //!
 //! Every scene runs through one time loop (`time_loop`: a rig, a drive and a recorder;
 //! only the feet models settle under gravity before t = 0):
@@ -57,29 +57,35 @@ mod world;
 pub use drive::Drive;
 pub use settings::{
     ACCURACY_MAX, ACCURACY_MIN, KEYS, MAX_STRIDE, OscillatorContact, OscillatorSteps,
-    RapierSettings, StepRule,
+    RapierOptions, RapierSettings, StepRule,
 };
 pub use space_rocking::RockingGrid;
-pub use step_rule::{APPLIED_FORCE_OMEGA_H, KINEMATIC_BLOCK_K, MAX_BLOCK_STEPS, ROCKING_OMEGA_H};
+pub use step_rule::{
+    COMPUTED_SUPPORTS_OMEGA_H, KINEMATIC_BLOCK_K, MAX_BLOCK_STEPS, ROCKING_OMEGA_H,
+};
 pub use world::{SUPPORT_DAMPING_SHARE, Support};
 
-use rockslide_core::case::{Case, Excitation, Invariant, Model, Scene};
+use std::sync::Arc;
+
+use rockslide_core::case::{Case, EngineOptions, Excitation, Invariant, Model, Scene};
 use rockslide_core::error::InputError;
 use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink, Variant, step_count};
 
 /// The rapier rigid-body engine.
 pub struct Rapier;
 
-/// Variant names.
+/// The variants, each a constant the engine matches on.
 pub mod variant {
+    use rockslide_engine_api::Variant;
+
     /// Mass acceleration as a force M·a(t) on the structure.
-    pub const APPLIED_FORCE: &str = "applied-force";
+    pub const APPLIED_FORCE: Variant = Variant::single("applied-force");
     /// Free response on a fixed ground.
-    pub const FIXED_GROUND: &str = "fixed-ground";
+    pub const FIXED_GROUND: Variant = Variant::single("fixed-ground");
     /// Ground motion by a kinematic (position-driven) ground body.
-    pub const KINEMATIC_GROUND: &str = "kinematic-ground";
+    pub const KINEMATIC_GROUND: Variant = Variant::single("kinematic-ground");
     /// Ground motion as the inertial force −m·ag on every body over a fixed ground.
-    pub const INERTIAL_FORCE: &str = "inertial-force";
+    pub const INERTIAL_FORCE: Variant = Variant::single("inertial-force");
 }
 
 impl Engine for Rapier {
@@ -112,17 +118,14 @@ impl Engine for Rapier {
             Excitation::GroundDisplacement(_) | Excitation::GroundAcceleration(_) => {
                 vec![variant::KINEMATIC_GROUND, variant::INERTIAL_FORCE]
             }
-        }
-        .into_iter()
-        .map(Variant::single)
-        .collect())
+        })
     }
 
     fn invariant_limit(&self, invariant: Invariant) -> f64 {
         ladder::invariant_limit(invariant)
     }
 
-    fn step_cost(&self, scene: &Scene, variant: &str) -> f64 {
+    fn step_cost(&self, scene: &Scene, variant: Variant) -> f64 {
         ladder::step_cost(scene, variant)
     }
 
@@ -138,15 +141,15 @@ impl Engine for Rapier {
         ladder::at_own_step(case)
     }
 
-    fn check_options(&self, case: &Case) -> Vec<InputError> {
-        RapierSettings::from_case(case).err().unwrap_or_default()
+    fn parse_options(&self, case: &Case) -> Result<Option<EngineOptions>, Vec<InputError>> {
+        RapierOptions::parse(case).map(|o| Some(Arc::new(o) as EngineOptions))
     }
 
     fn models_plan_motion(&self) -> bool {
         true
     }
 
-    fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
+    fn run(&self, case: &Case, variant: Variant, dt: f64) -> Result<Run, InputError> {
         let mut rows = rows::TraceSink::sized(step_count(case.run.duration, dt) + 1);
         let mut run = self.run_into(case, variant, dt, &mut rows)?;
         run.trace = rows.trace;
@@ -156,7 +159,7 @@ impl Engine for Rapier {
     fn run_streaming(
         &self,
         case: &Case,
-        variant: &str,
+        variant: Variant,
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
@@ -167,7 +170,7 @@ impl Engine for Rapier {
         true
     }
 
-    fn recorded_values(&self, case: &Case, _variant: &str) -> Option<usize> {
+    fn recorded_values(&self, case: &Case, _variant: Variant) -> Option<usize> {
         let (channels, contacts) = recorded_layout(case)?;
         Some(1 + channels + contacts * rockslide_core::trace::CONTACT_FIELDS.len())
     }
@@ -179,13 +182,12 @@ impl Rapier {
     fn run_into(
         &self,
         case: &Case,
-        variant: &str,
+        variant: Variant,
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
         let drive = drive_of(variant);
-        let kinematic = drive == Drive::KinematicGround;
-        let settings = RapierSettings::for_run(case, kinematic).map_err(|mut e| e.remove(0))?;
+        let settings = RapierOptions::of(case)?.of_run(drive == Drive::KinematicGround);
         budget::check(case, drive, dt, &settings)?;
         match case.scene.spatial() {
             Some(spatial) => space::run(case, spatial, drive, (variant, dt), settings, None, sink),
@@ -195,7 +197,7 @@ impl Rapier {
 }
 
 /// The route a variant names.
-fn drive_of(variant: &str) -> Drive {
+fn drive_of(variant: Variant) -> Drive {
     match variant {
         variant::KINEMATIC_GROUND => Drive::KinematicGround,
         variant::INERTIAL_FORCE => Drive::InertialForce,
@@ -208,10 +210,10 @@ fn drive_of(variant: &str) -> Drive {
 pub fn run_on_grid(
     case: &Case,
     grid: &RockingGrid,
-    variant: &str,
+    variant: Variant,
     dt: f64,
 ) -> Result<Run, InputError> {
-    let settings = RapierSettings::from_case(case).map_err(|mut e| e.remove(0))?;
+    let settings = RapierOptions::of(case)?.other;
     let drive = drive_of(variant);
     let spatial = case
         .scene

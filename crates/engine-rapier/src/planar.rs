@@ -1,5 +1,5 @@
 //! The planar rig ([`Rig`], built by `world`) as the time loop drives it: before each
-//! step the structure's forces (the applied-force supports' resultant, then the drive's
+//! step the structure's forces (the computed supports' resultant, then the drive's
 //! M·a or −m·ag on every dynamic body, then −m·a_v), after each step the return mapping
 //! of the joint-limit slider and of every support from the body's new pose; and the
 //! settling of the feet models before t = 0.
@@ -59,7 +59,7 @@ impl time_loop::Rig<LineDrive<'_>> for Rig {
     }
 }
 
-/// The applied-force supports' resultant on the structure for the next step: each
+/// The computed supports' resultant on the structure for the next step: each
 /// support's force at its anchor (state after the last step), summed into one force at
 /// the CM and a torque about Z. The anchors are the ones [`supports_after_step`] computed
 /// at the body's pose after the last step (before the first, the ones the rig was built

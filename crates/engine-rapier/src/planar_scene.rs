@@ -1,6 +1,6 @@
 //! What a planar scene runs: from the case and the route, the rig (`world`: the
 //! oscillator on its joint-limit contact, on a support under a vertical component or on a
-//! foot; the rigid block; the rocking body on applied-force or joint-limit supports or on
+//! foot; the rigid block; the rocking body on computed or joint-limit supports or on
 //! feet), the stride of its step rule (`step_rule`), and what the run states
 //! (`describe`); then the run, through the one time loop (`record`).
 
@@ -9,7 +9,8 @@ use super::drive::Drive;
 use super::record;
 use super::rows::PathLength;
 use super::settings::{
-    self, KINEMATIC_BLOCK_CONTACT_HZ, OscillatorContact, OscillatorSteps, RapierSettings, StepRule,
+    self, KINEMATIC_BLOCK_CONTACT_HZ, OscillatorContact, OscillatorSteps, RapierOptions,
+    RapierSettings, StepRule,
 };
 use super::step_rule::{
     KINEMATIC_BLOCK_K, MAX_BLOCK_STEPS, SETTLE_STEPS, block_stride, oscillator_on_support_steps,
@@ -20,13 +21,13 @@ use super::vertical;
 use super::world::{self, GroundKind};
 use rockslide_core::case::{Case, Model, Oscillator, RigidBlock, RockingBody, Vertical};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Arrangement, Run, Setting, SolverStats, StepSink, step_count};
+use rockslide_engine_api::{Run, Setting, StepSink, Variant, step_count};
 
 /// Run route `drive` of the planar scene of `case` at output step `dt` with `settings`,
 /// handing every row to `sink`; the run's trace is the layout only.
 pub(crate) fn run(
     case: &Case,
-    (variant, drive): (&str, Drive),
+    (variant, drive): (Variant, Drive),
     dt: f64,
     settings: RapierSettings,
     sink: &mut dyn StepSink,
@@ -35,7 +36,9 @@ pub(crate) fn run(
     let ex = &case.scene.excitation;
     let mut said = Statement {
         described: settings.describe(dt),
-        findings: Vec::new(),
+        findings: settings::former_contact_model_name(case)
+            .into_iter()
+            .collect(),
     };
     let run = (drive, dt, &settings);
     let outcome = match &case.scene.model {
@@ -52,21 +55,7 @@ pub(crate) fn run(
     describe::ground_motion(drive, &mut said.described);
     said.described.extend(vertical::describe(case, drive));
     describe::record_baseline(ex, drive, &mut said.described);
-    Ok(Run {
-        engine: crate::settings::ID,
-        variant: variant.to_string(),
-        arrangement: Arrangement::Single,
-        dt,
-        settings: said.described,
-        stats: SolverStats {
-            substeps_per_step: Some(settings.substeps as u64),
-            ..SolverStats::steps(outcome.steps)
-        },
-        findings: said.findings,
-        trace: outcome.trace,
-        status: outcome.status,
-        wall_seconds: 0.0,
-    })
+    Ok(said.into_run(variant, dt, settings.substeps, outcome))
 }
 
 /// The route, the output step and the settings of a run.
@@ -114,7 +103,7 @@ fn oscillator(
             describe::describe_foot(osc, &rig, dt, described, findings);
             (rig, 1)
         }
-        OscillatorContact::JointLimit | OscillatorContact::AppliedForce => {
+        OscillatorContact::JointLimit | OscillatorContact::ComputedSupports => {
             let mut steps = OscillatorSteps::for_scene(osc, ex, dt, settings.accuracy);
             if settings.step_rule == StepRule::None {
                 steps = steps.at_output_step(dt);
@@ -144,7 +133,7 @@ fn block(
     let on_record = settings::kinematic_block_on_record(case, kinematic);
     let stride = if on_record && settings.step_rule == StepRule::Scene {
         // the pilot runs on the inertial-force route, with that route's settings
-        let pilot = RapierSettings::for_run(case, false).map_err(|mut e| e.remove(0))?;
+        let pilot = RapierOptions::of(case)?.other;
         block_kinematic_stride(case, b, (settings, &pilot), dt, said)
     } else {
         1
@@ -175,7 +164,7 @@ fn block(
     ))
 }
 
-/// The rocking body on applied-force supports (the default) or joint-limit ones.
+/// The rocking body on computed supports (the default) or joint-limit ones.
 fn rocking_on_supports(
     case: &Case,
     r: &RockingBody,
@@ -188,7 +177,7 @@ fn rocking_on_supports(
         StepRule::None => 1,
     };
     let dt_in = dt / stride as f64;
-    let rig = if settings.oscillator_contact == OscillatorContact::AppliedForce {
+    let rig = if settings.oscillator_contact == OscillatorContact::ComputedSupports {
         world::rocking_body_applied_force(r, settings, dt_in, drive.ground_kind())
     } else {
         world::rocking_body_joint_limit(r, settings, dt_in, drive.ground_kind())

@@ -360,21 +360,20 @@ pub fn run_rocking(
         let phi = angle_z(b);
         let (sn, cs) = phi.sin_cos();
         let off = d.frame(k).0;
-        let (mut shear, mut normal, mut contacts) = (0.0, 0.0, 0.0);
-        let (mut slide_sum, mut slide_min, mut slide_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
-        let mut uplift: f64 = 0.0;
+        let mut sums = SupportSums::new();
         for (i, &f) in rig.feet.iter().enumerate() {
             let p = rig.world.bodies[f].translation();
             // body anchor = CM + R(φ)·(x_i, −h); spring stretch d = anchor − foot centre
             let ax = cm.x + cs * xs[i] + sn * hh;
             let ay = cm.y + sn * xs[i] - cs * hh;
-            shear += kx * (ax - p.x);
-            normal += -kz * (ay - p.y);
             let slip = p.x - off - foot0[i].0;
-            slide_sum += slip;
-            slide_min = slide_min.min(slip);
-            slide_max = slide_max.max(slip);
             let gap = p.y - foot0[i].1;
+            sums.add(
+                (kx * (ax - p.x), -kz * (ay - p.y)),
+                slip,
+                gap,
+                gap < open_gap,
+            );
             let gf = ground_force(&rig.world, f, rig.ground, dt);
             states[i] = ContactState {
                 normal: gf.y,
@@ -382,33 +381,20 @@ pub fn run_rocking(
                 slip,
                 gap: gf.dist.unwrap_or(p.y - ROCK_FOOT_HALF.1),
             };
-            uplift = uplift.max(gap);
-            if gap < open_gap {
-                contacts += 1.0;
-            }
         }
         let v = b.linvel().x - d.frame(k).1;
         let a = if k == 0 { 0.0 } else { (v - v_prev) / dt };
         v_prev = v;
-        let vals = [
-            force_at(ex, m, t),
-            shear,
-            shear,
-            cm.x + sn * hh - off - o0,
-            slide_sum / nf as f64,
-            slide_max - slide_min,
+        let motion = RockingMotion {
+            force: force_at(ex, m, t),
+            rel_disp: cm.x + sn * hh - off - o0,
             v,
             a,
-            cm.x - off - cm0.x,
-            cm.y - cm0.y,
-            phi - phi0,
-            uplift.max(0.0),
-            contacts,
-            normal,
-            g.disp(k),
-        ];
-        let len = row.len();
-        row.copy_from_slice(&vals[..len]);
+            cm: (cm.x - off - cm0.x, cm.y - cm0.y),
+            rotation: phi - phi0,
+            ground_disp: g.disp(k),
+        };
+        motion.write(&sums, &mut row);
         out.row(t, &row, &states);
     };
     let steps = Steps::new(n, dt, 1, StepCount::ToLastRow);
@@ -438,6 +424,97 @@ pub(crate) fn rocking_channels(moves: bool) -> Vec<&'static Quantity> {
         channels.push(&q::GROUND_DISP);
     }
     channels
+}
+
+/// The sums over a rocking body's supports that one row records: base shear, normal
+/// force, supports in contact, the supports' mean and spread of sliding, the largest gap.
+struct SupportSums {
+    /// Σ horizontal force, N.
+    shear: f64,
+    /// Σ normal force, N.
+    normal: f64,
+    /// Supports in contact.
+    contacts: f64,
+    /// Σ, smallest and largest sliding, m.
+    slide: (f64, f64, f64),
+    /// The largest gap (0 when none is open), m.
+    uplift: f64,
+    /// Supports added.
+    count: usize,
+}
+
+impl SupportSums {
+    /// No support yet.
+    fn new() -> Self {
+        Self {
+            shear: 0.0,
+            normal: 0.0,
+            contacts: 0.0,
+            slide: (0.0, f64::INFINITY, f64::NEG_INFINITY),
+            uplift: 0.0,
+            count: 0,
+        }
+    }
+
+    /// One support: its (horizontal, normal) force, sliding and gap, and whether it is in
+    /// contact.
+    #[inline]
+    fn add(&mut self, (shear, normal): (f64, f64), slip: f64, gap: f64, in_contact: bool) {
+        self.shear += shear;
+        self.normal += normal;
+        self.slide.0 += slip;
+        self.slide.1 = self.slide.1.min(slip);
+        self.slide.2 = self.slide.2.max(slip);
+        self.uplift = self.uplift.max(gap);
+        if in_contact {
+            self.contacts += 1.0;
+        }
+        self.count += 1;
+    }
+}
+
+/// The structure's motion in one row of a rocking body, beside its supports' sums.
+struct RockingMotion {
+    /// The applied force, N.
+    force: f64,
+    /// Displacement of the base centre relative to the ground, m.
+    rel_disp: f64,
+    /// Velocity and acceleration relative to the ground, m/s and m/s².
+    v: f64,
+    a: f64,
+    /// Centre of mass from its start (x relative to the ground, z), m.
+    cm: (f64, f64),
+    /// Rotation from the start, rad.
+    rotation: f64,
+    /// Ground displacement (recorded when the ground moves), m.
+    ground_disp: f64,
+}
+
+impl RockingMotion {
+    /// The row in the order of [`rocking_channels`] (the ground displacement only when
+    /// `row` has room for it).
+    #[inline]
+    fn write(&self, sums: &SupportSums, row: &mut [f64]) {
+        let vals = [
+            self.force,
+            sums.shear,
+            sums.shear,
+            self.rel_disp,
+            sums.slide.0 / sums.count as f64,
+            sums.slide.2 - sums.slide.1,
+            self.v,
+            self.a,
+            self.cm.0,
+            self.cm.1,
+            self.rotation,
+            sums.uplift.max(0.0),
+            sums.contacts,
+            sums.normal,
+            self.ground_disp,
+        ];
+        let len = row.len();
+        row.copy_from_slice(&vals[..len]);
+    }
 }
 
 /// Run the rocking body with joint-limit supports (no feet) and record its channels every
@@ -477,9 +554,7 @@ pub fn run_rocking_joint_limit(
         let cm = b.translation();
         let phi = angle_z(b);
         let off = d.frame(k).0;
-        let (mut shear, mut normal, mut contacts) = (0.0, 0.0, 0.0);
-        let (mut slide_sum, mut slide_min, mut slide_max) = (0.0, f64::INFINITY, f64::NEG_INFINITY);
-        let mut uplift: f64 = 0.0;
+        let mut sums = SupportSums::new();
         for (state, sup) in states.iter_mut().zip(&rig.supports) {
             *state = ContactState {
                 normal: sup.normal,
@@ -487,38 +562,22 @@ pub fn run_rocking_joint_limit(
                 slip: sup.s,
                 gap: sup.delta.1,
             };
-            shear += sup.shear();
-            normal += sup.normal;
-            slide_sum += sup.s;
-            slide_min = slide_min.min(sup.s);
-            slide_max = slide_max.max(sup.s);
-            uplift = uplift.max(sup.delta.1);
-            if sup.normal > 0.0 {
-                contacts += 1.0;
-            }
+            let carries = sup.normal > 0.0;
+            sums.add((sup.shear(), sup.normal), sup.s, sup.delta.1, carries);
         }
         let v = b.linvel().x - d.frame(k).1;
         let a = if k == 0 { 0.0 } else { (v - v_prev) / dt };
         v_prev = v;
-        let vals = [
-            force_at(ex, m, t),
-            shear,
-            shear,
-            cm.x + phi.sin() * hh - off - o0,
-            slide_sum / rig.supports.len() as f64,
-            slide_max - slide_min,
+        let motion = RockingMotion {
+            force: force_at(ex, m, t),
+            rel_disp: cm.x + phi.sin() * hh - off - o0,
             v,
             a,
-            cm.x - off - cm0.x,
-            cm.y - cm0.y - d.height(k),
-            phi - phi0,
-            uplift.max(0.0),
-            contacts,
-            normal,
-            g.disp(k),
-        ];
-        let len = row.len();
-        row.copy_from_slice(&vals[..len]);
+            cm: (cm.x - off - cm0.x, cm.y - cm0.y - d.height(k)),
+            rotation: phi - phi0,
+            ground_disp: g.disp(k),
+        };
+        motion.write(&sums, &mut row);
         out.row(t, &row, &states);
     };
     let steps = Steps::new(n * stride, dt_in, stride, StepCount::ToLastRow);

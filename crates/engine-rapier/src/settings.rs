@@ -20,11 +20,11 @@ pub enum OscillatorContact {
     /// `"foot"`: a spring joint to a light foot body that slides on the ground with
     /// rapier's contact friction (the foot's inertia joins the oscillator).
     Foot,
-    /// `"applied-force"` (rocking body only): the supports' springs and Coulomb law
+    /// `"computed-supports"` (rocking body only): the supports' springs and Coulomb law
     /// computed by the engine from the body's pose after each rapier step and applied to
     /// the rapier body as an external force and torque for the next one; rapier
     /// integrates a single body with no joints and no colliders.
-    AppliedForce,
+    ComputedSupports,
 }
 
 /// How rapier's own step is chosen from the output step.
@@ -62,7 +62,7 @@ pub struct RapierSettings {
     /// `contact_damping_ratio`: damping ratio of the contact softness, default 10 (rapier's).
     pub contact_damping_ratio: f64,
     /// `contact_model`: the elastic-plastic supports: `"joint-limit"` (an oscillator's
-    /// default), `"applied-force"` (a rocking body's default; rocking body only) or
+    /// default), `"computed-supports"` (a rocking body's default; rocking body only) or
     /// `"foot"`.
     pub oscillator_contact: OscillatorContact,
     /// `accuracy`: the relative accuracy the joint-limit oscillator's rapier step is
@@ -198,6 +198,41 @@ pub(crate) fn kinematic_block_on_record(case: &Case, kinematic_ground: bool) -> 
         )
 }
 
+/// The `[engines.rapier]` options of a case parsed once, as the settings of its runs on a
+/// kinematic ground and of its other runs ([`RapierSettings::for_run`]).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct RapierOptions {
+    /// The settings of a run on a kinematic ground.
+    pub kinematic_ground: RapierSettings,
+    /// The settings of every other run (inertial force, applied force, fixed ground).
+    pub other: RapierSettings,
+}
+
+impl RapierOptions {
+    /// Read and validate the case's options; every problem is returned, located.
+    pub fn parse(case: &Case) -> Result<Self, Vec<InputError>> {
+        Ok(Self {
+            kinematic_ground: RapierSettings::for_run(case, true)?,
+            other: RapierSettings::for_run(case, false)?,
+        })
+    }
+
+    /// The case's options as the registry parsed them when it was loaded (parsed now for
+    /// a case read without it), or the first problem with them.
+    pub(crate) fn of(case: &Case) -> Result<Self, InputError> {
+        rockslide_engine_api::parsed_options(case, ID, Self::parse)
+    }
+
+    /// The settings of a run on a kinematic ground or not.
+    pub fn of_run(&self, kinematic_ground: bool) -> RapierSettings {
+        if kinematic_ground {
+            self.kinematic_ground
+        } else {
+            self.other
+        }
+    }
+}
+
 impl Default for RapierSettings {
     fn default() -> Self {
         Self {
@@ -215,11 +250,6 @@ impl Default for RapierSettings {
 }
 
 impl RapierSettings {
-    /// Read and validate the options of a case; every problem is returned, located.
-    pub fn from_case(case: &Case) -> Result<Self, Vec<InputError>> {
-        Self::with_defaults(case, Self::for_model(&case.scene.model))
-    }
-
     /// The settings of one run of the case, on a kinematic ground or not: the case's
     /// options over the defaults of its model ([`Self::for_model`]), and for the plane
     /// rigid block on a kinematic ground under a record ([`kinematic_block_on_record`])
@@ -290,7 +320,7 @@ impl RapierSettings {
             },
             Model::RockingBody(_) => Self {
                 contact_hz: Some(1000.0),
-                oscillator_contact: OscillatorContact::AppliedForce,
+                oscillator_contact: OscillatorContact::ComputedSupports,
                 ..Self::default()
             },
             _ => Self::default(),
@@ -302,7 +332,7 @@ impl RapierSettings {
         match self.oscillator_contact {
             OscillatorContact::JointLimit => "joint-limit",
             OscillatorContact::Foot => "foot",
-            OscillatorContact::AppliedForce => "applied-force",
+            OscillatorContact::ComputedSupports => COMPUTED_SUPPORTS,
         }
     }
 
@@ -523,8 +553,16 @@ fn friction_model(case: &Case, errors: &mut Vec<InputError>) -> FrictionModel {
     }
 }
 
-/// `contact_model` over the model's default: `"applied-force"` is refused but for a
-/// rocking body.
+/// `contact_model`'s name for the supports the engine computes itself.
+const COMPUTED_SUPPORTS: &str = "computed-supports";
+
+/// The former name of [`COMPUTED_SUPPORTS`], which is also the name of the mass-acceleration
+/// variant: still read, with a located note in the run's findings
+/// ([`former_contact_model_name`]).
+const FORMER_COMPUTED_SUPPORTS: &str = "applied-force";
+
+/// `contact_model` over the model's default: `"computed-supports"` (or its former name)
+/// is refused but for a rocking body.
 fn contact_model(
     case: &Case,
     d: &RapierSettings,
@@ -534,17 +572,22 @@ fn contact_model(
         ID,
         "contact_model",
         d.contact_model_name(),
-        &["joint-limit", "foot", "applied-force"],
+        &[
+            "joint-limit",
+            "foot",
+            COMPUTED_SUPPORTS,
+            FORMER_COMPUTED_SUPPORTS,
+        ],
     ) {
         Ok(s) if s == "foot" => OscillatorContact::Foot,
-        Ok(s) if s == "applied-force" => {
+        Ok(s) if s == COMPUTED_SUPPORTS || s == FORMER_COMPUTED_SUPPORTS => {
             if !matches!(case.scene.model, Model::RockingBody(_)) {
                 errors.push(case.field_error(
                     &format!("engines.{ID}.contact_model"),
-                    "is \"applied-force\", which is built for a rocking body only; use \"joint-limit\" or \"foot\"",
+                    format!("is \"{s}\", which is built for a rocking body only; use \"joint-limit\" or \"foot\""),
                 ));
             }
-            OscillatorContact::AppliedForce
+            OscillatorContact::ComputedSupports
         }
         Ok(_) => OscillatorContact::JointLimit,
         Err(e) => {
@@ -552,6 +595,19 @@ fn contact_model(
             OscillatorContact::JointLimit
         }
     }
+}
+
+/// A located note when the case names the computed supports by their former name
+/// (`contact_model = "applied-force"`, the name of the mass-acceleration variant too).
+pub(crate) fn former_contact_model_name(case: &Case) -> Option<String> {
+    let named = case.engine_text(ID, "contact_model", "", &[FORMER_COMPUTED_SUPPORTS]);
+    (named.ok()? == FORMER_COMPUTED_SUPPORTS).then(|| {
+        case.field_error(
+            &format!("engines.{ID}.contact_model"),
+            format!("\"{FORMER_COMPUTED_SUPPORTS}\" is the former name of \"{COMPUTED_SUPPORTS}\" (read as it; \"{FORMER_COMPUTED_SUPPORTS}\" names the mass-acceleration variant): write \"{COMPUTED_SUPPORTS}\""),
+        )
+        .to_string()
+    })
 }
 
 /// `step_rule`: `"scene"` (default) or `"none"`.
@@ -578,7 +634,7 @@ fn contact_defaults(
             RapierSettings::default().substeps as f64
         }
         // Applied forces are held over the whole rapier step: substeps add nothing.
-        OscillatorContact::AppliedForce if !has_option(case, "substeps") => 1.0,
+        OscillatorContact::ComputedSupports if !has_option(case, "substeps") => 1.0,
         _ => substeps,
     };
     // The rocking body's feet need 8 sweeps (their loaded contacts creep with 1); the

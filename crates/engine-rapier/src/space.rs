@@ -37,7 +37,7 @@ use rockslide_core::case::{
 };
 use rockslide_core::error::InputError;
 use rockslide_core::trace::q;
-use rockslide_engine_api::{NotApplicable, Run, Setting, SolverStats, StepSink, step_count};
+use rockslide_engine_api::{NotApplicable, Run, Setting, StepSink, Variant, step_count};
 
 /// Why rapier does not run a 3D scene, if it does not. A vertical component is the
 /// oscillator's only ([`PlanVertical`]: its support's Kz, as in 2D).
@@ -97,7 +97,7 @@ pub fn run(
     case: &Case,
     spatial: &Spatial,
     drive: Drive,
-    (variant, dt): (&str, f64),
+    (variant, dt): (Variant, f64),
     mut settings: RapierSettings,
     grid: Option<&RockingGrid>,
     sink: &mut dyn StepSink,
@@ -163,21 +163,7 @@ pub fn run(
             }
         ),
     ));
-    Ok(Run {
-        engine: crate::settings::ID,
-        variant: variant.to_string(),
-        arrangement: rockslide_engine_api::Arrangement::Single,
-        dt,
-        settings: said.described,
-        stats: SolverStats {
-            substeps_per_step: Some(settings.substeps as u64),
-            ..SolverStats::steps(outcome.steps)
-        },
-        findings: said.findings,
-        trace: outcome.trace,
-        status: outcome.status,
-        wall_seconds: 0.0,
-    })
+    Ok(said.into_run(variant, dt, settings.substeps, outcome))
 }
 
 /// The oscillator in plan at the planar step rule, with what it states.

@@ -1,5 +1,5 @@
 //! rapier's rocking body on an nx × ny grid of supports in a bidirectional (3D) scene,
-//! the applied-force model of the planar RPEPO carried into 3D.
+//! the computed supports of the planar RPEPO carried into 3D.
 //!
 //! One rapier body (mass M, principal inertias about the scene's x, y, z through the CM,
 //! no collider) is free in six degrees of freedom. Each support is a point of the base,
@@ -27,7 +27,7 @@ use super::ground::VerticalTable;
 use super::rows::layout;
 use super::settings::{MAX_STRIDE, RapierSettings, StepRule};
 use super::space_axes::{plan, radial_return, to_world};
-use super::step_rule::APPLIED_FORCE_OMEGA_H;
+use super::step_rule::COMPUTED_SUPPORTS_OMEGA_H;
 use super::time_loop::{Outcome, Rig, StepCount, Steps, run_loop};
 use super::world::{GroundKind, friction_cap, new_world, rocking_inertia};
 use rockslide_core::case::{Depth, RockingBody, Spatial, Vertical};
@@ -117,13 +117,13 @@ impl RockingGrid {
     }
 }
 
-/// rapier steps per output step: the fewest with ω_r·h ≤ [`APPLIED_FORCE_OMEGA_H`],
-/// h = dt/(stride·substeps), as the planar applied-force model.
+/// rapier steps per output step: the fewest with ω_r·h ≤ [`COMPUTED_SUPPORTS_OMEGA_H`],
+/// h = dt/(stride·substeps), as the planar computed supports.
 pub fn stride(omega_r: f64, dt: f64, settings: &RapierSettings) -> usize {
     if settings.step_rule == StepRule::None {
         return 1;
     }
-    let h_max = APPLIED_FORCE_OMEGA_H / omega_r;
+    let h_max = COMPUTED_SUPPORTS_OMEGA_H / omega_r;
     ((dt / (h_max * settings.substeps as f64) * (1.0 - 1e-12)).ceil() as usize).clamp(1, MAX_STRIDE)
 }
 
@@ -425,7 +425,7 @@ pub(crate) fn case<'a>(
     said.described
         .retain(|s| !s.name.starts_with("contact softness") && !s.name.starts_with("friction"));
     said.described.push(Setting::text("contact model", format!(
-            "applied force on a grid of {} × {} supports (x × y, half-depth {} m): each support's Kz (compression only) and Kx·(δt − p), the slider p returned radially onto |T| ≤ μ·N (circular cone), computed by the engine from the body's pose after each rapier step and applied to one rapier body free in six degrees of freedom as one force and moment over the next step; no joints, no colliders (the only model in 3D: contact_model is not read)",
+            "computed supports on a grid of {} × {} supports (x × y, half-depth {} m): each support's Kz (compression only) and Kx·(δt − p), the slider p returned radially onto |T| ≤ μ·N (circular cone), computed by the engine from the body's pose after each rapier step and applied to one rapier body free in six degrees of freedom as one force and moment over the next step; no joints, no colliders (the only model in 3D: contact_model is not read)",
             grid.points.len() / depth.support_rows.max(1),
             depth.support_rows,
             depth.half_depth
@@ -450,18 +450,18 @@ pub(crate) fn case<'a>(
     ));
     said.described.push(Setting::text("step rule", match settings.step_rule {
             StepRule::Scene => format!(
-                "ω_r·h ≤ {APPLIED_FORCE_OMEGA_H}, ω_r = {omega:.0} rad/s (the stiffest rocking or torsion mode of the inertia on the supports), h = rapier step / {} substeps",
+                "ω_r·h ≤ {COMPUTED_SUPPORTS_OMEGA_H}, ω_r = {omega:.0} rad/s (the stiffest rocking or torsion mode of the inertia on the supports), h = rapier step / {} substeps",
                 settings.substeps
             ),
             StepRule::None => "none (step_rule = \"none\"): one rapier step per output step".into(),
         }));
-    said.findings.push(if omega_h <= APPLIED_FORCE_OMEGA_H * (1.0 + 1e-9) {
+    said.findings.push(if omega_h <= COMPUTED_SUPPORTS_OMEGA_H * (1.0 + 1e-9) {
         format!(
-            "within the engine's validity for the rocking body before the first full lift-off: ω_r·h = {omega_h:.3} (rule ≤ {APPLIED_FORCE_OMEGA_H}); |T| ≤ μ·N by construction; measured (docs/rapier-engine.md, \"Plan motion\"): {MEASURED}"
+            "within the engine's validity for the rocking body before the first full lift-off: ω_r·h = {omega_h:.3} (rule ≤ {COMPUTED_SUPPORTS_OMEGA_H}); |T| ≤ μ·N by construction; measured (docs/rapier-engine.md, \"Plan motion\"): {MEASURED}"
         )
     } else {
         format!(
-            "outside the engine's validity: ω_r·h = {omega_h:.3} (rule ≤ {APPLIED_FORCE_OMEGA_H}; symplectic Euler is unstable beyond 2)"
+            "outside the engine's validity: ω_r·h = {omega_h:.3} (rule ≤ {COMPUTED_SUPPORTS_OMEGA_H}; symplectic Euler is unstable beyond 2)"
         )
     });
     run(grid, settings, (&pd, vg.as_ref()), (dt, stride), n, sink)
@@ -469,4 +469,4 @@ pub(crate) fn case<'a>(
 
 /// The rocking grid's measured agreement, stated in its runs' findings
 /// (tests/all/rapier_space.rs).
-const MEASURED: &str = "in one plane (pulse at 0°, two rows at half stiffness) it is the planar applied-force RPEPO to 2.6e-9 m on CM x and 2.1e-7 on rotation over 2 s (airborne phase included), to 6.4e-10 on both ground routes; on 10 × 2 supports at 30° against fe's 3D model (no full lift-off in 2 s): peaks of CM x, CM y, sliding, uplift and rotation within 0.15 %, and at 0.3 g before the first full lift-off (0.589 s, fe 0.590 s) within 2.0 % (uplift; resultant sliding −0.55 %); the grid turned with the pulse rotates the answer to 4e-15; |T| ≤ μ·N to 2.2e-16";
+const MEASURED: &str = "in one plane (pulse at 0°, two rows at half stiffness) it is the planar computed-supports RPEPO to 2.6e-9 m on CM x and 2.1e-7 on rotation over 2 s (airborne phase included), to 6.4e-10 on both ground routes; on 10 × 2 supports at 30° against fe's 3D model (no full lift-off in 2 s): peaks of CM x, CM y, sliding, uplift and rotation within 0.15 %, and at 0.3 g before the first full lift-off (0.589 s, fe 0.590 s) within 2.0 % (uplift; resultant sliding −0.55 %); the grid turned with the pulse rotates the answer to 4e-15; |T| ≤ μ·N to 2.2e-16";

@@ -16,13 +16,13 @@ use rockslide_core::case::{Excitation, Oscillator, Vertical};
 /// full lift-off by −11 %, and 1.78 the mass-acceleration case's by −11 %.
 pub const ROCKING_OMEGA_H: f64 = 1.1;
 
-/// The largest ω·h (h = the rapier step) the rocking body's applied-force supports
-/// (the default, `contact_model = "applied-force"`) run at: the supports' forces are
+/// The largest ω·h (h = the rapier step) the rocking body's computed supports
+/// (the default, `contact_model = "computed-supports"`) run at: the supports' forces are
 /// held over each step, so the scheme is symplectic Euler on the support springs,
 /// stable for ω·h < 2. Measured on both RPEPO cases (docs/rapier-engine.md): ω·h from
 /// 1.07 to 1.93 changes every peak before the first full lift-off by less than 0.6 %
 /// of it and the lift-off by less than 1 ms; 1.5 keeps a margin of 25 % to the limit.
-pub const APPLIED_FORCE_OMEGA_H: f64 = 1.5;
+pub const COMPUTED_SUPPORTS_OMEGA_H: f64 = 1.5;
 
 /// The rocking mode of a rocking body's rotational inertia on its supports,
 /// √((n·Kx·h² + Kz·Σx_i²)/I), rad/s: the stiffest mode of the scene.
@@ -33,11 +33,11 @@ pub(crate) fn rocking_mode(r: &rockslide_core::case::RockingBody) -> f64 {
     .sqrt()
 }
 
-/// The ω_r·h bound of the rocking body's model: [`APPLIED_FORCE_OMEGA_H`] for the
-/// applied-force supports, [`ROCKING_OMEGA_H`] for the joint-limit ones.
+/// The ω_r·h bound of the rocking body's model: [`COMPUTED_SUPPORTS_OMEGA_H`] for the
+/// computed supports, [`ROCKING_OMEGA_H`] for the joint-limit ones.
 pub(crate) fn rocking_omega_h(settings: &RapierSettings) -> f64 {
-    if settings.oscillator_contact == OscillatorContact::AppliedForce {
-        APPLIED_FORCE_OMEGA_H
+    if settings.oscillator_contact == OscillatorContact::ComputedSupports {
+        COMPUTED_SUPPORTS_OMEGA_H
     } else {
         ROCKING_OMEGA_H
     }

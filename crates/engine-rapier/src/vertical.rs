@@ -12,7 +12,7 @@
 //! What then carries the normal force is the model's own: the rigid block's rapier contact
 //! (restitution 0: a landing block loses its vertical velocity, and Coulomb friction acts
 //! through the landing, as the exact reference's plastic impact), and the supports'
-//! compression-only springs Kz (the rocking body's, applied-force or joint-limit, their
+//! compression-only springs Kz (the rocking body's, computed or joint-limit, their
 //! gaps measured from the moving ground; `world::oscillator_with_supports` for the oscillator:
 //! one joint-limit support under a mass free in X and Z), whose friction cap is
 //! μ times the support's own N after every step and whose slider follows an open support

@@ -1,7 +1,7 @@
 //! Building the rapier world of a planar scene, the planar [`Rig`]: the ground body and
 //! the structure with its contact — the rigid block's collider on the ground; the
 //! oscillator's joint-limit joint ([`Slider`]) or, under a vertical component, its one
-//! joint-limit [`Support`]; the rocking body's applied-force supports (the engine's
+//! joint-limit [`Support`]; the rocking body's computed supports (the engine's
 //! forces, no joints) or joint-limit ones; and the feet models (`contact_model =
 //! "foot"`), light foot bodies that carry the elasticity as spring joints.
 //!
@@ -424,7 +424,7 @@ pub struct Support {
     /// Anchor minus ground point (δx, δz) after the last step, m.
     pub delta: (f64, f64),
     /// The anchor's world position after the last step (x, y), m (at the start, at the
-    /// body's initial pose for the applied-force supports, which act there).
+    /// body's initial pose for the computed supports, which act there).
     pub anchor: (f64, f64),
 }
 

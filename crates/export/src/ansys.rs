@@ -40,15 +40,15 @@ pub fn settings(case: &Case) -> Result<DeckSettings, InputError> {
 
 /// The deck of a case with the given settings.
 pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
-    check_scene(case, "ANSYS", settings.double)?;
-    let (_, results) = names(settings.double);
+    check_scene(case, "ANSYS", settings.double())?;
+    let (_, results) = names(settings.double());
     let mut deck = header(case, settings, &results);
     match &case.scene.model {
         Model::Oscillator(o) => oscillator(&mut deck, case, o, settings)?,
         Model::RockingBody(r) => rocking(&mut deck, case, r, settings)?,
         Model::RigidBlock(_) => unreachable!("refused by check_scene"),
     }
-    let (name, results) = names(settings.double);
+    let (name, results) = names(settings.double());
     Ok(Export {
         files: vec![ExportFile {
             name,
@@ -87,7 +87,7 @@ fn header(case: &Case, settings: &DeckSettings, results: &str) -> String {
         num(settings.dt),
         settings.output_every,
         settings.steps,
-        if settings.double { "double" } else { "single" }
+        settings.arrangement.name()
     );
     h.push_str("/BATCH\n/PREP7\n");
     h
@@ -245,7 +245,7 @@ fn oscillator(
     o: &Oscillator,
     settings: &DeckSettings,
 ) -> Result<(), InputError> {
-    let (lower, upper) = match (settings.double, &o.double) {
+    let (lower, upper) = match (settings.double(), &o.double) {
         (true, Some(d)) => (&d.lower, Some(&d.upper)),
         _ => (&o.contact, None),
     };
@@ -295,7 +295,7 @@ fn oscillator(
         let _ = writeln!(deck, "F,{mass_node},FX,%LOADTAB%");
     }
     solution(deck, settings, false);
-    let (_, results) = names(settings.double);
+    let (_, results) = names(settings.double());
     let _ = writeln!(
         deck,
         "/POST26\nNUMVAR,20\nNSOL,2,{mass_node},U,X,UMASS\nNSOL,3,1,U,X,UGROUND\nRFORCE,4,1,F,X,RFX\n\
@@ -337,7 +337,7 @@ fn rocking(
     r: &RockingBody,
     settings: &DeckSettings,
 ) -> Result<(), InputError> {
-    let (lower, upper) = match (settings.double, &r.double) {
+    let (lower, upper) = match (settings.double(), &r.double) {
         (true, Some(d)) => (&d.lower, Some(&d.upper)),
         _ => (&r.contact, None),
     };
@@ -396,7 +396,7 @@ fn rocking(
         deck.push_str("F,1,FX,%LOADTAB%\n");
     }
     solution(deck, settings, true);
-    let (_, results) = names(settings.double);
+    let (_, results) = names(settings.double());
     deck.push_str(
         "/POST26\nNUMVAR,200\n\
          NSOL,2,1,U,X,CMX\nNSOL,3,1,U,Z,CMZ\nNSOL,4,1,ROT,Y,ROTY\nNSOL,5,2,U,X,UO\nNSOL,6,201,U,X,UG\n\

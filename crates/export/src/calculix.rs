@@ -63,7 +63,7 @@ pub fn export(case: &Case) -> ExportResult {
 
 /// The deck of a case with the given settings.
 pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
-    check_scene(case, "CalculiX", settings.double)?;
+    check_scene(case, "CalculiX", settings.double())?;
     let o = match &case.scene.model {
         Model::Oscillator(o) => o,
         _ => {
@@ -73,12 +73,12 @@ pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
             ));
         }
     };
-    let (lower, upper) = arrangement(case, o, settings.double)?;
+    let (lower, upper) = arrangement(case, o, settings.double())?;
     let mut deck = header(case, o, settings);
     mesh(&mut deck, o, lower, upper);
     excitation(&mut deck, case, settings)?;
     step(&mut deck, case, o, settings);
-    let (name, results) = names(settings.double);
+    let (name, results) = names(settings.double());
     Ok(Export {
         files: vec![ExportFile {
             name,
@@ -136,7 +136,7 @@ fn header(case: &Case, o: &Oscillator, settings: &DeckSettings) -> String {
         num(o.contact.kz),
         num(o.contact.mu)
     );
-    if let Some(d) = o.double.as_ref().filter(|_| settings.double) {
+    if let Some(d) = o.double.as_ref().filter(|_| settings.double()) {
         let _ = write!(
             h,
             ", kx1 = {}, kz1 = {}, mu1 = {}, kx2 = {}, kz2 = {}, mu2 = {}",
@@ -155,7 +155,7 @@ fn header(case: &Case, o: &Oscillator, settings: &DeckSettings) -> String {
         num(settings.dt),
         settings.output_every,
         settings.steps,
-        if settings.double { "double" } else { "single" }
+        settings.arrangement.name()
     );
     h.push_str(MODEL);
     h
@@ -309,7 +309,7 @@ fn step(deck: &mut String, case: &Case, o: &Oscillator, settings: &DeckSettings)
         deck,
         "*NODE PRINT, NSET={SET_BODY}, FREQUENCY={every}\nU, V\n*NODE PRINT, NSET={SET_GROUND}, FREQUENCY={every}, TOTALS=ONLY\nRF"
     );
-    if settings.double {
+    if settings.double() {
         let _ = writeln!(deck, "*NODE PRINT, NSET={SET_MIDDLE}, FREQUENCY={every}\nU");
     }
     if matches!(excitation, Excitation::GroundDisplacement(_)) {

@@ -3,7 +3,7 @@
 //! settings a case asks for under `[engines.<program>]`, and the check that a scene is
 //! one the decks model (planar, no vertical ground motion, no viscous damping).
 
-use rockslide_core::case::{Case, Model};
+use rockslide_core::case::{Arrangement, Case, Model};
 use rockslide_core::error::InputError;
 
 /// A number as an input deck writes it: the shortest text that reads back to the same
@@ -42,10 +42,25 @@ pub struct DeckSettings {
     pub output_every: usize,
     /// Steps to run.
     pub steps: usize,
-    /// The double contact arrangement (element 1 slides, element 2 elastic).
-    pub double: bool,
+    /// The contact arrangement written: single, or double (element 1 slides, element 2
+    /// elastic).
+    pub arrangement: Arrangement,
     /// Live runs: the longest the program may take, s.
     pub timeout: f64,
+}
+
+/// What a section of a case may set for one export: its name, its time step where the
+/// section gives none, and its options beside `dt`, `variants` and `timeout`.
+#[derive(Debug, Clone, Copy)]
+pub struct DeckSection<'a> {
+    /// `[engines.<name>]`.
+    pub name: &'a str,
+    /// The export, as an error names it (`the OpenSees export`).
+    pub export: &'a str,
+    /// The time step where the section gives none, s.
+    pub default_dt: f64,
+    /// Its options beside `dt`, `variants` and `timeout`.
+    pub options: &'a [&'a str],
 }
 
 impl DeckSettings {
@@ -53,27 +68,48 @@ impl DeckSettings {
     /// `variants` (`["single"]` or `["double"]`), `timeout` (s, default 600), and no other
     /// option; the output step is the run's `output_dt` (default: the run's `dt`).
     pub fn from_case(case: &Case, section: &str) -> Result<Self, InputError> {
-        let field = |k: &str| format!("engines.{section}.{k}");
-        let request = case.engine(section);
-        let dt = request.and_then(|s| s.dt).unwrap_or(case.run.dt);
-        if let Some(key) = request.and_then(|s| s.options.keys().find(|k| *k != "timeout")) {
+        let deck = DeckSection {
+            name: section,
+            export: "this export",
+            default_dt: case.run.dt,
+            options: &[],
+        };
+        Self::read(case, &deck)
+    }
+
+    /// The settings a case asks for under `section` (the options it names left to the
+    /// caller to read).
+    pub fn read(case: &Case, section: &DeckSection) -> Result<Self, InputError> {
+        let field = |k: &str| format!("engines.{}.{k}", section.name);
+        let request = case.engine(section.name);
+        let dt = request.and_then(|s| s.dt).unwrap_or(section.default_dt);
+        let known = |k: &str| k == "timeout" || section.options.contains(&k);
+        if let Some(key) = request.and_then(|s| s.options.keys().find(|k| !known(k))) {
+            let options: Vec<&str> = section.options.iter().copied().chain(["timeout"]).collect();
             return Err(case.field_error(
                 &field(key),
-                "is not an option of this export; the options are dt, variants, timeout",
+                format!(
+                    "is not an option of {}; the options are dt, variants, {}",
+                    section.export,
+                    options.join(", ")
+                ),
             ));
         }
-        let timeout = case.engine_number(section, "timeout", 600.0)?;
+        let timeout = case.engine_number(section.name, "timeout", 600.0)?;
         if !(timeout > 0.0 && timeout.is_finite()) {
             return Err(case.field_error(&field("timeout"), "must be a positive number of seconds"));
         }
-        let double = match request.and_then(|s| s.variants.as_deref()) {
-            None => false,
-            Some([v]) if v == "single" => false,
-            Some([v]) if v == "double" => true,
+        let arrangement = match request.and_then(|s| s.variants.as_deref()) {
+            None => Arrangement::Single,
+            Some([v]) if v == "single" => Arrangement::Single,
+            Some([v]) if v == "double" => Arrangement::Double,
             Some(_) => {
                 return Err(case.field_error(
                     &field("variants"),
-                    "must be [\"single\"] or [\"double\"]: a deck models one arrangement",
+                    format!(
+                        "must be [\"single\"] or [\"double\"]: {} writes one arrangement",
+                        section.export
+                    ),
                 ));
             }
         };
@@ -97,9 +133,14 @@ impl DeckSettings {
             dt,
             output_every,
             steps,
-            double,
+            arrangement,
             timeout,
         })
+    }
+
+    /// Whether it writes the double arrangement.
+    pub fn double(&self) -> bool {
+        self.arrangement == Arrangement::Double
     }
 }
 

@@ -13,6 +13,7 @@ use std::fmt::Write as _;
 use rockslide_core::case::{Case, Contact, Excitation, Model, RockingBody, Signal};
 use rockslide_core::error::InputError;
 
+use crate::deck::{DeckSection, DeckSettings, whole_steps};
 use crate::{Export, ExportFile, ExportResult};
 
 /// The case section that configures the export and asks for the live run.
@@ -44,8 +45,8 @@ pub const RECORD: &str = "record.txt";
 /// RPEPO's Newton iterations cycle or wander once every support is open).
 pub const ROCKING_DT: f64 = 1e-4;
 
-/// Options of `[engines.opensees]`, checked against these.
-pub const OPTION_KEYS: &[&str] = &["links", "timeout"];
+/// Options of `[engines.opensees]` beside `dt`, `variants` and `timeout`.
+const OPTIONS: &[&str] = &["links"];
 
 /// The builder every script carries after its `SCENE`.
 const TEMPLATE: &str = include_str!("opensees_template.py");
@@ -121,21 +122,14 @@ pub enum Samples {
     Inline,
 }
 
-/// How the scene is exported: step, output step, links, arrangement.
+/// How the scene is exported: the deck's settings (step, output step, arrangement,
+/// timeout) and the links.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Settings {
-    /// Analysis time step, s.
-    pub dt: f64,
-    /// Steps between two output rows.
-    pub output_every: usize,
-    /// Steps to run.
-    pub steps: usize,
+    /// Step, output step, steps, arrangement and timeout.
+    pub deck: DeckSettings,
     /// Rocking bodies: how the points are tied to the CM.
     pub links: Links,
-    /// The double contact arrangement (element 1 slides, element 2 elastic).
-    pub double: bool,
-    /// Live runs: the longest the subprocess may take, s.
-    pub timeout: f64,
 }
 
 impl Settings {
@@ -145,26 +139,18 @@ impl Settings {
     /// (`["single"]` or `["double"]`), `timeout` (s, default 600); the output step is the
     /// run's `output_dt` (default: the run's `dt`).
     pub fn from_case(case: &Case) -> Result<Self, InputError> {
-        let field = |k: &str| format!("engines.{SECTION}.{k}");
-        let section = case.engine(SECTION);
-        let dt = match section.and_then(|s| s.dt) {
-            Some(dt) => dt,
-            None if case.scene.model.has_rotation() => case.run.dt.min(ROCKING_DT),
-            None => case.run.dt,
+        let default_dt = if case.scene.model.has_rotation() {
+            case.run.dt.min(ROCKING_DT)
+        } else {
+            case.run.dt
         };
-        if let Some(key) = section.and_then(|s| {
-            s.options
-                .keys()
-                .find(|k| !OPTION_KEYS.contains(&k.as_str()))
-        }) {
-            return Err(case.field_error(
-                &field(key),
-                format!(
-                    "is not an option of the OpenSees export; the options are dt, variants, {}",
-                    OPTION_KEYS.join(", ")
-                ),
-            ));
-        }
+        let section = DeckSection {
+            name: SECTION,
+            export: "the OpenSees export",
+            default_dt,
+            options: OPTIONS,
+        };
+        let deck = DeckSettings::read(case, &section)?;
         let links_text = case.engine_text(
             SECTION,
             "links",
@@ -172,53 +158,8 @@ impl Settings {
             &["rigid", "PDelta", "Corotational"],
         )?;
         let links = Links::parse(&links_text).unwrap_or(Links::Rigid);
-        let timeout = case.engine_number(SECTION, "timeout", 600.0)?;
-        if !(timeout > 0.0 && timeout.is_finite()) {
-            return Err(case.field_error(&field("timeout"), "must be a positive number of seconds"));
-        }
-        let double = match section.and_then(|s| s.variants.as_deref()) {
-            None => false,
-            Some([v]) if v == "single" => false,
-            Some([v]) if v == "double" => true,
-            Some(_) => {
-                return Err(case.field_error(
-                    &field("variants"),
-                    "must be [\"single\"] or [\"double\"]: the export writes one arrangement",
-                ));
-            }
-        };
-        let steps = whole_steps(case.run.duration, dt).ok_or_else(|| {
-            case.field_error(
-                &field("dt"),
-                format!(
-                    "must divide the run's duration {} s into whole steps",
-                    case.run.duration
-                ),
-            )
-        })?;
-        let output_dt = case.run.output_dt.unwrap_or(case.run.dt).max(dt);
-        let output_every = whole_steps(output_dt, dt).ok_or_else(|| {
-            case.field_error(
-                &field("dt"),
-                format!("must divide the output step {output_dt} s (run.output_dt, or run.dt) into whole steps"),
-            )
-        })?;
-        Ok(Settings {
-            dt,
-            output_every,
-            steps,
-            links,
-            double,
-            timeout,
-        })
+        Ok(Settings { deck, links })
     }
-}
-
-/// `span / dt` when it is a whole number (to 1e-9), at least 1.
-fn whole_steps(span: f64, dt: f64) -> Option<usize> {
-    let n = span / dt;
-    let r = n.round();
-    ((n - r).abs() <= 1e-9 * r.max(1.0) && r >= 1.0).then_some(r as usize)
 }
 
 /// The OpenSeesPy export of a case with its own settings (`[engines.opensees]`).
@@ -232,12 +173,12 @@ pub fn export_with(case: &Case, settings: &Settings, samples: Samples) -> Export
     let mut files = Vec::new();
     let model = model_dict(case, settings)?;
     let excitation = excitation_dict(case, settings, samples, &mut files)?;
-    let (script_name, results) = names(settings.double);
+    let (script_name, results) = names(settings.deck.double());
     let run = format!(
         "{{\"dt\": {}, \"steps\": {}, \"output_every\": {}, \"tolerance\": 1e-12, \"results\": \"{results}\"}}",
-        py(settings.dt),
-        settings.steps,
-        settings.output_every
+        py(settings.deck.dt),
+        settings.deck.steps,
+        settings.deck.output_every
     );
     let mut script = header(case, settings);
     let _ = write!(
@@ -277,13 +218,13 @@ fn header(case: &Case, settings: &Settings) -> String {
          # Writes rockslide's own trace CSV (time [s], rel_disp [m], slide [m], resistance [N], ...):\n\
          #      rockslide check CASE --external opensees=RESULTS.csv\n",
     );
-    let arrangement = if settings.double { "double" } else { "single" };
+    let arrangement = settings.deck.arrangement.name();
     let _ = writeln!(
         h,
         "# Settings: dt = {} s, output every {} step(s), {} steps, {arrangement} contact arrangement{}.",
-        py(settings.dt),
-        settings.output_every,
-        settings.steps,
+        py(settings.deck.dt),
+        settings.deck.output_every,
+        settings.deck.steps,
         if case.scene.model.has_rotation() {
             format!(", links = {}", settings.links.name())
         } else {
@@ -327,7 +268,7 @@ fn double_dict(
     double: Option<&rockslide_core::case::DoubleContact>,
     settings: &Settings,
 ) -> Result<String, InputError> {
-    if !settings.double {
+    if !settings.deck.double() {
         return Ok("None".into());
     }
     let d = double.ok_or_else(|| {
@@ -359,7 +300,7 @@ fn model_dict(case: &Case, settings: &Settings) -> Result<String, InputError> {
             contact_dict(&o.contact),
             double_dict(case, o.double.as_ref(), settings)?
         )),
-        Model::RockingBody(_) if settings.double => Err(case.field_error(
+        Model::RockingBody(_) if settings.deck.double() => Err(case.field_error(
             &format!("engines.{SECTION}.variants"),
             "asks for the double arrangement of a rocking body, which the OpenSees export does not write: measured, OpenSees stops converging when sliding starts (0.18 s on rpepo-ground-disp, a massless intermediate node under each flatSliderBearing); export the single arrangement",
         )),
@@ -413,7 +354,7 @@ fn excitation_dict(
             cycles,
         } => {
             if matches!(excitation, Excitation::GroundDisplacement(_))
-                && whole_steps(signal.end(), settings.dt).is_none()
+                && whole_steps(signal.end(), settings.deck.dt).is_none()
             {
                 return Err(case.field_error(
                     &format!("engines.{SECTION}.dt"),

@@ -122,7 +122,7 @@ fn element(settings: &DeckSettings) -> String {
     format!(
         "C3D8 cube in simple shear, perfectly plastic at mu*M*g (Newmark, dt = {} s), {} arrangement",
         settings.dt,
-        if settings.double { "double" } else { "single" }
+        settings.arrangement.name()
     )
 }
 
@@ -182,7 +182,7 @@ fn read_dat(
     let Model::Oscillator(o) = &case.scene.model else {
         unreachable!("the CalculiX export writes oscillators only")
     };
-    let kx = match (&o.double, settings.double) {
+    let kx = match (&o.double, settings.double()) {
         (Some(d), true) => d.lower.kx,
         _ => o.contact.kx,
     };
@@ -190,7 +190,7 @@ fn read_dat(
     let column = |quantity: &str, set: &str, node: Option<u64>, c: usize| {
         series(&blocks, quantity, set, node, c)
     };
-    let body_node = if settings.double { 9 } else { 5 };
+    let body_node = if settings.double() { 9 } else { 5 };
     let u = column("displacements", SET_BODY, Some(body_node), 0);
     let v = column("velocities", SET_BODY, Some(body_node), 0);
     let reaction = column("total force", SET_GROUND, None, 0);
@@ -206,30 +206,30 @@ fn read_dat(
     let rows = u.len();
     let complete = v.len() == rows
         && reaction.len() == rows
-        && (!settings.double || middle.len() == rows)
+        && (!settings.double() || middle.len() == rows)
         && (!moving_ground || (ug.len() == rows && vg.len() == rows));
     if rows == 0 || !complete {
         return Err(rockslide_core::error::InputError::new(
             source,
             "",
-            format!("the .dat file lacks printed blocks: {rows} displacement blocks of the body, {} velocity, {} ground force{}", v.len(), reaction.len(), if settings.double { format!(", {} middle node", middle.len()) } else { String::new() }),
+            format!("the .dat file lacks printed blocks: {rows} displacement blocks of the body, {} velocity, {} ground force{}", v.len(), reaction.len(), if settings.double() { format!(", {} middle node", middle.len()) } else { String::new() }),
         )
         .into());
     }
     let mut csv = String::from("time [s],rel_disp [m],slide [m],resistance [N],vel [m/s]");
-    if settings.double {
+    if settings.double() {
         csv.push_str(",node_disp [m]");
     }
     if moving_ground {
         csv.push_str(",ground_disp [m]");
     }
-    csv.push_str(&zero_row(settings.double, moving_ground));
+    csv.push_str(&zero_row(settings.double(), moving_ground));
     let out_dt = settings.dt * settings.output_every as f64;
     for i in 0..rows {
         let ground = if moving_ground { ug[i].1 } else { 0.0 };
         let rel = u[i].1 - ground;
         let force = -reaction[i].1;
-        let node = if settings.double {
+        let node = if settings.double() {
             middle[i].1 - ground
         } else {
             rel
@@ -240,7 +240,7 @@ fn read_dat(
             on_grid(u[i].0, out_dt),
             node - force / kx
         ));
-        if settings.double {
+        if settings.double() {
             csv.push_str(&format!(",{node:?}"));
         }
         if moving_ground {

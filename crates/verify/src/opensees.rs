@@ -62,10 +62,8 @@ pub fn prepare(case: &Case) -> Result<Option<Settings>, InputErrors> {
         return Ok(None);
     }
     // every step, as the engines' analysis: peaks and event times are not sampled coarser
-    let settings = Settings {
-        output_every: 1,
-        ..Settings::from_case(case)?
-    };
+    let mut settings = Settings::from_case(case)?;
+    settings.deck.output_every = 1;
     export::export_with(case, &settings, Samples::Inline)?;
     Ok(Some(settings))
 }
@@ -83,7 +81,7 @@ pub fn live(case: &Case, settings: Option<&Settings>) -> Live {
         Ok(e) => String::from_utf8_lossy(&e.files[0].bytes).into_owned(),
         Err(e) => return Live::Failed(Box::new(failed(settings, e.to_string(), Vec::new()))),
     };
-    let timeout = Duration::from_secs_f64(settings.timeout);
+    let timeout = Duration::from_secs_f64(settings.deck.timeout);
     // `python3 - -`: the script from standard input, its one argument "-" (results to
     // standard output)
     let out = match run_script(&script, timeout) {
@@ -96,7 +94,7 @@ pub fn live(case: &Case, settings: Option<&Settings>) -> Live {
         } else if out.timed_out {
             format!(
                 "OpenSeesPy did not finish within {} s (engines.opensees.timeout)",
-                settings.timeout
+                settings.deck.timeout
             )
         } else {
             "the OpenSeesPy script failed".to_string()
@@ -109,7 +107,7 @@ pub fn live(case: &Case, settings: Option<&Settings>) -> Live {
             read.notes.push(format!(
                 "OpenSees ran live in {:.1} s (exported script, dt = {} s, links = {})",
                 started.elapsed().as_secs_f64(),
-                settings.dt,
+                settings.deck.dt,
                 settings.links.name()
             ));
             Live::Participant(Box::new(External {
@@ -131,7 +129,7 @@ pub fn live(case: &Case, settings: Option<&Settings>) -> Live {
 
 /// The elements used, in a few words, for the report.
 fn element(case: &Case, settings: &Settings) -> String {
-    let arrangement = if settings.double { "double" } else { "single" };
+    let arrangement = settings.deck.arrangement.name();
     if case.scene.model.has_rotation() {
         format!(
             "flatSliderBearing supports (Coulomb, Elastic axial: uplift in tension), {} links, {arrangement} arrangement",
@@ -222,7 +220,14 @@ fn read_bounded(stream: &mut impl Read, limit: u64) -> (String, bool) {
 
 /// The run of a live OpenSees participant that failed.
 fn failed(settings: &Settings, reason: String, stderr: Vec<String>) -> Run {
-    failed_run(LABEL, "OpenSeesPy", settings.dt, reason, "stderr", stderr)
+    failed_run(
+        LABEL,
+        "OpenSeesPy",
+        settings.deck.dt,
+        reason,
+        "stderr",
+        stderr,
+    )
 }
 
 #[cfg(test)]

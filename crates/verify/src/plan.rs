@@ -3,14 +3,15 @@
 //! [`crate::suite::plan`], priced by [`crate::footprint`] and run by [`crate::suite`].
 
 use rockslide_core::case::Case;
+use rockslide_engine_api::Variant;
 
 /// One planned run.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlannedRun {
     /// Engine id.
     pub engine: &'static str,
-    /// Variant.
-    pub variant: String,
+    /// Variant, as the engine declared it.
+    pub variant: Variant,
     /// Time step, s.
     pub dt: f64,
     /// Values one row records (time, channels, contact fields), when the engine declares

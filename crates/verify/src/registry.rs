@@ -6,7 +6,7 @@
 
 use std::path::Path;
 
-use rockslide_core::case::{Case, Invariant, Scene};
+use rockslide_core::case::{Case, EngineOptions, Invariant, Scene};
 use rockslide_core::error::{InputError, InputErrors};
 use rockslide_engine_api::{Engine, NotApplicable, Run, StepSink, Variant};
 
@@ -68,20 +68,20 @@ impl<E: Engine> Engine for PlanGate<E> {
         }
         self.0.variants(scene)
     }
-    fn check_options(&self, case: &Case) -> Vec<InputError> {
-        self.0.check_options(case)
+    fn parse_options(&self, case: &Case) -> Result<Option<EngineOptions>, Vec<InputError>> {
+        self.0.parse_options(case)
     }
     fn models_plan_motion(&self) -> bool {
         self.0.models_plan_motion()
     }
-    fn run(&self, case: &Case, variant: &str, dt: f64) -> Result<Run, InputError> {
+    fn run(&self, case: &Case, variant: Variant, dt: f64) -> Result<Run, InputError> {
         self.admit(case)?;
         self.0.run(case, variant, dt)
     }
     fn run_streaming(
         &self,
         case: &Case,
-        variant: &str,
+        variant: Variant,
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
@@ -91,24 +91,47 @@ impl<E: Engine> Engine for PlanGate<E> {
     fn streams_natively(&self) -> bool {
         self.0.streams_natively()
     }
-    fn recorded_values(&self, case: &Case, variant: &str) -> Option<usize> {
+    fn recorded_values(&self, case: &Case, variant: Variant) -> Option<usize> {
         self.0.recorded_values(case, variant)
     }
     fn invariant_limit(&self, invariant: Invariant) -> f64 {
         self.0.invariant_limit(invariant)
     }
-    fn step_cost(&self, scene: &Scene, variant: &str) -> f64 {
+    fn step_cost(&self, scene: &Scene, variant: Variant) -> f64 {
         self.0.step_cost(scene, variant)
     }
     fn for_sweep(&self, case: &mut Case) -> Vec<String> {
-        self.0.for_sweep(case)
+        let notes = self.0.for_sweep(case);
+        reparse_options(&self.0, case);
+        notes
     }
     fn at_rung(&self, case: &Case, dt: f64) -> Option<Case> {
-        self.0.at_rung(case, dt)
+        let mut case = self.0.at_rung(case, dt)?;
+        reparse_options(&self.0, &mut case);
+        Some(case)
     }
     fn for_stability(&self, case: &mut Case) {
-        self.0.for_stability(case)
+        self.0.for_stability(case);
+        reparse_options(&self.0, case);
     }
+}
+
+/// The engine's options parsed again after its own change to them (a sweep's, a rung's,
+/// the stability map's); options it cannot parse are dropped, so that its run parses
+/// them itself and reports the located problem.
+fn reparse_options<E: Engine + ?Sized>(engine: &E, case: &mut Case) {
+    let parsed = engine.parse_options(case).ok().flatten();
+    case.parsed_options.set(engine.id(), parsed);
+}
+
+/// Problems with engine `e`'s options in `case`: none for a case whose options were parsed
+/// when it was loaded through the registry, else those the engine finds now (a case
+/// read without the registry).
+pub fn option_problems(case: &Case, e: &dyn Engine) -> Vec<InputError> {
+    if case.parsed_options.contains(e.id()) {
+        return Vec::new();
+    }
+    e.parse_options(case).err().unwrap_or_default()
 }
 
 /// The registered engine with this id.
@@ -158,12 +181,19 @@ pub fn parse_case(path: &Path, text: &str) -> Result<Case, InputErrors> {
     rockslide_formats::parse_case(path, text, CASE_SECTION_IDS).and_then(with_valid_options)
 }
 
-/// The case, or every problem found with its engine sections: each engine's options
-/// (whether or not it applies to the scene), variants asked of an engine that does not
+/// The case with each engine's options parsed into the engine's type, or every problem
+/// found with its engine sections: each engine's options (whether or not it applies to
+/// the scene), variants asked of an engine that does not
 /// apply, and the OpenSees participant's settings and export — the one validation every
 /// command that reads a case goes through.
-fn with_valid_options(case: Case) -> Result<Case, InputErrors> {
-    let mut errors: Vec<InputError> = all().iter().flat_map(|e| e.check_options(&case)).collect();
+fn with_valid_options(mut case: Case) -> Result<Case, InputErrors> {
+    let mut errors: Vec<InputError> = Vec::new();
+    for e in all() {
+        match e.parse_options(&case) {
+            Ok(parsed) => case.parsed_options.set(e.id(), parsed),
+            Err(problems) => errors.extend(problems),
+        }
+    }
     errors.extend(variants_of_inapplicable(&case));
     if let Err(e) = crate::opensees::prepare(&case) {
         errors.extend(e.0);

@@ -12,7 +12,7 @@ use serde::{Deserialize, Serialize};
 use rockslide_core::case::Case;
 use rockslide_core::error::InputError;
 use rockslide_core::trace::Trace;
-use rockslide_engine_api::{Arrangement, Engine, Run, RunStatus, SolverStats};
+use rockslide_engine_api::{Arrangement, Engine, Run, RunStatus, SolverStats, Variant};
 
 /// Run `f`, catching a panic as its message.
 pub fn guard<T>(f: impl FnOnce() -> T) -> Result<T, String> {
@@ -105,7 +105,7 @@ impl Timed {
 pub fn guarded(
     engine: &dyn Engine,
     case: &Case,
-    variant: &str,
+    variant: Variant,
     dt: f64,
     repeats: usize,
 ) -> Result<Timed, InputError> {

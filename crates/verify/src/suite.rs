@@ -13,7 +13,7 @@ use crate::timings;
 use rockslide_core::case::Case;
 use rockslide_core::error::{InputError, InputErrors};
 use rockslide_core::trace::q;
-use rockslide_engine_api::{Engine, Run};
+use rockslide_engine_api::{Engine, Run, Variant, declared};
 use rockslide_reference::ExactSolution;
 
 pub use crate::plan::{Plan, PlannedRun, STREAMING_STEPS, streams};
@@ -32,7 +32,7 @@ pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputError
         if !case.engines.is_empty() && request.is_none() {
             continue;
         }
-        errors.extend(e.check_options(case));
+        errors.extend(registry::option_problems(case, e.as_ref()));
         let available = match e.variants(&case.scene) {
             Ok(v) => v,
             Err(na) => {
@@ -40,34 +40,17 @@ pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputError
                 continue;
             }
         };
-        let wanted: Vec<String> = match request.and_then(|r| r.variants.clone()) {
-            Some(v) => v,
-            None => available.iter().map(|v| v.name.to_string()).collect(),
+        let wanted = match request.and_then(|r| r.variants.as_deref()) {
+            Some(names) => asked_variants(case, e.id(), &available, names, &mut errors),
+            None => available,
         };
-        for (i, v) in wanted.iter().enumerate() {
-            if !available.iter().any(|a| a.name == v.as_str()) {
-                errors.push(case.field_error(
-                    &format!("engines.{}.variants[{i}]", e.id()),
-                    format!(
-                        "\"{v}\" is not a variant of {} for this scene; available: {}",
-                        e.id(),
-                        available
-                            .iter()
-                            .map(|a| a.name)
-                            .collect::<Vec<_>>()
-                            .join(", ")
-                    ),
-                ));
-                continue;
-            }
-            plan.runs.push(PlannedRun {
-                engine: e.id(),
-                variant: v.clone(),
-                dt: case.dt_for(e.id()),
-                values: e.recorded_values(case, v),
-                native_streaming: e.streams_natively(),
-            });
-        }
+        plan.runs.extend(wanted.into_iter().map(|v| PlannedRun {
+            engine: e.id(),
+            variant: v,
+            dt: case.dt_for(e.id()),
+            values: e.recorded_values(case, v),
+            native_streaming: e.streams_natively(),
+        }));
     }
     if errors.is_empty() {
         // refused before any work when its traces would not fit (crate::footprint)
@@ -76,6 +59,35 @@ pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputError
     } else {
         Err(InputErrors(errors))
     }
+}
+
+/// The variants of engine `id` a case asks for by name, each resolved to the one the
+/// engine declared; a name it did not declare for the scene is a located error.
+fn asked_variants(
+    case: &Case,
+    id: &str,
+    available: &[Variant],
+    names: &[String],
+    errors: &mut Vec<InputError>,
+) -> Vec<Variant> {
+    let mut wanted = Vec::with_capacity(names.len());
+    for (i, name) in names.iter().enumerate() {
+        match declared(available, name) {
+            Some(v) => wanted.push(v),
+            None => errors.push(case.field_error(
+                &format!("engines.{id}.variants[{i}]"),
+                format!(
+                    "\"{name}\" is not a variant of {id} for this scene; available: {}",
+                    available
+                        .iter()
+                        .map(|a| a.name)
+                        .collect::<Vec<_>>()
+                        .join(", ")
+                ),
+            )),
+        }
+    }
+    wanted
 }
 
 /// Run one planned run, guarded and timed: a panic inside the engine becomes a run that
@@ -89,8 +101,8 @@ pub fn execute(
         .iter()
         .find(|e| e.id() == p.engine)
         .expect("planned engines exist");
-    let timed = crate::run::guarded(e.as_ref(), case, &p.variant, p.dt, 1)?;
-    Ok(timed.into_run(e.id(), &p.variant, p.dt))
+    let timed = crate::run::guarded(e.as_ref(), case, p.variant, p.dt, 1)?;
+    Ok(timed.into_run(e.id(), p.variant.name, p.dt))
 }
 
 /// Run one planned run streamed, guarded: a first pass reads the run-wide scales, the
@@ -111,10 +123,10 @@ pub fn execute_streamed(
     let start = std::time::Instant::now();
     let outcome = crate::run::guard(|| -> Result<(Run, StreamedSummary), InputError> {
         let mut peaks = Peaks::default();
-        e.run_streaming(case, &p.variant, p.dt, &mut peaks)?;
+        e.run_streaming(case, p.variant, p.dt, &mut peaks)?;
         let capacity = kept_rows(case, p.dt);
         let mut sink = Summaries::new(case, &peaks, solution, case.run.output_dt, capacity);
-        let mut run = e.run_streaming(case, &p.variant, p.dt, &mut sink)?;
+        let mut run = e.run_streaming(case, p.variant, p.dt, &mut sink)?;
         let summary = sink.finish(&mut run);
         let same = summary.rows == peaks.rows
             && run.trace.end_time().to_bits() == peaks.last_time.to_bits();
@@ -139,7 +151,7 @@ pub fn execute_streamed(
                 seconds: vec![seconds],
                 deterministic: true,
             };
-            Ok((timed.into_run(e.id(), &p.variant, p.dt), None))
+            Ok((timed.into_run(e.id(), p.variant.name, p.dt), None))
         }
     }
 }

@@ -5,11 +5,13 @@
 //! are valid but likely mistakes (`plausibility`). Engines never see TOML:
 //! they see [`Case`] and [`Scene`].
 
+mod arrangement;
 mod external;
 mod invariant;
 pub mod limits;
 mod load;
 mod locate;
+mod parsed_options;
 pub mod plausibility;
 mod raw;
 pub mod record;
@@ -18,6 +20,7 @@ mod signal;
 pub mod slug;
 mod spatial;
 
+pub use arrangement::Arrangement;
 pub use external::{
     ColumnMap, EXTERNAL_VARIANT, External, ExternalFormat, ExternalLayout, ExternalTrace,
     ReadExternal, check_label,
@@ -28,6 +31,7 @@ pub use load::{
     read_input_text,
 };
 pub use locate::Locator;
+pub use parsed_options::{EngineOptions, ParsedOptions};
 pub use scene::{
     Case, Contact, DESIGN_QUANTITIES, DoubleContact, EXPECTED_STATUSES, EngineRequest, Excitation,
     ExpectedDisagreement, ExpectedOutcome, ExpectedViolation, INVARIANT_KEYS, Model, NormalForce,

@@ -462,6 +462,9 @@ pub struct Case {
     pub locator: Locator,
     /// Other programs' results taking part like engines (`[[external]]`, `--external`).
     pub externals: Vec<External>,
+    /// Each engine's options parsed once into its own type when the case is loaded
+    /// through the registry (empty for a case read without it).
+    pub parsed_options: super::ParsedOptions,
 }
 
 impl Case {

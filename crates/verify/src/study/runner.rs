@@ -369,14 +369,14 @@ fn engine_summary(
         .iter()
         .find(|e| e.id() == pr.engine)
         .expect("planned engines exist");
-    let timed = guarded(engine.as_ref(), case, &pr.variant, pr.dt, 1).map_err(InputErrors::from)?;
+    let timed = guarded(engine.as_ref(), case, pr.variant, pr.dt, 1).map_err(InputErrors::from)?;
     let wall = timed.seconds.first().copied().unwrap_or(f64::NAN);
     let status = Outcome::of(&timed.run).to_string();
     let Ok(run) = timed.run else {
         // A panic is a result: recorded with its message, no numbers.
         return Ok(RunSummary {
             wall_seconds: wall,
-            ..RunSummary::empty(pr.engine, &pr.variant, pr.dt, status)
+            ..RunSummary::empty(pr.engine, pr.variant.name, pr.dt, status)
         });
     };
     let resp = responses(&run.trace);

@@ -3,7 +3,9 @@
 
 use rockslide_core::case::{Case, Model, Signal};
 use rockslide_core::error::{InputError, InputErrors};
-use rockslide_engine_api::Engine;
+use rockslide_engine_api::{Engine, Variant, declared};
+
+use crate::registry::option_problems;
 
 /// The scene's characteristic period T, s, and how it was obtained. The sweep's ladder
 /// starts at T/10 (the paper's advice Δt < T/10) and the stability map is in Δt/T.
@@ -47,8 +49,8 @@ pub struct Series {
     pub engine: usize,
     /// Engine id.
     pub engine_id: &'static str,
-    /// Variant.
-    pub variant: String,
+    /// Variant, as the engine declared it.
+    pub variant: Variant,
 }
 
 impl Series {
@@ -73,23 +75,23 @@ pub fn applicable(
     let mut not_applicable = Vec::new();
     let mut errors: Vec<InputError> = Vec::new();
     for (i, e) in engines.iter().enumerate() {
-        errors.extend(e.check_options(case));
+        errors.extend(option_problems(case, e.as_ref()));
         match e.variants(&case.scene) {
             Err(na) => not_applicable.push((e.id().to_string(), na.0)),
             Ok(available) => {
-                let wanted: Vec<String> = case
-                    .engine(e.id())
-                    .and_then(|r| r.variants.clone())
-                    .unwrap_or_else(|| available.iter().map(|a| a.name.to_string()).collect());
-                for v in wanted {
-                    if available.iter().any(|a| a.name == v.as_str()) {
-                        series.push(Series {
-                            engine: i,
-                            engine_id: e.id(),
-                            variant: v,
-                        });
-                    }
-                }
+                let asked = case.engine(e.id()).and_then(|r| r.variants.as_deref());
+                let wanted = match asked {
+                    Some(names) => names
+                        .iter()
+                        .filter_map(|n| declared(&available, n))
+                        .collect(),
+                    None => available,
+                };
+                series.extend(wanted.into_iter().map(|variant| Series {
+                    engine: i,
+                    engine_id: e.id(),
+                    variant,
+                }));
             }
         }
     }

@@ -28,7 +28,7 @@ use crate::run::{Timed, guarded};
 use rockslide_core::case::Case;
 use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::trace::q;
-use rockslide_engine_api::Engine;
+use rockslide_engine_api::{Engine, Variant};
 use rockslide_reference::ExactSolution;
 
 /// Between a row label's case and series ([`StabilityRun::row_label`]).
@@ -434,8 +434,7 @@ fn run_ladders(
                 tasks
                     .par_iter()
                     .map(|(ci, s, dt)| {
-                        let r =
-                            guarded(engines[s.engine].as_ref(), &cases[*ci], &s.variant, *dt, 1);
+                        let r = guarded(engines[s.engine].as_ref(), &cases[*ci], s.variant, *dt, 1);
                         bar.inc(1);
                         r
                     })
@@ -515,11 +514,11 @@ fn limits_of(
     runs: &[StabilityRun],
     criteria: &Criteria,
 ) -> Vec<Limit> {
-    let mut labels: Vec<(String, usize, String)> = Vec::new();
+    let mut labels: Vec<(String, usize, Variant)> = Vec::new();
     for series in plans {
         for s in series {
             if !labels.iter().any(|l| l.0 == s.label()) {
-                labels.push((s.label(), s.engine, s.variant.clone()));
+                labels.push((s.label(), s.engine, s.variant));
             }
         }
     }
@@ -529,7 +528,7 @@ fn limits_of(
             limit_of(
                 label,
                 engines[*ei].as_ref(),
-                variant,
+                *variant,
                 cases,
                 periods,
                 runs,
@@ -567,7 +566,7 @@ fn scenes(cases: &[Case], references: &[Basis], periods: &[f64]) -> Vec<Scene> {
 fn limit_of(
     label: &str,
     engine: &dyn Engine,
-    variant: &str,
+    variant: Variant,
     cases: &[Case],
     periods: &[f64],
     runs: &[StabilityRun],
@@ -636,7 +635,7 @@ fn limit_of(
 /// scene, and the first such scene in the scenes' order.
 struct Bisection<'a> {
     engine: &'a dyn Engine,
-    variant: &'a str,
+    variant: Variant,
     criteria: &'a Criteria,
     bracket: (f64, f64),
 }
@@ -786,7 +785,7 @@ mod tests {
             .collect();
         let bisection = Bisection {
             engine: pc.as_ref(),
-            variant: "paper",
+            variant: pc.variants(&cases[0].scene).expect("applies")[0],
             criteria: &Criteria::default(),
             bracket: (0.3, 0.4),
         };

@@ -379,7 +379,7 @@ fn run_ladder(
                 let s = &series[si];
                 let own = engines[s.engine].at_rung(case, dt);
                 let case = own.as_ref().unwrap_or(case);
-                let r = guarded(engines[s.engine].as_ref(), case, &s.variant, dt, repeats);
+                let r = guarded(engines[s.engine].as_ref(), case, s.variant, dt, repeats);
                 tick();
                 r
             })

@@ -217,6 +217,7 @@ pub fn parse_case_with(
         expected_disagreements,
         locator,
         externals: Vec::new(),
+        parsed_options: Default::default(),
     };
     for e in externals {
         case.add_external(e);
