@@ -39,7 +39,8 @@ pub enum Reading {
     /// Number of slip episodes: maximal runs of steps whose slide rate exceeds the slip
     /// threshold (a count, no unit). On a plan trace the rate is the planar one along the
     /// slip path, |(Δslide, Δslide_y)|/Δt ([`QuantityDef::plan_partner`]), so an episode
-    /// whose slip turns across x is one episode.
+    /// whose slip turns across x is one episode. A run counts when it slides more than
+    /// 1 µm (verify's `EPISODE_MIN_SLIP`: a graze of the friction limit is no episode).
     SlipEpisodes,
 }
 

@@ -13,6 +13,8 @@
 //!   the predictor-corrector);
 //! - a run shorter than its record whose unrun part still holds strong motion (at least a
 //!   tenth of the peak: the rest of the record never acts).
+//! - a duration that is not a multiple of the time step (the run ends at the first step
+//!   after it, for every trace and the exact reference).
 
 use std::f64::consts::PI;
 
@@ -99,6 +101,15 @@ pub fn warnings(case: &Case) -> Vec<Warning> {
                 case.run.duration,
                 end - case.run.duration,
                 100.0 * left
+            ),
+        );
+    }
+    if case.run.asked_duration != case.run.duration {
+        warn(
+            "run.duration",
+            format!(
+                "{} s is not a multiple of run.dt ({} s): the run ends at {} s, the first step after it, where every trace and the exact reference are read",
+                case.run.asked_duration, case.run.dt, case.run.duration
             ),
         );
     }
@@ -255,8 +266,12 @@ mod tests {
         );
         let w = warnings(&pepo("1.6", 5.0, 0.001));
         assert_eq!((w.len(), w[0].field), (1, "model.contact.mu"));
-        // T/10 = 0.01987 s: 0.019 s passes, 0.02 s warns.
-        assert_eq!(warnings(&pepo("0.5", 5.0, 0.019)), []);
+        // T/10 = 0.01987 s: 0.019 s passes, 0.02 s warns. 1 s is not a multiple of
+        // 0.019 s: the run ends at 53 steps, 1.007 s, and says so.
+        let w = warnings(&pepo("0.5", 5.0, 0.019));
+        assert_eq!(w.len(), 1, "{w:?}");
+        assert_eq!(w[0].field, "run.duration");
+        assert!(w[0].message.contains("ends at 1.007"), "{}", w[0]);
         let w = warnings(&pepo("0.5", 5.0, 0.02));
         assert_eq!(w.len(), 1, "{w:?}");
         assert!(w[0].message.contains("T/10 = 0.0199 s"), "{}", w[0]);
@@ -273,6 +288,7 @@ mod tests {
         });
         // 1 s runs the samples at 0, 0.5 and 1 s: the unrun 1.5 s holds half the peak
         case.run.duration = 1.0;
+        case.run.asked_duration = 1.0;
         let w = warnings(&case);
         assert!(
             w.iter()
@@ -281,6 +297,7 @@ mod tests {
         );
         // 1.5 s leaves only zero motion
         case.run.duration = 1.5;
+        case.run.asked_duration = 1.5;
         assert!(!warnings(&case).iter().any(|w| w.field == "run.duration"));
     }
 

@@ -184,8 +184,12 @@ pub struct RawStation {
     pub x_azimuth_deg: Option<f64>,
     /// The scene axes the station drives: "xyz" (default), "xy", "xz" or "x".
     pub components: Option<String>,
-    /// The baseline correction of an uncorrected record: "cubic" (default) or "none".
+    /// The correction of an uncorrected record: "cubic" (default), "highpass" or "none".
     pub baseline: Option<String>,
+    /// The high-pass's corner frequency, Hz (with `baseline = "highpass"`).
+    pub highpass_corner_hz: Option<f64>,
+    /// The high-pass's order a pass (with `baseline = "highpass"`; default 4).
+    pub highpass_order: Option<i64>,
     /// One factor for all three components.
     pub scale: Option<f64>,
     pub polarity: Option<f64>,

@@ -279,8 +279,13 @@ impl Vertical {
 /// Run length and default step.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RunSettings {
-    /// Simulated time, s.
+    /// Simulated time, s: the end of the run, when every trace and the exact reference
+    /// are read. The case's `duration` when it is a multiple of `dt`; otherwise the first
+    /// step after it (n·dt, n = ⌈duration/dt⌉), which every engine at `dt` runs to.
     pub duration: f64,
+    /// The duration the case wrote, s (differs from `duration` when it was not a multiple
+    /// of `dt`: a warning says so).
+    pub asked_duration: f64,
     /// Default time step, s (an engine section may override it).
     pub dt: f64,
     /// Time step of the trace files written (CSV, MCAP), s; `None`: every step. The

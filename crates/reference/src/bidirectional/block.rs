@@ -499,7 +499,7 @@ pub(crate) fn plan_channels() -> Vec<&'static Quantity> {
 /// than 1e-3 of the fastest: on the PEPO under the Chino Hills pair 93 plastic phases and
 /// 93 runs sampled every 0.25, 1, 5 or 10 ms (91 every 20 ms); on the block 13 slides and
 /// 12 runs (one slide peaks at 5.8e-4 of the fastest slide rate).
-pub(crate) const SLIP_EPISODES_RESPONSE: &str = "The response \"Slip episodes\" (slip_episodes) is read off a sampled trace as for every engine: runs of samples whose planar slip rate along the slip path, |(Δslide, Δslide_y)|/Δt, exceeds 1e-3 of its largest, so a slip that turns across x stays one episode, a stick that holds no whole sample step joins its neighbours, and a slide slower than 1e-3 of the fastest is not counted";
+pub(crate) const SLIP_EPISODES_RESPONSE: &str = "The response \"Slip episodes\" (slip_episodes) is read off a sampled trace as for every engine: runs of samples whose planar slip rate along the slip path, |(Δslide, Δslide_y)|/Δt, exceeds 1e-3 of its largest, so a slip that turns across x stays one episode, a stick that holds no whole sample step joins its neighbours, a slide slower than 1e-3 of the fastest is not counted, nor a run that slides 1 µm or less (a graze of the friction limit)";
 
 /// Fill the channels of [`plan_channels`].
 pub(crate) fn write_plan(out: &mut [f64], u: [f64; 2], slip: [f64; 2], v: [f64; 2]) {

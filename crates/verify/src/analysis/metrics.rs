@@ -39,7 +39,7 @@ pub fn responses(trace: &Trace) -> Responses {
             Reading::SlipEpisodes => {
                 let y = d.plan_partner().and_then(|y| trace.column(y.key));
                 let slipping = passes.slipping(&trace.time, d.channel.key, col, y);
-                Some(episodes(slipping) as f64)
+                Some(episodes(slipping, col, y) as f64)
             }
             Reading::FirstZero => col.iter().position(|&c| c <= 0.0).map(|i| trace.time[i]),
             Reading::FirstCrossing => passes
@@ -175,16 +175,40 @@ fn window(time: &[f64], slipping: &[bool]) -> Option<(f64, f64)> {
     Some((time[first], time[last + 1]))
 }
 
+/// Least slide of a slip episode, m: a run of slipping steps counts as an episode when
+/// the distance slid in it (Σ|Δslide|, or Σ|(Δslide, Δslide_y)| along the slip path)
+/// exceeds 1 µm. Below it a contact is in its pre-sliding range — the elastic
+/// deformation of the asperities before gross slip, micrometres for engineering surfaces
+/// (Courtney-Pratt & Eisner 1957; Rabinowicz's critical slip distance) — so no physical
+/// slip is resolved, while a discrete model's grazes of the friction limit (slips of
+/// 0.1 µm and less where the exact solution touches the limit without slipping) stay out.
+/// Every engine's trace and the exact reference's are counted with it.
+pub const EPISODE_MIN_SLIP: f64 = 1e-6;
+
+/// Slide of one step: |Δslide|, or |(Δslide, Δslide_y)| on a plan trace.
+pub(super) fn step_slide(dx: f64, dy: Option<f64>) -> f64 {
+    match dy {
+        None => dx.abs(),
+        Some(dy) => dx.hypot(dy),
+    }
+}
+
 /// Number of slip episodes: maximal runs of slipping steps ([`slipping_steps`]; on a plan
 /// trace the planar rate along the slip path, so an episode whose slip turns across x is
-/// one episode). Read the same way off every engine's trace; a stick shorter than one
-/// output step joins its neighbours.
-fn episodes(slipping: &[bool]) -> usize {
-    slipping
-        .iter()
-        .enumerate()
-        .filter(|&(i, &s)| s && (i == 0 || !slipping[i - 1]))
-        .count()
+/// one episode) in which the body slides more than [`EPISODE_MIN_SLIP`]. Read the same way
+/// off every engine's trace; a stick shorter than one output step joins its neighbours.
+fn episodes(slipping: &[bool], slide: &[f64], slide_y: Option<&[f64]>) -> usize {
+    let mut count = 0;
+    let mut slid: Option<f64> = None;
+    for (i, &s) in slipping.iter().enumerate() {
+        if s {
+            let dy = slide_y.map(|y| y[i + 1] - y[i]);
+            *slid.get_or_insert(0.0) += step_slide(slide[i + 1] - slide[i], dy);
+        } else if let Some(d) = slid.take() {
+            count += usize::from(d > EPISODE_MIN_SLIP);
+        }
+    }
+    count + slid.map_or(0, |d| usize::from(d > EPISODE_MIN_SLIP))
 }
 
 /// The value with the largest magnitude, with its sign (the first one on a tie; 0 for an
@@ -247,7 +271,7 @@ fn slipping_steps(time: &[f64], slide: &[f64], slide_y: Option<&[f64]>) -> Vec<b
 /// output step joins its neighbours.
 #[cfg(test)]
 fn slip_episodes(time: &[f64], slide: &[f64], slide_y: Option<&[f64]>) -> usize {
-    episodes(&slipping_steps(time, slide, slide_y))
+    episodes(&slipping_steps(time, slide, slide_y), slide, slide_y)
 }
 
 /// Sum of |increments| of a channel: on the slide, the total distance slid both ways.
@@ -377,6 +401,15 @@ mod tests {
         // a step below 1e-3 of the peak rate is stuck (creep), not an episode
         let creep = [0.0, 1.0, 1.0, 1.0 + 1e-4, 1.0 + 1e-4, 2.0, 2.0];
         assert_eq!(slip_episodes(&t, &creep, None), 2);
+        // a run that slides no more than EPISODE_MIN_SLIP (1 µm) in all is a graze of the
+        // friction limit, not an episode: 0.6 + 0.4 µm is not counted, 0.6 + 0.6 µm is
+        let graze = [0.0, 0.6e-6, 1.0e-6, 1.0e-6, 1.0e-6, 1.0e-6, 1.0e-6];
+        assert_eq!(slip_episodes(&t, &graze, None), 0);
+        let slip = [0.0, 0.6e-6, 1.2e-6, 1.2e-6, 1.2e-6, 1.2e-6, 1.2e-6];
+        assert_eq!(slip_episodes(&t, &slip, None), 1);
+        // … between two slides (0.1 mm each way; the graze's rate is above 1e-3 of theirs)
+        let s = [0.0, 1e-4, 1e-4, 1e-4 + 5e-7, 1e-4 + 5e-7, 0.0, 0.0];
+        assert_eq!(slip_episodes(&t, &s, None), 2);
     }
 
     /// Slip around a regular octagon at constant speed (a circle sampled at 8 points a
@@ -434,7 +467,7 @@ mod tests {
             // the same pass read again, and the episodes off it
             assert_eq!(passes.slip_window(&t, "slide", &s), w);
             assert_eq!(
-                episodes(passes.slipping(&t, "slide", &s, None)),
+                episodes(passes.slipping(&t, "slide", &s, None), &s, None),
                 slip_episodes(&t, &s, None)
             );
         }

@@ -12,5 +12,7 @@ pub mod streamed;
 pub mod sweep;
 
 pub use checks::{Check, Verdict, evaluate_tolerances};
-pub use metrics::{Responses, discrepancy_percent, history_difference, responses};
+pub use metrics::{
+    EPISODE_MIN_SLIP, Responses, discrepancy_percent, history_difference, responses,
+};
 pub use rockslide_core::response::{QUANTITY_KEYS, QuantityDef, quantity_def};

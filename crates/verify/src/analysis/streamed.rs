@@ -25,7 +25,7 @@ use rockslide_engine_api::{Run, StepSink};
 use rockslide_reference::ExactSolution;
 
 use super::envelope::{ENVELOPE_BUCKETS, Envelope};
-use super::metrics::slide_rate;
+use super::metrics::{EPISODE_MIN_SLIP, slide_rate, step_slide};
 use super::{Responses, responses};
 use crate::invariants::{InvariantCheck, StreamedInvariants};
 
@@ -106,6 +106,8 @@ struct ReadingState {
     first: Option<f64>,
     last: Option<f64>,
     slipping: bool,
+    /// Episodes: the distance slid in the current run of slipping steps.
+    slid: f64,
     /// Crossings: the sign of the last sample above the floor, the first raw crossing
     /// after it (t0, x0, t1, x1), and the crossing times found.
     sign: Option<f64>,
@@ -148,6 +150,7 @@ impl ReadingState {
             first: None,
             last: None,
             slipping: false,
+            slid: 0.0,
             sign: None,
             raw: None,
             crossings: [0.0; 2],
@@ -182,7 +185,8 @@ impl ReadingState {
             Reading::SlipStart | Reading::SlipEnd | Reading::SlipEpisodes => {
                 if let (Some((t0, v0)), true) = (previous_row, self.applies) {
                     let dy = self.partner.map(|y| values[y] - v0[y]);
-                    self.slip_step(t0, t, slide_rate(t - t0, x - v0[self.column], dy));
+                    let dx = x - v0[self.column];
+                    self.slip_step(t0, t, slide_rate(t - t0, dx, dy), step_slide(dx, dy));
                 }
             }
             Reading::FirstCrossing | Reading::SecondCrossing => self.crossing(t, x, previous),
@@ -190,16 +194,31 @@ impl ReadingState {
         }
     }
 
-    fn slip_step(&mut self, t0: f64, t1: f64, rate: f64) {
+    /// A step from `t0` to `t1` at slide rate `rate` that slid `slid`: the slip window
+    /// grows, and an episode that ends is counted when it slid more than
+    /// [`EPISODE_MIN_SLIP`] (the same sums as [`super::metrics`]' episodes, in order).
+    fn slip_step(&mut self, t0: f64, t1: f64, rate: f64, slid: f64) {
         let slipping = rate > self.threshold;
         if slipping {
             self.first.get_or_insert(t0);
             self.last = Some(t1);
             if !self.slipping {
-                self.value += 1.0;
+                self.slid = 0.0;
             }
+            self.slid += slid;
+        } else if self.slipping {
+            self.value += self.episode_counts();
         }
         self.slipping = slipping;
+    }
+
+    /// 1 when the current run of slipping steps slid more than [`EPISODE_MIN_SLIP`].
+    fn episode_counts(&self) -> f64 {
+        if self.slid > EPISODE_MIN_SLIP {
+            1.0
+        } else {
+            0.0
+        }
     }
 
     /// [`super::metrics`]' sign changes, one sample at a time.
@@ -240,6 +259,7 @@ impl ReadingState {
             Reading::FirstCrossing => (self.found > 0).then_some(self.crossings[0]),
             Reading::SecondCrossing => (self.found > 1).then_some(self.crossings[1]),
             Reading::PeakAbsAfterFirstCrossing => None,
+            Reading::SlipEpisodes if self.slipping => Some(self.value + self.episode_counts()),
             _ => Some(self.value),
         }
     }

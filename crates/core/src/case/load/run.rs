@@ -1,5 +1,7 @@
 //! The case's `name` (a slug naming its output folder) and `[run]`: duration, step and
-//! output step, with the number of steps bounded before any work.
+//! output step, with the number of steps bounded before any work. A duration that is not
+//! a multiple of the step ends at the first step after it, for every trace and the exact
+//! reference alike ([`end_instant`]).
 
 use std::path::Path;
 
@@ -41,7 +43,8 @@ impl Validator<'_> {
             }
         }
         RunSettings {
-            duration,
+            duration: end_instant(duration, dt),
+            asked_duration: duration,
             dt,
             output_dt,
         }
@@ -59,5 +62,36 @@ impl Validator<'_> {
         {
             self.fail(field, why);
         }
+    }
+}
+
+/// The instant a run of `duration` at steps of `dt` ends, where every trace and the exact
+/// reference are read: `duration` itself when it is a multiple of `dt` (to 1e-9 of a
+/// step, as the engines count their steps), else the first step after it, n·dt with
+/// n = ⌈duration/dt⌉ — what every engine at `dt` runs to. Invalid values pass unchanged
+/// (they are refused on their own).
+pub(crate) fn end_instant(duration: f64, dt: f64) -> f64 {
+    if !(duration.is_finite() && dt.is_finite() && dt > 0.0 && duration >= dt) {
+        return duration;
+    }
+    let ratio = duration / dt;
+    if (ratio - ratio.round()).abs() <= 1e-9 {
+        duration
+    } else {
+        (ratio - 1e-9).ceil() * dt
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::end_instant;
+
+    #[test]
+    fn a_duration_off_the_step_ends_at_the_first_step_after_it() {
+        assert_eq!(end_instant(1.0, 0.001).to_bits(), 1.0_f64.to_bits());
+        assert_eq!(end_instant(0.6, 0.2).to_bits(), 0.6_f64.to_bits());
+        assert_eq!(end_instant(0.2005, 0.001), 201.0 * 0.001);
+        assert_eq!(end_instant(1.05, 0.1), 11.0 * 0.1);
+        assert!(end_instant(f64::NAN, 0.1).is_nan());
     }
 }

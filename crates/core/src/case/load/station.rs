@@ -13,7 +13,8 @@ use std::path::Path;
 
 use super::super::raw::{RawExcitation, RawStation};
 use super::super::record::{
-    Baseline, Channel, Orientation, PreparedStation, StationRecord, prepare_window, read_station,
+    Baseline, Channel, HighPass, Orientation, PreparedStation, Processing, StationRecord,
+    prepare_window, read_station,
 };
 use super::super::scene::{Model, NormalForce, Vertical};
 use super::super::signal::Signal;
@@ -35,7 +36,7 @@ struct StationKeys {
     x_azimuth: f64,
     drives_y: bool,
     drives_z: bool,
-    baseline: Baseline,
+    processing: Processing,
     factor: f64,
     start: f64,
 }
@@ -96,7 +97,20 @@ impl Validator<'_> {
             channels: [h1, h2, up].map(|i| station.channels[i].clone()).to_vec(),
             ..station.clone()
         };
-        let prepared = prepare_window(&chosen, keys.baseline, keys.start, duration);
+        if let Processing::HighPass(h) = keys.processing {
+            let nyquist = 0.5 / chosen.channels[0].record.dt;
+            if h.corner_hz >= nyquist {
+                self.fail(
+                    &format!("{P}.highpass_corner_hz"),
+                    format!(
+                        "is {} Hz, at or above the record's Nyquist frequency {nyquist} Hz",
+                        h.corner_hz
+                    ),
+                );
+                return None;
+            }
+        }
+        let prepared = prepare_window(&chosen, keys.processing, keys.start, duration);
         if prepared.channels[0].record.samples.len() < 2 {
             self.fail(
                 &format!("{P}.start"),
@@ -137,17 +151,7 @@ impl Validator<'_> {
                 return None;
             }
         };
-        let baseline = match raw.baseline.as_deref().unwrap_or("cubic") {
-            "cubic" => Baseline::Cubic,
-            "none" => Baseline::None,
-            other => {
-                self.fail(
-                    &format!("{P}.baseline"),
-                    format!("is \"{other}\", but must be \"cubic\" (a least-squares c2·t² + c3·t³ fit of the displacement removed) or \"none\""),
-                );
-                return None;
-            }
-        };
+        let processing = self.station_processing(raw)?;
         let scale = match raw.scale {
             None => 1.0,
             x => self.number(&format!("{P}.scale"), x, Rule::positive("(a factor)")),
@@ -171,10 +175,65 @@ impl Validator<'_> {
             x_azimuth,
             drives_y,
             drives_z,
-            baseline,
+            processing,
             factor: scale * polarity,
             start,
         })
+    }
+
+    /// `baseline` and the high-pass's keys: what is done to an uncorrected record.
+    fn station_processing(&mut self, raw: &RawStation) -> Option<Processing> {
+        let kind = raw.baseline.as_deref().unwrap_or("cubic");
+        if kind != "highpass" {
+            for (key, given) in [
+                ("highpass_corner_hz", raw.highpass_corner_hz.is_some()),
+                ("highpass_order", raw.highpass_order.is_some()),
+            ] {
+                if given {
+                    self.fail(
+                        &format!("{P}.{key}"),
+                        format!(
+                            "applies only with baseline = \"highpass\" (baseline is \"{kind}\")"
+                        ),
+                    );
+                }
+            }
+        }
+        match kind {
+            "cubic" => Some(Baseline::Cubic.into()),
+            "none" => Some(Baseline::None.into()),
+            "highpass" => {
+                let corner_hz = self.number(
+                    &format!("{P}.highpass_corner_hz"),
+                    raw.highpass_corner_hz,
+                    Rule::range(0.01, 1e3, "Hz, the corner frequency"),
+                );
+                let order = match raw.highpass_order {
+                    None => 4,
+                    Some(n) if (1..=HighPass::MAX_ORDER as i64).contains(&n) => n as usize,
+                    Some(n) => {
+                        self.fail(
+                            &format!("{P}.highpass_order"),
+                            format!(
+                                "is {n}, but must be a whole number from 1 to {}",
+                                HighPass::MAX_ORDER
+                            ),
+                        );
+                        return None;
+                    }
+                };
+                corner_hz
+                    .is_finite()
+                    .then_some(HighPass { corner_hz, order }.into())
+            }
+            other => {
+                self.fail(
+                    &format!("{P}.baseline"),
+                    format!("is \"{other}\", but must be \"cubic\" (a least-squares c2·t² + c3·t³ fit of the displacement removed), \"highpass\" (an acausal Butterworth high-pass: give highpass_corner_hz) or \"none\""),
+                );
+                None
+            }
+        }
     }
 
     /// Signal keys of `[excitation]` have no meaning beside a station.

@@ -33,7 +33,9 @@ mod cosmos;
 mod csmip;
 mod csv;
 mod file;
+mod filter;
 mod fixed;
+mod geonet;
 mod integrate;
 mod smc;
 mod station;
@@ -44,9 +46,10 @@ pub use at2::parse_at2;
 pub use csv::{parse_csv, parse_csv_column};
 pub(crate) use file::first_invalid_utf8;
 pub use file::{MAX_RECORD_BYTES, read_record, read_record_column};
+pub use filter::HighPass;
 pub use integrate::{Baseline, GroundMotion, integrate};
 pub use station::{
-    Channel, Drift, Level, Orientation, PRE_EVENT_S, PreparedStation, StationRecord, parse_station,
-    prepare, prepare_window, read_station,
+    Channel, Drift, Level, Orientation, PRE_EVENT_S, PreparedStation, Processing, StationRecord,
+    parse_station, prepare, prepare_window, read_station,
 };
 pub use unit::{AccelUnit, MIN_DT, Record, STANDARD_GRAVITY};

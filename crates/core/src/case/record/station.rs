@@ -1,6 +1,7 @@
 //! A station's three-component record as the agencies publish it: every channel with its
 //! orientation, the station, the event and the agency, read from COSMOS V0/V1/V2, the
-//! CSMIP (CGS) fixed-format volumes (Avol1 V1 `.RAW`/`.V1`, V2) or USGS SMC; and the
+//! CSMIP (CGS) fixed-format volumes (Avol1 V1 `.RAW`/`.V1`, V2), USGS SMC or GeoNet
+//! V1A/V2A; and the
 //! channels made ready for a run: a stated baseline correction for an uncorrected record
 //! (with the drift it removes), unequal channels trimmed to a common window with a note.
 
@@ -9,6 +10,7 @@ use std::path::Path;
 use crate::error::{InputError, InputErrors};
 
 use super::file::read_text;
+use super::filter::HighPass;
 use super::token::at;
 use super::{Baseline, Record, integrate};
 
@@ -119,7 +121,8 @@ pub struct StationRecord {
 
 /// Read a station file: its layout told by its first line (COSMOS "(Format v01.20 with
 /// N text lines)", CSMIP "Uncorrected Accelerogram Data" / "CORRECTED ACCELEROGRAM", SMC
-/// "1 UNCORRECTED ACCELEROGRAM" / "2 CORRECTED ACCELEROGRAM").
+/// "1 UNCORRECTED ACCELEROGRAM" / "2 CORRECTED ACCELEROGRAM", GeoNet V1A/V2A
+/// "Uncorrected accelerogram … GNS Science" / "Corrected accelerogram … GNS Science").
 pub fn read_station(path: &Path) -> Result<StationRecord, InputErrors> {
     let text = read_text(path)?;
     parse_station(path, &text).map_err(Into::into)
@@ -135,6 +138,11 @@ pub fn parse_station(path: &Path, text: &str) -> Result<StationRecord, InputErro
         || first.starts_with("2 CORRECTED ACCELEROGRAM")
     {
         super::smc::parse_smc(path, text)
+    } else if (first.starts_with("UNCORRECTED ACCELEROGRAM")
+        || first.starts_with("CORRECTED ACCELEROGRAM"))
+        && first.contains("GNS SCIENCE")
+    {
+        super::geonet::parse_geonet(path, text)
     } else if first.starts_with("UNCORRECTED ACCELEROGRAM")
         || first.starts_with("CORRECTED ACCELEROGRAM")
     {
@@ -144,7 +152,7 @@ pub fn parse_station(path: &Path, text: &str) -> Result<StationRecord, InputErro
             path,
             1,
             Some(1),
-            "not a station record this program reads: expected a COSMOS file (\"… (Format v01.20 with 13 text lines)\"), a CSMIP volume (\"Uncorrected Accelerogram Data\" or \"CORRECTED ACCELEROGRAM\") or a USGS SMC file (\"2 CORRECTED ACCELEROGRAM\")",
+            "not a station record this program reads: expected a COSMOS file (\"… (Format v01.20 with 13 text lines)\"), a CSMIP volume (\"Uncorrected Accelerogram Data\" or \"CORRECTED ACCELEROGRAM\"), a USGS SMC file (\"2 CORRECTED ACCELEROGRAM\") or a GeoNet V1A/V2A volume (\"Uncorrected accelerogram … GNS Science\")",
         ))
     }
 }
@@ -169,27 +177,51 @@ pub struct Drift {
     pub displacement: [f64; 2],
 }
 
+/// What is done to an uncorrected record after its pre-event mean is removed.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Processing {
+    /// A baseline fitted over the run's window ([`Baseline`]).
+    Baseline(Baseline),
+    /// The acausal Butterworth high-pass over the whole record, before the window is cut.
+    HighPass(HighPass),
+}
+
+impl From<Baseline> for Processing {
+    fn from(b: Baseline) -> Self {
+        Self::Baseline(b)
+    }
+}
+
+impl From<HighPass> for Processing {
+    fn from(h: HighPass) -> Self {
+        Self::HighPass(h)
+    }
+}
+
 /// Seconds at the start of an uncorrected record whose mean is taken as its pre-event
 /// offset (the CSMIP and COSMOS volumes keep several seconds of pre-event memory).
 pub const PRE_EVENT_S: f64 = 1.0;
 
 /// Prepare a station's channels: all trimmed to the shortest (a note names the lengths);
 /// an uncorrected record has its pre-event mean (the first [`PRE_EVENT_S`]) removed and
-/// then `baseline` applied; a corrected one is used as published. Every channel's
-/// velocity and displacement drift (their values at the end) before and after is kept.
-pub fn prepare(station: &StationRecord, baseline: Baseline) -> PreparedStation {
-    prepare_window(station, baseline, 0.0, f64::INFINITY)
+/// then `processing` applied (a [`Baseline`] or a [`HighPass`]); a corrected one is used
+/// as published. Every channel's velocity and displacement drift (their values at the
+/// end) before and after is kept.
+pub fn prepare(station: &StationRecord, processing: impl Into<Processing>) -> PreparedStation {
+    prepare_window(station, processing, 0.0, f64::INFINITY)
 }
 
 /// [`prepare`] for the window of `length` seconds from `start` (a run uses only those):
-/// the pre-event mean is still taken from the file's first [`PRE_EVENT_S`], the baseline
-/// is fitted over the window, and the drift is the window's.
+/// the pre-event mean is still taken from the file's first [`PRE_EVENT_S`], a baseline
+/// is fitted over the window, a high-pass filters the whole record before the window is
+/// cut, and the drift is the window's.
 pub fn prepare_window(
     station: &StationRecord,
-    baseline: Baseline,
+    processing: impl Into<Processing>,
     start: f64,
     length: f64,
 ) -> PreparedStation {
+    let processing = processing.into();
     let mut notes = Vec::new();
     let lengths: Vec<usize> = station
         .channels
@@ -225,7 +257,7 @@ pub fn prepare_window(
         ));
     }
     let needs_correction = station.level == Level::Uncorrected;
-    notes.push(correction_note(needs_correction, baseline));
+    notes.push(correction_note(needs_correction, processing));
     let mut channels = Vec::with_capacity(station.channels.len());
     let mut drift = Vec::with_capacity(station.channels.len());
     for c in &station.channels {
@@ -235,8 +267,17 @@ pub fn prepare_window(
         let used = if needs_correction {
             let m = ((PRE_EVENT_S / dt).round() as usize).clamp(1, n.max(1));
             let mean = raw[..m.min(n)].iter().sum::<f64>() / m as f64;
-            let level: Vec<f64> = window.iter().map(|a| a - mean).collect();
-            integrate(dt, &level, baseline)
+            match processing {
+                Processing::Baseline(baseline) => {
+                    let level: Vec<f64> = window.iter().map(|a| a - mean).collect();
+                    integrate(dt, &level, baseline)
+                }
+                Processing::HighPass(filter) => {
+                    let level: Vec<f64> = raw.iter().map(|a| a - mean).collect();
+                    let filtered = filter.acausal(dt, &level);
+                    integrate(dt, &filtered[first..last], Baseline::None)
+                }
+            }
         } else {
             integrate(dt, window, Baseline::None)
         };
@@ -261,16 +302,17 @@ pub fn prepare_window(
 }
 
 /// What is done to the values: corrected or used as published.
-fn correction_note(needs_correction: bool, baseline: Baseline) -> String {
+fn correction_note(needs_correction: bool, processing: Processing) -> String {
     if !needs_correction {
         return "corrected by the agency: used as published".into();
     }
     format!(
         "uncorrected record: the mean of the file's first {PRE_EVENT_S} s removed from each channel, then {}",
-        match baseline {
-            Baseline::None => "no baseline correction (as asked)",
-            Baseline::Cubic =>
-                "the baseline correction \"cubic\" (the least-squares fit c2·t² + c3·t³ of the window's displacement subtracted)",
+        match processing {
+            Processing::Baseline(Baseline::None) => "no baseline correction (as asked)".into(),
+            Processing::Baseline(Baseline::Cubic) =>
+                "the baseline correction \"cubic\" (the least-squares fit c2·t² + c3·t³ of the window's displacement subtracted)".into(),
+            Processing::HighPass(filter) => format!("{} over the whole record", filter.describe()),
         }
     )
 }

@@ -16,11 +16,15 @@ pub enum AccelUnit {
     MetrePerSecond2,
     /// cm/s² (gal).
     CentimetrePerSecond2,
+    /// mm/s² (GeoNet's volumes).
+    MillimetrePerSecond2,
 }
 
 impl AccelUnit {
     /// Names accepted in case files (`record_unit`).
-    pub const NAMES: &'static [&'static str] = &["g", "m/s2", "m/s²", "cm/s2", "cm/s²", "gal"];
+    pub const NAMES: &'static [&'static str] = &[
+        "g", "m/s2", "m/s²", "cm/s2", "cm/s²", "gal", "mm/s2", "mm/s²",
+    ];
 
     /// Parse a unit name as written in a case file.
     pub fn parse(name: &str) -> Option<Self> {
@@ -28,6 +32,7 @@ impl AccelUnit {
             "g" | "G" => Some(Self::G),
             "m/s2" | "m/s²" | "m/s^2" => Some(Self::MetrePerSecond2),
             "cm/s2" | "cm/s²" | "cm/s^2" | "gal" | "Gal" => Some(Self::CentimetrePerSecond2),
+            "mm/s2" | "mm/s²" | "mm/s^2" => Some(Self::MillimetrePerSecond2),
             _ => None,
         }
     }
@@ -38,6 +43,7 @@ impl AccelUnit {
             Self::G => STANDARD_GRAVITY,
             Self::MetrePerSecond2 => 1.0,
             Self::CentimetrePerSecond2 => 0.01,
+            Self::MillimetrePerSecond2 => 0.001,
         }
     }
 
@@ -47,6 +53,7 @@ impl AccelUnit {
             Self::G => "g",
             Self::MetrePerSecond2 => "m/s²",
             Self::CentimetrePerSecond2 => "cm/s²",
+            Self::MillimetrePerSecond2 => "mm/s²",
         }
     }
 }
