@@ -316,16 +316,14 @@ fn the_abaqus_decks_carry_the_scenes_numbers_exactly() {
     assert!(read("rpepo-mass-accel", "abaqus_model_csv.py").contains(
         "time [s],rel_disp [m],slide [m],resistance [N],cm_x [m],cm_z [m],rotation [rad],base_shear [N],normal [N]"
     ));
-    // the RPEPO's double arrangement is refused, located
-    let text = std::fs::read_to_string(repo("cases/rpepo-mass-accel.toml")).unwrap()
-        + "\n[engines.abaqus]\nvariants = [\"double\"]\n";
-    let path = repo("cases/rpepo-mass-accel.toml");
-    let e = rockslide::export::abaqus::export_with(
-        &parse_case(&path, &text).unwrap(),
-        &rockslide::export::abaqus::settings(&parse_case(&path, &text).unwrap()).unwrap(),
-    )
-    .unwrap_err()
-    .to_string();
+    // the RPEPO's double arrangement is refused, naming the setting
+    let settings = rockslide::export::deck::DeckSettings {
+        double: true,
+        ..rockslide::export::abaqus::settings(&c).unwrap()
+    };
+    let e = rockslide::export::abaqus::export_with(&c, &settings)
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("engines.abaqus.variants"), "{e}");
 }
 

@@ -124,7 +124,10 @@ fn header(case: &Case, settings: &DeckSettings, script: &str) -> String {
 fn scene_line(deck: &mut String, pairs: &[(&str, f64)]) {
     let text: Vec<String> = pairs
         .iter()
-        .map(|(k, v)| format!("{k} = {}", num(*v)))
+        .map(|(k, v)| match *k {
+            "supports" => format!("{k} = {v}"),
+            _ => format!("{k} = {}", num(*v)),
+        })
         .collect();
     let _ = writeln!(deck, "** scene: {}", text.join(", "));
 }
@@ -293,9 +296,10 @@ fn rocking(
     inp::excitation_load(deck, case, r.mass, SET_BODY, SET_GROUND);
     history(deck, settings, &[CM_NODE]);
     let g = h("U1", GROUND_NODE);
-    // the base centre O is h below the CM: u_O = u_cm + h·θ (θ = UR2 about +Y)
+    // the base centre O is h below the CM: u_O = u_cm − h·θ (θ = UR2, right-handed about
+    // +Y, turns +Z towards +X); rockslide's rotation lifts the +x edge: −UR2
     let base = format!(
-        "{} + {} * {}",
+        "{} - {} * {}",
         h("U1", CM_NODE),
         num(r.cm_height),
         h("UR2", CM_NODE)
