@@ -155,7 +155,7 @@ const MAX_BINARY_WIDTH: usize = 1024;
 fn binary_width(bytes: &[u8], given: Option<usize>) -> Result<usize, String> {
     let fits = |w: usize| {
         let row = 8 * w + 1;
-        bytes.len().is_multiple_of(row) && bytes.chunks(row).all(|r| r[row - 1] == b'\n')
+        bytes.len() % row == 0 && bytes.chunks(row).all(|r| r[row - 1] == b'\n')
     };
     if let Some(w) = given {
         return Ok(w);
@@ -196,7 +196,7 @@ pub(super) fn read_binary(
         .enumerate()
         .map(|(k, n)| sheet.series(n, None, (1, k + 2)))
         .collect();
-    if !bytes.len().is_multiple_of(row_len) {
+    if bytes.len() % row_len != 0 {
         let rows = bytes.len() / row_len;
         let why = format!(
             "row {}: the file ends inside it ({} bytes; a row of {width} values is {row_len} bytes)",
