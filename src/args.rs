@@ -242,6 +242,8 @@ pub enum Target {
     Calculix,
     /// ANSYS Mechanical APDL input deck (not executed by rockslide).
     Ansys,
+    /// Abaqus/Standard input deck and its results script (not executed by rockslide).
+    Abaqus,
 }
 
 impl Command {

@@ -1,6 +1,8 @@
-//! `rockslide export CASE --to opensees|calculix|ansys [-o DIR]`: the case's scene as the
-//! program's input — an OpenSeesPy script (and its record samples), a CalculiX `.inp`
-//! deck, an ANSYS APDL deck (not executed by rockslide) — in `<DIR>/<case>/`, each file written atomically inside the output folder. The
+//! `rockslide export CASE --to opensees|calculix|ansys|abaqus [-o DIR]`: the case's scene
+//! as the program's input — an OpenSeesPy script (and its record samples), a CalculiX
+//! `.inp` deck, an ANSYS APDL deck, an Abaqus deck and its results script (the last two
+//! not executed by rockslide) — in `<DIR>/<case>/`, each file written atomically inside
+//! the output folder. The
 //! single contact arrangement always; for an oscillator the double one too when the case
 //! defines `[model.double]` (or only the one `[engines.<program>] variants` names).
 
@@ -12,7 +14,7 @@ use rockslide_core::error::{Error, InputErrors};
 use rockslide_core::io::{inside, write_atomically};
 use rockslide_export::deck::DeckSettings;
 use rockslide_export::opensees::{Samples, Settings};
-use rockslide_export::{Export, ansys, calculix, opensees};
+use rockslide_export::{Export, abaqus, ansys, calculix, opensees};
 
 use crate::args::{ExportArgs, Target};
 
@@ -29,6 +31,7 @@ fn export(case_path: &Path, target: Target, out: &Path, quiet: bool) -> Result<E
         Target::Opensees => opensees_exports(&case),
         Target::Calculix => deck_exports(&case, calculix::SECTION, calculix::export_with),
         Target::Ansys => deck_exports(&case, ansys::SECTION, ansys::export_with),
+        Target::Abaqus => deck_exports(&case, abaqus::SECTION, abaqus::export_with),
     }
     .map_err(InputErrors::from)?;
     for export in &exports {
@@ -49,6 +52,10 @@ fn export(case_path: &Path, target: Target, out: &Path, quiet: bool) -> Result<E
             Target::Calculix => "run: ccx -i <deck without .inp> (apt-get install calculix-ccx); a case with [engines.calculix] runs it live".to_string(),
             Target::Ansys => format!(
                 "not executed by rockslide: run it in ANSYS, then: rockslide check {} --external ansys=<results>.csv",
+                case_path.display()
+            ),
+            Target::Abaqus => format!(
+                "not executed by rockslide: run it in Abaqus, then abaqus python <job>_csv.py <job>.odb, then: rockslide check {} --external abaqus=<job>.csv",
                 case_path.display()
             ),
         };

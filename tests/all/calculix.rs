@@ -46,8 +46,9 @@ fn pairs(deck: &str, prefix: &str) -> HashMap<String, f64> {
         .collect()
 }
 
-/// Every number of the scene is in the CalculiX deck exactly, and the material is the
-/// documented unit cube: E = 2 Kx, σy = √3 μ M g.
+/// Every number of the scene is in the CalculiX deck exactly: the header's, the contact
+/// cards' (the slope at Kz, μ and the stick slope Kx per m² of a 1 m² slave face; μ2 = ∞
+/// written as 1e6), the mass, the static overclosures M·g/Kz.
 #[test]
 fn the_calculix_deck_carries_the_scenes_numbers_exactly() {
     let c = case("calculix/pepo-single-calculix");
@@ -77,20 +78,35 @@ fn the_calculix_deck_carries_the_scenes_numbers_exactly() {
     ] {
         assert_eq!(scene[k], v, "{k}");
     }
-    // the materials: the line after *ELASTIC and *PLASTIC of each
-    let after = |marker: &str, nth: usize| -> f64 {
+    // the numbers of the line after the `nth` line that is `marker`
+    let after = |marker: &str, nth: usize| -> Vec<f64> {
         let mut found = deck
             .lines()
             .enumerate()
             .filter(|(_, l)| *l == marker)
             .map(|(i, _)| deck.lines().nth(i + 1).unwrap());
         let line = found.nth(nth).unwrap();
-        line.split(',').next().unwrap().trim().parse().unwrap()
+        line.split(',').map(|f| f.trim().parse().unwrap()).collect()
     };
-    assert_eq!(after("*ELASTIC", 0), 2.0 * d.lower.kx);
-    assert_eq!(after("*ELASTIC", 1), 2.0 * d.upper.kx);
-    let yield_stress = after("*PLASTIC", 0);
-    assert!((yield_stress / (3f64.sqrt() * d.lower.mu * o.mass * o.gravity) - 1.0).abs() < 1e-15);
+    let slope = "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR";
+    assert_eq!(after(slope, 0), [d.lower.kz]);
+    assert_eq!(after(slope, 1), [d.upper.kz]);
+    assert_eq!(after("*FRICTION", 0), [d.lower.mu, d.lower.kx]);
+    assert_eq!(after("*FRICTION", 1), [1e6, d.upper.kx]);
+    assert_eq!(after("*MASS, ELSET=EMASS", 0), [o.mass]);
+    // the middle plate (node 9) and the body plate (node 17) start at their overclosures
+    let z = |node: &str| -> f64 {
+        let line = deck.lines().find(|l| l.starts_with(node)).unwrap();
+        line.rsplit(',').next().unwrap().trim().parse().unwrap()
+    };
+    // (a computed coordinate, written to 13 significant digits)
+    let weight = o.mass * o.gravity;
+    let close = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-12;
+    assert!(close(z("9, "), -weight / d.lower.kz));
+    assert!(close(
+        z("17, "),
+        -weight / d.lower.kz + 0.1 - weight / d.upper.kz
+    ));
     assert!(
         deck.contains("*DYNAMIC, DIRECT, ALPHA=0.0\n1e-4, 1.0\n"),
         "dt and duration"
@@ -105,9 +121,11 @@ fn the_calculix_deck_carries_the_scenes_numbers_exactly() {
     assert_eq!(amplitude.len(), 2002);
     assert_eq!(amplitude[2001], "0.2001, 0.0");
     assert_eq!(amplitude[1000], "0.1, 1.0");
+    // every data line's fields fit CalculiX's 20 characters (keyword lines are not read
+    // by fields)
     assert!(
         deck.lines()
-            .all(|l| l.starts_with("**") || l.split(',').all(|f| f.trim().len() <= 20))
+            .all(|l| l.starts_with('*') || l.split(',').all(|f| f.trim().len() <= 20))
     );
 }
 
@@ -130,8 +148,10 @@ fn the_calculix_export_writes_its_decks_and_refuses_what_it_cannot_model() {
     let dir = out.path().join("pepo-mass-accel");
     let single = std::fs::read_to_string(dir.join("calculix_model.inp")).unwrap();
     let double = std::fs::read_to_string(dir.join("calculix_model_double.inp")).unwrap();
-    assert!(single.contains("kx = 9.8696e8") && !single.contains("UPPER"));
-    assert!(double.contains("kx1 = 1.01e11") && double.contains("*MATERIAL, NAME=UPPER"));
+    assert!(single.contains("kx = 9.8696e8") && !single.contains("NAME=ELEMENT2"));
+    assert!(
+        double.contains("kx1 = 1.01e11") && double.contains("*SURFACE INTERACTION, NAME=ELEMENT2")
+    );
     for (name, field) in [
         ("rigid-sliding-block", "model.kind"),
         ("rpepo-mass-accel", "model.kind"),
@@ -160,6 +180,153 @@ fn the_calculix_export_writes_its_decks_and_refuses_what_it_cannot_model() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("engines.calculix.solver"), "{e}");
+}
+
+/// The Abaqus decks: every scene number on the header line and in its card (the contact
+/// slope at Kz, μ with the elastic slip μ·N/Kx, the mass, the rotary inertia, the supports'
+/// places and overclosures), "not executed by rockslide", the results script's header row.
+#[test]
+fn the_abaqus_decks_carry_the_scenes_numbers_exactly() {
+    let out = tempfile::tempdir().unwrap();
+    let o = out.path().to_str().unwrap();
+    for name in ["pepo-mass-accel", "pepo-ground-disp", "rpepo-mass-accel"] {
+        let p = rockslide(&[
+            "export",
+            &format!("cases/{name}.toml"),
+            "--to",
+            "abaqus",
+            "-o",
+            o,
+            "-q",
+        ]);
+        assert!(
+            p.status.success(),
+            "{name}: {}",
+            String::from_utf8_lossy(&p.stderr)
+        );
+    }
+    let read =
+        |case: &str, file: &str| std::fs::read_to_string(out.path().join(case).join(file)).unwrap();
+    let after = |deck: &str, marker: &str| -> Vec<f64> {
+        let i = deck
+            .lines()
+            .position(|l| l == marker)
+            .unwrap_or_else(|| panic!("{marker}"));
+        let line = deck.lines().nth(i + 1).unwrap();
+        line.split(',').map(|f| f.trim().parse().unwrap()).collect()
+    };
+    // the PEPO, double arrangement: both contacts, the mass
+    let c = case("pepo-mass-accel");
+    let Model::Oscillator(osc) = &c.scene.model else {
+        panic!("an oscillator")
+    };
+    let d = osc.double.as_ref().unwrap();
+    let deck = read("pepo-mass-accel", "abaqus_model_double.inp");
+    assert!(deck.contains("** NOT EXECUTED BY ROCKSLIDE"));
+    let scene = pairs(&deck, "** scene:");
+    for (k, v) in [
+        ("mass", osc.mass),
+        ("gravity", osc.gravity),
+        ("kx", d.lower.kx),
+        ("kz", d.lower.kz),
+        ("mu", d.lower.mu),
+        ("kx2", d.upper.kx),
+        ("kz2", d.upper.kz),
+        ("mu2", d.upper.mu),
+    ] {
+        assert_eq!(scene[k], v, "{k}");
+    }
+    let weight = osc.mass * osc.gravity;
+    assert_eq!(
+        after(&deck, "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR"),
+        [d.lower.kz]
+    );
+    let slip = format!(
+        "*FRICTION, ELASTIC SLIP={}",
+        rockslide::export::deck::num(d.lower.mu * weight / d.lower.kx)
+    );
+    assert_eq!(after(&deck, &slip), [d.lower.mu]);
+    assert_eq!(after(&deck, "*MASS, ELSET=EMASS"), [osc.mass]);
+    assert!(deck.contains("*DYNAMIC, DIRECT, ALPHA=0.0, INITIAL=NO\n1e-3, 1.0\n"));
+    let script = read("pepo-mass-accel", "abaqus_model_double_csv.py");
+    assert!(
+        script.contains(
+            "out.write('time [s],rel_disp [m],slide [m],resistance [N],vel [m/s],node_disp [m]\\n')"
+        ),
+        "{script}"
+    );
+    // the PEPO under a ground displacement: imposed on the ground, its column written
+    let deck = read("pepo-ground-disp", "abaqus_model.inp");
+    assert!(deck.contains("*BOUNDARY, AMPLITUDE=EXCITATION\nGROUND, 1, 1, 1.0"));
+    assert!(read("pepo-ground-disp", "abaqus_model_csv.py").contains(",ground_disp [m]"));
+    // the RPEPO: the rigid body, its supports, the contact per support
+    let c = case("rpepo-mass-accel");
+    let Model::RockingBody(r) = &c.scene.model else {
+        panic!("a rocking body")
+    };
+    let deck = read("rpepo-mass-accel", "abaqus_model.inp");
+    let scene = pairs(&deck, "** scene:");
+    let inertia = rockslide::export::opensees::rotational_inertia(r);
+    for (k, v) in [
+        ("mass", r.mass),
+        ("gravity", r.gravity),
+        ("cm_height", r.cm_height),
+        ("half_width", r.half_width),
+        ("supports", r.supports as f64),
+        ("rotational_inertia", inertia),
+        ("kx", r.contact.kx),
+        ("kz", r.contact.kz),
+        ("mu", r.contact.mu),
+    ] {
+        assert_eq!(scene[k], v, "{k}");
+    }
+    assert_eq!(
+        after(&deck, "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR"),
+        [r.contact.kz]
+    );
+    let share = r.weight() / r.supports as f64;
+    let slip = format!(
+        "*FRICTION, ELASTIC SLIP={}",
+        rockslide::export::deck::num(r.contact.mu * share / r.contact.kx)
+    );
+    assert_eq!(after(&deck, &slip), [r.contact.mu]);
+    assert_eq!(after(&deck, "*MASS, ELSET=EMASS"), [r.mass]);
+    assert_eq!(
+        after(&deck, "*ROTARY INERTIA, ELSET=EINERTIA"),
+        [inertia; 3]
+    );
+    let settle = -share / r.contact.kz;
+    for (i, x) in r.support_positions().iter().enumerate() {
+        let node = format!("{}, ", 1001 + i);
+        let line = deck.lines().find(|l| l.starts_with(&node)).unwrap();
+        let xyz: Vec<f64> = line
+            .split(',')
+            .skip(1)
+            .map(|f| f.trim().parse().unwrap())
+            .collect();
+        assert_eq!(xyz[..2], [*x, 0.0], "support {i}");
+        assert!(
+            (xyz[2] / settle - 1.0).abs() < 1e-12,
+            "support {i}: {}",
+            xyz[2]
+        );
+    }
+    assert!(deck.contains(&format!(
+        "*CLOAD\n1000, 3, {}",
+        rockslide::export::deck::num(-r.weight())
+    )));
+    assert!(read("rpepo-mass-accel", "abaqus_model_csv.py").contains(
+        "time [s],rel_disp [m],slide [m],resistance [N],cm_x [m],cm_z [m],rotation [rad],base_shear [N],normal [N]"
+    ));
+    // the RPEPO's double arrangement is refused, naming the setting
+    let settings = rockslide::export::deck::DeckSettings {
+        arrangement: rockslide::case::Arrangement::Double,
+        ..rockslide::export::abaqus::settings(&c).unwrap()
+    };
+    let e = rockslide::export::abaqus::export_with(&c, &settings)
+        .unwrap_err()
+        .to_string();
+    assert!(e.contains("engines.abaqus.variants"), "{e}");
 }
 
 /// The ANSYS deck: every scene number as an APDL parameter, the paper's settings, the
@@ -290,7 +457,8 @@ fn without_ccx_the_case_says_not_applicable() {
     );
 }
 
-/// PEPO: CalculiX (plastic cube in shear, dt 1e-4) against the exact solution.
+/// PEPO: CalculiX (penalty contact with Coulomb friction, dt 1e-4) against the exact
+/// solution.
 #[test]
 #[cfg_attr(
     not(live_calculix),

@@ -1,25 +1,30 @@
-//! The CalculiX (`ccx`) export: the PEPO, single or double, as a runnable `.inp` deck whose
-//! `*NODE PRINT` requests write to the `.dat` file what rockslide reads back
-//! (`rockslide-formats`' `calculix_dat`), so that CalculiX takes part live as `calculix`.
+//! The CalculiX (`ccx`) export: the PEPO, single or double, as a runnable `.inp` deck of
+//! penalty contact with Coulomb friction (the model in [`crate::inp`], shared with the
+//! Abaqus deck) whose `*NODE PRINT` requests write to the `.dat` file what rockslide reads
+//! back (`rockslide-formats`' `calculix_dat`), so that CalculiX takes part live as
+//! `calculix`.
 //!
-//! The slider is an elastic-perfectly-plastic unit cube in simple shear (one `C3D8`,
-//! von Mises plasticity with ν = 0): shear stiffness G·A/h = Kx, yield in shear
-//! σy/√3 = μ·M·g — the exact elastic-perfectly-plastic oscillator of the paper, as
-//! OpenSees's `ElasticPP` is. Measured with CalculiX 2.20 on `pepo-mass-accel`: residual
-//! sliding −0.000067 % against the exact solution at Δt = 1e-4 s. CalculiX's own penalty
-//! contact with Coulomb friction (`*CONTACT PAIR`, `*FRICTION`) is not used: in CalculiX
-//! 2.20's implicit dynamics its energy-based impact rules (`checkimpacts`) cut the
-//! increment of a persistent frictional contact to 1e-7 s or stop the run as diverging
-//! (measured, `docs/decks.md`). Settings come from `[engines.calculix]` (`dt`, `variants`,
-//! `timeout`), see [`DeckSettings::from_case`].
+//! Implicit dynamics (`*DYNAMIC, DIRECT, ALPHA=0.0`: Newmark average acceleration at the
+//! case's Δt). CalculiX 2.20 judges an implicit dynamic step with contact by energy rules
+//! relative to the model's largest energy so far (`checkimpacts`, a tolerance fixed at 0.02
+//! in its source): a model at rest has none, so the first increments of contact fail
+//! them and a fixed-increment run stops as diverging. The deck adds an energy reference: a
+//! free body of constant kinetic energy (5e11 J), coupled to nothing and loaded by
+//! nothing, so that the rules are relative to a large constant energy. Measured on
+//! `pepo-mass-accel`: residual sliding within 0.01 % of the exact solution (docs/decks.md).
+//! Settings come from `[engines.calculix]` (`dt`, `variants`, `timeout`), see
+//! [`DeckSettings::from_case`].
 
 use std::fmt::Write as _;
 
-use rockslide_core::case::{Case, Contact, Excitation, Model, Oscillator, Signal};
+use rockslide_core::case::{Case, Contact, Model, Oscillator};
 use rockslide_core::error::InputError;
 
 use crate::deck::{DeckSettings, check_scene, num, one_line};
+use crate::inp::{self, Dialect, Layout, list};
 use crate::{Export, ExportFile, ExportResult};
+
+pub use crate::inp::{SET_BODY, SET_GROUND, SET_GROUND_REF, SET_MIDDLE};
 
 /// The case section that configures the export and asks for the live run.
 pub const SECTION: &str = "calculix";
@@ -37,19 +42,20 @@ pub fn names(double: bool) -> (String, String) {
     (format!("{job}.inp"), format!("{job}.dat"))
 }
 
-/// The massless node between the two elements of the double arrangement.
-const MIDDLE_NODE: u64 = 5;
-/// A ground node (its displacement is the ground's).
-const GROUND_NODE: u64 = 1;
+/// The energy reference: a free C3D8 far from the model, mass 1e24 kg moving at 1e-6 m/s
+/// in X (kinetic energy 5e11 J), coupled to nothing.
+const REFERENCE_FIRST_NODE: u64 = 101;
+const REFERENCE_ELEMENT: u64 = 9;
+const REFERENCE_DENSITY: f64 = 1.0e24;
+const REFERENCE_SPEED: f64 = 1.0e-6;
 
-/// Node sets the `.dat` file names (CalculiX prints them upper case).
-pub const SET_BODY: &str = "BODY";
-/// The double arrangement's massless node.
-pub const SET_MIDDLE: &str = "MIDDLE";
-/// The ground's nodes: their reaction is the slider's force, with the sign reversed.
-pub const SET_GROUND: &str = "GROUND";
-/// One ground node: the ground's displacement and velocity.
-pub const SET_GROUND_REF: &str = "GROUNDREF";
+/// The node whose displacement and velocity are the body's.
+pub fn body_node(double: bool) -> u64 {
+    if double { 17 } else { 9 }
+}
+
+/// The double arrangement's middle node (its first plate node).
+pub const MIDDLE_NODE: u64 = 9;
 
 /// The settings a case asks for (`[engines.calculix]`).
 pub fn settings(case: &Case) -> Result<DeckSettings, InputError> {
@@ -69,14 +75,19 @@ pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
         _ => {
             return Err(case.field_error(
                 "model.kind",
-                "is \"rocking-body\": the CalculiX deck writes the PEPO (single and double); the RPEPO needs CalculiX's frictional contact, which its 2.20 implicit dynamics does not run (docs/decks.md); `--to ansys` writes the RPEPO",
+                "is \"rocking-body\": the CalculiX deck writes the PEPO (single and double); the RPEPO is not written for CalculiX (docs/decks.md); `--to abaqus` and `--to ansys` write it",
             ));
         }
     };
     let (lower, upper) = arrangement(case, o, settings.double())?;
+    let layout = Layout::pepo(o, lower, upper);
+    debug_assert_eq!(layout.body_node(), body_node(settings.double()));
     let mut deck = header(case, o, settings);
-    mesh(&mut deck, o, lower, upper);
-    excitation(&mut deck, case, settings)?;
+    inp::plates(&mut deck, &layout);
+    inp::constraints(&mut deck, o.mass, &layout);
+    energy_reference(&mut deck);
+    inp::contact_pairs(&mut deck, &layout, o.mass * o.gravity, Dialect::Calculix);
+    inp::amplitude(&mut deck, case, settings);
     step(&mut deck, case, o, settings);
     let (name, results) = names(settings.double());
     Ok(Export {
@@ -88,7 +99,7 @@ pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
     })
 }
 
-/// Element 1 (the slider) and element 2 (elastic, the double arrangement's upper one).
+/// Element 1 (the slider) and element 2 (μ = ∞, the double arrangement's upper one).
 fn arrangement<'a>(
     case: &Case,
     o: &'a Oscillator,
@@ -164,119 +175,57 @@ fn header(case: &Case, o: &Oscillator, settings: &DeckSettings) -> String {
 /// The model chosen, and why: written in every deck.
 const MODEL: &str = "\
 ** Model (measured with CalculiX 2.20 on the rockslide scenes):
-** - The slider is a unit cube (one C3D8, A = h = 1 m) in simple shear: its bottom face is the
-**   ground, its top face moves with the body (*EQUATION), vertical and lateral motion fixed.
-**   Elastic G = Kx (E = 2 Kx, nu = 0), von Mises perfectly plastic with sigma_y = sqrt(3) mu M g:
-**   it yields in shear at mu M g, the elastic-perfectly-plastic oscillator of the paper (the
-**   CONTA178 in sticking and sliding with a constant normal force M g). Slip = deformation -
-**   force/Kx. The normal stiffness Kz does not enter the PEPO (the normal force is constant).
-** - The double arrangement stacks a second cube, elastic with G = Kx2 (mu2 = inf), between a
-**   massless middle node set and the body: element 1 slides, element 2 stays elastic.
+** - Penalty contact with Coulomb friction, face to face: the body is a 1 m x 1 m plate (C3D8)
+**   on a ground block whose top face is 3 m x 3 m. *SURFACE BEHAVIOR,
+**   PRESSURE-OVERCLOSURE=LINEAR at Kz and *FRICTION mu with the stick slope Kx (per m2 of
+**   the 1 m2 slave face: the scene's stiffnesses). The double arrangement puts a massless
+**   1 m x 1 m middle plate between the ground (element 1, slides) and a 3 m x 3 m body plate
+**   (element 2, mu = inf written as 1e6).
+** - The PEPO's normal force is the weight: each contact starts at its static overclosure
+**   M g / Kz and the plates move in X only (Z and Y fixed, *EQUATION ties each plate's
+**   nodes to its first node). The body's mass is a point mass on its plate's first node.
 ** - Implicit dynamics, *DYNAMIC DIRECT with ALPHA = 0 (Newmark average acceleration) at the
-**   case's dt, CalculiX's default Newton controls. Ground acceleration is applied in
-**   relative coordinates (a force -M ag(t) on the body); a ground displacement is imposed on
-**   the ground nodes (the body's relative displacement is then U(body) - U(ground)).
+**   case's dt. Ground acceleration is applied in relative coordinates (a force -M ag(t) on
+**   the body); a ground displacement is imposed on the ground block's nodes.
+** - Energy reference (element 9, nodes 101-108): CalculiX 2.20 judges an implicit dynamic
+**   step with contact by energy rules relative to the model's largest energy so far
+**   (checkimpacts); the model starts at rest, so its first contact increments fail them and
+**   a fixed-increment run stops. This free block (1e24 kg at 1e-6 m/s: 5e11 J of constant
+**   kinetic energy, coupled to nothing) makes the rules relative to a large constant energy.
 ";
 
-/// Nodes, elements, sets, materials and constraints.
-fn mesh(deck: &mut String, o: &Oscillator, lower: &Contact, upper: Option<&Contact>) {
-    let layers = if upper.is_some() { 2 } else { 1 };
+/// The free block of constant kinetic energy (see the deck's header).
+fn energy_reference(deck: &mut String) {
+    let n0 = REFERENCE_FIRST_NODE;
     deck.push_str("*NODE\n");
-    for layer in 0..=layers {
-        for (i, (x, y)) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)]
+    for (layer, z) in [0.0, 1.0].into_iter().enumerate() {
+        for (i, (x, y)) in [(10.0, 0.0), (11.0, 0.0), (11.0, 1.0), (10.0, 1.0)]
             .into_iter()
             .enumerate()
         {
-            let _ = writeln!(deck, "{}, {x:?}, {y:?}, {}.0", 4 * layer + i + 1, layer);
+            let n = n0 + 4 * layer as u64 + i as u64;
+            let _ = writeln!(deck, "{n}, {}, {}, {}", num(x), num(y), num(z));
         }
     }
-    let body = 4 * layers + 1;
-    deck.push_str("*ELEMENT, TYPE=C3D8, ELSET=SLIDER\n1, 1, 2, 3, 4, 5, 6, 7, 8\n");
-    if upper.is_some() {
-        deck.push_str("*ELEMENT, TYPE=C3D8, ELSET=UPPER\n2, 5, 6, 7, 8, 9, 10, 11, 12\n");
-    }
+    let nodes = n0..=n0 + 7;
     let _ = writeln!(
         deck,
-        "*ELEMENT, TYPE=MASS, ELSET=EMASS\n{}, {body}\n*MASS, ELSET=EMASS\n{}",
-        10 * layers + 1,
-        num(o.mass)
+        "*ELEMENT, TYPE=C3D8, ELSET=ENERGYREF\n{REFERENCE_ELEMENT}, {}\n*NSET, NSET=ENERGYREF\n{}",
+        list(nodes.clone()),
+        list(nodes)
     );
     let _ = writeln!(
         deck,
-        "*NSET, NSET={SET_GROUND}\n1, 2, 3, 4\n*NSET, NSET={SET_GROUND_REF}\n{GROUND_NODE}\n*NSET, NSET={SET_BODY}\n{body}"
+        "*MATERIAL, NAME=ENERGYREF\n*ELASTIC\n1e14, 0.0\n*DENSITY\n{}\n*SOLID SECTION, ELSET=ENERGYREF, MATERIAL=ENERGYREF\n*INITIAL CONDITIONS, TYPE=VELOCITY\nENERGYREF, 1, {}",
+        num(REFERENCE_DENSITY),
+        num(REFERENCE_SPEED)
     );
-    if upper.is_some() {
-        let _ = writeln!(deck, "*NSET, NSET={SET_MIDDLE}\n{MIDDLE_NODE}");
-    }
-    deck.push_str("*NSET, NSET=MOVING\n");
-    let moving: Vec<String> = (5..=4 * layers + 4).map(|n| n.to_string()).collect();
-    let _ = writeln!(deck, "{}", moving.join(", "));
-    // every node of a layer moves with its first node: uniform simple shear
-    deck.push_str("*EQUATION\n");
-    for layer in 1..=layers {
-        let first = 4 * layer + 1;
-        for n in first + 1..first + 4 {
-            let _ = writeln!(deck, "2\n{n}, 1, 1.0, {first}, 1, -1.0");
-        }
-    }
-    material(deck, "SLIDER", lower.kx, o.mass * o.gravity * lower.mu);
-    deck.push_str("*SOLID SECTION, ELSET=SLIDER, MATERIAL=SLIDER\n");
-    if let Some(u) = upper {
-        material(deck, "UPPER", u.kx, f64::INFINITY);
-        deck.push_str("*SOLID SECTION, ELSET=UPPER, MATERIAL=UPPER\n");
-    }
-}
-
-/// A unit cube's material: shear stiffness `kx`, yield in shear at `limit` (none if infinite).
-fn material(deck: &mut String, name: &str, kx: f64, limit: f64) {
-    let _ = writeln!(
-        deck,
-        "*MATERIAL, NAME={name}\n*ELASTIC\n{}, 0.0",
-        num(2.0 * kx)
-    );
-    if limit.is_finite() {
-        let _ = writeln!(deck, "*PLASTIC\n{}, 0.0", num(3f64.sqrt() * limit));
-    }
-}
-
-/// The amplitude (`EXCITATION`) of the signal, sampled where CalculiX interpolates it.
-fn excitation(deck: &mut String, case: &Case, settings: &DeckSettings) -> Result<(), InputError> {
-    let Some(signal) = case.scene.excitation.signal() else {
-        return Ok(());
-    };
-    deck.push_str("*AMPLITUDE, NAME=EXCITATION\n");
-    let points: Vec<(f64, f64)> = match signal {
-        // a pulse sampled at every step (Newmark sees the load at the step ends only)
-        Signal::SinePulse { .. } => {
-            let last = (signal.end() / settings.dt).ceil() as usize + 1;
-            (0..=last.min(settings.steps))
-                .map(|k| {
-                    let t = k as f64 * settings.dt;
-                    (t, signal.value(t))
-                })
-                .collect()
-        }
-        // a record: its samples, linear in between (the references' convention), zero after
-        Signal::Record { dt, samples, .. } => samples
-            .iter()
-            .enumerate()
-            .map(|(i, v)| (i as f64 * dt, *v))
-            .chain(std::iter::once((samples.len() as f64 * dt, 0.0)))
-            .collect(),
-    };
-    for (t, v) in points {
-        let _ = writeln!(deck, "{}, {}", num(t), num(v));
-    }
-    Ok(())
 }
 
 /// Boundary conditions, the dynamic step, the load and the output requests.
 fn step(deck: &mut String, case: &Case, o: &Oscillator, settings: &DeckSettings) {
-    let excitation = &case.scene.excitation;
-    deck.push_str("*BOUNDARY\nGROUND, 2, 3\nMOVING, 2, 3\n");
-    if !matches!(excitation, Excitation::GroundDisplacement(_)) {
-        deck.push_str("GROUND, 1, 1\n");
-    }
+    inp::boundary(deck, case);
+    deck.push_str("ENERGYREF, 2, 3\n");
     let _ = writeln!(
         deck,
         "*STEP, INC={}\n*DYNAMIC, DIRECT, ALPHA=0.0\n{}, {}",
@@ -284,26 +233,7 @@ fn step(deck: &mut String, case: &Case, o: &Oscillator, settings: &DeckSettings)
         num(settings.dt),
         num(settings.steps as f64 * settings.dt)
     );
-    match excitation {
-        Excitation::None => {}
-        Excitation::MassAcceleration(_) => {
-            let _ = writeln!(
-                deck,
-                "*CLOAD, AMPLITUDE=EXCITATION\n{SET_BODY}, 1, {}",
-                num(o.mass)
-            );
-        }
-        Excitation::GroundAcceleration(_) => {
-            let _ = writeln!(
-                deck,
-                "*CLOAD, AMPLITUDE=EXCITATION\n{SET_BODY}, 1, {}",
-                num(-o.mass)
-            );
-        }
-        Excitation::GroundDisplacement(_) => {
-            deck.push_str("*BOUNDARY, AMPLITUDE=EXCITATION\nGROUND, 1, 1, 1.0\n");
-        }
-    }
+    inp::excitation_load(deck, case, o.mass, SET_BODY, SET_GROUND);
     let every = settings.output_every;
     let _ = writeln!(
         deck,
@@ -312,7 +242,7 @@ fn step(deck: &mut String, case: &Case, o: &Oscillator, settings: &DeckSettings)
     if settings.double() {
         let _ = writeln!(deck, "*NODE PRINT, NSET={SET_MIDDLE}, FREQUENCY={every}\nU");
     }
-    if matches!(excitation, Excitation::GroundDisplacement(_)) {
+    if inp::moving_ground(case) {
         let _ = writeln!(
             deck,
             "*NODE PRINT, NSET={SET_GROUND_REF}, FREQUENCY={every}\nU, V"

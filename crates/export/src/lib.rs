@@ -7,8 +7,13 @@
 //!   pulses and records) that writes a CSV in rockslide's own trace format.
 //! - [`ansys`]: an ANSYS APDL deck of the paper's CONTA178 models (PEPO single and
 //!   double, RPEPO on its supports) that writes rockslide's CSV; not executed by rockslide.
-//! - [`calculix`]: a CalculiX `.inp` deck of the PEPO (single and double) whose `.dat`
-//!   output rockslide reads back (CalculiX live).
+//! - [`calculix`]: a CalculiX `.inp` deck of the PEPO (single and double), penalty
+//!   contact with Coulomb friction, whose `.dat` output rockslide reads back (CalculiX
+//!   live).
+//! - [`abaqus`]: an Abaqus/Standard deck of the PEPO (single and double) and the RPEPO,
+//!   penalty contact with Coulomb friction, and a script that writes rockslide's CSV from
+//!   its results; not executed by rockslide.
+//! - [`inp`]: the Abaqus input syntax CalculiX shares, and the PEPO's contact model in it.
 //! - [`deck`]: what the decks share (numbers that read back exactly, settings, the scenes
 //!   they model).
 //!
@@ -16,9 +21,11 @@
 //! atomically inside its output folder. A scene the exporter cannot represent is an
 //! [`InputError`] naming the case field and the reason.
 
+pub mod abaqus;
 pub mod ansys;
 pub mod calculix;
 pub mod deck;
+pub mod inp;
 pub mod opensees;
 
 use rockslide_core::error::InputError;

@@ -46,6 +46,7 @@ pub fn read_external_participant(
     }
     let format = ExternalFormat {
         topic: topic.map(str::to_string),
+        step_dt: Some(case.run.dt),
         ..Default::default()
     };
     let read = read_external(file, &format)?;

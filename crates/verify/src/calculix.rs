@@ -120,7 +120,7 @@ pub fn live(case: &Case, settings: Option<&DeckSettings>) -> Live {
 /// The model, in a few words, for the report.
 fn element(settings: &DeckSettings) -> String {
     format!(
-        "C3D8 cube in simple shear, perfectly plastic at mu*M*g (Newmark, dt = {} s), {} arrangement",
+        "face-to-face penalty contact with Coulomb friction (Newmark, dt = {} s), {} arrangement",
         settings.dt,
         settings.arrangement.name()
     )
@@ -190,11 +190,11 @@ fn read_dat(
     let column = |quantity: &str, set: &str, node: Option<u64>, c: usize| {
         series(&blocks, quantity, set, node, c)
     };
-    let body_node = if settings.double() { 9 } else { 5 };
+    let body_node = export::body_node(settings.double());
     let u = column("displacements", SET_BODY, Some(body_node), 0);
     let v = column("velocities", SET_BODY, Some(body_node), 0);
     let reaction = column("total force", SET_GROUND, None, 0);
-    let middle = column("displacements", SET_MIDDLE, Some(5), 0);
+    let middle = column("displacements", SET_MIDDLE, Some(export::MIDDLE_NODE), 0);
     let (ug, vg) = if moving_ground {
         (
             column("displacements", SET_GROUND_REF, Some(1), 0),

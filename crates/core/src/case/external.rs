@@ -52,6 +52,10 @@ pub struct ExternalFormat {
     /// An OpenSees script (Tcl or Python, resolved) whose recorder command writing the
     /// file names its columns.
     pub script: Option<PathBuf>,
+    /// The time between two numbered steps of a SAP2000/ETABS table whose rows are steps
+    /// (`StepType` `Step`: time = StepNum × step_dt), s: `step_dt` of the `[[external]]`,
+    /// else the case's `run.dt`. `None`: such rows are refused.
+    pub step_dt: Option<f64>,
 }
 
 /// One column of a foreign file as rockslide reads it: `value × scale`, in `to`'s unit.

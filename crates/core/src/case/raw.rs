@@ -47,6 +47,7 @@ pub struct RawExternal {
     pub output_case: Option<String>,
     pub recorder: Option<String>,
     pub script: Option<String>,
+    pub step_dt: Option<f64>,
 }
 
 /// One entry of an `[[external]]` column map: the rockslide header it becomes, or that

@@ -4,7 +4,11 @@
 //! per output step (`Joint, OutputCase, CaseType, StepType, StepNum, U1…R3`; links:
 //! `Element Forces - Links` with `P, V2, V3, T, M2, M3`, `Element Deformations - Links`
 //! with `U1…R3`). For a direct-integration time history exported step by step, `StepType`
-//! is `Time` and `StepNum` the time.
+//! is `Time` and `StepNum` the time (SAP2000); ETABS may number the steps instead
+//! (`StepType` `Step` or `Step By Step`, `StepNum` 0, 1, 2, …): the time is then
+//! StepNum × `step_dt` (the `[[external]]`'s, else the case's `run.dt`), stated in the
+//! notes. The object is the `UniqueName` column where there is one (ETABS: `Story`,
+//! `Label`, `UniqueName`), else the first column.
 //!
 //! Each object's field becomes one series, named `"<object column> <object>: <field>"`
 //! (`"Joint 2: U1"`, `"Link 1: P"`), in the unit its units row gives; the column map says
@@ -45,6 +49,9 @@ struct Table {
     case: usize,
     step_type: usize,
     step_num: usize,
+    /// The object column: `UniqueName` where the table has one (ETABS: `Story`, `Label`,
+    /// `UniqueName`), else the first.
+    object: usize,
 }
 
 /// Read a table export (see the module docs).
@@ -63,6 +70,8 @@ pub(super) fn read(
         envelope_rows: 0,
         other_case_rows: 0,
         titles: Vec::new(),
+        step_dt: format.step_dt,
+        numbered_rows: 0,
     };
     let mut table: Option<Table> = None;
     for (index, raw) in text.lines().enumerate() {
@@ -99,6 +108,7 @@ impl Table {
             case: 0,
             step_type: 0,
             step_num: 0,
+            object: 0,
         }
     }
 
@@ -124,6 +134,7 @@ impl Table {
             return Err(sheet.error((line_no, 1), why).into());
         };
         (self.case, self.step_type, self.step_num) = (case, step_type, step_num);
+        self.object = find("UniqueName").unwrap_or(0);
         self.after_header = true;
         Ok(())
     }
@@ -158,7 +169,7 @@ impl Table {
             .units
             .as_ref()
             .is_some_and(|u| u[i].eq_ignore_ascii_case("text"));
-        i > 0 && !KEY_FIELDS.contains(&self.fields[i].0.trim()) && !text
+        i > 0 && i != self.object && !KEY_FIELDS.contains(&self.fields[i].0.trim()) && !text
     }
 }
 
@@ -174,6 +185,10 @@ struct Reader<'a> {
     envelope_rows: usize,
     other_case_rows: usize,
     titles: Vec<String>,
+    /// Time between numbered steps (`StepType` `Step`), s.
+    step_dt: Option<f64>,
+    /// Rows whose `StepNum` is a step number.
+    numbered_rows: usize,
 }
 
 impl Reader<'_> {
@@ -233,20 +248,27 @@ impl Reader<'_> {
             return Ok(());
         }
         let step_at = (line_no, fields[t.step_num].1);
-        if !(step_type.eq_ignore_ascii_case("time") || step_type.is_empty()) {
+        let numbered = step_type.eq_ignore_ascii_case("step")
+            || step_type.eq_ignore_ascii_case("step by step");
+        if !(numbered || step_type.eq_ignore_ascii_case("time") || step_type.is_empty()) {
             let why = format!(
-                "StepType \"{step_type}\": the rows are not times; export the time history \
-                 step by step with StepType `Time` (SAP2000: Direct History Results, \
-                 Step-by-Step)"
+                "StepType \"{step_type}\": the rows are not times or steps; export the time \
+                 history step by step (SAP2000: Direct History Results, Step-by-Step: StepType \
+                 `Time`; ETABS: StepType `Step`)"
             );
             return Err(self
                 .sheet
                 .error((line_no, fields[t.step_type].1), why)
                 .into());
         }
-        let time = self.number(t, t.step_num, step_at, &fields[t.step_num].0)?;
-        let object = fields[0].0.trim();
-        let object_kind = t.fields[0].0.trim();
+        let step = self.number(t, t.step_num, step_at, &fields[t.step_num].0)?;
+        let time = if numbered {
+            self.step_time(step, step_at)?
+        } else {
+            step
+        };
+        let object = fields[t.object].0.trim();
+        let object_kind = t.fields[t.object].0.trim();
         for (i, (text, col)) in fields.iter().enumerate() {
             if !t.is_value(i) {
                 continue;
@@ -281,6 +303,23 @@ impl Reader<'_> {
             })?;
         self.sheet.commas |= comma;
         Ok(x)
+    }
+
+    /// The time of step number `step` (a whole number ≥ 0): step × `step_dt`.
+    fn step_time(&mut self, step: f64, at: (usize, usize)) -> Result<f64, InputErrors> {
+        let Some(dt) = self.step_dt else {
+            let why = "StepType \"Step\": the rows are numbered steps; give the time between \
+                       two steps with `step_dt` (s)";
+            return Err(self.sheet.error(at, why).into());
+        };
+        if !(step >= 0.0 && step.fract() == 0.0) {
+            let why = format!(
+                "StepNum {step}: a numbered step (StepType \"Step\") is a whole number ≥ 0"
+            );
+            return Err(self.sheet.error(at, why).into());
+        }
+        self.numbered_rows += 1;
+        Ok(step * dt)
     }
 
     /// Whether rows of output case `case` are read: the one named by `output_case`, else
@@ -330,6 +369,13 @@ impl Reader<'_> {
             ));
         }
         self.sheet.notes.push(read);
+        if self.numbered_rows > 0 {
+            let dt = self.step_dt.unwrap_or_default();
+            self.sheet.notes.push(format!(
+                "StepType \"Step\": time = StepNum × {dt} s ({} rows)",
+                self.numbered_rows
+            ));
+        }
         if self.envelope_rows > 0 {
             let n = self.envelope_rows;
             self.sheet

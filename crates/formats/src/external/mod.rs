@@ -29,6 +29,7 @@ mod csi;
 mod csv;
 mod number;
 mod opensees;
+mod opensees_xml;
 mod sheet;
 
 pub use csv::read_external_csv;
@@ -47,6 +48,12 @@ pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTra
         .is_some_and(|e| e.eq_ignore_ascii_case("mcap"))
     {
         return read_external_mcap(path, format.topic.as_deref());
+    }
+    if format.layout == Some(ExternalLayout::OpenSeesRecorder) {
+        let bytes = read_bytes(path)?;
+        if opensees::is_binary(&bytes) {
+            return opensees::read_binary(path, &bytes, format);
+        }
     }
     let text = read_text(path)?;
     parse_external(path, &text, format)
@@ -75,12 +82,17 @@ pub fn parse_external(
     }
 }
 
+/// A results file's bytes, its size checked first.
+fn read_bytes(path: &Path) -> Result<Vec<u8>, InputErrors> {
+    read_bounded(path, MAX_EXTERNAL_BYTES).map_err(|e| {
+        let why = io_reason(&e);
+        InputError::new(path, "", format!("cannot read the results file: {why}")).into()
+    })
+}
+
 /// A results file's text, its size checked first; not UTF-8 is an error at its place.
 fn read_text(path: &Path) -> Result<String, InputErrors> {
-    let bytes = read_bounded(path, MAX_EXTERNAL_BYTES).map_err(|e| {
-        let why = io_reason(&e);
-        InputError::new(path, "", format!("cannot read the results file: {why}"))
-    })?;
+    let bytes = read_bytes(path)?;
     String::from_utf8(bytes).map_err(|e| {
         let (line, col) = line_col(
             &String::from_utf8_lossy(&e.as_bytes()[..e.utf8_error().valid_up_to()]),

@@ -8,7 +8,8 @@
 //! found in the script named by `script` (Tcl `recorder Node -file …`, or OpenSeesPy
 //! `ops.recorder('Node', '-file', …)`) by its `-file` — as `"node 2 dof 1 disp"` and
 //! `"element 1 force 1"`. Without either, the columns are named by position (`"column
-//! 2"`, the time being column 1). OpenSees has no units: the map states them.
+//! 2"`, the time being column 1). OpenSees has no units: the map states them. Files
+//! written with `-xml` and `-binary` are read too (`opensees_xml`).
 
 use std::path::Path;
 
@@ -17,6 +18,7 @@ use rockslide_core::error::{InputError, InputErrors};
 
 use super::ansys::words;
 use super::number::{Decimal, parse_number};
+use super::opensees_xml;
 use super::read_text;
 use super::sheet::Sheet;
 
@@ -43,15 +45,11 @@ pub(super) fn read(
     text: &str,
     format: &ExternalFormat,
 ) -> Result<ExternalTrace, InputErrors> {
+    if opensees_xml::is_xml(text) {
+        return opensees_xml::read_xml(path, text, format);
+    }
     let mut sheet = Sheet::new(path, "OpenSees recorder file", "time");
-    let recorder =
-        match (&format.recorder, &format.script) {
-            (Some(command), _) => Some(parse_recorder(command).map_err(|why| {
-                InputError::new(path, "recorder", format!("\"{command}\": {why}"))
-            })?),
-            (None, Some(script)) => Some(from_script(script, path)?),
-            (None, None) => None,
-        };
+    let recorder = recorder(path, format)?;
     if let Some(r) = &recorder {
         if !r.time {
             let why = "the recorder writes no time column: add `-time` to it";
@@ -105,6 +103,52 @@ pub(super) fn read(
         }
     }
     sheet.assemble(format)
+}
+
+/// The recorder command that wrote the file: `recorder`, or the one in `script`.
+fn recorder(path: &Path, format: &ExternalFormat) -> Result<Option<Recorder>, InputErrors> {
+    Ok(match (&format.recorder, &format.script) {
+        (Some(command), _) => {
+            Some(parse_recorder(command).map_err(|why| {
+                InputError::new(path, "recorder", format!("\"{command}\": {why}"))
+            })?)
+        }
+        (None, Some(script)) => Some(from_script(script, path)?),
+        (None, None) => None,
+    })
+}
+
+/// Whether a recorder file's bytes are `-binary` output: not UTF-8, or holding a NUL
+/// (a text recorder file has neither).
+pub(super) fn is_binary(bytes: &[u8]) -> bool {
+    bytes.contains(&0) || std::str::from_utf8(bytes).is_err()
+}
+
+/// Read a `-binary` recorder file: its width from the recorder command where it gives it
+/// (a Node recorder: the time and nodes × DOFs), its columns named as a text file's.
+pub(super) fn read_binary(
+    path: &Path,
+    bytes: &[u8],
+    format: &ExternalFormat,
+) -> Result<ExternalTrace, InputErrors> {
+    let recorder = recorder(path, format)?;
+    if let Some(r) = &recorder {
+        if !r.time {
+            let why = "the recorder writes no time column: add `-time` to it";
+            return Err(InputError::new(path, "recorder", why).into());
+        }
+    }
+    let width = recorder
+        .as_ref()
+        .filter(|r| r.kind == "Node")
+        .map(|r| 1 + r.objects.len() * r.dofs.len());
+    opensees_xml::read_binary(
+        path,
+        bytes,
+        width,
+        |w| column_names(recorder.as_ref(), w),
+        format,
+    )
 }
 
 /// The names of a file's value columns (`width` fields a row, the time first).
@@ -183,7 +227,8 @@ fn parse_recorder(command: &str) -> Result<Recorder, String> {
     while i < t.len() {
         let flag = t[i].as_str();
         // a flag's arguments: the file's name, else the numbers that follow it
-        let args: Vec<&String> = if flag.starts_with("-file") {
+        let args: Vec<&String> = if flag.starts_with("-file") || flag == "-xml" || flag == "-binary"
+        {
             t.get(i + 1).into_iter().collect()
         } else {
             t[i + 1..]
@@ -192,8 +237,9 @@ fn parse_recorder(command: &str) -> Result<Recorder, String> {
                 .collect()
         };
         match flag {
-            "-file" | "-fileCSV" => r.file = args.first().map(|s| s.to_string()),
-            "-xml" | "-binary" => return Err(format!("{flag} files are not read: use -file")),
+            "-file" | "-fileCSV" | "-xml" | "-binary" => {
+                r.file = args.first().map(|s| s.to_string())
+            }
             "-time" => r.time = true,
             "-node" | "-ele" => r.objects = args.iter().map(|s| s.to_string()).collect(),
             "-nodeRange" | "-eleRange" => r.objects = range(&args)?,
@@ -304,7 +350,8 @@ mod tests {
                 .unwrap_err()
                 .contains("writes 4")
         );
-        assert!(parse_recorder("recorder Node -xml a.xml -node 1 -dof 1 disp").is_err());
+        let xml = parse_recorder("recorder Node -xml a.xml -time -node 1 -dof 1 disp").unwrap();
+        assert_eq!(xml.file.as_deref(), Some("a.xml"));
         let r =
             parse_recorder("recorder Node -file a -time -nodeRange 3 5 -dof 1 reaction").unwrap();
         assert_eq!(r.objects, ["3", "4", "5"]);

@@ -56,6 +56,71 @@ Text;Text;Text;Text;Text;Sec;KN;KN\r\n\
 1;1;TH;LinDirHist;Time;0,01;-1000;250\r\n\
 1;1;TH;LinDirHist;Time;0,02;-1000;500\r\n";
 
+/// An ETABS export: tab-separated, the object named by `UniqueName` beside `Story` and
+/// `Label`, the steps numbered (`StepType` `Step`, `StepNum` unitless).
+const ETABS: &str = "TABLE:  \"Joint Displacements\"\n\
+Story\tLabel\tUniqueName\tOutputCase\tCaseType\tStepType\tStepNum\tUx\tUy\tUz\n\
+Text\tText\tText\tText\tText\tText\tUnitless\tmm\tmm\tmm\n\
+Base\t1\t1\tTH\tLinModHist\tStep\t0\t0\t0\t0\n\
+Story1\t1\t7\tTH\tLinModHist\tStep\t0\t0\t0\t0\n\
+Story1\t1\t7\tTH\tLinModHist\tStep\t1\t0.25\t0\t0\n\
+Story1\t1\t7\tTH\tLinModHist\tStep\t2\t0.75\t0\t-0.01\n\
+Story1\t1\t7\tTH\tLinModHist\tMax\t\t0.75\t0\t0\n";
+
+fn etabs_format(step_dt: Option<f64>) -> ExternalFormat {
+    let mut f = format(
+        ExternalLayout::CsiTables,
+        &[("UniqueName 7: Ux", "rel_disp", 1.0)],
+    );
+    f.step_dt = step_dt;
+    f
+}
+
+#[test]
+fn an_etabs_table_with_numbered_steps_reads_time_as_step_times_dt() {
+    let t = read("etabs.txt", ETABS, &etabs_format(Some(0.005))).unwrap();
+    assert_eq!(t.trace.time, [0.0, 0.005, 0.01]);
+    assert_eq!(t.trace.column("rel_disp").unwrap(), [0.0, 0.00025, 0.00075]);
+    let notes = t.notes.join("\n");
+    for said in [
+        "StepType \"Step\": time = StepNum × 0.005 s (4 rows)",
+        "1 envelope rows (Max, Min) skipped",
+    ] {
+        assert!(notes.contains(said), "{said}\n{notes}");
+    }
+    // `Step By Step` is the same
+    let by = ETABS.replace("\tStep\t", "\tStep By Step\t");
+    assert_eq!(
+        read("etabs.txt", &by, &etabs_format(Some(0.005)))
+            .unwrap()
+            .trace,
+        t.trace
+    );
+}
+
+#[test]
+fn malformed_etabs_steps_are_located() {
+    let e = |text: &str, step_dt| read("etabs.txt", text, &etabs_format(step_dt)).unwrap_err();
+    assert_eq!(
+        e(ETABS, None),
+        "etabs.txt:4:29: StepType \"Step\": the rows are numbered steps; give the time between two steps with `step_dt` (s)"
+    );
+    assert_eq!(
+        e(
+            &ETABS.replace("Step\t1\t0.25", "Step\t1.5\t0.25"),
+            Some(0.005)
+        ),
+        "etabs.txt:6:31: StepNum 1.5: a numbered step (StepType \"Step\") is a whole number ≥ 0"
+    );
+    assert_eq!(
+        e(
+            &ETABS.replace("Step\t2\t0.75", "Step\t2\t0.7x5"),
+            Some(0.005)
+        ),
+        "etabs.txt:7:33: table \"Joint Displacements\", field \"Ux\": \"0.7x5\" is not a number"
+    );
+}
+
 fn sap_format() -> ExternalFormat {
     let mut f = format(
         ExternalLayout::CsiTables,
@@ -115,8 +180,8 @@ fn malformed_sap2000_exports_are_located() {
         "sap.csv:16:26: table \"Element Forces - Links\": has 7 fields, but its field names have 8"
     );
     assert_eq!(
-        e(&SAP.replace("Time;0,01;1,5", "Step By Step;1;1,5"), &f),
-        "sap.csv:6:17: StepType \"Step By Step\": the rows are not times; export the time history step by step with StepType `Time` (SAP2000: Direct History Results, Step-by-Step)"
+        e(&SAP.replace("Time;0,01;1,5", "Mode;1;1,5"), &f),
+        "sap.csv:6:17: StepType \"Mode\": the rows are not times or steps; export the time history step by step (SAP2000: Direct History Results, Step-by-Step: StepType `Time`; ETABS: StepType `Step`)"
     );
     let mut any_case = sap_format();
     any_case.output_case = None;
@@ -365,5 +430,135 @@ fn a_program_s_file_without_a_map_is_refused_with_its_series() {
     assert_eq!(
         e,
         "file.out:1:1: needs a column map (`columns`) saying which of its series is which quantity (ANSYS POST26 PRVAR listing); its series: \"UX_2\", \"FX_1\", \"SLIP_1\""
+    );
+}
+
+/// An OpenSees `-xml` Node and Element recorder file as `XmlFileStream` writes it: the
+/// header naming the columns, the rows in `<Data>`, each value followed by a blank.
+const OPENSEES_XML: &str = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n \
+<OpenSees\n  \
+xmlns:xsi = \"http://www.w3.org/2001/XMLSchema-instance\"\n  \
+xsi:noNamespaceSchemaLocation = \"http://OpenSees.berkeley.edu/xml-schema/xmlns/OpenSees.xsd\">\n  \
+<TimeOutput>\n    <ResponseType>time</ResponseType>\n  </TimeOutput>\n  \
+<NodeOutput nodeTag=\"2\" coord1=\"0\" coord2=\"0\" coord3=\"0\">\n    \
+<ResponseType>D1</ResponseType>\n  </NodeOutput>\n  \
+<ElementOutput eleType=\"flatSliderBearing\" eleTag=\"1\" node1=\"1\" node2=\"2\">\n    \
+<ResponseType>Px_1</ResponseType>\n    <ResponseType>Vy_1</ResponseType>\n  </ElementOutput>\n  \
+<Data>\n    0 0 0 0 \n    0.01 0.0012345 -1000 -250 \n    0.02 0.0025 -1000 -500 \n  </Data>\n\
+</OpenSees>\n";
+
+fn opensees_xml_format() -> ExternalFormat {
+    format(
+        ExternalLayout::OpenSeesRecorder,
+        &[
+            ("node 2 D1", "rel_disp [m]", 1.0),
+            ("element 1 Px_1", "normal [kN]", -1.0),
+            ("element 1 Vy_1", "resistance [kN]", -1.0),
+        ],
+    )
+}
+
+#[test]
+fn an_opensees_xml_recorder_file_names_its_own_columns() {
+    let t = read("out.xml", OPENSEES_XML, &opensees_xml_format()).unwrap();
+    assert_eq!(t.trace.time, [0.0, 0.01, 0.02]);
+    assert_eq!(
+        t.trace.column("rel_disp").unwrap(),
+        [0.0, 0.0012345, 0.0025]
+    );
+    assert_eq!(t.trace.column("normal").unwrap(), [0.0, 1e6, 1e6]);
+    assert_eq!(t.trace.column("resistance").unwrap(), [0.0, 250e3, 500e3]);
+    let notes = t.notes.join("\n");
+    assert!(
+        notes.contains("OpenSees -xml recorder: 3 columns named by the file (\"node 2 D1\", \"element 1 Px_1\", \"element 1 Vy_1\")"),
+        "{notes}"
+    );
+}
+
+#[test]
+fn malformed_opensees_xml_files_are_located() {
+    let e = |text: &str| read("out.xml", text, &opensees_xml_format()).unwrap_err();
+    assert_eq!(
+        e(&OPENSEES_XML.replace("0.01 0.0012345 -1000 -250", "0.01 0.0012345 -1000")),
+        "out.xml:17:20: has 3 values, but the file names 4 columns"
+    );
+    assert_eq!(
+        e(&OPENSEES_XML.replace("-500 \n", "-5x0 \n")),
+        "out.xml:18:23: \"-5x0\" is not a number"
+    );
+    assert_eq!(
+        e(&OPENSEES_XML.replace("  </Data>\n</OpenSees>\n", "")),
+        "out.xml:18:1: <Data> is not closed (</Data>): the file ends early (did the analysis stop before the recorder was closed?)"
+    );
+    assert_eq!(
+        e(&OPENSEES_XML.replace(" eleTag=\"1\"", "")),
+        "out.xml:11:3: <ElementOutput> has no eleTag attribute"
+    );
+    assert!(
+        e(&OPENSEES_XML.replace("<ResponseType>time</ResponseType>", ""))
+            .ends_with("its columns start with no <TimeOutput>: add `-time` to the recorder")
+    );
+}
+
+/// Rows of an OpenSees `-binary` recorder file: little-endian doubles, a line feed each.
+fn binary_rows(rows: &[&[f64]]) -> Vec<u8> {
+    let mut out = Vec::new();
+    for row in rows {
+        for v in *row {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+        out.push(b'\n');
+    }
+    out
+}
+
+fn read_bytes(name: &str, bytes: &[u8], format: &ExternalFormat) -> Result<Vec<f64>, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).unwrap();
+    let prefix = format!("{}:", path.display());
+    read_external(&path, format)
+        .map(|t| {
+            let mut v = t.trace.time.clone();
+            v.extend(t.trace.column("rel_disp").unwrap());
+            v
+        })
+        .map_err(|e| e.to_string().replace(&prefix, &format!("{name}:")))
+}
+
+#[test]
+fn an_opensees_binary_recorder_file_is_read_with_or_without_its_command() {
+    // 0.01 s has no zero byte; the zero row makes the file no UTF-8 text
+    let bytes = binary_rows(&[&[0.0, 0.0], &[0.01, 0.0012345], &[0.02, 0.0025]]);
+    let f = opensees_format("recorder Node -binary d.bin -time -node 2 -dof 1 disp");
+    assert_eq!(
+        read_bytes("d.bin", &bytes, &f).unwrap(),
+        [0.0, 0.01, 0.02, 0.0, 0.0012345, 0.0025]
+    );
+    // without the command the width is the file's own: "column 2"
+    let g = format(
+        ExternalLayout::OpenSeesRecorder,
+        &[("column 2", "rel_disp [m]", 1.0)],
+    );
+    assert_eq!(
+        read_bytes("d.bin", &bytes, &g).unwrap(),
+        [0.0, 0.01, 0.02, 0.0, 0.0012345, 0.0025]
+    );
+    // located: a file cut inside its last row, a row of another width
+    let cut = &bytes[..bytes.len() - 5];
+    assert_eq!(
+        read_bytes("d.bin", cut, &f).unwrap_err(),
+        "d.bin:3:1: row 3: the file ends inside it (46 bytes; a row of 2 values is 17 bytes)"
+    );
+    let mut wrong = bytes.clone();
+    wrong[16] = b' ';
+    assert_eq!(
+        read_bytes("d.bin", &wrong, &f).unwrap_err(),
+        "d.bin:1:3: row 1 (byte 16): does not end in a line feed after its 2 values: not a row of this width"
+    );
+    assert!(
+        read_bytes("d.bin", cut, &g)
+            .unwrap_err()
+            .contains("is not an OpenSees -binary recorder file: no row width")
     );
 }

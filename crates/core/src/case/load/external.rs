@@ -14,7 +14,11 @@ use crate::trace::parse_header;
 
 /// The external file's layout from its `[[external]]` keys (`dir`: the case's folder,
 /// against which a `script` resolves), or the reason for a bad key.
-fn external_format(e: &RawExternal, dir: &Path) -> Result<ExternalFormat, (&'static str, String)> {
+fn external_format(
+    e: &RawExternal,
+    dir: &Path,
+    run_dt: f64,
+) -> Result<ExternalFormat, (&'static str, String)> {
     let layout = match e.format.as_deref() {
         None => None,
         Some(key) => Some(ExternalLayout::from_key(key).ok_or_else(|| {
@@ -65,6 +69,20 @@ fn external_format(e: &RawExternal, dir: &Path) -> Result<ExternalFormat, (&'sta
             "applies to SAP2000/ETABS/CSiBridge tables only (format = \"sap2000\")".into(),
         ));
     }
+    if let Some(dt) = e.step_dt {
+        if layout != Some(ExternalLayout::CsiTables) {
+            return Err((
+                "step_dt",
+                "applies to SAP2000/ETABS/CSiBridge tables only (format = \"sap2000\")".into(),
+            ));
+        }
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err((
+                "step_dt",
+                format!("is {dt}, but must be a positive time (s)"),
+            ));
+        }
+    }
     Ok(ExternalFormat {
         layout,
         columns,
@@ -74,6 +92,9 @@ fn external_format(e: &RawExternal, dir: &Path) -> Result<ExternalFormat, (&'sta
         output_case: e.output_case.clone(),
         recorder: e.recorder.clone(),
         script: e.script.as_ref().map(|s| dir.join(s)),
+        step_dt: e
+            .step_dt
+            .or(Some(run_dt).filter(|dt| dt.is_finite() && *dt > 0.0)),
     })
 }
 
@@ -106,7 +127,12 @@ fn column_map(e: &RawExternal) -> Result<Vec<ColumnMap>, (&'static str, String)>
 impl Validator<'_> {
     /// Every `[[external]]`: label, layout and the file itself (relative to the case), read
     /// now so that a bad results file is an input error before any work.
-    pub(super) fn externals(&mut self, raw: &[RawExternal], case_path: &Path) -> Vec<External> {
+    pub(super) fn externals(
+        &mut self,
+        raw: &[RawExternal],
+        case_path: &Path,
+        run_dt: f64,
+    ) -> Vec<External> {
         let dir = case_path.parent().unwrap_or(Path::new(""));
         let mut out: Vec<External> = Vec::new();
         for (i, e) in raw.iter().enumerate() {
@@ -122,7 +148,7 @@ impl Validator<'_> {
                 );
                 continue;
             }
-            let format = match external_format(e, dir) {
+            let format = match external_format(e, dir, run_dt) {
                 Ok(f) => f,
                 Err((key, why)) => {
                     self.fail(&format!("{field}.{key}"), why);

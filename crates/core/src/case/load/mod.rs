@@ -188,7 +188,7 @@ pub fn parse_case_with(
         .enumerate()
         .map(|(i, o)| v.expected_disagreement(i, o))
         .collect();
-    let externals = v.externals(&raw.external, path);
+    let externals = v.externals(&raw.external, path, raw.run.dt);
     if !v.errors.is_empty() {
         return Err(InputErrors(v.errors));
     }
