@@ -1,20 +1,22 @@
-//! Another program's results (`[[external]]`) in every layout rockslide reads: a CSV
-//! (rockslide's headers, or foreign ones through a column map), a SAP2000/ETABS/CSiBridge
-//! table export, an ANSYS POST26 `PRVAR` listing, an Abaqus XY report, an OpenSees recorder
-//! file. The first byte picks the layout (or "recognise it from the file"), the delimiter,
-//! the preamble lines skipped and whether a column map in the program's own names applies;
-//! for an OpenSees file the text's first line is the recorder command naming its columns.
-//! Any bytes give a trace or a located error, never a panic.
+//! Another program's results (`[[external]]`) in every layout rockslide reads, as bytes: a
+//! CSV (rockslide's headers, or foreign ones through a column map), a SAP2000/ETABS/
+//! CSiBridge table export, an ANSYS POST26 `PRVAR` listing, an Abaqus XY report, an OpenSees
+//! recorder file (text, `-xml` or `-binary`). The first byte picks the layout (or "recognise
+//! it from the file"), the delimiter, the preamble lines skipped, the output case and
+//! whether a column map in the program's own names applies; for an OpenSees file the first
+//! line is the recorder command naming its columns. Any bytes give a trace or a located
+//! error, never a panic.
 #![no_main]
 
 use std::path::Path;
 
 use libfuzzer_sys::fuzz_target;
 use rockslide_core::case::{ColumnMap, ExternalFormat, ExternalLayout};
-use rockslide_formats::parse_external;
+use rockslide_formats::parse_external_bytes;
 
-/// The column map of each layout, in that program's own names (as its tests use them).
-fn columns(layout: Option<ExternalLayout>) -> Vec<ColumnMap> {
+/// The column map of each layout, in that program's own names (as its tests use them);
+/// `xml`: an OpenSees file's names as its `-xml` header gives them.
+fn columns(layout: Option<ExternalLayout>, xml: bool) -> Vec<ColumnMap> {
     let map: &[(&str, &str, f64)] = match layout {
         None | Some(ExternalLayout::Csv) => &[
             ("Time (sec)", "time [s]", 1.0),
@@ -35,6 +37,11 @@ fn columns(layout: Option<ExternalLayout>) -> Vec<ColumnMap> {
             ("U:U1 PI: MASS-1 N: 2", "rel_disp [m]", 1.0),
             ("RF:RF1 PI: GROUND-1 N: 1", "resistance [N]", -1.0),
         ],
+        Some(ExternalLayout::OpenSeesRecorder) if xml => &[
+            ("node 2 D1", "rel_disp [m]", 1.0),
+            ("element 1 Px_1", "normal [kN]", -1.0),
+            ("element 1 Vy_1", "resistance [kN]", -1.0),
+        ],
         Some(ExternalLayout::OpenSeesRecorder) => &[("node 2 dof 1 disp", "rel_disp [m]", 1.0)],
     };
     map.iter()
@@ -50,9 +57,6 @@ fuzz_target!(|data: &[u8]| {
     let Some((&selector, rest)) = data.split_first() else {
         return;
     };
-    let Ok(text) = std::str::from_utf8(rest) else {
-        return;
-    };
     let layout = [
         None,
         Some(ExternalLayout::Csv),
@@ -64,17 +68,21 @@ fuzz_target!(|data: &[u8]| {
     let mapped = selector & 0x80 != 0;
     let mut format = ExternalFormat {
         layout,
-        columns: if mapped { columns(layout) } else { Vec::new() },
+        columns: if mapped {
+            columns(layout, selector & 0x40 != 0)
+        } else {
+            Vec::new()
+        },
         delimiter: [None, Some(';'), Some('\t'), Some(' ')][usize::from((selector >> 3) % 4)],
         skip_lines: usize::from((selector >> 5) % 4),
         output_case: (selector & 0x40 != 0).then(|| "TH".to_string()),
         ..Default::default()
     };
-    let mut body = text;
+    let mut body = rest;
     if layout == Some(ExternalLayout::OpenSeesRecorder) {
-        let (command, data) = text.split_once('\n').unwrap_or((text, ""));
-        format.recorder = Some(command.to_string());
-        body = data;
+        let end = rest.iter().position(|&b| b == b'\n').unwrap_or(rest.len());
+        format.recorder = Some(String::from_utf8_lossy(&rest[..end]).into_owned());
+        body = rest.get(end + 1..).unwrap_or(&[]);
     }
-    let _ = parse_external(Path::new("fuzz.txt"), body, &format);
+    let _ = parse_external_bytes(Path::new("fuzz.txt"), body, &format);
 });

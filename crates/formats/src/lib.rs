@@ -36,7 +36,8 @@ pub use cdr::{
 pub use contacts::{CONTACTS_SCHEMA, contacts_schema_name, read_contacts_csv, write_contacts_csv};
 pub use csv_file::{read_csv, write_csv};
 pub use external::{
-    MAX_EXTERNAL_BYTES, MAX_EXTERNAL_COLUMNS, parse_external, read_external, read_external_csv,
+    MAX_EXTERNAL_BYTES, MAX_EXTERNAL_COLUMNS, parse_external, parse_external_bytes, read_external,
+    read_external_csv,
 };
 pub use mcap_file::{
     CHUNKS, ChunkCompression, ChunkOptions, LoggedRun, MAX_SCENE_FRAMES, McapChannel, McapContents,

@@ -49,14 +49,22 @@ pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTra
     {
         return read_external_mcap(path, format.topic.as_deref());
     }
-    if format.layout == Some(ExternalLayout::OpenSeesRecorder) {
-        let bytes = read_bytes(path)?;
-        if opensees::is_binary(&bytes) {
-            return opensees::read_binary(path, &bytes, format);
-        }
+    let bytes = read_bytes(path)?;
+    parse_external_bytes(path, &bytes, format)
+}
+
+/// [`read_external`] from a file's bytes: an OpenSees `-binary` recorder file when the
+/// format names OpenSees and the bytes are binary, else the text ([`parse_external`]).
+pub fn parse_external_bytes(
+    path: &Path,
+    bytes: &[u8],
+    format: &ExternalFormat,
+) -> Result<ExternalTrace, InputErrors> {
+    if format.layout == Some(ExternalLayout::OpenSeesRecorder) && opensees::is_binary(bytes) {
+        return opensees::read_binary(path, bytes, format);
     }
-    let text = read_text(path)?;
-    parse_external(path, &text, format)
+    let text = text_of(path, bytes)?;
+    parse_external(path, text, format)
 }
 
 /// [`read_external`] from a text file's contents (`path` names it in errors; a script the
@@ -90,12 +98,17 @@ fn read_bytes(path: &Path) -> Result<Vec<u8>, InputErrors> {
     })
 }
 
-/// A results file's text, its size checked first; not UTF-8 is an error at its place.
+/// A text file's contents (an OpenSees script), its size checked first.
 fn read_text(path: &Path) -> Result<String, InputErrors> {
     let bytes = read_bytes(path)?;
-    String::from_utf8(bytes).map_err(|e| {
+    text_of(path, &bytes).map(str::to_owned)
+}
+
+/// A results file's bytes as text; not UTF-8 is an error at its place.
+fn text_of<'a>(path: &Path, bytes: &'a [u8]) -> Result<&'a str, InputErrors> {
+    std::str::from_utf8(bytes).map_err(|e| {
         let (line, col) = line_col(
-            &String::from_utf8_lossy(&e.as_bytes()[..e.utf8_error().valid_up_to()]),
+            &String::from_utf8_lossy(&bytes[..e.valid_up_to()]),
             usize::MAX,
         );
         InputError::new(path, "", "is not UTF-8 text")
