@@ -29,10 +29,9 @@ pub struct ReferenceResult {
 impl ReferenceResult {
     /// A reference from its solution, fine trace and the response quantities read off
     /// that trace, with no output rows yet: the solution's exact quantities, read once,
-    /// replace the readings they also give — but for the slip episodes, which are counted
-    /// off the fine trace as off every engine's, with the least slide an episode needs
-    /// ([`crate::analysis::EPISODE_MIN_SLIP`]) — and its exact instants are kept as the
-    /// event times.
+    /// replace the readings they also give (the slip episodes too: counted from the
+    /// solution's own located slips, so two slips parted by a stick shorter than the fine
+    /// trace's step stay two), and its exact instants are kept as the event times.
     pub(crate) fn from_parts(
         solution: Box<dyn ExactSolution>,
         trace: Trace,
@@ -40,9 +39,6 @@ impl ReferenceResult {
     ) -> Self {
         let mut event_times = Vec::new();
         for (k, v) in solution.exact_quantities() {
-            if k == "slip_episodes" {
-                continue;
-            }
             if quantity_def(k).is_some_and(|d| d.is_time()) {
                 event_times.push(v);
             }
