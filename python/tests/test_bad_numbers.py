@@ -16,7 +16,7 @@ import rockslide
         # 1e15 s of rocking kept every 2e-5 s: memory grew until the system killed Python
         (lambda: rockslide.housner(0.2, 1.0, 5.0, 10.0, 1e15, samples=10), "5.000e19 samples, more than the limit"),
         # a sample interval of 1e-300 s over 1 s: 1e300 instants
-        (lambda: rockslide.epo_record(1e-300, np.zeros(3), 1.0, 1e6, 0.2, duration=1.0), "sample instants"),
+        (lambda: rockslide.epo_record(1e-300, np.zeros(3), 1.0, 1e6, 0.2, duration=1.0), "below the smallest a record may have"),
         (lambda: rockslide.epo_record(0.01, np.zeros(0), 1.0, 1e6, 0.2), "the record has no samples"),
         (lambda: rockslide.epo_record(0.01, np.zeros(3), 1.0, 1e6, 0.2, times=np.array([0.0, np.nan])), r"time 1 \(NaN\) is not finite"),
         (lambda: rockslide.plan_block(1e-300, np.zeros(3), np.zeros(3), 0.2, duration=1.0), "integration steps|sample instants"),
