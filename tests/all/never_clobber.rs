@@ -391,9 +391,12 @@ fn sweep_repeats_1000000_is_refused() {
 
 // ── 8. The proptest fuzz covers the new case keys ────────────────────────────────────
 
-/// Cases that carry the keys added since the last round: vertical motion, 3D scenes,
-/// another program's results, the OpenSees participant.
+/// Cases that carry the keys added since the last rounds: vertical motion, 3D scenes,
+/// another program's results, the OpenSees and CalculiX participants, a station's three
+/// components with its baseline.
 const NEW_KEY_CASES: &[&str] = &[
+    "cases/three-component/pepo-ridgecrest-ccc-xyz.toml",
+    "cases/calculix/pepo-single-calculix.toml",
     "cases/vertical/pepo-mass-accel-vertical.toml",
     "cases/vertical/rpepo-mass-accel-vertical.toml",
     "cases/vertical/block-liftoff.toml",
