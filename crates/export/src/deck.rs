@@ -100,19 +100,19 @@ impl DeckSettings {
             return Err(case.field_error(&field("timeout"), "must be a positive number of seconds"));
         }
         let arrangement = match request.and_then(|s| s.variants.as_deref()) {
-            None => Arrangement::Single,
-            Some([v]) if v == "single" => Arrangement::Single,
-            Some([v]) if v == "double" => Arrangement::Double,
-            Some(_) => {
-                return Err(case.field_error(
-                    &field("variants"),
-                    format!(
-                        "must be [\"single\"] or [\"double\"]: {} writes one arrangement",
-                        section.export
-                    ),
-                ));
-            }
-        };
+            None => Some(Arrangement::Single),
+            Some([v]) => Arrangement::from_name(v),
+            Some(_) => None,
+        }
+        .ok_or_else(|| {
+            case.field_error(
+                &field("variants"),
+                format!(
+                    "must be [\"single\"] or [\"double\"]: {} writes one arrangement",
+                    section.export
+                ),
+            )
+        })?;
         let steps = whole_steps(case.run.duration, dt).ok_or_else(|| {
             case.field_error(
                 &field("dt"),

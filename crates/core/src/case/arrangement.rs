@@ -24,4 +24,11 @@ impl Arrangement {
             Arrangement::Double => "double",
         }
     }
+
+    /// The arrangement a name gives ([`Arrangement::name`]), or `None`.
+    pub fn from_name(name: &str) -> Option<Self> {
+        [Arrangement::Single, Arrangement::Double]
+            .into_iter()
+            .find(|a| a.name() == name)
+    }
 }
