@@ -15,7 +15,8 @@ use std::io::Cursor;
 use std::path::Path;
 use std::time::Duration;
 
-use criterion::{Criterion, Throughput, criterion_group, criterion_main};
+use criterion::measurement::WallTime;
+use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use rockslide::case::parse_case;
 use rockslide::engine;
 use rockslide::engine::predictor_corrector::variant as pc_variant;
@@ -160,6 +161,9 @@ fn writer_choice() -> mcap::WriteOptions {
         .compression_level(1)
 }
 
+/// The benchmark group of the writers on the 10⁶-row trace.
+type Group<'a> = BenchmarkGroup<'a, WallTime>;
+
 fn writers(c: &mut Criterion) {
     let trace = long_trace();
     let rows = trace.len() as u64;
@@ -169,6 +173,21 @@ fn writers(c: &mut Criterion) {
     group.warm_up_time(Duration::from_millis(500));
     group.measurement_time(Duration::from_secs(10));
     group.throughput(Throughput::Elements(rows));
+    number_formatting(&mut group, &trace);
+    let log = log_of(&trace);
+    trace_files(&mut group, &trace, &log, out.path());
+    state_encodings(&mut group, &trace);
+    let messages = payloads(&mcap_bytes(&log).expect("bytes"));
+    let raw: usize = messages.iter().map(|(_, d)| d.len()).sum();
+    eprintln!("mcap message payloads: {raw} B");
+    our_compression(&mut group, &messages);
+    crate_compression(&mut group, &messages);
+    group.finish();
+}
+
+/// Shortest decimals of every finite value of the trace, by `ryu` and by `zmij`, and
+/// whether they spell them alike.
+fn number_formatting(group: &mut Group<'_>, trace: &Trace) {
     let values: Vec<f64> = trace
         .time
         .iter()
@@ -201,20 +220,28 @@ fn writers(c: &mut Criterion) {
         "ryu and zmij spell all {} values alike: {same}",
         values.len()
     );
-    let csv = out.path().join("trace.csv");
+}
+
+/// The CSV file and the MCAP file written to `dir`, and their sizes.
+fn trace_files(group: &mut Group<'_>, trace: &Trace, log: &TraceLog, dir: &Path) {
+    let csv = dir.join("trace.csv");
     group.bench_function("csv", |b| {
-        b.iter(|| write_csv(black_box(&trace), &csv).expect("writes"))
+        b.iter(|| write_csv(black_box(trace), &csv).expect("writes"))
     });
-    let log = log_of(&trace);
-    let mcap = out.path().join("trace.mcap");
+    let mcap = dir.join("trace.mcap");
     group.bench_function("mcap", |b| {
-        b.iter(|| write_mcap(black_box(&log), &mcap).expect("writes"))
+        b.iter(|| write_mcap(black_box(log), &mcap).expect("writes"))
     });
     let csv_size = std::fs::metadata(&csv).map_or(0, |m| m.len());
     let mcap_size = std::fs::metadata(&mcap).map_or(0, |m| m.len());
-    eprintln!("sizes: csv {csv_size} B, mcap {mcap_size} B for {rows} rows");
+    eprintln!(
+        "sizes: csv {csv_size} B, mcap {mcap_size} B for {} rows",
+        trace.len()
+    );
+}
 
-    // The state messages, JSON against CDR: encoding alone, then encoding and writing.
+/// The state messages, JSON against CDR: encoding alone, then encoding and writing.
+fn state_encodings(group: &mut Group<'_>, trace: &Trace) {
     let mut encoded = Vec::with_capacity(trace.len());
     for (label, encode) in [
         (
@@ -223,26 +250,24 @@ fn writers(c: &mut Criterion) {
         ),
         ("cdr", cdr_state_messages),
     ] {
-        encode(&trace, &mut encoded);
+        encode(trace, &mut encoded);
         let raw: usize = encoded.iter().map(|(_, d)| d.len()).sum();
         let size = rewrite(&encoded, writer_choice()).len();
         eprintln!("state messages as {label}: payloads {raw} B, file {size} B (zstd 1)");
         group.bench_function(format!("encode/{label}"), |b| {
-            b.iter(|| encode(black_box(&trace), &mut encoded))
+            b.iter(|| encode(black_box(trace), &mut encoded))
         });
         group.bench_function(format!("encode+write/{label}"), |b| {
             b.iter(|| {
-                encode(black_box(&trace), &mut encoded);
+                encode(black_box(trace), &mut encoded);
                 black_box(rewrite(&encoded, writer_choice()))
             })
         });
     }
+}
 
-    let messages = payloads(&mcap_bytes(&log).expect("bytes"));
-    let raw: usize = messages.iter().map(|(_, d)| d.len()).sum();
-    eprintln!("mcap message payloads: {raw} B");
-    // our writer (each chunk compressed in one call) at several levels, beside the
-    // `mcap` crate's streaming writer
+/// Our chunk writer (each chunk compressed in one call) at several levels.
+fn our_compression(group: &mut Group<'_>, messages: &[(u64, Vec<u8>)]) {
     let zstd = |level| ChunkOptions {
         compression: ChunkCompression::Zstd(level),
         ..CHUNKS
@@ -275,12 +300,16 @@ fn writers(c: &mut Criterion) {
         ("ours-chosen", CHUNKS),
     ];
     for (label, chunks) in ours {
-        let size = rewrite_ours(&messages, chunks).len();
+        let size = rewrite_ours(messages, chunks).len();
         eprintln!("compression {label}: {size} B");
         group.bench_function(format!("compression/{label}"), |b| {
-            b.iter(|| black_box(rewrite_ours(&messages, chunks)))
+            b.iter(|| black_box(rewrite_ours(messages, chunks)))
         });
     }
+}
+
+/// The `mcap` crate's streaming writer at several levels, chunk sizes and threads.
+fn crate_compression(group: &mut Group<'_>, messages: &[(u64, Vec<u8>)]) {
     let single = || mcap::WriteOptions::new().compression_threads(0);
     let choices: [(&str, mcap::WriteOptions); 7] = [
         ("zstd1-1MiB", single().compression_level(1)),
@@ -304,13 +333,12 @@ fn writers(c: &mut Criterion) {
         ),
     ];
     for (label, options) in choices {
-        let size = rewrite(&messages, options.clone()).len();
+        let size = rewrite(messages, options.clone()).len();
         eprintln!("compression {label}: {size} B");
         group.bench_function(format!("compression/{label}"), |b| {
-            b.iter(|| black_box(rewrite(&messages, options.clone())))
+            b.iter(|| black_box(rewrite(messages, options.clone())))
         });
     }
-    group.finish();
 }
 
 criterion_group!(benches, writers);

@@ -12,8 +12,11 @@
 //! It is an illustration, not a screenshot of Foxglove. Run:
 //! `cargo run --example trace_picture [out.svg]`.
 
+use std::error::Error;
 use std::path::Path;
 
+use plotters::coord::Shift;
+use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 use rockslide::analysis::responses;
 use rockslide::case::{load_case, parse_case};
@@ -113,21 +116,17 @@ fn panel_header<DB: DrawingBackend>(area: &DrawingArea<DB, plotters::coord::Shif
     ));
 }
 
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let out = std::env::args()
-        .nth(1)
-        .unwrap_or_else(|| "docs/img/foxglove-layout.svg".into());
-    let tmp = tempfile::tempdir()?;
+/// The 3D messages of the synthetic rocking run: the scene, every frame transform and
+/// every force update, each with its log time (ns).
+struct RockMessages {
+    scene: Value,
+    transforms: Vec<(u64, Value)>,
+    forces: Vec<(u64, Value)>,
+}
 
-    // Plot data: the PEPO case, written and read back.
-    let case = load_case(Path::new("cases/pepo-mass-accel.toml"))?;
-    let result = run_case(case)?;
-    let dir = write_case_outputs(&result, tmp.path())?;
-    let pepo = read_mcap(&dir.join("pepo-mass-accel.mcap"))?;
-    let pc = pepo.state("/predictor-corrector/paper/state").unwrap();
-    let rf = pepo.state("/reference/state").unwrap();
-
-    // 3D data: the synthetic rocking trace, written and read back message by message.
+/// The synthetic rocking trace as a case result, written as MCAP and read back message by
+/// message.
+fn rocking_messages() -> Result<RockMessages, Box<dyn Error>> {
     let rock_case = parse_case(Path::new("rpepo-illustration.toml"), RPEPO)?;
     let trace = rocking_trace();
     let run = Run {
@@ -154,9 +153,11 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         envelopes: Vec::new(),
     };
     let bytes = mcap_bytes(&case_trace_log(&rock))?;
-    let mut scene = Value::Null;
-    let mut tfs: Vec<(u64, Value)> = Vec::new();
-    let mut forces: Vec<(u64, Value)> = Vec::new();
+    let mut messages = RockMessages {
+        scene: Value::Null,
+        transforms: Vec::new(),
+        forces: Vec::new(),
+    };
     for m in mcap::MessageStream::new(&bytes)? {
         let m = m?;
         let schema = m.channel.schema.as_ref().map_or("", |s| s.name.as_str());
@@ -165,37 +166,62 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         };
         let v: Value = scene3d::decode(ty, &m.data)?;
         match m.channel.topic.as_str() {
-            "/fe/exact/scene" => scene = v,
+            "/fe/exact/scene" => messages.scene = v,
             "/fe/exact/transform" => {
                 let each = v["transforms"].as_array().cloned().unwrap_or_default();
-                tfs.extend(each.into_iter().map(|t| (m.log_time, t)));
+                messages
+                    .transforms
+                    .extend(each.into_iter().map(|t| (m.log_time, t)));
             }
-            "/fe/exact/forces" => forces.push((m.log_time, v)),
+            "/fe/exact/forces" => messages.forces.push((m.log_time, v)),
             _ => {}
         }
     }
-    let at = |list: &[(u64, Value)], ns: u64, child: Option<&str>| -> Value {
-        list.iter()
-            .rfind(|(t, v)| *t <= ns && child.is_none_or(|c| v["child_frame_id"] == c))
-            .map(|(_, v)| v.clone())
-            .unwrap()
-    };
+    Ok(messages)
+}
 
-    let root = SVGBackend::new(&out, (1200, 640)).into_drawing_area();
-    root.fill(&BG)?;
-    let (main, footer) = root.split_vertically(608);
-    let (left, right) = main.split_horizontally(560);
-    let left = left.margin(4, 4, 4, 2);
-    let right = right.margin(4, 4, 2, 4);
-    left.fill(&PANEL)?;
-    right.fill(&PANEL)?;
-    panel_header(
-        &left,
-        "3D   /fe/exact/scene · /fe/exact/forces · /fe/exact/transform",
-    );
-    panel_header(&right, "Plot");
+/// The last message of `list` at or before `ns` (of frame `child`, when given).
+fn at(list: &[(u64, Value)], ns: u64, child: Option<&str>) -> Value {
+    list.iter()
+        .rfind(|(t, v)| *t <= ns && child.is_none_or(|c| v["child_frame_id"] == c))
+        .map(|(_, v)| v.clone())
+        .unwrap()
+}
 
-    // 3D panel, side view.
+/// The side view's chart: x and z in metres, equal scales.
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// The ground's and the body's transforms at one instant, and points of each frame in
+/// the side view (x, z of the world).
+struct Frames {
+    ground: Value,
+    body: Value,
+}
+
+impl Frames {
+    fn at(rock: &RockMessages, ns: u64) -> Self {
+        Self {
+            ground: at(&rock.transforms, ns, Some("fe/exact/ground")),
+            body: at(&rock.transforms, ns, Some("fe/exact/body")),
+        }
+    }
+
+    fn ground(&self, p: [f64; 3]) -> (f64, f64) {
+        let p = apply(&self.ground, p);
+        (p[0], p[2])
+    }
+
+    fn body(&self, p: [f64; 3]) -> (f64, f64) {
+        self.ground(apply(&self.body, p))
+    }
+}
+
+/// The 3D panel, seen from the side: two earlier instants as outlines, then the current
+/// one with the ground, the datum post and the force arrows.
+fn draw_3d_panel(
+    left: &DrawingArea<SVGBackend<'_>, Shift>,
+    rock: &RockMessages,
+) -> Result<(), Box<dyn Error>> {
     let view = left.margin(34, 8, 8, 8);
     let mut ch = ChartBuilder::on(&view)
         .x_label_area_size(34)
@@ -206,124 +232,23 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .label_style(("sans-serif", 11).into_font().color(&DIM))
         .x_desc("x, m (side view from −y)")
         .draw()?;
-    let ents = scene["entities"].as_array().unwrap();
-    let ent = |id: &str| ents.iter().find(|e| e["id"] == id).unwrap();
-    // two earlier instants as outlines, then the current one
     let snapshots = [0.4, 1.4, 1.0];
     for (k, &t) in snapshots.iter().enumerate() {
         let ns = (t * 1e9) as u64;
-        let main = k == snapshots.len() - 1;
-        let alpha = if main { 1.0 } else { 0.45 };
-        let ground_tf = at(&tfs, ns, Some("fe/exact/ground"));
-        let body_tf = at(&tfs, ns, Some("fe/exact/body"));
-        let world = |frame: &Value, p: [f64; 3]| {
-            let p = apply(frame, p);
-            (p[0], p[2])
-        };
-        let ground_in_world = |p: [f64; 3]| world(&ground_tf, p);
-        let body_in_world = |p: [f64; 3]| ground_in_world(apply(&body_tf, p));
-        if main {
-            // ground slab and its ticks (moving with the ground)
-            for c in ent("ground")["cubes"].as_array().unwrap() {
-                let (p, s) = (&c["pose"]["position"], &c["size"]);
-                let f = |v: &Value, k: &str| v[k].as_f64().unwrap();
-                let (x0, z0) = ground_in_world([
-                    f(p, "x") - f(s, "x") / 2.0,
-                    0.0,
-                    f(p, "z") - f(s, "z") / 2.0,
-                ]);
-                let (x1, z1) = ground_in_world([
-                    f(p, "x") + f(s, "x") / 2.0,
-                    0.0,
-                    f(p, "z") + f(s, "z") / 2.0,
-                ]);
-                // ticks lie flat on the slab: draw them into its edge so the side view shows them
-                let (x0, x1, z0) = if f(s, "z") < 0.01 {
-                    (x0 - 0.004, x1 + 0.004, z0 - 0.035)
-                } else {
-                    (x0, x1, z0)
-                };
-                ch.draw_series(std::iter::once(Rectangle::new(
-                    [(x0, z0), (x1, z1)],
-                    color(&c["color"], 1.0).filled(),
-                )))?;
-            }
-            // datum post (world frame)
-            let d = &ent("datum")["cubes"][0];
-            let hgt = d["size"]["z"].as_f64().unwrap();
-            ch.draw_series(std::iter::once(Rectangle::new(
-                [(-0.006, 0.0), (0.006, hgt)],
-                color(&d["color"], 1.0).filled(),
-            )))?;
+        let current = k == snapshots.len() - 1;
+        let alpha = if current { 1.0 } else { 0.45 };
+        let frames = Frames::at(rock, ns);
+        if current {
+            draw_ground(&mut ch, &rock.scene, &frames)?;
         }
-        // the body's box, supports and centre of mass
-        let body = ent("body");
-        let cube = &body["cubes"][0]["size"];
-        let (sx, sz) = (
-            cube["x"].as_f64().unwrap() / 2.0,
-            cube["z"].as_f64().unwrap() / 2.0,
-        );
-        let corners: Vec<(f64, f64)> = [(-sx, -sz), (sx, -sz), (sx, sz), (-sx, sz)]
-            .iter()
-            .map(|&(x, z)| body_in_world([x, 0.0, z]))
-            .collect();
-        let fill = color(&body["cubes"][0]["color"], 1.0);
-        if main {
-            ch.draw_series(std::iter::once(Polygon::new(
-                corners.clone(),
-                fill.mix(0.55).filled(),
-            )))?;
+        let top = draw_body(&mut ch, &rock.scene, &frames, current, alpha)?;
+        if current {
+            draw_forces(&mut ch, &at(&rock.forces, ns, None), &frames)?;
         }
-        let mut outline = corners.clone();
-        outline.push(corners[0]);
-        ch.draw_series(std::iter::once(PathElement::new(
-            outline,
-            fill.mix(alpha).stroke_width(2),
-        )))?;
-        for s in body["spheres"].as_array().unwrap().iter().filter(|_| main) {
-            let p = &s["pose"]["position"];
-            let c = body_in_world([p["x"].as_f64().unwrap(), 0.0, p["z"].as_f64().unwrap()]);
-            ch.draw_series(std::iter::once(Circle::new(
-                c,
-                3,
-                RGBColor(235, 235, 235).mix(alpha).filled(),
-            )))?;
-        }
-        // force arrows (ground frame), on the last snapshot only
-        if main {
-            let f = at(&forces, ns, None);
-            for a in f["entities"][0]["arrows"].as_array().unwrap() {
-                let len = a["shaft_length"].as_f64().unwrap() + a["head_length"].as_f64().unwrap();
-                let frame = serde_json::json!({
-                    "translation": a["pose"]["position"], "rotation": a["pose"]["orientation"]
-                });
-                let tail = ground_in_world(apply(&frame, [0.0, 0.0, 0.0]));
-                let tip = ground_in_world(apply(&frame, [len, 0.0, 0.0]));
-                let neck = ground_in_world(apply(&frame, [0.8 * len, 0.0, 0.0]));
-                let (nx, nz) = ((tip.0 - tail.0) / len, (tip.1 - tail.1) / len);
-                let hw = 0.035;
-                let col = color(&a["color"], 1.0);
-                ch.draw_series(std::iter::once(PathElement::new(
-                    vec![tail, neck],
-                    col.stroke_width(3),
-                )))?;
-                ch.draw_series(std::iter::once(Polygon::new(
-                    vec![
-                        tip,
-                        (neck.0 - nz * hw, neck.1 + nx * hw),
-                        (neck.0 + nz * hw, neck.1 - nx * hw),
-                    ],
-                    col.filled(),
-                )))?;
-            }
-        }
-        let cm = body_in_world([0.0, 0.0, 0.0]);
+        let cm = frames.body([0.0, 0.0, 0.0]);
         ch.draw_series(std::iter::once(Text::new(
             format!("t = {t} s"),
-            (
-                cm.0 - 0.1,
-                corners.iter().map(|c| c.1).fold(f64::MIN, f64::max) + 0.03 + 0.07 * k as f64,
-            ),
+            (cm.0 - 0.1, top + 0.03 + 0.07 * k as f64),
             ("sans-serif", 12).into_font().color(&FG.mix(alpha)),
         )))?;
     }
@@ -332,8 +257,144 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         (-1.15, -0.62),
         ("sans-serif", 12).into_font().color(&DIM),
     )))?;
+    Ok(())
+}
 
-    // Plot panel: two plots of message paths.
+/// The scene's entity `id`.
+fn entity<'a>(scene: &'a Value, id: &str) -> &'a Value {
+    let ents = scene["entities"].as_array().unwrap();
+    ents.iter().find(|e| e["id"] == id).unwrap()
+}
+
+/// The ground slab and its ticks (moving with the ground), and the datum post (world
+/// frame).
+fn draw_ground(
+    ch: &mut Chart<'_, '_>,
+    scene: &Value,
+    frames: &Frames,
+) -> Result<(), Box<dyn Error>> {
+    for c in entity(scene, "ground")["cubes"].as_array().unwrap() {
+        let (p, s) = (&c["pose"]["position"], &c["size"]);
+        let f = |v: &Value, k: &str| v[k].as_f64().unwrap();
+        let (x0, z0) = frames.ground([
+            f(p, "x") - f(s, "x") / 2.0,
+            0.0,
+            f(p, "z") - f(s, "z") / 2.0,
+        ]);
+        let (x1, z1) = frames.ground([
+            f(p, "x") + f(s, "x") / 2.0,
+            0.0,
+            f(p, "z") + f(s, "z") / 2.0,
+        ]);
+        // ticks lie flat on the slab: draw them into its edge so the side view shows them
+        let (x0, x1, z0) = if f(s, "z") < 0.01 {
+            (x0 - 0.004, x1 + 0.004, z0 - 0.035)
+        } else {
+            (x0, x1, z0)
+        };
+        ch.draw_series(std::iter::once(Rectangle::new(
+            [(x0, z0), (x1, z1)],
+            color(&c["color"], 1.0).filled(),
+        )))?;
+    }
+    let d = &entity(scene, "datum")["cubes"][0];
+    let hgt = d["size"]["z"].as_f64().unwrap();
+    ch.draw_series(std::iter::once(Rectangle::new(
+        [(-0.006, 0.0), (0.006, hgt)],
+        color(&d["color"], 1.0).filled(),
+    )))?;
+    Ok(())
+}
+
+/// The body's box (filled at the current instant, an outline at the others), its
+/// supports and centre of mass at the current one; returns the box's highest z.
+fn draw_body(
+    ch: &mut Chart<'_, '_>,
+    scene: &Value,
+    frames: &Frames,
+    current: bool,
+    alpha: f64,
+) -> Result<f64, Box<dyn Error>> {
+    let body = entity(scene, "body");
+    let cube = &body["cubes"][0]["size"];
+    let (sx, sz) = (
+        cube["x"].as_f64().unwrap() / 2.0,
+        cube["z"].as_f64().unwrap() / 2.0,
+    );
+    let corners: Vec<(f64, f64)> = [(-sx, -sz), (sx, -sz), (sx, sz), (-sx, sz)]
+        .iter()
+        .map(|&(x, z)| frames.body([x, 0.0, z]))
+        .collect();
+    let fill = color(&body["cubes"][0]["color"], 1.0);
+    if current {
+        ch.draw_series(std::iter::once(Polygon::new(
+            corners.clone(),
+            fill.mix(0.55).filled(),
+        )))?;
+    }
+    let mut outline = corners.clone();
+    outline.push(corners[0]);
+    ch.draw_series(std::iter::once(PathElement::new(
+        outline,
+        fill.mix(alpha).stroke_width(2),
+    )))?;
+    for s in body["spheres"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .filter(|_| current)
+    {
+        let p = &s["pose"]["position"];
+        let c = frames.body([p["x"].as_f64().unwrap(), 0.0, p["z"].as_f64().unwrap()]);
+        ch.draw_series(std::iter::once(Circle::new(
+            c,
+            3,
+            RGBColor(235, 235, 235).mix(alpha).filled(),
+        )))?;
+    }
+    Ok(corners.iter().map(|c| c.1).fold(f64::MIN, f64::max))
+}
+
+/// The force arrows of one `SceneUpdate` (ground frame).
+fn draw_forces(
+    ch: &mut Chart<'_, '_>,
+    forces: &Value,
+    frames: &Frames,
+) -> Result<(), Box<dyn Error>> {
+    for a in forces["entities"][0]["arrows"].as_array().unwrap() {
+        let len = a["shaft_length"].as_f64().unwrap() + a["head_length"].as_f64().unwrap();
+        let frame = serde_json::json!({
+            "translation": a["pose"]["position"], "rotation": a["pose"]["orientation"]
+        });
+        let tail = frames.ground(apply(&frame, [0.0, 0.0, 0.0]));
+        let tip = frames.ground(apply(&frame, [len, 0.0, 0.0]));
+        let neck = frames.ground(apply(&frame, [0.8 * len, 0.0, 0.0]));
+        let (nx, nz) = ((tip.0 - tail.0) / len, (tip.1 - tail.1) / len);
+        let hw = 0.035;
+        let col = color(&a["color"], 1.0);
+        ch.draw_series(std::iter::once(PathElement::new(
+            vec![tail, neck],
+            col.stroke_width(3),
+        )))?;
+        ch.draw_series(std::iter::once(Polygon::new(
+            vec![
+                tip,
+                (neck.0 - nz * hw, neck.1 + nx * hw),
+                (neck.0 + nz * hw, neck.1 - nx * hw),
+            ],
+            col.filled(),
+        )))?;
+    }
+    Ok(())
+}
+
+/// The Plot panel: two plots of message paths, the predictor-corrector's and the
+/// reference's relative displacement and sliding.
+fn draw_plot_panel(
+    right: &DrawingArea<SVGBackend<'_>, Shift>,
+    pc: &Trace,
+    rf: &Trace,
+) -> Result<(), Box<dyn Error>> {
     let plots = right.margin(30, 6, 6, 6);
     let (top, bottom) = plots.split_vertically(282);
     let series = [
@@ -381,7 +442,40 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             .label_font(("sans-serif", 12).into_font().color(&FG))
             .draw()?;
     }
+    Ok(())
+}
 
+fn main() -> Result<(), Box<dyn Error>> {
+    let out = std::env::args()
+        .nth(1)
+        .unwrap_or_else(|| "docs/img/foxglove-layout.svg".into());
+    let tmp = tempfile::tempdir()?;
+
+    // Plot data: the PEPO case, written and read back.
+    let case = load_case(Path::new("cases/pepo-mass-accel.toml"))?;
+    let result = run_case(case)?;
+    let dir = write_case_outputs(&result, tmp.path())?;
+    let pepo = read_mcap(&dir.join("pepo-mass-accel.mcap"))?;
+    let pc = pepo.state("/predictor-corrector/paper/state").unwrap();
+    let rf = pepo.state("/reference/state").unwrap();
+    // 3D data: the synthetic rocking trace, written and read back message by message.
+    let rock = rocking_messages()?;
+
+    let root = SVGBackend::new(&out, (1200, 640)).into_drawing_area();
+    root.fill(&BG)?;
+    let (main, footer) = root.split_vertically(608);
+    let (left, right) = main.split_horizontally(560);
+    let left = left.margin(4, 4, 4, 2);
+    let right = right.margin(4, 4, 2, 4);
+    left.fill(&PANEL)?;
+    right.fill(&PANEL)?;
+    panel_header(
+        &left,
+        "3D   /fe/exact/scene · /fe/exact/forces · /fe/exact/transform",
+    );
+    panel_header(&right, "Plot");
+    draw_3d_panel(&left, &rock)?;
+    draw_plot_panel(&right, pc, rf)?;
     footer.draw(&Text::new(
         "Illustration drawn from rockslide MCAP messages (cargo run --example trace_picture), not a Foxglove screenshot. \
          Left: synthetic rocking on the RPEPO geometry, 3 instants. Right: PEPO, mass acceleration (cases/pepo-mass-accel.toml).",

@@ -1,6 +1,7 @@
 //! A case from Python: read from a file, parsed from TOML text or written from a dict
 //! (the dict is the TOML file's tables as nested dicts, lists and numbers), validated
-//! against the engines exactly as the command line validates it.
+//! against the engines exactly as the command line validates it, and run (`run`,
+//! `Case.run`) into a [`CaseResult`].
 
 use std::path::{Path, PathBuf};
 
@@ -12,6 +13,7 @@ use rockslide_core::case::Case as Scene;
 use rockslide_verify::registry;
 
 use crate::errors::input_error;
+use crate::result::{CaseResult, run_case};
 
 /// The name a case given as text or a dict is reported under when no path is given
 /// (relative record paths then resolve against the working folder).
@@ -79,12 +81,8 @@ impl Case {
 
     /// Run the case (every engine it names, or `engines`), see `rockslide.run`.
     #[pyo3(signature = (engines=None))]
-    fn run(
-        &self,
-        py: Python<'_>,
-        engines: Option<Vec<String>>,
-    ) -> PyResult<crate::result::CaseResult> {
-        crate::result::run_case(py, self.inner.clone(), engines)
+    fn run(&self, py: Python<'_>, engines: Option<Vec<String>>) -> PyResult<CaseResult> {
+        run_case(py, self.inner.clone(), engines)
     }
 
     fn __repr__(&self) -> String {
@@ -94,6 +92,14 @@ impl Case {
             self.inner.path.display().to_string()
         )
     }
+}
+
+/// Run a case: every engine it names (all that apply when it names none), or only
+/// `engines` (ids among `rockslide.ENGINES`), the GIL released while they run.
+#[pyfunction]
+#[pyo3(signature = (case, engines=None))]
+pub fn run(py: Python<'_>, case: &Case, engines: Option<Vec<String>>) -> PyResult<CaseResult> {
+    run_case(py, case.inner.clone(), engines)
 }
 
 /// Read and validate a case file.

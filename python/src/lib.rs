@@ -31,7 +31,7 @@ fn _rockslide(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(case::load_case, m)?)?;
     m.add_function(wrap_pyfunction!(case::case_from_toml, m)?)?;
     m.add_function(wrap_pyfunction!(case::case_from_dict, m)?)?;
-    m.add_function(wrap_pyfunction!(result::run, m)?)?;
+    m.add_function(wrap_pyfunction!(case::run, m)?)?;
     m.add_function(wrap_pyfunction!(arrays::quantities, m)?)?;
     m.add_function(wrap_pyfunction!(records::read_record, m)?)?;
     m.add_function(wrap_pyfunction!(references::reference, m)?)?;

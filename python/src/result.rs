@@ -29,18 +29,8 @@ pub struct CaseResult {
     inner: Outcome,
 }
 
-/// Run a case: every engine it names (all that apply when it names none), or only
-/// `engines` (ids among `rockslide.ENGINES`), the GIL released while they run.
-#[pyfunction]
-#[pyo3(signature = (case, engines=None))]
-pub fn run(
-    py: Python<'_>,
-    case: &crate::case::Case,
-    engines: Option<Vec<String>>,
-) -> PyResult<CaseResult> {
-    run_case(py, case.inner.clone(), engines)
-}
-
+/// Run a case's scene: every engine it names (all that apply when it names none), or
+/// only `engines` (ids among `rockslide.ENGINES`), the GIL released while they run.
 pub(crate) fn run_case(
     py: Python<'_>,
     case: Scene,

@@ -23,6 +23,7 @@ mod gate_check;
 mod gate_script;
 mod golden;
 mod guarded_run;
+mod import_circles;
 mod liftoff_plan;
 mod mcap_cli;
 mod mcap_space;

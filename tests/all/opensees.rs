@@ -177,7 +177,7 @@ fn opensees_pepo_matches_the_exact_solution() {
         let exact = &r.reference.as_ref().unwrap().responses;
         let mine = &r.run_responses[i];
         let d = |k: &str| 100.0 * (mine[k] / exact[k] - 1.0);
-        // measured −0.00007 % (single and double); the limit is 0.01 %
+        // measured −0.00007 % (single and double); required: 0.01 %
         assert!(
             d("residual_sliding").abs() < 1e-4,
             "{variant}: {}",

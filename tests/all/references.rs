@@ -26,7 +26,7 @@ fn max_rel_diff(
 
 /// With μ = ∞ the event-driven elastic-plastic solution never slips and must equal the
 /// Duhamel closed form (two different formulations: state transition from each event vs
-/// Chopra's transient + steady state). The issue asks for 1e-9; measured 2.5e-16 (mass
+/// Chopra's transient + steady state). Required: 1e-9; measured 2.5e-16 (mass
 /// force) and 8.0e-17 (support displacement), so the bound is 1e-13.
 #[test]
 fn exact_elastic_plastic_equals_duhamel_without_slip() {

@@ -329,7 +329,7 @@ mod streamed_equals_whole {
     /// rapier alone, streaming natively, on each of its time loops: the oscillator
     /// (joint-limit contact and foot), the oscillator on a support under vertical motion,
     /// the block (and on the kinematic ground its step rule's pilot, which keeps only its
-    /// path length), the block lifting off, the rocking body (applied-force supports,
+    /// path length), the block lifting off, the rocking body (computed supports,
     /// joint-limit supports, feet), and in plan the oscillator, the block on the kinematic
     /// ground (its pilot in plan) and the rocking grid: the same responses, history errors,
     /// invariants, checks, statistics and findings as the whole run, bit for bit, and the

@@ -341,6 +341,21 @@ fn rocking(
         (true, Some(d)) => (&d.lower, Some(&d.upper)),
         _ => (&r.contact, None),
     };
+    rocking_parameters(deck, r, lower, upper);
+    rocking_model(deck, r, upper.is_some());
+    rocking_loads(deck, case, r.mass, settings);
+    solution(deck, settings, true);
+    rocking_results(deck, r.supports, settings);
+    Ok(())
+}
+
+/// The body's and the supports' numbers as parameters, and the contact elements' types.
+fn rocking_parameters(
+    deck: &mut String,
+    r: &RockingBody,
+    lower: &Contact,
+    upper: Option<&Contact>,
+) {
     let inertia = crate::opensees::rotational_inertia(r);
     let mut values = vec![
         ("MASS", r.mass),
@@ -361,6 +376,11 @@ fn rocking(
     if let Some(u) = upper {
         conta178(deck, 2, u);
     }
+}
+
+/// The nodes and elements: the CM's mass, the rigid base, and each support's contact
+/// (two in series, through a middle node 301.., for the double supports).
+fn rocking_model(deck: &mut String, r: &RockingBody, double: bool) {
     deck.push_str(
         "! MASS21 (Element Reference): 3D mass with rotary inertia (KEYOPT(3)=0); the paper's model has\n\
          ! none, the case states a small one (see the case file)\n\
@@ -373,7 +393,7 @@ fn rocking(
         let (base, ground, middle) = (101 + i, 201 + i, 301 + i);
         let _ = writeln!(deck, "N,{base},{},0,0\nN,{ground},{},0,0", num(x), num(x));
         let _ = writeln!(deck, "TYPE,8\nE,1,{base}");
-        if upper.is_some() {
+        if double {
             let _ = writeln!(
                 deck,
                 "N,{middle},{},0,0\nTYPE,1\nREAL,1\nMAT,1\nE,{ground},{middle}\nTYPE,2\nREAL,2\nMAT,2\nE,{middle},{base}",
@@ -383,7 +403,12 @@ fn rocking(
             let _ = writeln!(deck, "TYPE,1\nREAL,1\nMAT,1\nE,{ground},{base}");
         }
     }
-    let load = loading(deck, case, r.mass, settings);
+}
+
+/// The constraints, the weight at the CM and the ground motion: a displacement of the
+/// ground nodes or a force at the CM.
+fn rocking_loads(deck: &mut String, case: &Case, mass: f64, settings: &DeckSettings) {
+    let load = loading(deck, case, mass, settings);
     deck.push_str(
         "D,ALL,UY,0\nD,1,ROTX,0\nD,1,ROTZ,0\nNSEL,S,NODE,,201,299\nD,ALL,UZ,0\nD,ALL,ROTX,0\nD,ALL,ROTY,0\nD,ALL,ROTZ,0\n",
     );
@@ -395,7 +420,11 @@ fn rocking(
     if let Some(("force", _)) = load {
         deck.push_str("F,1,FX,%LOADTAB%\n");
     }
-    solution(deck, settings, true);
+}
+
+/// POST26: the trace's quantities from the nodes' solution and the ground nodes'
+/// reactions, written as rockslide's CSV.
+fn rocking_results(deck: &mut String, supports: usize, settings: &DeckSettings) {
     let (_, results) = names(settings.double());
     deck.push_str(
         "/POST26\nNUMVAR,200\n\
@@ -406,7 +435,7 @@ fn rocking(
          ! base shear and normal force: the ground nodes' reactions summed (RFORCE, ADD)\n\
          RFORCE,10,201,F,X,SH\nRFORCE,11,201,F,Z,NZ\nADD,12,10,,,SHEAR,,,-1\nADD,13,11,,,NORMAL\n",
     );
-    for i in 1..r.supports {
+    for i in 1..supports {
         let _ = writeln!(
             deck,
             "RFORCE,14,{g},F,X,FXI\nRFORCE,15,{g},F,Z,FZI\nADD,12,12,14,,SHEAR,,,1,-1\nADD,13,13,15,,NORMAL",
@@ -432,5 +461,4 @@ fn rocking(
             ("normal [N]", 13),
         ],
     );
-    Ok(())
 }

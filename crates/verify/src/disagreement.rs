@@ -5,6 +5,7 @@
 //! fails the gate; a declaration whose disagreement no longer happens fails it too.
 
 use rockslide_core::case::{DESIGN_QUANTITIES, ExpectedDisagreement};
+use rockslide_core::response::show_value;
 
 use crate::analysis::Responses;
 use crate::result::CaseResult;
@@ -123,7 +124,7 @@ pub fn measured_now(r: &CaseResult, d: &ExpectedDisagreement) -> Option<String> 
     Some(format!(
         "{} {}",
         run.label(),
-        crate::verdict::difference_words(&d.quantity, v, b)
+        difference_words(&d.quantity, v, b)
     ))
 }
 
@@ -147,6 +148,37 @@ fn beyond_limit(quantity: &str, value: f64, basis_value: f64, basis: &Responses)
     scale > 0.0 && (value - basis_value).abs() > DESIGN_PERCENT / 100.0 * scale
 }
 
+/// A difference in words with both values in display units: in per cent for a value
+/// (`Δ −49.8 % (1.891 vs 3.766 mm)`), as a difference for a count or an event time
+/// (`Δ −1 (32 vs 33)`, `Δ +0.0010 s (0.8430 vs 0.8420 s)`): never both in one phrase.
+pub fn difference_words(quantity: &str, v: f64, b: f64) -> String {
+    let def = rockslide_core::response::quantity_def(quantity);
+    let (vs, unit) = show_value(quantity, v);
+    let both = format!("{vs} vs {} {unit}", show_value(quantity, b).0);
+    let both = both.trim_end();
+    if def.is_some_and(|d| d.is_count()) {
+        return format!("Δ {:+} ({both})", v - b);
+    }
+    match crate::analysis::discrepancy_percent(v, b) {
+        Some(p) if !def.is_some_and(|d| d.is_time()) => format!("Δ {} % ({both})", percent3(p)),
+        _ => {
+            let (d, unit) = show_value(quantity, v - b);
+            let sign = if v >= b { "+" } else { "" };
+            format!("Δ {sign}{d} {unit} ({both})")
+        }
+    }
+}
+
+/// A signed percentage to three significant digits (`-0.617`, `-49.8`, `+12215`).
+fn percent3(p: f64) -> String {
+    let digits = if p == 0.0 {
+        1
+    } else {
+        (2 - p.abs().log10().floor() as i32).max(0) as usize
+    };
+    format!("{p:+.digits$}")
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -166,5 +198,23 @@ mod tests {
         let peak = responses(&[("peak_uplift", 0.004)]);
         assert!(!beyond_limit("peak_uplift", 0.00439, 0.004, &peak));
         assert!(beyond_limit("peak_uplift", 0.004404, 0.004, &peak));
+    }
+
+    /// A difference reads in per cent for a value, in seconds for an event time (its
+    /// percentage depends on where t = 0 is) and as a difference for a count.
+    #[test]
+    fn differences_never_mix_percentages_and_counts() {
+        assert_eq!(
+            difference_words("first_liftoff", 0.75, 0.85),
+            "Δ -0.1000 s (0.7500 vs 0.8500 s)"
+        );
+        assert_eq!(
+            difference_words("residual_sliding", 0.001891, 0.003766),
+            "Δ -49.8 % (1.891 vs 3.766 mm)"
+        );
+        assert_eq!(
+            difference_words("slip_episodes", 32.0, 33.0),
+            "Δ -1 (32 vs 33)"
+        );
     }
 }

@@ -5,6 +5,7 @@
 use std::fmt;
 
 use crate::analysis::{Check, Verdict};
+use crate::disagreement::difference_words;
 use crate::invariants::InvariantCheck;
 use crate::result::CaseResult;
 use rockslide_core::case::Tolerance;
@@ -57,37 +58,6 @@ pub fn describe(c: &Check) -> String {
         }
         (Some(_), None) => "missing: the basis has no value".to_string(),
     }
-}
-
-/// A difference in words with both values in display units: in per cent for a value
-/// (`Δ −49.8 % (1.891 vs 3.766 mm)`), as a difference for a count or an event time
-/// (`Δ −1 (32 vs 33)`, `Δ +0.0010 s (0.8430 vs 0.8420 s)`): never both in one phrase.
-pub fn difference_words(quantity: &str, v: f64, b: f64) -> String {
-    let def = rockslide_core::response::quantity_def(quantity);
-    let (vs, unit) = show_value(quantity, v);
-    let both = format!("{vs} vs {} {unit}", show_value(quantity, b).0);
-    let both = both.trim_end();
-    if def.is_some_and(|d| d.is_count()) {
-        return format!("Δ {:+} ({both})", v - b);
-    }
-    match crate::analysis::discrepancy_percent(v, b) {
-        Some(p) if !def.is_some_and(|d| d.is_time()) => format!("Δ {} % ({both})", percent3(p)),
-        _ => {
-            let (d, unit) = show_value(quantity, v - b);
-            let sign = if v >= b { "+" } else { "" };
-            format!("Δ {sign}{d} {unit} ({both})")
-        }
-    }
-}
-
-/// A signed percentage to three significant digits (`-0.617`, `-49.8`, `+12215`).
-fn percent3(p: f64) -> String {
-    let digits = if p == 0.0 {
-        1
-    } else {
-        (2 - p.abs().log10().floor() as i32).max(0) as usize
-    };
-    format!("{p:+.digits$}")
 }
 
 /// The tolerance of a check in words with the quantity's display unit (`≤ 1 %`,
@@ -749,24 +719,6 @@ dt = 0.1
         assert!(
             err.contains("expected_outcome[0].status: unknown status \"exploded\""),
             "{err}"
-        );
-    }
-
-    /// A difference reads in per cent for a value, in seconds for an event time (its
-    /// percentage depends on where t = 0 is) and as a difference for a count.
-    #[test]
-    fn differences_never_mix_percentages_and_counts() {
-        assert_eq!(
-            difference_words("first_liftoff", 0.75, 0.85),
-            "Δ -0.1000 s (0.7500 vs 0.8500 s)"
-        );
-        assert_eq!(
-            difference_words("residual_sliding", 0.001891, 0.003766),
-            "Δ -49.8 % (1.891 vs 3.766 mm)"
-        );
-        assert_eq!(
-            difference_words("slip_episodes", 32.0, 33.0),
-            "Δ -1 (32 vs 33)"
         );
     }
 }

@@ -1,26 +1,30 @@
 //! Reports: the verification document an engineer signs. For each case and for the whole
 //! suite, Markdown and a self-contained HTML page (plots inline as SVG) and a summary CSV;
 //! the content — paper-style table, tolerance checks, cross-code matrix, plots, settings,
-//! provenance — is built once (`document`) as a small document model (`doc`) and rendered
-//! by `markdown` and `html`. The same model renders the sweep, stability and study pages
-//! (`crate::sweep`, `crate::stability`, `crate::study`). Every file is written atomically
-//! under the output folder.
+//! provenance — is built once (`document`, `suite_document`) in the document model
+//! (`crate::doc`) and rendered by its Markdown and HTML renderers (`pages`). The same model
+//! renders the sweep, stability and study pages (`crate::sweep`, `crate::stability`,
+//! `crate::study`). Every file is written atomically under the output folder.
 //!
 //! Table of contents:
-//! - `table`: the paper-style table as data; `crosscode`: pairwise discrepancies;
-//!   `plots`: time-history figures (plotters, SVG); `figure`: the palette and legend
-//!   strip every figure shares; `provenance`: tool, commit, machine, date;
-//! - `document`: the report content; `design`: the design quantities first;
-//!   `input_warnings`: the case files' likely mistakes, under the verdict; `doc`: the
-//!   document model;
-//! - `markdown`, `html`, `summary_csv`: the renderers; `files`: writing a document and
-//!   CSV files; `format`: number formatting;
-//! - `sections`: the energy audit section; `attachments`: the typed results of `sweep`
-//!   and `stability` picked up from the output folder (never recomputed);
-//! - `mcap_log`: the MCAP trace of a case run (Foxglove).
+//! - `document`: a case's report content; `suite_document`: the suite summary's;
+//!   `control`: document ID, running headers and the control block; `design`: the design
+//!   quantities first; `input_warnings`: the case files' likely mistakes, under the
+//!   verdict;
+//! - `table`: the paper-style table as data; `response_tables`: it and the tolerance
+//!   checks as tables, marked with their verdicts; `crosscode`: pairwise discrepancies;
+//!   `crosscode_tables`: their matrices and the whole-history errors;
+//! - `plots`, `record_plot`, `vertical_plot`, `orbit_plot`: the figures (SVG);
+//!   `sections`: the energy audit section; `provenance`: tool, commit, machine, date;
+//!   `attachments`: the typed results of `sweep` and `stability` picked up from the output
+//!   folder (never recomputed);
+//! - `pages`: the documents rendered; `summary_csv`: the summary CSV; `mcap_log`: the
+//!   MCAP trace of a case run (Foxglove).
 
 mod attachments;
+mod control;
 mod crosscode;
+mod crosscode_tables;
 mod design;
 mod document;
 mod input_warnings;
@@ -30,7 +34,9 @@ mod pages;
 mod plots;
 mod provenance;
 mod record_plot;
+mod response_tables;
 mod sections;
+mod suite_document;
 mod summary_csv;
 mod table;
 mod vertical_plot;
@@ -234,7 +240,7 @@ fn write_case_pages(result: &CaseResult, dir: &Path, set: OutputSet) -> Result<S
     };
     let page = html::page_with_header(
         &format!("rockslide — {}", result.case.name),
-        &document::running_header(&result.case, Provenance::current()),
+        &control::running_header(&result.case, Provenance::current()),
         &html::render_with(&blocks, &figures("")),
     );
     write_atomically(&dir.join("report.html"), page.as_bytes())?;
@@ -295,13 +301,13 @@ fn write_suite_pages(
 ) -> Result<PathBuf, Error> {
     timings::time("summary", "all", || {
         let att = attachments::Attachments::for_suite(out);
-        let blocks = document::suite_document(results, Provenance::current(), &att);
+        let blocks = suite_document::suite_document(results, Provenance::current(), &att);
         write_figures_and_markdown(&blocks, out, "summary.md")?;
         let html = out.join("summary.html");
         let page = html::suite_page(
             &blocks,
             sections,
-            &document::suite_header(Provenance::current()),
+            &control::suite_header(Provenance::current()),
         );
         write_atomically(&html, page.as_bytes())?;
         write_atomically(&out.join("summary.csv"), &summary_csv(results)?)?;

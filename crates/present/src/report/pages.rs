@@ -1,11 +1,14 @@
 //! The case and suite reports rendered whole, in Markdown and as self-contained HTML:
-//! the report documents ([`super::document`]) through the document model's renderers.
+//! the report documents ([`super::document`], [`super::suite_document`]) through the
+//! document model's renderers.
 
 use std::path::Path;
 
 use super::attachments::Attachments;
-use super::document::{case_document, suite_document};
+use super::control::{running_header, suite_header};
+use super::document::case_document;
 use super::provenance::Provenance;
+use super::suite_document::suite_document;
 use crate::doc::markdown::{Links, render, render_with};
 use crate::doc::{Block, html};
 use rockslide_verify::suite::CaseResult;
@@ -38,7 +41,7 @@ pub fn case_html(r: &CaseResult) -> String {
     let blocks = case_document(r, Provenance::current(), &Attachments::default());
     html::page_with_header(
         &format!("rockslide — {}", r.case.name),
-        &super::document::running_header(&r.case, Provenance::current()),
+        &running_header(&r.case, Provenance::current()),
         &html::render(&blocks),
     )
 }
@@ -53,11 +56,7 @@ pub(crate) fn suite_html_in(results: &[CaseResult], out: Option<&Path>) -> Strin
     let att = out.map_or_else(Attachments::default, Attachments::for_suite);
     let blocks = suite_document(results, Provenance::current(), &att);
     let sections: Vec<String> = results.iter().map(|r| case_section_in(r, out)).collect();
-    html::suite_page(
-        &blocks,
-        &sections,
-        &super::document::suite_header(Provenance::current()),
-    )
+    html::suite_page(&blocks, &sections, &suite_header(Provenance::current()))
 }
 
 /// A case's section of the suite page, figures inline, with its sweep found under `out`

@@ -1,5 +1,5 @@
-//! Report sections about each method's consistency, beside the response tables of
-//! `document.rs`: the energy audit of every run and of the reference (issue 7: input =
+//! Report sections about each method's consistency, beside the response tables
+//! (`response_tables`): the energy audit of every run and of the reference (input work =
 //! kinetic + strain + friction + damping, computed by `analysis::energy` from the trace).
 //! The work-precision and stability sections are rendered from the typed results of
 //! `sweep` and `stability` (`crate::sweep`, `crate::stability`).

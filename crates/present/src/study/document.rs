@@ -87,37 +87,52 @@ fn short(sha: &str) -> &str {
 pub(crate) fn document(c: &Study) -> Vec<Block> {
     let mut b = vec![
         Block::Heading(1, format!("Study: {}", c.title)),
-        Block::Facts(vec![
-            (
-                "grid".into(),
-                format!("{} (sha256 {})", c.grid.path, short(&c.grid.sha256)),
-            ),
-            (
-                "base case".into(),
-                format!(
-                    "{} — {} (sha256 {})",
-                    c.base.path,
-                    c.base_title,
-                    short(&c.base.sha256)
-                ),
-            ),
-            (
-                "points".into(),
-                format!("{}, runs: {}", c.results.len(), c.rows().count()),
-            ),
-            (
-                "rigid block".into(),
-                "Newmark 1965, ky = μ·g of the model, two-way sliding, exact for piecewise-linear records; sliding sign: mass minus ground".into(),
-            ),
-            ("tool".into(), crate::stamp::tool()),
-            ("commit".into(), crate::stamp::COMMIT.into()),
-        ]),
+        provenance_facts(c),
         Block::Heading(2, "Headline".into()),
         Block::List(headline_sentences(c)),
         Block::Heading(2, "Statistics".into()),
         Block::List(statistics(c).iter().map(statistics_sentence).collect()),
         Block::Heading(2, "Runs".into()),
+        Block::Table(runs_table(c)),
     ];
+    b.extend(not_applicable_blocks(c));
+    b.extend(figure_blocks(c));
+    b
+}
+
+/// Where the study comes from: its grid and base case with their hashes, its size, the
+/// rigid block it is measured against, the tool and commit.
+fn provenance_facts(c: &Study) -> Block {
+    Block::Facts(vec![
+        (
+            "grid".into(),
+            format!("{} (sha256 {})", c.grid.path, short(&c.grid.sha256)),
+        ),
+        (
+            "base case".into(),
+            format!(
+                "{} — {} (sha256 {})",
+                c.base.path,
+                c.base_title,
+                short(&c.base.sha256)
+            ),
+        ),
+        (
+            "points".into(),
+            format!("{}, runs: {}", c.results.len(), c.rows().count()),
+        ),
+        (
+            "rigid block".into(),
+            "Newmark 1965, ky = μ·g of the model, two-way sliding, exact for piecewise-linear records; sliding sign: mass minus ground".into(),
+        ),
+        ("tool".into(), crate::stamp::tool()),
+        ("commit".into(), crate::stamp::COMMIT.into()),
+    ])
+}
+
+/// One row per point and run: the point's record, PGA, μ and polarity, the run, its
+/// status and its sliding in mm.
+fn runs_table(c: &Study) -> Table {
     let mut t = Table {
         header: [
             "point",
@@ -151,24 +166,37 @@ pub(crate) fn document(c: &Study) -> Vec<Block> {
             mm(run.peak_magnitude()).into(),
         ]);
     }
-    b.push(Block::Table(t));
-    if let Some(first) = c.results.first()
-        && !first.not_applicable.is_empty()
-    {
-        b.push(Block::Heading(2, "Engines not applicable".into()));
-        b.push(Block::List(
+    t
+}
+
+/// The engines that did not apply to the study's scene, and why (none: no blocks).
+fn not_applicable_blocks(c: &Study) -> Vec<Block> {
+    let Some(first) = c.results.first() else {
+        return Vec::new();
+    };
+    if first.not_applicable.is_empty() {
+        return Vec::new();
+    }
+    vec![
+        Block::Heading(2, "Engines not applicable".into()),
+        Block::List(
             first
                 .not_applicable
                 .iter()
                 .map(|(e, why)| format!("{e}: not applicable — {why}"))
                 .collect(),
-        ));
-    }
-    b.push(Block::Figure {
+        ),
+    ]
+}
+
+/// Residual sliding against PGA: every run, then each engine's with the rigid block when
+/// the study ran more than one.
+fn figure_blocks(c: &Study) -> Vec<Block> {
+    let mut b = vec![Block::Figure {
         file: "residual-vs-pga.svg".into(),
         caption: "Residual sliding against PGA, every run of the study.".into(),
         svg: residual_vs_pga(c, None),
-    });
+    }];
     let engines = c.engine_labels();
     if engines.len() > 1 {
         b.push(Block::Heading(

@@ -1,4 +1,4 @@
-//! Plot data of a streamed run at full resolution in fixed memory (issue 18, item 3): for
+//! Plot data of a streamed run at full resolution in fixed memory: for
 //! every channel, the minimum and the maximum — each with its time — of each of
 //! [`ENVELOPE_BUCKETS`] equal slices of the run's duration, folded over **every** step as
 //! the run streams. A figure drawn from it shows what a figure of the whole trace shows

@@ -1,4 +1,4 @@
-//! A run analysed while it runs (issue 18): the engine hands each step to a sink
+//! A run analysed while it runs: the engine hands each step to a sink
 //! ([`rockslide_engine_api::StepSink`]) and nothing in proportion to the run's length is
 //! held — only the rows at the case's output step (what the trace files and the figures
 //! show) and running summaries at full resolution, so the verdict still reads every step:

@@ -99,79 +99,21 @@ fn channel_block(
     start: usize,
     level: Level,
 ) -> Result<(Channel, usize), InputError> {
+    check_block_start(path, lines, start, level)?;
     let ints_at = start + TEXT_LINES;
-    if ints_at > lines.len() {
-        return Err(at(
-            path,
-            start + 1,
-            None,
-            format!(
-                "a GeoNet channel has {TEXT_LINES} text header lines from line {}, but the file ends at line {}",
-                start + 1,
-                lines.len()
-            ),
-        ));
-    }
-    if level_of(lines[start]) != Some(level) {
-        let mut e = at(
-            path,
-            start + 1,
-            Some(1),
-            format!(
-                "expected the next channel's first line, \"{}accelerogram … GNS Science\" as the file's first, found \"{}\"",
-                if level == Level::Uncorrected {
-                    "Uncorrected "
-                } else {
-                    "Corrected "
-                },
-                lines[start].trim()
-            ),
-        );
-        e.field = "text header line 1".into();
-        return Err(e);
-    }
     let orientation = component(path, lines, start + 12)?;
     let ints = read_block(path, lines, ints_at, INT_COUNT, INTS, "integer header")?;
     let reals_at = ints_at + INTS.lines(INT_COUNT);
     let reals = read_block(path, lines, reals_at, REAL_COUNT, REALS, "real header")?;
-    let count = |k: usize, least: f64| -> Result<usize, InputError> {
-        let n = ints[k - 1];
-        if n.fract() == 0.0 && (least..=1e9).contains(&n) {
-            Ok(n as usize)
-        } else {
-            let mut e = at(
-                path,
-                ints_at + (k - 1) / 10 + 1,
-                Some((k - 1) % 10 * 8 + 1),
-                format!(
-                    "integer {k} (the number of {} values) is {n}: a whole number from {least}",
-                    match k {
-                        ACC_COUNT => "acceleration",
-                        VEL_COUNT => "velocity",
-                        _ => "displacement",
-                    }
-                ),
-            );
-            e.field = format!("integer header[{k}]");
-            Err(e)
-        }
-    };
-    let npts = count(ACC_COUNT, 1.0)?;
+    let npts = header_count(path, &ints, ints_at, ACC_COUNT, 1.0)?;
     let (nvel, ndisp) = match level {
         Level::Uncorrected => (0, 0),
-        Level::Corrected => (count(VEL_COUNT, 0.0)?, count(DISP_COUNT, 0.0)?),
+        Level::Corrected => (
+            header_count(path, &ints, ints_at, VEL_COUNT, 0.0)?,
+            header_count(path, &ints, ints_at, DISP_COUNT, 0.0)?,
+        ),
     };
-    let dt = reals[INTERVAL - 1];
-    if dt < MIN_DT {
-        let mut e = at(
-            path,
-            reals_at + (INTERVAL - 1) / 10 + 1,
-            Some((INTERVAL - 1) % 10 * 8 + 1),
-            format!("real {INTERVAL} (the sample interval) is {dt} s: at least {MIN_DT:e} s"),
-        );
-        e.field = format!("real header[{INTERVAL}]");
-        return Err(e);
-    }
+    let dt = sample_interval(path, &reals, reals_at)?;
     let data_at = reals_at + REALS.lines(REAL_COUNT);
     let values = read_block(path, lines, data_at, npts, SAMPLES, "acceleration values")?;
     let mut next = data_at + SAMPLES.lines(npts);
@@ -197,6 +139,94 @@ fn channel_block(
         },
         next,
     ))
+}
+
+/// A channel's block starts at 0-based line `start` with its text header whole, its
+/// first line saying the file's level.
+fn check_block_start(
+    path: &Path,
+    lines: &[&str],
+    start: usize,
+    level: Level,
+) -> Result<(), InputError> {
+    if start + TEXT_LINES > lines.len() {
+        return Err(at(
+            path,
+            start + 1,
+            None,
+            format!(
+                "a GeoNet channel has {TEXT_LINES} text header lines from line {}, but the file ends at line {}",
+                start + 1,
+                lines.len()
+            ),
+        ));
+    }
+    if level_of(lines[start]) == Some(level) {
+        return Ok(());
+    }
+    let mut e = at(
+        path,
+        start + 1,
+        Some(1),
+        format!(
+            "expected the next channel's first line, \"{}accelerogram … GNS Science\" as the file's first, found \"{}\"",
+            if level == Level::Uncorrected {
+                "Uncorrected "
+            } else {
+                "Corrected "
+            },
+            lines[start].trim()
+        ),
+    );
+    e.field = "text header line 1".into();
+    Err(e)
+}
+
+/// The integer header's value `k` (1-based) as a count of values, at least `least`; the
+/// header starts at 0-based line `ints_at`.
+fn header_count(
+    path: &Path,
+    ints: &[f64],
+    ints_at: usize,
+    k: usize,
+    least: f64,
+) -> Result<usize, InputError> {
+    let n = ints[k - 1];
+    if n.fract() == 0.0 && (least..=1e9).contains(&n) {
+        return Ok(n as usize);
+    }
+    let mut e = at(
+        path,
+        ints_at + (k - 1) / 10 + 1,
+        Some((k - 1) % 10 * 8 + 1),
+        format!(
+            "integer {k} (the number of {} values) is {n}: a whole number from {least}",
+            match k {
+                ACC_COUNT => "acceleration",
+                VEL_COUNT => "velocity",
+                _ => "displacement",
+            }
+        ),
+    );
+    e.field = format!("integer header[{k}]");
+    Err(e)
+}
+
+/// The sample interval from the real header (from 0-based line `reals_at`), at least
+/// [`MIN_DT`].
+fn sample_interval(path: &Path, reals: &[f64], reals_at: usize) -> Result<f64, InputError> {
+    let dt = reals[INTERVAL - 1];
+    if dt < MIN_DT {
+        let mut e = at(
+            path,
+            reals_at + (INTERVAL - 1) / 10 + 1,
+            Some((INTERVAL - 1) % 10 * 8 + 1),
+            format!("real {INTERVAL} (the sample interval) is {dt} s: at least {MIN_DT:e} s"),
+        );
+        e.field = format!("real header[{INTERVAL}]");
+        return Err(e);
+    }
+    Ok(dt)
 }
 
 /// The orientation on the 0-based line `i`: "Component N10E", "Component S80W",

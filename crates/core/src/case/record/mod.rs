@@ -39,6 +39,7 @@ mod geonet;
 mod integrate;
 mod smc;
 mod station;
+mod station_file;
 mod token;
 mod unit;
 
@@ -50,6 +51,7 @@ pub use filter::HighPass;
 pub use integrate::{Baseline, GroundMotion, integrate};
 pub use station::{
     Channel, Drift, Level, Orientation, PRE_EVENT_S, PreparedStation, Processing, StationRecord,
-    parse_station, prepare, prepare_window, read_station,
+    prepare, prepare_window,
 };
+pub use station_file::{parse_station, read_station};
 pub use unit::{AccelUnit, MIN_DT, Record, STANDARD_GRAVITY};

@@ -1,17 +1,11 @@
 //! A station's three-component record as the agencies publish it: every channel with its
-//! orientation, the station, the event and the agency, read from COSMOS V0/V1/V2, the
-//! CSMIP (CGS) fixed-format volumes (Avol1 V1 `.RAW`/`.V1`, V2), USGS SMC or GeoNet
-//! V1A/V2A; and the
-//! channels made ready for a run: a stated baseline correction for an uncorrected record
+//! orientation, the station, the event and the agency, as the readers of COSMOS V0/V1/V2,
+//! the CSMIP (CGS) fixed-format volumes (Avol1 V1 `.RAW`/`.V1`, V2), USGS SMC and GeoNet
+//! V1A/V2A give it (`station_file` tells the layouts apart); and the channels made ready
+//! for a run: a stated baseline correction for an uncorrected record
 //! (with the drift it removes), unequal channels trimmed to a common window with a note.
 
-use std::path::Path;
-
-use crate::error::{InputError, InputErrors};
-
-use super::file::read_text;
 use super::filter::HighPass;
-use super::token::at;
 use super::{Baseline, Record, integrate};
 
 /// Which way a channel's sensor points.
@@ -117,44 +111,6 @@ pub struct StationRecord {
     pub level: Level,
     /// The channels in file order.
     pub channels: Vec<Channel>,
-}
-
-/// Read a station file: its layout told by its first line (COSMOS "(Format v01.20 with
-/// N text lines)", CSMIP "Uncorrected Accelerogram Data" / "CORRECTED ACCELEROGRAM", SMC
-/// "1 UNCORRECTED ACCELEROGRAM" / "2 CORRECTED ACCELEROGRAM", GeoNet V1A/V2A
-/// "Uncorrected accelerogram … GNS Science" / "Corrected accelerogram … GNS Science").
-pub fn read_station(path: &Path) -> Result<StationRecord, InputErrors> {
-    let text = read_text(path)?;
-    parse_station(path, &text).map_err(Into::into)
-}
-
-/// [`read_station`] from the file's text.
-pub fn parse_station(path: &Path, text: &str) -> Result<StationRecord, InputError> {
-    let first = text.lines().next().unwrap_or("").to_ascii_uppercase();
-    let first = first.trim();
-    if first.contains("TEXT LINES") && first.contains("FORMAT V") {
-        super::cosmos::parse_cosmos(path, text)
-    } else if first.starts_with("1 UNCORRECTED ACCELEROGRAM")
-        || first.starts_with("2 CORRECTED ACCELEROGRAM")
-    {
-        super::smc::parse_smc(path, text)
-    } else if (first.starts_with("UNCORRECTED ACCELEROGRAM")
-        || first.starts_with("CORRECTED ACCELEROGRAM"))
-        && first.contains("GNS SCIENCE")
-    {
-        super::geonet::parse_geonet(path, text)
-    } else if first.starts_with("UNCORRECTED ACCELEROGRAM")
-        || first.starts_with("CORRECTED ACCELEROGRAM")
-    {
-        super::csmip::parse_csmip(path, text)
-    } else {
-        Err(at(
-            path,
-            1,
-            Some(1),
-            "not a station record this program reads: expected a COSMOS file (\"… (Format v01.20 with 13 text lines)\"), a CSMIP volume (\"Uncorrected Accelerogram Data\" or \"CORRECTED ACCELEROGRAM\"), a USGS SMC file (\"2 CORRECTED ACCELEROGRAM\") or a GeoNet V1A/V2A volume (\"Uncorrected accelerogram … GNS Science\")",
-        ))
-    }
 }
 
 /// The channels of a station made ready for a run, and what was done to them.
