@@ -11,8 +11,10 @@
 //!   (trial/commit).
 //! - `series`: double supports condensed into one series-equivalent element, and the
 //!   node's exact equilibrium, in both dimensions.
-//! - `model`: body, nodes, supports; assembly; the condensed Newton solve.
+//! - `model`: the one model of both dimensions, generic over the `Dimension` (plane or
+//!   space): body, nodes, supports; assembly; the condensed Newton solve.
 //! - `stepper`: static preload and the time loop.
+//! - `space`: the engine on a bidirectional (3D) scene.
 //! - `modes`: the model's own eigenfrequencies.
 //! - `options`: the `[engines.fe]` options.
 //! - `simulate`: one run: build the model, integrate, gather settings and findings.
@@ -21,7 +23,7 @@
 //! - `energy`: the energy bookkeeping of rocking runs.
 //! - `findings`: eigenfrequencies, self-checks and sensitivity reported as findings.
 //! - `variant`: the variants (single, double).
-//! - `vertical`: vertical ground motion as an inertial load (issue 15).
+//! - `vertical`: vertical ground motion as an inertial load.
 //! - `whole_run`: the sink of a whole run (rows kept row-major, split into columns once).
 
 #![warn(missing_docs)]
@@ -45,7 +47,7 @@ mod whole_run;
 pub use element::{
     ConeContact, ConeState, Contact, Contact178, ContactState, Element, Status, Tangential,
 };
-pub use model::{Model, default_rotational_inertia};
+pub use model::{Dimension, Model, Plane, PlaneKinematics, Space, default_rotational_inertia};
 pub use modes::{Modes, eigenfrequencies};
 pub use options::{FeOptions, Integrator, Kinematics, Newton, OPTION_KEYS};
 pub use simulate::{simulate, simulate_into};

@@ -326,6 +326,9 @@ mod tests {
             (peak("slide"), peak("rotation"))
         };
         let ((slide, rotation), (slide_n, rotation_n)) = (peaks(model), peaks(nodes));
+        eprintln!(
+            "peak sliding {slide:e} against {slide_n:e}, rotation {rotation:e} against {rotation_n:e}"
+        );
         let rel = |a: f64, b: f64| (a - b).abs() / b.abs();
         assert!(
             rel(slide, slide_n) <= 1e-10,
@@ -344,6 +347,7 @@ mod tests {
         // node model recomputes it as kx1·(δ1x − s1), kx1 = 1.01e11 N/m times the round-off
         // of δ1x, where the equivalent gives ks·(δtx − s1) directly.
         let (pepo, iterations) = condensed_against_nodes("pepo-mass-accel.toml");
+        eprintln!("largest difference {pepo:e} of a channel's peak, iterations {iterations:?}");
         assert!(pepo <= 3e-13, "{pepo:e}");
         assert_eq!(iterations, (1900, 1900));
     }
@@ -354,7 +358,7 @@ mod tests {
     /// sticking, slipping).
     fn rpepo_states() -> (f64, f64, [usize; 3]) {
         use crate::element::Status;
-        use crate::model::{Assembly, condensed_tangent};
+        use crate::model::Assembly;
         use nalgebra::Vector3;
         let case = case("rpepo-mass-accel.toml");
         let (opts, _) = FeOptions::parse(&case);
@@ -374,25 +378,24 @@ mod tests {
             (1e-3, 2e-2, 1e-3),
             (-1e-3, -5e-2, 0.0),
         ] {
-            for (sup, eq) in nodes.supports.iter().zip(cond.equivalents.iter_mut()) {
-                let e1 = &mut nodes.links[sup.ground_link].element;
+            for (sup, eq) in nodes.supports.iter_mut().zip(cond.equivalents.iter_mut()) {
+                let e1 = &mut sup.lower;
                 let mut st = *e1.state();
                 st.slip = slip;
                 e1.set_committed(st);
                 eq.set_committed(st);
             }
             let q = q0 + Vector3::new(dx, 0.0, dtheta);
-            cond.assemble(&q, &mut un.clone(), 1e-4, &mut a);
-            nodes.assemble(&q, &mut un, 1e-4, &mut b);
+            let ground = (1e-4, 0.0, 0.0);
+            cond.assemble(&q, &q, &mut un.clone(), &ground, &mut a);
+            nodes.assemble(&q, &q, &mut un, &ground, &mut b);
             force = force.max((a.pb - b.pb).norm() / b.pb.norm());
-            let (ka, kb) = (
-                condensed_tangent(&cond, &a).unwrap(),
-                condensed_tangent(&nodes, &b).unwrap(),
-            );
+            assert!(!a.singular && !b.singular);
+            let (ka, kb) = (a.kbb, b.kbb);
             tangent = tangent.max((ka - kb).norm() / kb.norm());
             nodes.commit();
             for sup in &nodes.supports {
-                match nodes.links[sup.ground_link].element.state().status {
+                match sup.lower.state().status {
                     Status::Open => seen[0] += 1,
                     Status::Stick => seen[1] += 1,
                     Status::Slip => seen[2] += 1,
@@ -404,10 +407,11 @@ mod tests {
 
     #[test]
     fn condensed_rpepo_double_supports_give_the_node_models_force_and_tangent() {
-        // Measured: 6.3e-16 and 1.6e-15 relative (round-off), with 9 supports seen open,
+        // Measured: 6.8e-16 and 1.4e-15 relative (round-off), with 9 supports seen open,
         // 20 sticking and 51 slipping. Whole RPEPO runs cannot be compared this way: the
         // node model itself moves 48 % in peak sliding when the mass changes by 4e-16.
         let (force, tangent, seen) = rpepo_states();
+        eprintln!("force {force:e}, tangent {tangent:e}; open, sticking, slipping {seen:?}");
         assert!(seen.iter().all(|&n| n > 0), "{seen:?}");
         assert!(force <= 1e-15 && tangent <= 2e-15, "{force:e} {tangent:e}");
     }

@@ -9,11 +9,8 @@
 use nalgebra::{Matrix3, Vector2, Vector3};
 
 use super::body::{BlockGrid, SpaceBody};
-use super::mechanics::SpaceDrive;
-use super::mechanics::SpaceSnapshot;
-use super::model::SpaceModel;
 use super::run::{SpaceRow, record};
-use crate::model::default_rotational_inertia;
+use crate::model::{Drive, Model, Snapshot, Space, default_rotational_inertia};
 use crate::options::FeOptions;
 use crate::stepper::integrate;
 use crate::variant;
@@ -181,19 +178,15 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
     let mut states = vec![ContactState::default(); body.supports.len()];
     // each support's last slip vector and its slip accumulated along the friction force
     let mut slid = vec![(Vector2::zeros(), 0.0_f64); body.supports.len()];
-    let drive = SpaceDrive::new(
-        excitation,
-        spatial.second.as_ref(),
-        spatial.azimuth(),
-        body.mass,
-    )
-    .with_vertical(case.scene.vertical().map(|v| &v.signal));
+    let drive = Drive::new(excitation, body.mass)
+        .along(spatial.azimuth(), spatial.second.as_ref())
+        .with_vertical(case.scene.vertical().map(|v| &v.signal));
     let o_offset = if rocking {
         Vector3::new(0.0, 0.0, body.supports[0].z)
     } else {
         Vector3::zeros()
     };
-    let mut model = SpaceModel::new(&body);
+    let mut model = Model::space(&body);
     let mut values = [0.0_f64; 32];
     let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
         let r = record(m, s, &drive, &o_offset);
@@ -231,7 +224,7 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
 /// `values`; returns how many.
 fn row_values(
     r: &SpaceRow,
-    s: &SpaceSnapshot,
+    s: &Snapshot<Space>,
     (moves_ground, rocking, double): (bool, bool, bool),
     values: &mut [f64; 32],
 ) -> usize {
@@ -274,7 +267,7 @@ fn row_values(
 /// Each support's contact state (its lower element's) into `states`, with the slip
 /// accumulated along the friction force (Σ T̂·Δs; `slid`: each support's last slip vector
 /// and that sum).
-fn contact_states(m: &SpaceModel, states: &mut [ContactState], slid: &mut [(Vector2<f64>, f64)]) {
+fn contact_states(m: &Model<Space>, states: &mut [ContactState], slid: &mut [(Vector2<f64>, f64)]) {
     for ((c, sup), (last, along)) in states.iter_mut().zip(&m.supports).zip(slid) {
         let st = sup.lower.state();
         let tangential = sup.lower.tangential();
