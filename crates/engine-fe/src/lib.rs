@@ -107,11 +107,7 @@ impl Engine for Fe {
     }
 
     fn run(&self, case: &Case, variant: Variant, dt: f64) -> Result<Run, InputError> {
-        let opts = options(case)?;
-        match case.scene.spatial() {
-            Some(s) => space::simulate_space(case, s, variant.name, dt, &opts),
-            None => simulate(case, variant.name, dt, &opts),
-        }
+        simulate(case, variant.name, dt, &options(case)?)
     }
 
     fn run_streaming(
@@ -121,11 +117,7 @@ impl Engine for Fe {
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
-        let opts = options(case)?;
-        match case.scene.spatial() {
-            Some(s) => space::simulate_space_into(case, s, variant.name, dt, &opts, sink),
-            None => simulate_into(case, variant.name, dt, &opts, sink),
-        }
+        simulate_into(case, variant.name, dt, &options(case)?, sink)
     }
 
     fn streams_natively(&self) -> bool {
@@ -133,11 +125,7 @@ impl Engine for Fe {
     }
 
     fn recorded_values(&self, case: &Case, variant: Variant) -> Option<usize> {
-        let opts = options(case).ok()?;
-        match case.scene.spatial() {
-            Some(s) => space::recorded_values_space(case, s, variant.name),
-            None => simulate::recorded_values(case, variant.name, &opts),
-        }
+        simulate::recorded_values(case, variant.name, &options(case).ok()?)
     }
 
     fn models_plan_motion(&self) -> bool {

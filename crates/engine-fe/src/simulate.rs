@@ -1,13 +1,16 @@
-//! Running one variant of a scene: build the model from the scene, integrate it
-//! (`recording`), and gather what the run used and found (`findings`) into a [`Run`].
-//! The rows go to a [`StepSink`] as they are recorded: a whole run ([`simulate`]) keeps
-//! them in a `WholeRun` sized up front (`whole_run`), a streamed run ([`simulate_into`]) hands them
-//! on and holds none (what the findings read of the rows is a running summary).
+//! Running one variant of a scene, planar or bidirectional (`space`): build the model
+//! from the scene, integrate it (`recording`), and gather what the run used and found
+//! (`findings`) into a [`Run`]. The rows go to a [`StepSink`] as they are recorded: a
+//! whole run ([`simulate`]) keeps them in a `WholeRun` sized up front (`whole_run`), a
+//! streamed run ([`simulate_into`]) hands them on and holds none (what the findings read
+//! of the rows is a running summary).
 
 use super::findings::{Findings, Summarised, findings};
 use super::model::{Model, default_rotational_inertia};
 use super::options::FeOptions;
 use super::recording::{RowSink, Rows, run_model};
+use super::space;
+use super::stepper::Counters;
 use super::variant;
 use super::whole_run::WholeRun;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
@@ -18,7 +21,10 @@ use rockslide_engine_api::{Run, Setting, SolverStats, StepSink, step_count};
 /// trace sized for the run up front.
 pub fn simulate(case: &Case, variant: &str, dt: f64, opts: &FeOptions) -> Result<Run, InputError> {
     let mut rows = WholeRun::sized(step_count(case.run.duration, dt) + 1);
-    let mut run = simulate_with(case, variant, dt, opts, &mut rows)?;
+    let mut run = match case.scene.spatial() {
+        Some(s) => space::simulate_space_into(case, s, variant, dt, opts, &mut rows)?,
+        None => simulate_with(case, variant, dt, opts, &mut rows)?,
+    };
     run.trace = rows.into_trace();
     Ok(run)
 }
@@ -33,7 +39,74 @@ pub fn simulate_into<S: StepSink + ?Sized>(
     opts: &FeOptions,
     sink: &mut S,
 ) -> Result<Run, InputError> {
-    simulate_with(case, variant, dt, opts, &mut Rows::new(sink))
+    match case.scene.spatial() {
+        Some(s) => space::simulate_space_into(case, s, variant, dt, opts, sink),
+        None => simulate_with(case, variant, dt, opts, &mut Rows::new(sink)),
+    }
+}
+
+/// Values one row of `variant` of the case's scene records (time, channels, the
+/// contacts' fields), or `None` when the variant does not build.
+pub(crate) fn recorded_values(case: &Case, variant: &str, opts: &FeOptions) -> Option<usize> {
+    if let Some(s) = case.scene.spatial() {
+        return space::recorded_values_space(case, s, variant);
+    }
+    let (model, _, _) = build_model(case, variant, opts).ok()?;
+    Some(super::recording::values_per_row(
+        &super::recording::layout_of_model(case, &model),
+    ))
+}
+
+/// Whether `variant` is the double arrangement, or the located error of a name fe does
+/// not declare.
+pub(crate) fn is_double(case: &Case, variant: &str) -> Result<bool, InputError> {
+    match variant {
+        variant::SINGLE => Ok(false),
+        variant::DOUBLE => Ok(true),
+        other => Err(case.field_error(
+            "engines.fe.variants",
+            format!("\"{other}\" is not a variant of fe; variants: single, double"),
+        )),
+    }
+}
+
+/// The error of the double variant on a scene without double elements.
+pub(crate) fn no_double(case: &Case) -> InputError {
+    case.field_error(
+        "model.double",
+        "is required for the fe engine's \"double\" variant",
+    )
+}
+
+/// The error of a rigid block (no contact stiffness).
+pub(crate) fn rigid_block(case: &Case) -> InputError {
+    case.field_error(
+        "model.kind",
+        "the fe engine does not run rigid blocks (no contact stiffness)",
+    )
+}
+
+/// The solver statistics of a run's counters.
+pub(crate) fn solver_stats(counters: &Counters) -> SolverStats {
+    SolverStats {
+        steps: counters.steps,
+        substeps_per_step: None,
+        newton_iterations: Some(counters.iterations),
+        max_step_iterations: Some(counters.max_step_iterations),
+        static_iterations: Some(counters.static_iterations),
+        step_cuts: Some(counters.step_cuts),
+        roundoff_accepted: Some(counters.roundoff_accepted),
+    }
+}
+
+/// The settings every run states first: Δt, the integrator and its (α, β, γ).
+pub(crate) fn integrator_settings(dt: f64, opts: &FeOptions) -> Vec<Setting> {
+    let (alpha, beta, gamma) = opts.integrator.parameters();
+    vec![
+        Setting::number("dt", "s", dt),
+        Setting::choice("integrator", opts.integrator.label()),
+        Setting::text("α, β, γ", format!("{alpha}, {beta:.6}, {gamma:.6}")),
+    ]
 }
 
 /// [`simulate_into`] for the recorder's own sink: the whole run's, or any [`StepSink`]
@@ -75,29 +148,12 @@ fn simulate_with<S: RowSink + ?Sized>(
         arrangement: crate::arrangement(variant),
         dt,
         settings,
-        stats: SolverStats {
-            steps: counters.steps,
-            substeps_per_step: None,
-            newton_iterations: Some(counters.iterations),
-            max_step_iterations: Some(counters.max_step_iterations),
-            static_iterations: Some(counters.static_iterations),
-            step_cuts: Some(counters.step_cuts),
-            roundoff_accepted: Some(counters.roundoff_accepted),
-        },
+        stats: solver_stats(&counters),
         findings,
         trace: super::recording::layout_of_model(case, &model),
         status,
         wall_seconds: 0.0,
     })
-}
-
-/// Values one row of `variant` of the case's 2D scene records (time, channels, the
-/// contacts' fields), or `None` when the variant does not build.
-pub(crate) fn recorded_values(case: &Case, variant: &str, opts: &FeOptions) -> Option<usize> {
-    let (model, _, _) = build_model(case, variant, opts).ok()?;
-    Some(super::recording::values_per_row(
-        &super::recording::layout_of_model(case, &model),
-    ))
 }
 
 /// The model of `variant`, its double arrangement if any, and where its rotational inertia
@@ -108,22 +164,8 @@ fn build_model(
     opts: &FeOptions,
 ) -> Result<(Model, Option<DoubleContact>, String), InputError> {
     let scene = &case.scene;
-    let want_double = match variant {
-        variant::SINGLE => false,
-        variant::DOUBLE => true,
-        other => {
-            return Err(case.field_error(
-                "engines.fe.variants",
-                format!("\"{other}\" is not a variant of fe; variants: single, double"),
-            ));
-        }
-    };
-    let no_double = || {
-        case.field_error(
-            "model.double",
-            "is required for the fe engine's \"double\" variant",
-        )
-    };
+    let want_double = is_double(case, variant)?;
+    let no_double = || no_double(case);
     let mut inertia_note = String::new();
     let (model, double): (Model, Option<DoubleContact>) = match &scene.model {
         SceneModel::Oscillator(o) => {
@@ -162,12 +204,7 @@ fn build_model(
                 d,
             )
         }
-        SceneModel::RigidBlock(_) => {
-            return Err(case.field_error(
-                "model.kind",
-                "the fe engine does not run rigid blocks (no contact stiffness)",
-            ));
-        }
+        SceneModel::RigidBlock(_) => return Err(rigid_block(case)),
     };
     Ok((model, double, inertia_note))
 }
@@ -182,11 +219,8 @@ fn settings(
     inertia_note: String,
 ) -> Vec<Setting> {
     let scene = &case.scene;
-    let (alpha, beta, gamma) = opts.integrator.parameters();
-    let mut settings = vec![
-        Setting::number("dt", "s", dt),
-        Setting::choice("integrator", opts.integrator.label()),
-        Setting::text("α, β, γ", format!("{alpha}, {beta:.6}, {gamma:.6}")),
+    let mut settings = integrator_settings(dt, opts);
+    settings.extend([
         Setting::text(
             "Newton",
             format!(
@@ -214,7 +248,7 @@ fn settings(
                 _ => "none",
             },
         ),
-    ];
+    ]);
     settings.extend(super::vertical::describe(scene));
     if rocking {
         settings.push(Setting::choice("kinematics", opts.kinematics.name()));

@@ -19,4 +19,5 @@ pub use crate::model::{Placement, right_jacobian, rotation_exp, rotation_log};
 pub use crate::stepper::Counters as SpaceCounters;
 pub use body::{BlockGrid, SpaceBody};
 pub use run::{SpaceRow, SpaceRun, run_space};
-pub use scene::{recorded_values_space, simulate_space, simulate_space_into, variants};
+pub use scene::variants;
+pub(crate) use scene::{recorded_values_space, simulate_space_into};
