@@ -29,7 +29,7 @@
 //! force on the upper point, −force on the lower point: (T, −N). A gap δz > 0 is open.
 
 use std::fmt::Debug;
-use std::ops::{Add, Mul, Sub};
+use std::ops::{Add, AddAssign, Div, Mul, Sub};
 
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
@@ -56,13 +56,25 @@ pub trait Tangential:
     Copy + Debug + PartialEq + Add<Output = Self> + Sub<Output = Self> + Mul<f64, Output = Self>
 {
     /// The relative displacement or force: the tangential part and the vertical.
-    type Vector: Copy + Debug + PartialEq + Sub<Output = Self::Vector>;
+    type Vector: Copy
+        + Debug
+        + PartialEq
+        + Add<Output = Self::Vector>
+        + Sub<Output = Self::Vector>
+        + AddAssign
+        + Mul<f64, Output = Self::Vector>
+        + Div<f64, Output = Self::Vector>;
     /// The tangent ∂force/∂δ.
-    type Tangent: Copy + Debug + PartialEq;
-    /// Whether a slipping trial keeps its tangent's ratio and direction
-    /// ([`Contact::slip_tangent`], read by the 3D assembly); the plane's tangent has no
-    /// tangential term and needs neither.
-    const KEEPS_SLIP_TANGENT: bool;
+    type Tangent: Copy
+        + Debug
+        + PartialEq
+        + Add<Output = Self::Tangent>
+        + Sub<Output = Self::Tangent>
+        + Mul<Output = Self::Tangent>
+        + Mul<Self::Vector, Output = Self::Vector>;
+    /// Whether the slipping tangent has a tangential term (its ratio μN/|T*|·kt is
+    /// computed by the return mapping only then): not in the plane.
+    const SLIP_RATIO: bool;
     /// No displacement.
     fn zero() -> Self;
     /// The tangential part and the vertical of `v`.
@@ -82,12 +94,14 @@ pub trait Tangential:
     fn slip_tangent(ratio: f64, n: Self, mu: f64, kz: f64) -> Self::Tangent;
     /// No stiffness (an open contact).
     fn no_tangent() -> Self::Tangent;
+    /// The inverse of a massless node's block D1 + D2, `None` if singular.
+    fn inverse(k: &Self::Tangent) -> Option<Self::Tangent>;
 }
 
 impl Tangential for f64 {
     type Vector = Vector2<f64>;
     type Tangent = Matrix2<f64>;
-    const KEEPS_SLIP_TANGENT: bool = false;
+    const SLIP_RATIO: bool = false;
 
     #[inline(always)]
     fn zero() -> Self {
@@ -126,12 +140,16 @@ impl Tangential for f64 {
     fn no_tangent() -> Matrix2<f64> {
         Matrix2::zeros()
     }
+    #[inline]
+    fn inverse(k: &Matrix2<f64>) -> Option<Matrix2<f64>> {
+        k.try_inverse()
+    }
 }
 
 impl Tangential for Vector2<f64> {
     type Vector = Vector3<f64>;
     type Tangent = Matrix3<f64>;
-    const KEEPS_SLIP_TANGENT: bool = true;
+    const SLIP_RATIO: bool = true;
 
     #[inline(always)]
     fn zero() -> Self {
@@ -181,6 +199,24 @@ impl Tangential for Vector2<f64> {
     fn no_tangent() -> Matrix3<f64> {
         Matrix3::zeros()
     }
+    /// Reciprocals when the block is diagonal (both elements sticking or open), else the
+    /// general inverse.
+    #[inline]
+    fn inverse(k: &Matrix3<f64>) -> Option<Matrix3<f64>> {
+        let diagonal = k[(0, 1)] == 0.0
+            && k[(0, 2)] == 0.0
+            && k[(1, 0)] == 0.0
+            && k[(1, 2)] == 0.0
+            && k[(2, 0)] == 0.0
+            && k[(2, 1)] == 0.0;
+        if !diagonal {
+            return k.try_inverse();
+        }
+        let d = k.diagonal();
+        d.iter()
+            .all(|x| *x != 0.0)
+            .then(|| Matrix3::from_diagonal(&d.map(|x| 1.0 / x)))
+    }
 }
 
 /// Contact status of an element.
@@ -226,8 +262,6 @@ pub struct Contact<T: Tangential> {
     pub bonded: bool,
     committed: ContactState<T>,
     trial: ContactState<T>,
-    /// The last slipping trial's μN/|T*|·kt and direction n = T*/|T*| (`slip_tangent`).
-    slip_tangent: (f64, T),
 }
 
 /// The plane contact element.
@@ -259,7 +293,6 @@ impl<T: Tangential> Contact<T> {
             bonded,
             committed: s,
             trial: s,
-            slip_tangent: (0.0, T::zero()),
         }
     }
 
@@ -299,13 +332,6 @@ impl<T: Tangential> Contact<T> {
         T::split(&self.committed.force).0
     }
 
-    /// The last trial's tangent when it slipped, as D = diag(ρ, ρ, kz) − (n, 0)·wᵀ with
-    /// ρ = μN/|T*|·kt, n = T*/|T*| and w = (ρ·n, μ·kz): returns (ρ, n). Meaningful only
-    /// after a trial whose status is `Slip`, and only in 3D (`KEEPS_SLIP_TANGENT`).
-    pub fn slip_tangent(&self) -> (f64, T) {
-        self.slip_tangent
-    }
-
     /// [`Element::trial`] of an element known not to be bonded (a contact with the ground:
     /// the single arrangement's elements and the series equivalents). The same
     /// operations on the same path with the bonded element's tests left out, so the same
@@ -316,13 +342,15 @@ impl<T: Tangential> Contact<T> {
         self.trial_as(d, false)
     }
 
-    /// The force of [`Element::trial`] alone, for an element known not to be bonded: the
-    /// trial state (and, slipping, [`Contact::slip_tangent`]) is set, the tangent left to
-    /// the caller (`space::ground_sums` reads it from the status).
+    /// The return mapping of an element known not to be bonded (a contact with the
+    /// ground: the single arrangement's elements and the series equivalents): the force,
+    /// the status and, slipping, the tangent's ratio μN/|T*|·kt (where `T` has it) and
+    /// the direction n; the trial state is set, the tangent left to the caller, who reads
+    /// it from these (`model::GroundSums`).
     #[inline(always)]
-    pub(crate) fn trial_force(&mut self, d: T::Vector) -> T::Vector {
+    pub(crate) fn trial_ground(&mut self, d: T::Vector) -> (T::Vector, Status, (f64, T)) {
         debug_assert!(!self.bonded);
-        self.return_map(d, false).0
+        self.return_map(d, false)
     }
 
     /// The return mapping at trial displacement `d`, bonded or not as `bonded` says, and
@@ -339,9 +367,8 @@ impl<T: Tangential> Contact<T> {
     }
 
     /// The return mapping at trial displacement `d`, bonded or not as `bonded` says: sets
-    /// the trial state (and, slipping, the slip tangent where `T` keeps it) and returns
-    /// the force, the status and, slipping, the tangent's ratio μN/|T*|·kt (0 in the
-    /// plane, where no term uses it) and direction.
+    /// the trial state and returns the force, the status and, slipping, the tangent's
+    /// ratio μN/|T*|·kt (0 in the plane, where no term uses it) and direction.
     #[inline(always)]
     fn return_map(&mut self, d: T::Vector, bonded: bool) -> (T::Vector, Status, (f64, T)) {
         let (kt, kz) = (self.kt, self.kz);
@@ -384,13 +411,7 @@ impl<T: Tangential> Contact<T> {
             force,
             status: Status::Slip,
         };
-        let ratio = if T::KEEPS_SLIP_TANGENT {
-            let ratio = cap / size * kt;
-            self.slip_tangent = (ratio, dir);
-            ratio
-        } else {
-            0.0
-        };
+        let ratio = if T::SLIP_RATIO { cap / size * kt } else { 0.0 };
         (force, Status::Slip, (ratio, dir))
     }
 }

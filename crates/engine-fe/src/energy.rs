@@ -1,8 +1,7 @@
 //! Energy bookkeeping of a rocking run from the engine's own element states.
 
 use super::element::{Contact178, ContactState, Status};
-use super::model::Model;
-use super::model::Snapshot;
+use super::model::{Model, Plane, Snapshot};
 
 /// The energy terms of a run, accumulated from the engine's own element states and
 /// kinematics at every converged step (rocking bodies; `analysis::energy` audits them):
@@ -63,7 +62,7 @@ struct ElementEnergy {
 }
 
 impl EnergyBook {
-    pub(crate) fn new(links: usize) -> Self {
+    pub(crate) fn new(elements: usize) -> Self {
         Self {
             prev: vec![
                 ElementEnergy {
@@ -71,7 +70,7 @@ impl EnergyBook {
                     strain: 0.0,
                     springs: (false, false),
                 };
-                links
+                elements
             ],
             last: (0.0, 0.0, 0.0, 0.0, 0.0),
             initial: 0.0,
@@ -84,13 +83,18 @@ impl EnergyBook {
 
     /// Book the converged state `s` (applied horizontal force and vertical load `f`); returns
     /// (W, K, U, D, V, E0 + W − (K + U + D + V), non-smooth part). Allocation-free.
-    pub(crate) fn record(&mut self, m: &Model, s: &Snapshot, f: (f64, f64)) -> [f64; 7] {
+    pub(crate) fn record(
+        &mut self,
+        m: &Model<Plane>,
+        s: &Snapshot<Plane>,
+        f: (f64, f64),
+    ) -> [f64; 7] {
         let (f, fz) = f;
         let xg = s.ground.0;
         let body = &m.body;
         let kinetic =
             0.5 * body.mass * (s.v.x * s.v.x + s.v.y * s.v.y) + 0.5 * body.inertia * s.v.z * s.v.z;
-        let potential = m.weight() * (s.q.y - s.q_static.y);
+        let potential = m.weight() * (s.pose.y - s.statics.y);
         // Condensed double supports are booked on their series equivalents: the pair's
         // strain ½T²/kx1 + ½T²/kx2 is ½T²/ks (and so for N), element 2 (bonded, linear)
         // neither slips nor opens, and element 1's force, slip and status are the
@@ -100,26 +104,35 @@ impl EnergyBook {
             (true, true) => self.book_elements::<true>(m.equivalents.iter().map(|e| (e, true))),
             (true, false) => self.book_elements::<false>(m.equivalents.iter().map(|e| (e, true))),
             (false, started) => {
-                let links = m
-                    .links
-                    .iter()
-                    .map(|l| (&l.element, l.lower == super::model::Point::Ground));
-                if started {
-                    self.book_elements::<true>(links)
+                // Each support's element 1 (from the ground), then its element 2.
+                if m.nodes == 0 {
+                    let elements = m.supports.iter().map(|s| (&s.lower, true));
+                    if started {
+                        self.book_elements::<true>(elements)
+                    } else {
+                        self.book_elements::<false>(elements)
+                    }
                 } else {
-                    self.book_elements::<false>(links)
+                    let elements = m.supports.iter().flat_map(|s| {
+                        std::iter::once((&s.lower, true)).chain(s.upper.iter().map(|u| (u, false)))
+                    });
+                    if started {
+                        self.book_elements::<true>(elements)
+                    } else {
+                        self.book_elements::<false>(elements)
+                    }
                 }
             }
         };
         if self.started {
             let (f_n, x_n, xg_n, fz_n, z_n) = self.last;
-            self.input += 0.5 * (f_n + f) * (s.q.x - x_n) - ground_force * (xg - xg_n)
-                + 0.5 * (fz_n + fz) * (s.q.y - z_n);
+            self.input += 0.5 * (f_n + f) * (s.pose.x - x_n) - ground_force * (xg - xg_n)
+                + 0.5 * (fz_n + fz) * (s.pose.y - z_n);
         } else {
             self.initial = kinetic + strain + potential;
             self.started = true;
         }
-        self.last = (f, s.q.x, xg, fz, s.q.y);
+        self.last = (f, s.pose.x, xg, fz, s.pose.y);
         let error = self.initial + self.input - (kinetic + strain + self.friction + potential);
         [
             self.input,

@@ -5,7 +5,7 @@
 //! numbers for those findings are read as it runs ([`Summary`], a [`StepSink`]), so
 //! neither the run nor its alternatives keep a trace for them.
 
-use super::model::Model;
+use super::model::{Model, PlaneKinematics};
 use super::modes::eigenfrequencies;
 use super::options::{FeOptions, Kinematics};
 use super::recording::{FIELDS, ROW_VALUES, RowSink, Rows, SelfCheck, run_model};
@@ -68,8 +68,7 @@ pub(crate) fn findings(run: &Findings) -> Vec<String> {
     }
     if rocking && opts.p_delta {
         let mut lin = model.clone();
-        lin.kinematics = Kinematics::SmallRotation;
-        lin.p_delta = false;
+        lin.kinematics = PlaneKinematics::SMALL_ROTATION;
         if let Ok(m) = eigenfrequencies(&lin) {
             findings.push(format!(
                 "without P-Delta (the paper's small-rotation model): ωX = {:.4} rad/s ({:.4}π), ωZ = {:.4} rad/s ({:.4}π)",
@@ -137,8 +136,7 @@ fn sensitivity(
     }
     if opts.kinematics == Kinematics::Exact {
         let mut m = model.clone();
-        m.kinematics = Kinematics::SmallRotation;
-        m.p_delta = false;
+        m.kinematics = PlaneKinematics::SMALL_ROTATION;
         alternatives.push((
             "small rotation without P-Delta (the paper's programs)".into(),
             m,

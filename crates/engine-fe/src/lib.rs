@@ -11,8 +11,10 @@
 //!   (trial/commit).
 //! - `series`: double supports condensed into one series-equivalent element, and the
 //!   node's exact equilibrium, in both dimensions.
-//! - `model`: body, nodes, supports; assembly; the condensed Newton solve.
+//! - `model`: the one model of both dimensions, generic over the `Dimension` (plane or
+//!   space): body, nodes, supports; assembly; the condensed Newton solve.
 //! - `stepper`: static preload and the time loop.
+//! - `space`: the engine on a bidirectional (3D) scene.
 //! - `modes`: the model's own eigenfrequencies.
 //! - `options`: the `[engines.fe]` options.
 //! - `simulate`: one run: build the model, integrate, gather settings and findings.
@@ -21,7 +23,7 @@
 //! - `energy`: the energy bookkeeping of rocking runs.
 //! - `findings`: eigenfrequencies, self-checks and sensitivity reported as findings.
 //! - `variant`: the variants (single, double).
-//! - `vertical`: vertical ground motion as an inertial load (issue 15).
+//! - `vertical`: vertical ground motion as an inertial load.
 //! - `whole_run`: the sink of a whole run (rows kept row-major, split into columns once).
 
 #![warn(missing_docs)]
@@ -45,7 +47,7 @@ mod whole_run;
 pub use element::{
     ConeContact, ConeState, Contact, Contact178, ContactState, Element, Status, Tangential,
 };
-pub use model::{Model, default_rotational_inertia};
+pub use model::{Dimension, Model, Plane, PlaneKinematics, Space, default_rotational_inertia};
 pub use modes::{Modes, eigenfrequencies};
 pub use options::{FeOptions, Integrator, Kinematics, Newton, OPTION_KEYS};
 pub use simulate::{simulate, simulate_into};
@@ -105,11 +107,7 @@ impl Engine for Fe {
     }
 
     fn run(&self, case: &Case, variant: Variant, dt: f64) -> Result<Run, InputError> {
-        let opts = options(case)?;
-        match case.scene.spatial() {
-            Some(s) => space::simulate_space(case, s, variant.name, dt, &opts),
-            None => simulate(case, variant.name, dt, &opts),
-        }
+        simulate(case, variant.name, dt, &options(case)?)
     }
 
     fn run_streaming(
@@ -119,11 +117,7 @@ impl Engine for Fe {
         dt: f64,
         sink: &mut dyn StepSink,
     ) -> Result<Run, InputError> {
-        let opts = options(case)?;
-        match case.scene.spatial() {
-            Some(s) => space::simulate_space_into(case, s, variant.name, dt, &opts, sink),
-            None => simulate_into(case, variant.name, dt, &opts, sink),
-        }
+        simulate_into(case, variant.name, dt, &options(case)?, sink)
     }
 
     fn streams_natively(&self) -> bool {
@@ -131,11 +125,7 @@ impl Engine for Fe {
     }
 
     fn recorded_values(&self, case: &Case, variant: Variant) -> Option<usize> {
-        let opts = options(case).ok()?;
-        match case.scene.spatial() {
-            Some(s) => space::recorded_values_space(case, s, variant.name),
-            None => simulate::recorded_values(case, variant.name, &opts),
-        }
+        simulate::recorded_values(case, variant.name, &options(case).ok()?)
     }
 
     fn models_plan_motion(&self) -> bool {

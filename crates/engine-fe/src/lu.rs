@@ -96,7 +96,7 @@ impl Lu3 {
 /// solutions are the same bits. Kept with the matrix it factors, reused while the next
 /// matrix is the same bit for bit.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct Lu2 {
+pub struct Lu2 {
     matrix: [f64; 4],
     swap: bool,
     u00: f64,

@@ -5,7 +5,7 @@
 
 use nalgebra::{Matrix2, Matrix3, SymmetricEigen, Vector3};
 
-use super::model::{Assembly, Model, condensed_tangent};
+use super::model::{Assembly, Model};
 use super::stepper::preload;
 
 /// Eigenfrequencies of a model, rad/s.
@@ -24,8 +24,11 @@ pub fn eigenfrequencies(model: &Model) -> Result<Modes, String> {
     let mut m = model.clone();
     let (q, mut un) = preload(&mut m)?;
     let mut a = Assembly::new(&m);
-    m.assemble(&q, &mut un, 0.0, &mut a);
-    let k = condensed_tangent(&m, &a).ok_or("singular node block")?;
+    m.assemble(&q, &q, &mut un, &(0.0, 0.0, 0.0), &mut a);
+    if a.singular {
+        return Err("singular node block".into());
+    }
+    let k = a.kbb;
     let k = (k + k.transpose()) * 0.5; // sticking tangents are symmetric; remove round-off
     let mass = m.body.mass;
     let k2 = if m.body.rotation {

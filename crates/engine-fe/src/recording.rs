@@ -8,8 +8,7 @@
 use nalgebra::Vector2;
 
 use super::energy::EnergyBook;
-use super::model::Model;
-use super::model::{Drive, Snapshot};
+use super::model::{Drive, Model, Plane, Snapshot};
 use super::options::FeOptions;
 use super::stepper::{Counters, integrate};
 use rockslide_core::case::{Case, Model as SceneModel};
@@ -137,7 +136,7 @@ fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Qua
 
 /// The layout of a model's trace: its channels and one contact per support (its ground
 /// element: element 1 in the double arrangement), without rows.
-pub(crate) fn layout_of_model(case: &Case, model: &Model) -> Trace {
+pub(crate) fn layout_of_model(case: &Case, model: &Model<Plane>) -> Trace {
     let moves_ground = matches!(
         case.scene.excitation,
         rockslide_core::case::Excitation::GroundDisplacement(_)
@@ -145,10 +144,7 @@ pub(crate) fn layout_of_model(case: &Case, model: &Model) -> Trace {
     let rocking = model.body.rotation;
     let double = model.nodes > 0;
     let mut trace = Trace::with_channels(&channels(rocking, moves_ground, double), 0);
-    let ground_kz = model
-        .supports
-        .first()
-        .map_or(0.0, |s| model.links[s.ground_link].element.kz);
+    let ground_kz = model.supports.first().map_or(0.0, |s| s.lower.kz);
     trace.contacts = ContactBlock::for_supports(model.supports.len(), 1.0 / ground_kz, 0);
     trace
 }
@@ -163,7 +159,7 @@ pub(crate) fn values_per_row(layout: &Trace) -> usize {
 #[cfg(test)]
 pub(crate) fn run_whole(
     case: &Case,
-    model: Model,
+    model: Model<Plane>,
     dt: f64,
     opts: &FeOptions,
 ) -> (Trace, RunStatus, Counters, SelfCheck) {
@@ -176,7 +172,7 @@ pub(crate) fn run_whole(
 /// over the sink, so that the whole run (`WholeRun`) is compiled for its own sink.
 pub(crate) fn run_model<S: RowSink + ?Sized>(
     case: &Case,
-    mut model: Model,
+    mut model: Model<Plane>,
     dt: f64,
     opts: &FeOptions,
     sink: &mut S,
@@ -197,8 +193,7 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
         _ => Vector2::zeros(),
     };
     let mut check = SelfCheck::default();
-    let mut book = EnergyBook::new(model.links.len());
-    let layout = support_layout(&model);
+    let mut book = EnergyBook::new(model.supports.len() + model.nodes);
     if model.is_slider() && !rocking {
         let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
             let (count, contact) =
@@ -210,132 +205,96 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
         });
         return (status, counters, check);
     }
-    let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s: &Snapshot| {
-        let (xg, vg, ag) = s.ground;
-        // The self-check's running maximum in a local over the loop, stored once after it.
-        let sums = support_sums(layout, m, s, sink.contacts(), check.node_minus_slip);
-        let SupportSums {
-            shear,
-            normal,
-            slip_sum,
-            slip_min,
-            slip_max,
-            uplift,
-            contacts,
-            node_sum,
-            node_minus_slip,
-        } = sums;
-        check.node_minus_slip = node_minus_slip;
-        let slide = slip_sum / m.supports.len() as f64;
-        let row = sink.values();
-        let mut i = 0;
-        let mut put = |v: f64| {
-            row[i] = v;
-            i += 1;
-        };
-        put(drive.equivalent_force(s.t, s.force));
-        put(shear);
-        if rocking {
-            put(m.displacement_at(&s.q, s.rotation, &o_offset).x - xg);
-        } else {
-            put(s.q.x - xg);
-        }
-        put(slide);
-        if rocking {
-            put(slip_max - slip_min);
-        }
-        put(s.v.x - vg);
-        put(s.a.x - ag);
-        if moves_ground {
-            put(xg);
-        }
-        if rocking {
-            put(s.q.x - xg);
-            put(s.q.y - s.q_static.y);
-            put(s.q.z);
-            put(uplift.max(0.0));
-            put(contacts);
+    let (status, counters) = integrate(
+        &mut model,
+        &drive,
+        opts,
+        dt,
+        steps,
+        |m, s: &Snapshot<Plane>| {
+            let (xg, vg, ag) = s.ground;
+            // The self-check's running maximum in a local over the loop, stored once after it.
+            let sums = support_sums(m, s, sink.contacts(), check.node_minus_slip);
+            let SupportSums {
+                shear,
+                normal,
+                slip_sum,
+                slip_min,
+                slip_max,
+                uplift,
+                contacts,
+                node_sum,
+                node_minus_slip,
+            } = sums;
+            check.node_minus_slip = node_minus_slip;
+            let slide = slip_sum / m.supports.len() as f64;
+            let row = sink.values();
+            let mut i = 0;
+            let mut put = |v: f64| {
+                row[i] = v;
+                i += 1;
+            };
+            put(drive.equivalent_force::<Plane>(s.t, s.force));
             put(shear);
-        }
-        put(normal);
-        if double {
-            put(node_sum / m.supports.len() as f64);
-        }
-        if rocking {
-            for v in book.record(m, s, (s.force, s.vertical_force)) {
-                put(v);
+            if rocking {
+                put(m.displacement_at(&s.pose, *s.at, &o_offset).x - xg);
+            } else {
+                put(s.pose.x - xg);
             }
-        }
-        sink.end_row(s.t, i);
-    });
+            put(slide);
+            if rocking {
+                put(slip_max - slip_min);
+            }
+            put(s.v.x - vg);
+            put(s.a.x - ag);
+            if moves_ground {
+                put(xg);
+            }
+            if rocking {
+                put(s.pose.x - xg);
+                put(s.pose.y - s.statics.y);
+                put(s.pose.z);
+                put(uplift.max(0.0));
+                put(contacts);
+                put(shear);
+            }
+            put(normal);
+            if double {
+                put(node_sum / m.supports.len() as f64);
+            }
+            if rocking {
+                for v in book.record(m, s, (s.force, s.vertical_force)) {
+                    put(v);
+                }
+            }
+            sink.end_row(s.t, i);
+        },
+    );
     (status, counters, check)
 }
 
 /// The sums over the supports of a snapshot `s` of `m`, each support's contact fields
 /// written into `fields`; the self-check's running maximum starts at `node_minus_slip`.
-/// The links (and nodes) are walked in step with the supports where the layout allows.
+/// The nodes, if any, are walked in step with the supports.
 #[inline(always)]
 fn support_sums(
-    layout: SupportLayout,
-    m: &Model,
-    s: &Snapshot,
+    m: &Model<Plane>,
+    s: &Snapshot<Plane>,
     fields: &mut [[f64; FIELDS]],
     node_minus_slip: f64,
 ) -> SupportSums {
     let xg = s.ground.0;
     let mut sums = SupportSums::new(node_minus_slip);
-    match layout {
-        SupportLayout::Single => {
-            for (l, field) in m.links.iter().zip(fields) {
-                *field = sums.add(l.element.state(), None);
-            }
+    if m.nodes == 0 {
+        for (sup, field) in m.supports.iter().zip(fields) {
+            *field = sums.add(sup.lower.state(), None);
         }
-        SupportLayout::Paired => {
-            let pairs = m.links.chunks_exact(2).zip(s.un);
-            for ((pair, node), field) in pairs.zip(fields) {
-                *field = sums.add(pair[0].element.state(), Some(node.x - xg));
-            }
-        }
-        SupportLayout::General => {
-            for (sup, field) in m.supports.iter().zip(fields) {
-                let node = sup.node.map(|k| s.un[k].x - xg);
-                *field = sums.add(m.links[sup.ground_link].element.state(), node);
-            }
+    } else {
+        for ((sup, node), field) in m.supports.iter().zip(s.un).zip(fields) {
+            *field = sums.add(sup.lower.state(), Some(node.x - xg));
         }
     }
     sums
-}
-
-/// How a model's supports map onto its links and nodes, found once per run, so the
-/// recorder's loop over the supports walks the links (and nodes) in step with them: no
-/// index to check, no `Option` to test per support.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-enum SupportLayout {
-    /// Support i is link i, without a node (the single arrangement, `supports_for`).
-    Single,
-    /// Support i is links 2i (its ground element) and 2i + 1, with node i (the double
-    /// arrangement).
-    Paired,
-    /// Any other: read through each `Support`.
-    General,
-}
-
-/// The layout of `m`'s supports.
-fn support_layout(m: &Model) -> SupportLayout {
-    let sups = &m.supports;
-    let each = |f: &dyn Fn(usize, &super::model::Support) -> bool| {
-        sups.iter().enumerate().all(|(i, sup)| f(i, sup))
-    };
-    if m.links.len() == sups.len() && each(&|i, sup| sup.ground_link == i && sup.node.is_none()) {
-        SupportLayout::Single
-    } else if m.links.len() == 2 * sups.len()
-        && m.nodes == sups.len()
-        && each(&|i, sup| sup.ground_link == 2 * i && sup.node == Some(i))
-    {
-        SupportLayout::Paired
-    } else {
-        SupportLayout::General
-    }
 }
 
 /// The sums and extrema of a row over the supports (each in support order, so the same
@@ -416,8 +375,8 @@ fn running_min(acc: f64, v: f64) -> f64 {
 /// contact state.
 #[inline(always)]
 fn slider_row(
-    m: &Model,
-    s: &Snapshot,
+    m: &Model<Plane>,
+    s: &Snapshot<Plane>,
     drive: &Drive,
     moves_ground: bool,
     check: &mut SelfCheck,
@@ -425,7 +384,7 @@ fn slider_row(
 ) -> (usize, ContactState) {
     let (xg, vg, ag) = s.ground;
     let sup = &m.supports[0];
-    let e = &m.links[sup.ground_link].element;
+    let e = &sup.lower;
     let st = e.state();
     let (tangential, normal) = (e.tangential(), e.normal());
     let contact = ContactState {
@@ -434,9 +393,9 @@ fn slider_row(
         slip: st.slip,
         gap: st.delta.y,
     };
-    row[0] = drive.equivalent_force(s.t, s.force);
+    row[0] = drive.equivalent_force::<Plane>(s.t, s.force);
     row[1] = 0.0 + tangential;
-    row[2] = s.q.x - xg;
+    row[2] = s.pose.x - xg;
     row[3] = (0.0 + st.slip) / 1.0;
     row[4] = s.v.x - vg;
     row[5] = s.a.x - ag;
@@ -447,8 +406,8 @@ fn slider_row(
     }
     row[i] = 0.0 + normal;
     i += 1;
-    if let Some(k) = sup.node {
-        let node = s.un[k].x - xg;
+    if sup.upper.is_some() {
+        let node = s.un[0].x - xg;
         check.node_minus_slip = check.node_minus_slip.max((node - st.slip).abs());
         row[i] = (0.0 + node) / 1.0;
         i += 1;

@@ -1,4 +1,4 @@
-//! Vertical ground motion (issue 15): the ground's vertical acceleration a_v(t) (positive
+//! Vertical ground motion: the ground's vertical acceleration a_v(t) (positive
 //! upward) enters as an inertial load in relative coordinates, −M·a_v(t) on the body's Z at
 //! its centre of mass, beside the static preload −M·g — the same route as the horizontal
 //! ground-acceleration record (force −M·a_g, ground fixed). Chosen over imposing the

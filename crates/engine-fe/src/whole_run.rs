@@ -1,4 +1,4 @@
-//! The sink of a whole run (`simulate`, the 3D model's `simulate_space`): every
+//! The sink of a whole run (`simulate`, planar or 3D): every
 //! row kept in a trace sized for the run up front, as engine-api's `TraceSink` keeps it,
 //! at fewer instructions a row.
 //!

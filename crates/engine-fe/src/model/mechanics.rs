@@ -1,27 +1,31 @@
-//! The plane model in the time loop (`stepper::Mechanics`): the body's unknowns
-//! q = (X, Z, θ) (θ locked for a sliding oscillator), each node's (x, z); the drive's
-//! horizontal force, ground motion and vertical load; the body's mass matrix diag(M, M, I)
-//! and horizontal viscous damping relative to the ground.
+//! The model in the time loop (`stepper::Mechanics`), once for both dimensions: the body's
+//! unknowns and each node's, the drive's loads, the inertia and damping, the assembly and
+//! the Newton solve, each piece the dimension's where it must be (`Dimension`).
 
-use nalgebra::{SVector, Vector2, Vector3};
+use nalgebra::SVector;
 
 use super::assembly::Assembly;
 use super::body::Model;
+use super::dimension::{Dimension, System};
 use super::drive::{Drive, Snapshot};
-use super::slider;
-use super::solve::{System, solve};
+use super::solve::solve;
+use crate::element::Tangential;
 use crate::stepper::{Mechanics, Newmark, State, StepFn};
 
-impl Mechanics<3, 2> for Model {
-    type Pose = Vector3<f64>;
-    type Ground = (f64, f64, f64);
+impl<const Q: usize, const N: usize, D> Mechanics<Q, N> for Model<D>
+where
+    D: Dimension<Unknowns = SVector<f64, Q>>,
+    D::Tangential: Tangential<Vector = SVector<f64, N>>,
+{
+    type Pose = D::Pose;
+    type Ground = D::Ground;
     type Drive<'d> = Drive<'d>;
-    type Assembly = Assembly;
-    type Iterate = ();
-    type Snapshot<'s> = Snapshot<'s>;
-    const CORRECTION_UNIT: &'static str = " m";
+    type Assembly = Assembly<D>;
+    type Iterate = D::Iterate;
+    type Snapshot<'s> = Snapshot<'s, D>;
+    const CORRECTION_UNIT: &'static str = D::CORRECTION_UNIT;
 
-    fn new_assembly(&self) -> Assembly {
+    fn new_assembly(&self) -> Assembly<D> {
         Assembly::new(self)
     }
 
@@ -38,141 +42,131 @@ impl Mechanics<3, 2> for Model {
     }
 
     #[inline]
-    fn lock_rotation(x: &mut Vector3<f64>) {
-        x.z = 0.0;
+    fn lock_rotation(x: &mut SVector<f64, Q>) {
+        D::lock_rotation(x);
     }
 
-    fn rest_pose() -> Vector3<f64> {
-        Vector3::zeros()
+    fn rest_pose() -> D::Pose {
+        D::rest_pose()
     }
 
-    fn rest_ground() -> (f64, f64, f64) {
-        (0.0, 0.0, 0.0)
+    fn rest_ground() -> D::Ground {
+        D::rest_ground()
     }
 
-    fn static_load(&self) -> Vector3<f64> {
-        Vector3::new(0.0, -self.weight(), 0.0)
+    fn static_load(&self) -> SVector<f64, Q> {
+        D::load(D::no_horizontal(), -self.weight())
     }
 
     fn solve_static(
         &self,
-        asm: &mut Assembly,
-        rb: &Vector3<f64>,
-        rn: &[Vector2<f64>],
-        dq: &mut Vector3<f64>,
-        dun: &mut [Vector2<f64>],
+        asm: &mut Assembly<D>,
+        rb: &SVector<f64, Q>,
+        rn: &[SVector<f64, N>],
+        dq: &mut SVector<f64, Q>,
+        dun: &mut [SVector<f64, N>],
     ) -> bool {
-        let sys = System {
-            c0: 0.0,
-            s: 1.0,
-            damp_xx: 0.0,
-        };
-        solve(self, &sys, asm, rb, rn, dq, dun)
+        solve(self, &System::statics(), asm, rb, rn, dq, dun)
     }
 
     #[inline]
-    fn load(&self, drive: &Drive<'_>, t: f64) -> (Vector3<f64>, f64, (f64, f64, f64)) {
-        let g = drive.ground(t);
+    fn load(&self, drive: &Drive<'_>, t: f64) -> (SVector<f64, Q>, f64, D::Ground) {
+        let g = drive.ground::<D>(t);
         let fz = drive.vertical_force(t);
-        let f = Vector3::new(drive.force(t), -self.weight() + fz, 0.0);
+        let f = D::load(drive.force::<D>(t), -self.weight() + fz);
         (f, fz, g)
     }
 
-    fn initial_load(&self, drive: &Drive<'_>) -> (Vector3<f64>, f64, (f64, f64, f64)) {
+    fn initial_load(&self, drive: &Drive<'_>) -> (SVector<f64, Q>, f64, D::Ground) {
         self.load(drive, 0.0)
     }
 
-    fn initial_acceleration(&self, out: Vector3<f64>) -> Vector3<f64> {
-        let m = self.mass_diag();
-        let mut a = out.component_div(&m.map(|x| if x > 0.0 { x } else { f64::INFINITY }));
-        if !self.body.rotation {
-            a.z = 0.0;
-        }
-        a
+    fn initial_acceleration(&self, out: SVector<f64, Q>) -> SVector<f64, Q> {
+        D::initial_acceleration(&self.body, &out)
     }
 
     #[inline]
-    fn reference(p: &Vector3<f64>) -> Vector3<f64> {
-        *p
+    fn reference(p: &D::Pose) -> SVector<f64, Q> {
+        D::reference(p)
     }
 
     #[inline]
-    fn predict(&self, n: &State<3, 2, Self>, h: f64) -> Vector3<f64> {
-        n.pose + n.v * h + n.a * (0.5 * h * h)
+    fn predict(&self, n: &State<Q, N, Self>, h: f64) -> SVector<f64, Q> {
+        D::predict(&n.pose, &n.v, &n.a, h, self.body.rotation)
     }
 
-    fn predict_nodes(&self, un: &mut [Vector2<f64>], to: &(f64, f64, f64), from: &(f64, f64, f64)) {
-        for sup in &self.supports {
-            if let Some(k) = sup.node {
-                un[k].x += to.0 - from.0;
-            }
+    fn predict_nodes(&self, un: &mut [SVector<f64, N>], to: &D::Ground, from: &D::Ground) {
+        let shift = D::ground_point(to) - D::ground_point(from);
+        for u in un.iter_mut().take(self.nodes) {
+            *u += shift;
         }
     }
 
     #[inline]
     fn assemble(
         &mut self,
-        q: &Vector3<f64>,
-        _from: &Vector3<f64>,
-        un: &mut [Vector2<f64>],
-        g: &(f64, f64, f64),
-        asm: &mut Assembly,
-    ) {
-        Model::assemble(self, q, un, g.0, asm);
+        q: &SVector<f64, Q>,
+        from: &D::Pose,
+        un: &mut [SVector<f64, N>],
+        g: &D::Ground,
+        asm: &mut Assembly<D>,
+    ) -> D::Iterate {
+        Model::assemble(self, q, from, un, g, asm)
     }
 
     #[inline]
-    fn body_force(asm: &Assembly) -> &Vector3<f64> {
+    fn body_force(asm: &Assembly<D>) -> &SVector<f64, Q> {
         &asm.pb
     }
 
     #[inline]
-    fn node_forces(asm: &Assembly) -> &[Vector2<f64>] {
+    fn node_forces(asm: &Assembly<D>) -> &[SVector<f64, N>] {
         &asm.pn
     }
 
     #[inline]
-    fn damping(&self, v: &Vector3<f64>, g: &(f64, f64, f64)) -> Vector3<f64> {
-        Vector3::new(self.body.damping * (v.x - g.1), 0.0, 0.0)
+    fn damping(&self, v: &SVector<f64, Q>, g: &D::Ground) -> SVector<f64, Q> {
+        D::damping(self.body.damping, v, g)
     }
 
     #[inline]
-    fn inertia(&self, a: &Vector3<f64>, _v: &Vector3<f64>) -> Vector3<f64> {
-        self.mass_diag().component_mul(a)
+    fn inertia(&self, a: &SVector<f64, Q>, v: &SVector<f64, Q>) -> SVector<f64, Q> {
+        D::inertia_force(&self.body, a, v)
     }
 
     #[inline]
     fn solve_step(
         &self,
         nm: &Newmark,
-        _v: &Vector3<f64>,
-        asm: &mut Assembly,
-        rb: &Vector3<f64>,
-        rn: &[Vector2<f64>],
-        dq: &mut Vector3<f64>,
-        dun: &mut [Vector2<f64>],
+        v: &SVector<f64, Q>,
+        asm: &mut Assembly<D>,
+        rb: &SVector<f64, Q>,
+        rn: &[SVector<f64, N>],
+        dq: &mut SVector<f64, Q>,
+        dun: &mut [SVector<f64, N>],
     ) -> bool {
         let sys = System {
             c0: nm.c0,
             s: nm.s,
-            damp_xx: nm.s * self.body.damping * nm.c1,
+            c1: nm.c1,
+            v: Some(*v),
         };
         solve(self, &sys, asm, rb, rn, dq, dun)
     }
 
     #[inline]
-    fn displacement_squared(q: &Vector3<f64>, _at: &(), _from: &Vector3<f64>) -> f64 {
-        q.norm_squared()
+    fn displacement_squared(q: &SVector<f64, Q>, at: &D::Iterate, from: &D::Pose) -> f64 {
+        D::displacement_squared(q, at, from)
     }
 
     #[inline]
-    fn pose(q: &Vector3<f64>, _at: &()) -> Vector3<f64> {
-        *q
+    fn pose(q: &SVector<f64, Q>, at: &D::Iterate) -> D::Pose {
+        D::pose(q, at)
     }
 
     #[inline]
-    fn commit_step(&mut self, asm: &Assembly, un: &mut [Vector2<f64>], _g: &(f64, f64, f64)) {
-        Model::commit_step(self, asm, un);
+    fn commit_step(&mut self, _asm: &Assembly<D>, un: &mut [SVector<f64, N>], g: &D::Ground) {
+        Model::commit_step(self, un, g);
     }
 
     fn restore(&mut self) {
@@ -181,31 +175,28 @@ impl Mechanics<3, 2> for Model {
 
     #[inline]
     fn snapshot<'s>(
-        n: &State<3, 2, Self>,
-        un: &'s [SVector<f64, 2>],
-        statics: &Vector3<f64>,
-        asm: &Assembly,
-    ) -> Snapshot<'s> {
+        n: &State<Q, N, Self>,
+        un: &'s [SVector<f64, N>],
+        statics: &'s D::Pose,
+        asm: &'s Assembly<D>,
+    ) -> Snapshot<'s, D> {
         Snapshot {
             t: n.t,
-            q: n.pose,
+            pose: n.pose,
             v: n.v,
             a: n.a,
             un,
             ground: n.g,
-            q_static: *statics,
-            force: n.f.x,
+            statics,
+            force: D::horizontal_of(&n.f),
             vertical_force: n.fz,
-            rotation: asm.rotation(),
+            at: &asm.at,
         }
     }
 
-    fn own_step(&self) -> Option<StepFn<3, 2, Self>> {
-        // A sliding oscillator steps in scalars (`slider`): the same operations, fewer.
-        if self.is_slider() {
-            Some(slider::step)
-        } else {
-            None
-        }
+    fn own_step(&self) -> Option<StepFn<Q, N, Self>> {
+        D::own_step(self)?
+            .downcast_ref::<StepFn<Q, N, Self>>()
+            .copied()
     }
 }

@@ -1,31 +1,37 @@
-//! The plane FE model: a rigid body (point mass at the centre of mass, rigid massless
-//! base), massless intermediate nodes, and CONTA178-like contact elements linking ground,
-//! nodes and support points; its assembly (internal force and consistent tangent), the
-//! condensed solve of its Newton system, and its place in the time loop.
+//! The FE model, one for the plane and for space: a rigid body (mass and inertia at the
+//! centre of mass, rigid massless base), massless intermediate nodes, and CONTA178-like
+//! contact elements joining ground, nodes and support points; its assembly (internal
+//! force and consistent tangent), the condensed solve of its Newton system, and its place
+//! in the time loop — written once, generic over the [`Dimension`] ([`Plane`]:
+//! q = (X, Z, θ); [`Space`]: X and a finite rotation), which holds only what differs.
+//! Gravity is a constant load −M·g; the run starts from the static equilibrium under it
+//! (`stepper`).
 //!
-//! Degrees of freedom: the body's q = (X, Z, θ) of the centre of mass (θ locked for a
-//! sliding oscillator) and (x, z) of each massless node. Gravity is a constant load −M·g
-//! on Z; the run starts from the static equilibrium under it (`stepper`).
-//!
-//! - `body`: the body, nodes, links and supports; building a scene's model.
-//! - `kinematics`: a body point's displacement and Jacobian (exact, small rotations,
-//!   P-Delta).
+//! - `dimension`: what a dimension provides ([`Dimension`]).
+//! - `plane`, `space`: the two (`rotation`: SO(3); `ground_sums`: the 3D assembly's sums).
+//! - `body`: the body, supports and nodes; building a scene's model.
 //! - `assembly`: internal forces and tangents; commit and restore.
-//! - `solve`: the condensed 3×3 Newton solve.
+//! - `solve`: the condensed Newton solve.
 //! - `drive`: the excitation's loads; what an observer is shown.
 //! - `mechanics`: the model in the time loop (`stepper::Mechanics`).
-//! - `slider`: the sliding oscillator's step in scalars.
+//! - `slider`: the plane's sliding oscillator (the PEPO) stepped in scalars.
 
 mod assembly;
 mod body;
+mod dimension;
 mod drive;
-mod kinematics;
+mod ground_sums;
 mod mechanics;
+mod plane;
+mod rotation;
 mod slider;
 mod solve;
+mod space;
 
 pub use assembly::Assembly;
 pub use body::{Model, default_rotational_inertia};
-pub(crate) use body::{Point, Support};
+pub use dimension::Dimension;
 pub use drive::{Drive, Snapshot};
-pub use solve::condensed_tangent;
+pub use plane::{Plane, PlaneKinematics};
+pub use rotation::{exp as rotation_exp, log as rotation_log, right_jacobian};
+pub use space::{Placement, Space};

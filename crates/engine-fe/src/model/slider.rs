@@ -12,6 +12,7 @@ use nalgebra::{Vector2, Vector3};
 
 use super::body::Model;
 use super::drive::Drive;
+use super::plane::Plane;
 use crate::lu::Lu2;
 use crate::options::FeOptions;
 use crate::stepper::{
@@ -30,12 +31,12 @@ fn factors(cache: &mut Option<Lu2>, m: [f64; 4]) -> &Lu2 {
 /// The step's element evaluation: internal force (X, Z) on the body and its tangent
 /// [[k00, k01], [k10, k11]] at body position `q`, ground at `xg`.
 #[inline(always)]
-fn assemble(model: &mut Model, q: &Vector2<f64>, xg: f64) -> ((f64, f64), [f64; 4]) {
+fn assemble(model: &mut Model<Plane>, q: &Vector2<f64>, xg: f64) -> ((f64, f64), [f64; 4]) {
     let e = model.slider_element();
     // The attachment is the centre of mass: its displacement is q (`point_kin` adds
     // −θ·0 = −0 to X, which leaves every value's bits as they are).
     let (f, d) = e.trial_contact(Vector2::new(q.x - xg, q.y));
-    // `assemble_direct`'s sums from zero (0 + x is x but for the sign of a zero).
+    // `PlaneSums`' sums from zero (0 + x is x but for the sign of a zero).
     (
         (0.0 + f.x, 0.0 + f.y),
         [
@@ -71,12 +72,12 @@ fn correction(
 /// model).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn step(
-    model: &mut Model,
+    model: &mut Model<Plane>,
     drive: &Drive<'_>,
     opts: &FeOptions,
     nm: &Newmark,
-    w: &mut Workspace<3, 2, Model>,
-    (n, next): (&State<3, 2, Model>, &mut State<3, 2, Model>),
+    w: &mut Workspace<3, 2, Model<Plane>>,
+    (n, next): (&State<3, 2, Model<Plane>>, &mut State<3, 2, Model<Plane>>),
     t: f64,
     counters: &mut Counters,
 ) -> Result<(), StepFailure> {
@@ -84,11 +85,10 @@ pub(crate) fn step(
     let (alpha, s, c0, c1, h) = (nm.alpha, nm.s, nm.c0, nm.c1, nm.h);
     let damp_xx = s * c * c1;
     let newton = opts.newton;
-    let g = drive.ground(t);
+    let g = drive.ground::<Plane>(t);
     let fz = drive.vertical_force(t);
-    let f = Vector2::new(drive.force(t), -model.weight() + fz);
+    let f = Vector2::new(drive.force::<Plane>(t), -model.weight() + fz);
     let f_norm = f.norm();
-    w.asm.set_ground(g.0);
     let (nq, nv, na) = (n.pose.xy(), n.v.xy(), n.a.xy());
     // The start's share of the HHT residual, (fₙ − pₙ − damping)·α.
     let start_x = ((n.f.x - n.pb.x) - n.damp.x) * alpha;
@@ -139,7 +139,7 @@ pub(crate) fn step(
             *next = accept(q, v, a, pb, damp);
             return Ok(());
         }
-        let cached = &mut w.asm.slider_factors;
+        let cached = &mut w.asm.extra;
         let Some((dx, dz)) = correction(cached, &k, (mass_c0, s, damp_xx), (rx, rz)) else {
             return failed(counters, it, FailureReason::Singular(it), false);
         };

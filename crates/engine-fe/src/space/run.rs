@@ -5,9 +5,8 @@
 use nalgebra::{Vector2, Vector3};
 
 use super::body::SpaceBody;
-use super::mechanics::{SpaceDrive, SpaceSnapshot};
-use super::model::SpaceModel;
 use crate::element::Status;
+use crate::model::{Drive, Model, Snapshot, Space};
 use crate::options::FeOptions;
 use crate::stepper::{Counters as SpaceCounters, integrate};
 use rockslide_core::case::{Excitation, Signal};
@@ -72,8 +71,8 @@ pub fn run_space(
     dt: f64,
     opts: &FeOptions,
 ) -> SpaceRun {
-    let mut model = SpaceModel::new(body);
-    let drive = SpaceDrive::new(excitation, second, azimuth, body.mass);
+    let mut model = Model::space(body);
+    let drive = Drive::new(excitation, body.mass).along(azimuth, second);
     let steps = step_count(duration, dt);
     let mut rows = Vec::with_capacity(steps + 1);
     // The reference point: the base centre O below the centre of mass (a rocking body),
@@ -97,15 +96,15 @@ pub fn run_space(
 
 /// The row of one snapshot.
 pub(super) fn record(
-    m: &SpaceModel,
-    s: &SpaceSnapshot,
-    drive: &SpaceDrive,
+    m: &Model<Space>,
+    s: &Snapshot<Space>,
+    drive: &Drive,
     o_offset: &Vector3<f64>,
 ) -> SpaceRow {
     let xg = s.ground[0].xy();
     let mut row = SpaceRow {
         t: s.t,
-        force: drive.equivalent_force(s.t).xy(),
+        force: drive.equivalent_force::<Space>(s.t, s.force).xy(),
         ..SpaceRow::default()
     };
     let mut node_sum = Vector2::zeros();
@@ -131,11 +130,13 @@ pub(super) fn record(
     if m.nodes > 0 {
         row.node_disp = node_sum / n;
     }
-    row.rel_disp = SpaceModel::displacement_of(&s.x, &s.r, o_offset).xy() - xg;
+    let x = &s.pose.x;
+    row.rel_disp = Model::<Space>::displacement_of(x, &s.pose.r, o_offset).xy() - xg;
     row.vel = s.v.fixed_rows::<2>(0).into_owned() - s.ground[1].xy();
     row.acc = s.a.fixed_rows::<2>(0).into_owned() - s.ground[2].xy();
-    let cz = s.x.z - s.x_static.z;
-    row.cm = Vector3::new(s.x.x - xg.x, s.x.y - xg.y, cz);
-    row.rotation = super::rotation::log(&s.r);
+    let cz = x.z - s.statics.x.z;
+    row.cm = Vector3::new(x.x - xg.x, x.y - xg.y, cz);
+    // The rotation vector of the step's accepted pose, log(R).
+    row.rotation = s.pose.psi;
     row
 }

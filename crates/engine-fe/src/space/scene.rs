@@ -9,19 +9,16 @@
 use nalgebra::{Matrix3, Vector2, Vector3};
 
 use super::body::{BlockGrid, SpaceBody};
-use super::mechanics::SpaceDrive;
-use super::mechanics::SpaceSnapshot;
-use super::model::SpaceModel;
 use super::run::{SpaceRow, record};
-use crate::model::default_rotational_inertia;
+use crate::model::{Drive, Model, Snapshot, Space, default_rotational_inertia};
 use crate::options::FeOptions;
+use crate::simulate::{integrator_settings, is_double, no_double, rigid_block, solver_stats};
 use crate::stepper::integrate;
 use crate::variant;
-use crate::whole_run::WholeRun;
 use rockslide_core::case::{Case, Excitation, Model as SceneModel, Scene, Spatial};
 use rockslide_core::error::InputError;
 use rockslide_core::trace::{ContactBlock, ContactState, Quantity, Trace, plan_slip_increment, q};
-use rockslide_engine_api::{NotApplicable, Run, Setting, SolverStats, StepSink, step_count};
+use rockslide_engine_api::{NotApplicable, Run, Setting, StepSink, step_count};
 
 /// The variants of a 3D scene, or why fe does not run it.
 pub fn variants(scene: &Scene, spatial: &Spatial) -> Result<Vec<&'static str>, NotApplicable> {
@@ -92,10 +89,7 @@ fn body(case: &Case, spatial: &Spatial, double: bool) -> Result<(SpaceBody, Stri
             };
             Ok((SpaceBody::block(&grid, double), note))
         }
-        SceneModel::RigidBlock(_) => Err(case.field_error(
-            "model.kind",
-            "the fe engine does not run rigid blocks (no contact stiffness)",
-        )),
+        SceneModel::RigidBlock(_) => Err(rigid_block(case)),
     }
 }
 
@@ -131,20 +125,6 @@ pub fn recorded_values_space(case: &Case, spatial: &Spatial, variant: &str) -> O
     )))
 }
 
-/// Run `variant` of a 3D scene at step `dt`: the whole run, its trace sized up front.
-pub fn simulate_space(
-    case: &Case,
-    spatial: &Spatial,
-    variant: &str,
-    dt: f64,
-    opts: &FeOptions,
-) -> Result<Run, InputError> {
-    let mut rows = WholeRun::sized(step_count(case.run.duration, dt) + 1);
-    let mut run = simulate_space_into(case, spatial, variant, dt, opts, &mut rows)?;
-    run.trace = rows.into_trace();
-    Ok(run)
-}
-
 /// Run `variant` of a 3D scene at step `dt`, handing the layout and every recorded row to
 /// `sink`: the returned run's trace is the layout without rows.
 pub fn simulate_space_into<S: StepSink + ?Sized>(
@@ -155,22 +135,10 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
     opts: &FeOptions,
     sink: &mut S,
 ) -> Result<Run, InputError> {
-    let double = match variant {
-        variant::SINGLE => false,
-        variant::DOUBLE => true,
-        other => {
-            return Err(case.field_error(
-                "engines.fe.variants",
-                format!("\"{other}\" is not a variant of fe; variants: single, double"),
-            ));
-        }
-    };
+    let double = is_double(case, variant)?;
     let (body, inertia_note) = body(case, spatial, double)?;
     if double && body.double.is_none() {
-        return Err(case.field_error(
-            "model.double",
-            "is required for the fe engine's \"double\" variant",
-        ));
+        return Err(no_double(case));
     }
     let excitation = &case.scene.excitation;
     let moves_ground = matches!(excitation, Excitation::GroundDisplacement(_));
@@ -181,19 +149,15 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
     let mut states = vec![ContactState::default(); body.supports.len()];
     // each support's last slip vector and its slip accumulated along the friction force
     let mut slid = vec![(Vector2::zeros(), 0.0_f64); body.supports.len()];
-    let drive = SpaceDrive::new(
-        excitation,
-        spatial.second.as_ref(),
-        spatial.azimuth(),
-        body.mass,
-    )
-    .with_vertical(case.scene.vertical().map(|v| &v.signal));
+    let drive = Drive::new(excitation, body.mass)
+        .along(spatial.azimuth(), spatial.second.as_ref())
+        .with_vertical(case.scene.vertical().map(|v| &v.signal));
     let o_offset = if rocking {
         Vector3::new(0.0, 0.0, body.supports[0].z)
     } else {
         Vector3::zeros()
     };
-    let mut model = SpaceModel::new(&body);
+    let mut model = Model::space(&body);
     let mut values = [0.0_f64; 32];
     let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
         let r = record(m, s, &drive, &o_offset);
@@ -211,15 +175,7 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
             s.extend(crate::vertical::describe(&case.scene));
             s
         },
-        stats: SolverStats {
-            steps: counters.steps,
-            substeps_per_step: None,
-            newton_iterations: Some(counters.iterations),
-            max_step_iterations: Some(counters.max_step_iterations),
-            static_iterations: Some(counters.static_iterations),
-            step_cuts: Some(counters.step_cuts),
-            roundoff_accepted: Some(counters.roundoff_accepted),
-        },
+        stats: solver_stats(&counters),
         findings: Vec::new(),
         trace: layout,
         status,
@@ -231,7 +187,7 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
 /// `values`; returns how many.
 fn row_values(
     r: &SpaceRow,
-    s: &SpaceSnapshot,
+    s: &Snapshot<Space>,
     (moves_ground, rocking, double): (bool, bool, bool),
     values: &mut [f64; 32],
 ) -> usize {
@@ -274,7 +230,7 @@ fn row_values(
 /// Each support's contact state (its lower element's) into `states`, with the slip
 /// accumulated along the friction force (Σ T̂·Δs; `slid`: each support's last slip vector
 /// and that sum).
-fn contact_states(m: &SpaceModel, states: &mut [ContactState], slid: &mut [(Vector2<f64>, f64)]) {
+fn contact_states(m: &Model<Space>, states: &mut [ContactState], slid: &mut [(Vector2<f64>, f64)]) {
     for ((c, sup), (last, along)) in states.iter_mut().zip(&m.supports).zip(slid) {
         let st = sup.lower.state();
         let tangential = sup.lower.tangential();
@@ -298,11 +254,8 @@ fn settings(
     body: &SpaceBody,
     inertia_note: String,
 ) -> Vec<Setting> {
-    let (alpha, beta, gamma) = opts.integrator.parameters();
-    let mut s = vec![
-        Setting::number("dt", "s", dt),
-        Setting::choice("integrator", opts.integrator.label()),
-        Setting::text("α, β, γ", format!("{alpha}, {beta:.6}, {gamma:.6}")),
+    let mut s = integrator_settings(dt, opts);
+    s.extend([
         Setting::text(
             "model",
             "3D: six degrees of freedom, exact finite rotations (Simo–Vu Quoc incremental rotation vector, right-Jacobian tangent); cone contacts with radial return",
@@ -324,7 +277,7 @@ fn settings(
             "gravity",
             "static preload: the run starts from equilibrium under M·g",
         ),
-    ];
+    ]);
     if body.rotation {
         s.push(Setting::text("rotational inertia", inertia_note));
     }

@@ -1,11 +1,8 @@
-//! What the time loop asks of a model, in either dimension: the plane model (body
-//! unknowns q = (X, Z, θ), nodes (x, z)) and the space model (q = (X, Θ), nodes (x, y, z))
-//! each implement [`Mechanics`], and the static preload, the Newmark/HHT step with its
-//! Newton iteration and the step cutting are written once over it (`newton`,
-//! `time_loop`). Each method is a short piece of the one formulation the two models
-//! share; the arithmetic of every piece is the model's own, in its own order, so both
-//! models' results are what they were when each had its own loop. Every vector the loop
-//! needs lives in a [`Workspace`], allocated once.
+//! What the time loop asks of a model ([`Mechanics`]): the one model implements it for
+//! either dimension (`model`: body unknowns q = (X, Z, θ) and nodes (x, z) in the plane,
+//! q = (X, Θ) and nodes (x, y, z) in space), and the static preload, the Newmark/HHT step
+//! with its Newton iteration and the step cutting are written once over it (`newton`,
+//! `time_loop`). Every vector the loop needs lives in a [`Workspace`], allocated once.
 
 use nalgebra::SVector;
 
@@ -40,7 +37,7 @@ pub(crate) type State<const Q: usize, const N: usize, M> =
     StepState<Q, <M as Mechanics<Q, N>>::Pose, <M as Mechanics<Q, N>>::Ground>;
 
 /// A step written for one model alone (the same operations as `newton::step` on fewer
-/// values): the plane model's sliding oscillator.
+/// values): the plane's sliding oscillator.
 pub(crate) type StepFn<const Q: usize, const N: usize, M> =
     for<'d, 'w> fn(
         &mut M,
@@ -156,8 +153,8 @@ pub(crate) trait Mechanics<const Q: usize, const N: usize>: Sized {
     fn snapshot<'s>(
         n: &State<Q, N, Self>,
         un: &'s [SVector<f64, N>],
-        statics: &Self::Pose,
-        asm: &Self::Assembly,
+        statics: &'s Self::Pose,
+        asm: &'s Self::Assembly,
     ) -> Self::Snapshot<'s>;
     /// A step written for this model alone, if it has one.
     fn own_step(&self) -> Option<StepFn<Q, N, Self>> {

@@ -1,4 +1,4 @@
-//! The time loop, written once for the plane and the space model ([`Mechanics`]): the
+//! The time loop, written once over what it asks of a model ([`Mechanics`]): the
 //! static preload under gravity, then Newmark average acceleration or HHT-α with
 //! Newton–Raphson equilibrium iterations on the consistent tangent, failing steps cut in
 //! halves. Massless nodes carry no inertia: their rows are (1 + α)·p₊ − α·pₙ = 0.

@@ -1,14 +1,13 @@
-//! The 3D assembly of elements joining the ground to the body (the single arrangement, or
-//! condensed double supports), summed in the ground frame and turned into the body frame
-//! once ([`GroundSums`]): an open element adds nothing, a sticking one its moments of
-//! its offset, a slipping one the same and a rank-one correction.
+//! The 3D assembly's sums over the elements joining the ground to the body (the single
+//! arrangement, or condensed double supports), taken in the ground frame and turned into
+//! the body frame once ([`SpaceSums`]): a sticking element adds its moments of its offset,
+//! a slipping one the same and a rank-one correction (an open one is left out by the
+//! assembly's loop).
 
-use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
-
-use crate::element::{ConeContact, Status};
+use nalgebra::{Matrix6, Vector2, Vector6};
 
 /// 3×3 matrices as rows of plain scalars.
-type M3 = [[f64; 3]; 3];
+pub(crate) type M3 = [[f64; 3]; 3];
 
 /// a·b.
 #[inline]
@@ -26,13 +25,13 @@ fn tr_mul(a: &M3, b: &M3) -> M3 {
     })
 }
 
-/// The ground-frame sums of one assembly over the supports that touch (`assemble_direct`),
+/// The ground-frame sums of one assembly over the supports that touch (`Model::assemble`),
 /// with c = R·d each support's offset turned into the ground frame:
 /// Σf, Σc × f, Σf·dᵀ, Σc·f and, for the tangent, ΣD, ΣD·ĉ, Σĉ·D, Σĉ·D·ĉ — the sticking
 /// supports (D = diag(a, a, b)) through moments of c, the slipping ones through the same
 /// moments and a rank-one correction.
-#[derive(Default)]
-struct GroundSums {
+#[derive(Debug, Default)]
+pub struct SpaceSums {
     f: [f64; 3],
     c_cross_f: [f64; 3],
     f_dt: M3,
@@ -49,10 +48,10 @@ struct GroundSums {
     b_moments: [f64; 3],
 }
 
-impl GroundSums {
+impl SpaceSums {
     /// Add the force `f` of the support at body offset `d`, ground offset `c` = R·d.
     #[inline]
-    fn add_force(&mut self, f: &[f64; 3], d: &[f64; 3], c: &[f64; 3]) {
+    pub(crate) fn add_force(&mut self, f: &[f64; 3], d: &[f64; 3], c: &[f64; 3]) {
         for ((sum, row), fi) in self.f.iter_mut().zip(&mut self.f_dt).zip(f) {
             *sum += fi;
             for (x, dj) in row.iter_mut().zip(d) {
@@ -67,7 +66,7 @@ impl GroundSums {
 
     /// Add a sticking support's tangent D = diag(a, a, b) through the moments of c.
     #[inline]
-    fn add_sticking(&mut self, a: f64, b: f64, c: &[f64; 3]) {
+    pub(crate) fn add_sticking(&mut self, a: f64, b: f64, c: &[f64; 3]) {
         self.d[0][0] += a;
         self.d[1][1] += a;
         self.d[2][2] += b;
@@ -89,11 +88,18 @@ impl GroundSums {
     }
 
     /// Add a slipping support's tangent D = diag(ρ, ρ, b) − v·wᵀ (v = (n, 0),
-    /// w = (ρ·n, μ·kz), `ConeContact::slip_tangent`): its diagonal part as a sticking
+    /// w = (ρ·n, μ·kz), `Tangential::slip_tangent`): its diagonal part as a sticking
     /// support's, and the rank-one part through D·ĉ = diag·ĉ + v·(c × w)ᵀ,
     /// ĉ·D = ĉ·diag − (c × v)·wᵀ, ĉ·D·ĉ = ĉ·diag·ĉ + (c × v)·(c × w)ᵀ.
     #[inline]
-    fn add_slipping(&mut self, rho: f64, b: f64, n: &Vector2<f64>, mu_kz: f64, c: &[f64; 3]) {
+    pub(crate) fn add_slipping(
+        &mut self,
+        rho: f64,
+        b: f64,
+        n: &Vector2<f64>,
+        mu_kz: f64,
+        c: &[f64; 3],
+    ) {
         self.add_sticking(rho, b, c);
         let v = [n.x, n.y, 0.0];
         let w = [rho * n.x, rho * n.y, mu_kz];
@@ -146,7 +152,7 @@ impl GroundSums {
     /// The body's internal force (force, body-frame moment Rᵀ·Σc × f) and its tangent with
     /// respect to (X, W): with G = −R·d̂ = −ĉ·R,
     /// [[ΣD, −ΣD·ĉ·R], [Rᵀ·Σĉ·D, −Rᵀ·Σĉ·D·ĉ·R + Rᵀ·Σf·dᵀ − (Σc·f)·I]].
-    fn write_matrices(&mut self, rm: &M3, p: &mut Vector6<f64>, k: &mut Matrix6<f64>) {
+    pub(crate) fn write_matrices(&mut self, rm: &M3, p: &mut Vector6<f64>, k: &mut Matrix6<f64>) {
         self.fold_sticking();
         let m = &self.c_cross_f;
         let moment: [f64; 3] =
@@ -168,41 +174,4 @@ impl GroundSums {
             self.f[0], self.f[1], self.f[2], moment[0], moment[1], moment[2],
         );
     }
-}
-
-/// Internal force on the body and its tangent (before J_r), written into `(p, k)`, from
-/// elements joining the ground to the body points at the given offsets (the single arrangement, or condensed
-/// double supports). Σ(f, d × Rᵀf) and [[ΣD, ΣD·G], [ΣGᵀD, ΣGᵀDG + (Rᵀf)·dᵀ − (d·Rᵀf)·I]]
-/// with G = −R·d̂ (the module docs), summed in the ground frame with R·d̂ = ĉ·R (c = R·d)
-/// and turned into the body frame once (`GroundSums`): an open element adds nothing, a
-/// sticking one its moments of c.
-pub(crate) fn assemble_direct<'e>(
-    elements: impl Iterator<Item = (Vector3<f64>, &'e mut ConeContact)>,
-    x: &Vector3<f64>,
-    r: &Matrix3<f64>,
-    ground: &Vector3<f64>,
-    (p, k): (&mut Vector6<f64>, &mut Matrix6<f64>),
-) {
-    let rm: M3 = std::array::from_fn(|i| [r[(i, 0)], r[(i, 1)], r[(i, 2)]]);
-    let mut sums = GroundSums::default();
-    for (d, e) in elements {
-        let d = [d.x, d.y, d.z];
-        let c: [f64; 3] =
-            std::array::from_fn(|i| rm[i][0] * d[0] + rm[i][1] * d[1] + rm[i][2] * d[2]);
-        let delta = Vector3::from_fn(|i, _| (x[i] + (c[i] - d[i])) - ground[i]);
-        let f = e.trial_force(delta);
-        let status = e.trial_state().status;
-        if status == Status::Open {
-            continue;
-        }
-        sums.add_force(&[f.x, f.y, f.z], &d, &c);
-        if status == Status::Stick {
-            // Sticking: D = diag(kt, kt, kz).
-            sums.add_sticking(e.kt, e.kz, &c);
-        } else {
-            let (rho, n) = e.slip_tangent();
-            sums.add_slipping(rho, e.kz, &n, e.mu * e.kz, &c);
-        }
-    }
-    sums.write_matrices(&rm, p, k);
 }

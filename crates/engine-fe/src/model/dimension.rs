@@ -1,0 +1,227 @@
+//! What the one model leaves to its dimension ([`Dimension`]): the body's generalized
+//! coordinates and their update, a support point's displacement and how its force and
+//! tangent enter the body's unknowns (G at the point's offset), the inertia, the contact's
+//! tangential part and the vector types. Everything else — the supports and their
+//! elements, the assembly's loops, the nodes' condensation, the Newton solve, commit and
+//! restore, the time loop — is written once over it (`body`, `assembly`, `solve`,
+//! `mechanics`). Two implementations: [`Plane`](super::Plane) and
+//! [`Space`](super::Space). Statically dispatched: each model is compiled for its
+//! dimension.
+
+use std::any::Any;
+use std::fmt::Debug;
+use std::ops::AddAssign;
+
+use nalgebra::Vector3;
+
+use super::body::{Body, Model};
+use crate::element::{Contact, Status, Tangential};
+
+/// A point's displacement (and an element's force) in dimension `D`: (x, z) in the plane,
+/// (x, y, z) in space.
+pub type Vector<D> = <<D as Dimension>::Tangential as Tangential>::Vector;
+
+/// An element's tangent in dimension `D`.
+pub type Tangent<D> = <<D as Dimension>::Tangential as Tangential>::Tangent;
+
+/// The Newton system's coefficients of a step: S = c0·M + s·K (+ the damping's
+/// s·C·c1 and, for a rotating body in space, the inertia's tangent at velocity `v`).
+#[derive(Debug, Clone, Copy)]
+pub struct System<U> {
+    /// Mass coefficient 1/(β·Δt²) (0 for statics).
+    pub c0: f64,
+    /// Stiffness scale 1 + α.
+    pub s: f64,
+    /// Velocity coefficient γ/(β·Δt) (0 for statics).
+    pub c1: f64,
+    /// The body's velocity (none for statics).
+    pub v: Option<U>,
+}
+
+impl<U> System<U> {
+    /// The static system: the stiffness alone.
+    pub(crate) fn statics() -> Self {
+        Self {
+            c0: 0.0,
+            s: 1.0,
+            c1: 0.0,
+            v: None,
+        }
+    }
+}
+
+/// The sums one assembly accumulates over the elements joining the ground to the body
+/// (`Model::assemble`), each dimension in its own order.
+pub trait GroundSums<D: Dimension>: Default {
+    /// Add a closed element's force `f` at the support point `p`, the element sticking
+    /// or (`slip`: μN/|T*|·kt and the direction n) slipping.
+    fn add(
+        &mut self,
+        p: &D::Point,
+        f: &Vector<D>,
+        e: &Contact<D::Tangential>,
+        status: Status,
+        slip: (f64, D::Tangential),
+    );
+    /// The body's internal force and its tangent with respect to the body's virtual
+    /// displacement (before `Dimension::to_unknowns`).
+    fn write(self, at: &D::Iterate, pb: &mut D::Unknowns, kbb: &mut D::Matrix);
+}
+
+/// What is specific to the dimension of the one model (see the module docs).
+pub trait Dimension: Copy + Debug + PartialEq + 'static {
+    /// The contact's tangential part: `f64` (x) in the plane, `Vector2` (x, y) in space.
+    type Tangential: Tangential;
+    /// The body's unknowns: (X, Z, θ) in the plane, (X, Θ) in space.
+    type Unknowns: Copy + Debug + PartialEq + AddAssign;
+    /// A matrix on the body's unknowns.
+    type Matrix: Copy + Debug;
+    /// The LU factors of a [`Self::Matrix`].
+    type Lu: Copy + Debug;
+    /// The body's rotational inertia about its centre of mass.
+    type Inertia: Copy + Debug + PartialEq;
+    /// How a support point follows the body (the plane's exact or small rotations).
+    type Kinematics: Copy + Debug + PartialEq;
+    /// Where the body is at the end of a step.
+    type Pose: Copy + Debug;
+    /// The body's configuration at a Newton iterate, as the assembly reads it.
+    type Iterate: Copy + Debug;
+    /// A support point at an iterate: its displacement and what its G needs.
+    type Point: Copy + Debug + Default;
+    /// A horizontal force or ground motion: x in the plane, (x, y, 0) in space.
+    type Horizontal: Copy + Debug;
+    /// The ground's displacement, velocity and acceleration.
+    type Ground: Copy + Debug;
+    /// The sums of an assembly over the ground-to-body elements.
+    type Sums: GroundSums<Self>;
+    /// The model's own room in an assembly (the plane oscillator's scalar factors).
+    type Extra: Copy + Debug + Default;
+    /// The unit of a failed step's correction and increment (" m", or nothing for the
+    /// space model's mixed metres and radians).
+    const CORRECTION_UNIT: &'static str;
+
+    /// The body's unknowns at zero.
+    fn zero() -> Self::Unknowns;
+    /// A zero matrix on them.
+    fn zero_matrix() -> Self::Matrix;
+    /// Zero the rotational entries of the body's unknowns.
+    fn lock_rotation(x: &mut Self::Unknowns);
+    /// The unloaded body.
+    fn rest_pose() -> Self::Pose;
+    /// The ground at rest.
+    fn rest_ground() -> Self::Ground;
+    /// The unknowns of pose `p` as a step's reference (a step's increment is q − it).
+    fn reference(p: &Self::Pose) -> Self::Unknowns;
+    /// The predictor of a step of length `h` from pose `p`, velocity `v`, acceleration
+    /// `a`: constant acceleration.
+    fn predict(
+        p: &Self::Pose,
+        v: &Self::Unknowns,
+        a: &Self::Unknowns,
+        h: f64,
+        rotates: bool,
+    ) -> Self::Unknowns;
+    /// The iterate of unknowns `q` in a step from pose `from`.
+    fn iterate(
+        kin: &Self::Kinematics,
+        rotates: bool,
+        q: &Self::Unknowns,
+        from: &Self::Pose,
+    ) -> Self::Iterate;
+    /// The pose of an accepted iterate.
+    fn pose(q: &Self::Unknowns, at: &Self::Iterate) -> Self::Pose;
+    /// The squared size of the displacement at an iterate (the round-off floor of the
+    /// displacement test).
+    fn displacement_squared(q: &Self::Unknowns, at: &Self::Iterate, from: &Self::Pose) -> f64;
+
+    /// The support point at body offset `d`.
+    fn point(
+        kin: &Self::Kinematics,
+        q: &Self::Unknowns,
+        at: &Self::Iterate,
+        d: &Vector<Self>,
+    ) -> Self::Point;
+    /// Its displacement.
+    fn displacement(p: &Self::Point) -> Vector<Self>;
+    /// The ground-to-body elements' sums of one assembly: `elements` (each at its body
+    /// offset) evaluated at the iterate and the ground point `ground`
+    /// (`assembly::sum_ground_elements` with this dimension's point kinematics).
+    fn sum_ground_elements<'e>(
+        kin: &Self::Kinematics,
+        q: &Self::Unknowns,
+        at: &Self::Iterate,
+        elements: impl Iterator<Item = (&'e Vector<Self>, &'e mut Contact<Self::Tangential>)>,
+        ground: &Vector<Self>,
+    ) -> Self::Sums;
+    /// Add an element's force `f` and tangent `k` at the support point `p` to the body's
+    /// internal force and tangent (the uncondensed assembly).
+    fn add_support(
+        p: &Self::Point,
+        at: &Self::Iterate,
+        f: &Vector<Self>,
+        k: &Tangent<Self>,
+        pb: &mut Self::Unknowns,
+        kbb: &mut Self::Matrix,
+    );
+    /// Turn the tangent's rotational columns from the body's virtual rotation to the
+    /// unknowns of a body that `rotates` (space: W = J_r(Θ)·δΘ).
+    fn to_unknowns(at: &Self::Iterate, rotates: bool, kbb: &mut Self::Matrix);
+    /// The generalized force Gᵀ·v of a force `v` at the support point `p`.
+    fn generalized_force(p: &Self::Point, at: &Self::Iterate, v: &Vector<Self>) -> Self::Unknowns;
+    /// The support point's motion G·dq for a change `dq` of the unknowns of a body that
+    /// `rotates`.
+    fn point_motion(
+        p: &Self::Point,
+        at: &Self::Iterate,
+        rotates: bool,
+        dq: &Self::Unknowns,
+    ) -> Vector<Self>;
+
+    /// The Newton matrix c0·M + s·K (+ damping, inertial tangent) of `body` with
+    /// tangent `kbb`.
+    fn newton_matrix(
+        body: &Body<Self>,
+        sys: &System<Self::Unknowns>,
+        kbb: &Self::Matrix,
+    ) -> Self::Matrix;
+    /// Lock the rotational rows and columns of a Newton system.
+    fn lock_rotation_rows(s: &mut Self::Matrix, rhs: &mut Self::Unknowns);
+    /// Whether two matrices are the same bit for bit.
+    fn same_bits(a: &Self::Matrix, b: &Self::Matrix) -> bool;
+    /// Factor a Newton matrix.
+    fn factor(m: &Self::Matrix) -> Self::Lu;
+    /// Solve with the factors; `None` if singular.
+    fn solve(lu: &Self::Lu, b: &Self::Unknowns) -> Option<Self::Unknowns>;
+
+    /// The inertial force at acceleration `a` and velocity `v`.
+    fn inertia_force(body: &Body<Self>, a: &Self::Unknowns, v: &Self::Unknowns) -> Self::Unknowns;
+    /// The acceleration at t = 0 under the net force `out`.
+    fn initial_acceleration(body: &Body<Self>, out: &Self::Unknowns) -> Self::Unknowns;
+    /// The damping force C·(v − v_ground) at velocity `v`.
+    fn damping(c: f64, v: &Self::Unknowns, g: &Self::Ground) -> Self::Unknowns;
+    /// The load on the body's unknowns of a horizontal force `h` and a vertical `z`.
+    fn load(h: Self::Horizontal, z: f64) -> Self::Unknowns;
+    /// The horizontal part of a load on the body's unknowns.
+    fn horizontal_of(f: &Self::Unknowns) -> Self::Horizontal;
+
+    /// A horizontal quantity from its value along the excitation's first direction and
+    /// along the second (at right angles), `directions` the two.
+    fn horizontal(
+        first: f64,
+        second: Option<f64>,
+        directions: &[Vector3<f64>; 2],
+    ) -> Self::Horizontal;
+    /// No horizontal quantity.
+    fn no_horizontal() -> Self::Horizontal;
+    /// The ground of displacement, velocity and acceleration.
+    fn ground(d: Self::Horizontal, v: Self::Horizontal, a: Self::Horizontal) -> Self::Ground;
+    /// The ground's displacement as a point.
+    fn ground_point(g: &Self::Ground) -> Vector<Self>;
+
+    /// A step written for this dimension's `model` alone, if it has one: a
+    /// `stepper::StepFn` of the model, which the time loop takes in place of its Newton
+    /// step (the plane's sliding oscillator in scalars).
+    fn own_step(_model: &Model<Self>) -> Option<&'static (dyn Any + Send + Sync)> {
+        None
+    }
+}
