@@ -1,11 +1,12 @@
 //! Another program's results (`[[external]]`) in every layout rockslide reads, as bytes: a
 //! CSV (rockslide's headers, or foreign ones through a column map), a SAP2000/ETABS/
-//! CSiBridge table export, an ANSYS POST26 `PRVAR` listing, an Abaqus XY report, an OpenSees
-//! recorder file (text, `-xml` or `-binary`). The first byte picks the layout (or "recognise
-//! it from the file"), the delimiter, the preamble lines skipped, the output case and
-//! whether a column map in the program's own names applies; for an OpenSees file the first
-//! line is the recorder command naming its columns. Any bytes give a trace or a located
-//! error, never a panic.
+//! CSiBridge table export (text, or exported to Excel: bytes that start as a zip archive
+//! does, `PK`, are read as the workbook `fuzz.xlsx`), an ANSYS POST26 `PRVAR` listing, an
+//! Abaqus XY report, an OpenSees recorder file (text, `-xml` or `-binary`). The first byte
+//! picks the layout (or "recognise it from the file"), the delimiter, the preamble lines
+//! skipped, the output case and whether a column map in the program's own names applies;
+//! for an OpenSees file the first line is the recorder command naming its columns. Any
+//! bytes give a trace or a located error, never a panic.
 #![no_main]
 
 use std::path::Path;
@@ -84,5 +85,11 @@ fuzz_target!(|data: &[u8]| {
         format.recorder = Some(String::from_utf8_lossy(&rest[..end]).into_owned());
         body = rest.get(end + 1..).unwrap_or(&[]);
     }
-    let _ = parse_external_bytes(Path::new("fuzz.txt"), body, &format);
+    // a workbook is recognised by its extension: the name follows the zip signature
+    let name = if body.starts_with(b"PK") {
+        "fuzz.xlsx"
+    } else {
+        "fuzz.txt"
+    };
+    let _ = parse_external_bytes(Path::new(name), body, &format);
 });

@@ -8,6 +8,8 @@
 //!   the recorder command, or by the script that holds it) back to the fe engine's trace
 //!   they were written from, to the digits printed (10 significant), and gate them like an
 //!   engine (the SAP2000 "Acceptable" default against the exact solution);
+//! - rockslide shall read SAP2000's tables exported to Excel (one sheet per table, number
+//!   cells) back to the fe engine's numbers, within 4 ulp, and gate them alike;
 //! - an external run is checked like an engine on the channels it provides: a normal force
 //!   written compression-negative (SAP2000's link `P`) fails `compression` and
 //!   `friction_bound` until the map gives its sign, and then passes; an invariant its
@@ -369,4 +371,78 @@ fn a_compression_negative_normal_force_fails_until_the_map_gives_its_sign() {
         notes.contains("invariants not provided by the file: stick_slip (no slide); dissipation (no slide); penetration (no per-contact gaps); energy_balance (no energy_input, no energy_error)"),
         "{notes}"
     );
+}
+
+/// The fe run's trace as SAP2000 exports its tables to Excel:
+/// `tests/data/external/sap2000-pepo.xlsx`, written with openpyxl by `make_sap2000_xlsx.py`
+/// beside it from the fe trace of [`PEPO`] (`rockslide run` with `--full-traces`): the
+/// sheets "Joint Displacements" (joints 1 and 2, `U1` in m) and "Element Forces - Links"
+/// (link 1, `P` −1000 kN, `V2` the resistance in kN), numbers as number cells.
+const SAP2000_XLSX: &str = concat!(
+    env!("CARGO_MANIFEST_DIR"),
+    "/tests/data/external/sap2000-pepo.xlsx"
+);
+
+/// Whether `read` equals `written` within 4 ulp, sample by sample.
+fn equal_to_ulps(key: &str, read: &[f64], written: &[f64]) {
+    assert_eq!(read.len(), written.len(), "{key}: samples");
+    for (i, (a, b)) in read.iter().zip(written).enumerate() {
+        assert!(
+            (a - b).abs() <= 4.0 * f64::EPSILON * b.abs(),
+            "{key}[{i}]: {a} read, {b} written"
+        );
+    }
+}
+
+#[test]
+fn a_sap2000_excel_export_reads_back_the_fe_trace_and_passes_the_default_gate() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let fe = fe(d);
+    std::fs::copy(SAP2000_XLSX, d.join("sap2000.xlsx")).unwrap();
+    let external = r#"
+[[external]]
+label = "sap2000"
+file = "sap2000.xlsx"
+program = "SAP2000 (fixture: the fe run exported to Excel)"
+format = "sap2000"
+output_case = "TH"
+columns = { "Joint 2: U1" = "rel_disp", "Link 1: P" = { quantity = "normal", scale = -1 }, "Link 1: V2" = "resistance" }
+"#;
+    let r = run_text(d, &format!("{PEPO}{external}"));
+    let run = run_of(&r, "sap2000/external");
+    let t = &run.trace;
+    // number cells hold the f64 written, read back bit for bit; the fixture was written
+    // from the run's CSV, whose times are the output grid's (one ulp from the times this
+    // run accumulates), and kN go back to N through ÷1000 and ×1000: within 4 ulp
+    equal_to_ulps("time", &t.time, &fe.time);
+    equal_to_ulps("rel_disp", t.column("rel_disp").unwrap(), &fe.rel_disp);
+    equal_to_ulps(
+        "resistance",
+        t.column("resistance").unwrap(),
+        &fe.resistance,
+    );
+    assert_eq!(t.column("normal").unwrap(), vec![WEIGHT; fe.time.len()]);
+    let notes = run.findings.join("\n");
+    let rows = format!(
+        "SAP2000/ETABS/CSiBridge tables exported to Excel, {} rows",
+        fe.time.len()
+    );
+    for said in [
+        rows.as_str(),
+        "tables \"Joint Displacements\", \"Element Forces - Links\", OutputCase \"TH\"",
+        "converted to SI: normal [kN], resistance [kN]",
+        "sign and scale: \"Link 1: P\" × -1 → normal",
+    ] {
+        assert!(notes.contains(said), "{said}\n{notes}");
+    }
+    let checks: Vec<_> = r.checks.iter().filter(|c| c.run == run.label()).collect();
+    assert!(!checks.is_empty());
+    assert!(
+        checks.iter().all(|c| c.gated
+            && c.basis == "reference"
+            && c.verdict == rockslide::analysis::Verdict::Pass),
+        "{checks:?}"
+    );
+    assert!(r.gate_passed());
 }

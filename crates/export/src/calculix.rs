@@ -17,7 +17,7 @@
 
 use std::fmt::Write as _;
 
-use rockslide_core::case::{Case, Contact, Model, Oscillator};
+use rockslide_core::case::{Case, Contact, Excitation, Model, Oscillator};
 use rockslide_core::error::InputError;
 
 use crate::deck::{DeckSettings, check_scene, num, one_line};
@@ -57,6 +57,20 @@ pub fn body_node(double: bool) -> u64 {
 /// The double arrangement's middle node (its first plate node).
 pub const MIDDLE_NODE: u64 = 9;
 
+/// The element of the middle plate's point mass.
+const MIDDLE_MASS_ELEMENT: u64 = 12;
+
+/// The double arrangement's middle plate's mass, kg: Kx1·Δt², so that its inertia
+/// stiffness under Newmark average acceleration, m/(Δt²/4), is 4·Kx1. The paper's middle
+/// node is massless; CalculiX's Newton iteration cannot solve it once element 1 sticks
+/// (docs/decks.md): from a slipping state it steps 2μN/Kx2 across a stick band 2μN/Kx1
+/// wide, a hundred times narrower, and lands on the other slipping side, for ever. With
+/// this inertia every step stays inside the band. 1010 kg at Δt = 1e-4 s on the paper's
+/// Kx1 = 1.01e11 N/m: 0.1 % of the body's 1e6 kg.
+pub fn middle_mass(kx1: f64, dt: f64) -> f64 {
+    kx1 * dt * dt
+}
+
 /// The settings a case asks for (`[engines.calculix]`).
 pub fn settings(case: &Case) -> Result<DeckSettings, InputError> {
     DeckSettings::from_case(case, SECTION)
@@ -85,6 +99,9 @@ pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
     let mut deck = header(case, o, settings);
     inp::plates(&mut deck, &layout);
     inp::constraints(&mut deck, o.mass, &layout);
+    if settings.double() {
+        middle_mass_card(&mut deck, lower, settings.dt);
+    }
     energy_reference(&mut deck);
     inp::contact_pairs(&mut deck, &layout, o.mass * o.gravity, Dialect::Calculix);
     inp::amplitude(&mut deck, case, settings);
@@ -178,9 +195,13 @@ const MODEL: &str = "\
 ** - Penalty contact with Coulomb friction, face to face: the body is a 1 m x 1 m plate (C3D8)
 **   on a ground block whose top face is 3 m x 3 m. *SURFACE BEHAVIOR,
 **   PRESSURE-OVERCLOSURE=LINEAR at Kz and *FRICTION mu with the stick slope Kx (per m2 of
-**   the 1 m2 slave face: the scene's stiffnesses). The double arrangement puts a massless
-**   1 m x 1 m middle plate between the ground (element 1, slides) and a 3 m x 3 m body plate
-**   (element 2, mu = inf written as 1e6).
+**   the 1 m2 slave face: the scene's stiffnesses). The double arrangement puts a 1 m x 1 m
+**   middle plate between the ground (element 1, slides) and a 3 m x 3 m body plate
+**   (element 2, mu = inf written as 1e6). The paper's middle node is massless; CalculiX's
+**   Newton iteration cycles without end on it once element 1 sticks (its steps from a
+**   slipping state overshoot the stick band 2 mu N / Kx1), so the middle plate carries a
+**   point mass Kx1 dt^2 (inertia stiffness 4 Kx1 under Newmark average acceleration;
+**   1010 kg, 0.1 % of the body, at dt = 1e-4 s on the paper's Kx1).
 ** - The PEPO's normal force is the weight: each contact starts at its static overclosure
 **   M g / Kz and the plates move in X only (Z and Y fixed, *EQUATION ties each plate's
 **   nodes to its first node). The body's mass is a point mass on its plate's first node.
@@ -193,6 +214,15 @@ const MODEL: &str = "\
 **   a fixed-increment run stops. This free block (1e24 kg at 1e-6 m/s: 5e11 J of constant
 **   kinetic energy, coupled to nothing) makes the rules relative to a large constant energy.
 ";
+
+/// The middle plate's point mass ([`middle_mass`]) on its first node.
+fn middle_mass_card(deck: &mut String, lower: &Contact, dt: f64) {
+    let _ = writeln!(
+        deck,
+        "*ELEMENT, TYPE=MASS, ELSET=EMIDDLE\n{MIDDLE_MASS_ELEMENT}, {MIDDLE_NODE}\n*MASS, ELSET=EMIDDLE\n{}",
+        num(middle_mass(lower.kx, dt))
+    );
+}
 
 /// The free block of constant kinetic energy (see the deck's header).
 fn energy_reference(deck: &mut String) {
@@ -234,6 +264,13 @@ fn step(deck: &mut String, case: &Case, o: &Oscillator, settings: &DeckSettings)
         num(settings.steps as f64 * settings.dt)
     );
     inp::excitation_load(deck, case, o.mass, SET_BODY, SET_GROUND);
+    if let (Some(d), Excitation::GroundAcceleration(_)) = (
+        o.double.as_ref().filter(|_| settings.double()),
+        &case.scene.excitation,
+    ) {
+        let mass = middle_mass(d.lower.kx, settings.dt);
+        inp::excitation_load(deck, case, mass, SET_MIDDLE, SET_GROUND);
+    }
     let every = settings.output_every;
     let _ = writeln!(
         deck,

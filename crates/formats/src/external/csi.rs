@@ -26,7 +26,7 @@ use rockslide_core::error::InputErrors;
 
 use super::csv::{is_blank, split_fields};
 use super::number::{Decimal, parse_number};
-use super::sheet::Sheet;
+use super::sheet::{FILE, Sheet};
 
 /// Whether a line is a table's title line (`TABLE:  "Joint Displacements"`).
 pub(super) fn is_title(line: &str) -> bool {
@@ -41,6 +41,7 @@ const KEY_FIELDS: [&str; 5] = ["OutputCase", "CaseType", "StepType", "StepNum", 
 /// One table being read: its title, separator, fields and units.
 struct Table {
     title: String,
+    /// The separator (a workbook's cells: `,`, so that numbers have a decimal point).
     delimiter: char,
     fields: Vec<(String, usize)>,
     units: Option<Vec<String>>,
@@ -61,19 +62,7 @@ pub(super) fn read(
     format: &ExternalFormat,
 ) -> Result<ExternalTrace, InputErrors> {
     let what = "SAP2000/ETABS/CSiBridge table export";
-    let mut reader = Reader {
-        sheet: Sheet::new(path, what, "StepNum"),
-        mapped: format.columns.iter().map(|c| c.from.trim()).collect(),
-        wanted_case: format.output_case.as_deref(),
-        case_read: None,
-        cases_seen: Vec::new(),
-        envelope_rows: 0,
-        other_case_rows: 0,
-        titles: Vec::new(),
-        step_dt: format.step_dt,
-        numbered_rows: 0,
-    };
-    let mut table: Option<Table> = None;
+    let mut reader = Reader::new(Sheet::new(path, what, "StepNum"), format);
     for (index, raw) in text.lines().enumerate() {
         let line_no = index + 1;
         let line = raw.trim_end_matches('\r');
@@ -81,20 +70,31 @@ pub(super) fn read(
             continue;
         }
         if is_title(line) {
-            let title = line.trim_start()[6..].trim().trim_matches('"').to_string();
-            if !reader.titles.contains(&title) {
-                reader.titles.push(title.clone());
-            }
-            table = Some(Table::titled(title));
+            reader.title(line);
             continue;
         }
-        let Some(t) = table.as_mut() else {
+        let Some(t) = reader.table.as_mut() else {
             let why = "is not in a table: an export starts each table with a `TABLE: \"…\"` line";
             return Err(reader.sheet.error((line_no, 1), why).into());
         };
-        reader.line(t, line_no, line)?;
+        if t.fields.is_empty() {
+            t.delimiter = delimiter_of(line);
+        }
+        let fields = split_fields(line, t.delimiter);
+        reader.fields(line_no, &fields)?;
     }
     reader.finish(format)
+}
+
+/// The separator of a table, found from its field-name row: a tab, a `;`, else a `,`.
+fn delimiter_of(line: &str) -> char {
+    if line.contains('\t') {
+        '\t'
+    } else if line.contains(';') {
+        ';'
+    } else {
+        ','
+    }
 }
 
 impl Table {
@@ -112,16 +112,14 @@ impl Table {
         }
     }
 
-    /// The field-name row: separator, fields and where the key columns are.
-    fn header(&mut self, sheet: &Sheet, line_no: usize, line: &str) -> Result<(), InputErrors> {
-        self.delimiter = if line.contains('\t') {
-            '\t'
-        } else if line.contains(';') {
-            ';'
-        } else {
-            ','
-        };
-        self.fields = split_fields(line, self.delimiter);
+    /// The field-name row: the fields and where the key columns are.
+    fn header(
+        &mut self,
+        sheet: &Sheet,
+        line_no: usize,
+        fields: &[(String, usize)],
+    ) -> Result<(), InputErrors> {
+        self.fields = fields.to_vec();
         let find = |name: &str| self.fields.iter().position(|f| f.0.trim() == name);
         let (Some(case), Some(step_type), Some(step_num)) =
             (find("OutputCase"), find("StepType"), find("StepNum"))
@@ -173,9 +171,15 @@ impl Table {
     }
 }
 
-/// The state of reading one export.
-struct Reader<'a> {
-    sheet: Sheet,
+/// The state of reading one export: its rows handed in one by one, from the lines of a
+/// text file or the rows of a workbook's sheets (`xlsx`).
+pub(super) struct Reader<'a> {
+    pub(super) sheet: Sheet,
+    /// The table being read.
+    table: Option<Table>,
+    /// Rows are a workbook's: a table must have its units row (row 3), and a row's
+    /// trailing empty cells are not written.
+    workbook: bool,
     /// The series the map names (only their values are read).
     mapped: HashSet<&'a str>,
     wanted_case: Option<&'a str>,
@@ -191,18 +195,86 @@ struct Reader<'a> {
     numbered_rows: usize,
 }
 
-impl Reader<'_> {
-    /// One non-blank line inside table `t`.
-    fn line(&mut self, t: &mut Table, line_no: usize, line: &str) -> Result<(), InputErrors> {
-        if t.fields.is_empty() {
-            return t.header(&self.sheet, line_no, line);
+impl<'a> Reader<'a> {
+    /// A reader filling `sheet`, for the map, output case and step of `format`.
+    pub(super) fn new(sheet: Sheet, format: &'a ExternalFormat) -> Self {
+        Self {
+            sheet,
+            table: None,
+            workbook: false,
+            mapped: format.columns.iter().map(|c| c.from.trim()).collect(),
+            wanted_case: format.output_case.as_deref(),
+            case_read: None,
+            cases_seen: Vec::new(),
+            envelope_rows: 0,
+            other_case_rows: 0,
+            titles: Vec::new(),
+            step_dt: format.step_dt,
+            numbered_rows: 0,
         }
-        let fields = split_fields(line, t.delimiter);
-        if t.repeats_header(&fields) {
+    }
+
+    /// Rows come from a workbook's sheets (see `workbook`).
+    pub(super) fn for_workbook(&mut self) {
+        self.workbook = true;
+    }
+
+    /// A title line (`TABLE:  "Joint Displacements"`): a new table starts.
+    pub(super) fn title(&mut self, line: &str) {
+        let title = line.trim_start()[6..].trim().trim_matches('"').to_string();
+        if !self.titles.contains(&title) {
+            self.titles.push(title.clone());
+        }
+        self.table = Some(Table::titled(title));
+    }
+
+    /// Whether a table has started.
+    pub(super) fn in_table(&self) -> bool {
+        self.table.is_some()
+    }
+
+    /// The table ends (a workbook's sheet ends).
+    pub(super) fn end_table(&mut self) {
+        self.table = None;
+    }
+
+    /// One non-blank row inside the table, split into fields (each with its column).
+    pub(super) fn fields(
+        &mut self,
+        line_no: usize,
+        fields: &[(String, usize)],
+    ) -> Result<(), InputErrors> {
+        let Some(mut t) = self.table.take() else {
+            let why = "is not in a table: an export starts each table with a `TABLE: \"…\"` line";
+            return Err(self.sheet.error((line_no, 1), why).into());
+        };
+        let read = self.table_row(&mut t, line_no, fields);
+        self.table = Some(t);
+        read
+    }
+
+    /// One row of table `t`: its field names, units row, a page header or a data row.
+    fn table_row(
+        &mut self,
+        t: &mut Table,
+        line_no: usize,
+        fields: &[(String, usize)],
+    ) -> Result<(), InputErrors> {
+        if t.fields.is_empty() {
+            return t.header(&self.sheet, line_no, fields);
+        }
+        let padded;
+        let fields = if self.workbook && fields.len() < t.fields.len() {
+            padded = padded_to(fields, t.fields.len());
+            &padded[..]
+        } else {
+            fields
+        };
+        if t.repeats_header(fields) {
             t.after_header = true;
             return Ok(());
         }
-        let units_row = t.is_units_row(&fields);
+        let units_row = t.is_units_row(fields);
         t.after_header = false;
         if units_row {
             if t.units.is_none() {
@@ -214,6 +286,14 @@ impl Reader<'_> {
             }
             return Ok(());
         }
+        if self.workbook && t.units.is_none() {
+            let why = format!(
+                "table \"{}\": the row below the field names is not the units row (`Text, \
+                 Text, …, Sec, m, …`), which an export writes there",
+                t.title
+            );
+            return Err(self.sheet.error((line_no, 1), why).into());
+        }
         if fields.len() != t.fields.len() {
             let col = fields.last().map_or(1, |f| f.1);
             let why = format!(
@@ -224,7 +304,7 @@ impl Reader<'_> {
             );
             return Err(self.sheet.error((line_no, col), why).into());
         }
-        self.row(t, line_no, &fields)
+        self.row(t, line_no, fields)
     }
 
     /// One data row: its output case and step, and each mapped field's value.
@@ -349,7 +429,7 @@ impl Reader<'_> {
     }
 
     /// The sheet assembled, with notes on the tables, the case and the rows skipped.
-    fn finish(mut self, format: &ExternalFormat) -> Result<ExternalTrace, InputErrors> {
+    pub(super) fn finish(mut self, format: &ExternalFormat) -> Result<ExternalTrace, InputErrors> {
         let Some(case) = self.case_read.clone() else {
             let why = match self.wanted_case {
                 Some(w) => format!(
@@ -358,7 +438,7 @@ impl Reader<'_> {
                 ),
                 None => "has no data rows".to_string(),
             };
-            return Err(self.sheet.error((1, 1), why).into());
+            return Err(self.sheet.error(FILE, why).into());
         };
         let titles: Vec<String> = self.titles.iter().map(|t| format!("\"{t}\"")).collect();
         let mut read = format!("tables {}, OutputCase \"{case}\"", titles.join(", "));
@@ -384,4 +464,14 @@ impl Reader<'_> {
         }
         self.sheet.assemble(format)
     }
+}
+
+/// A workbook's row with its trailing empty cells, `n` fields in all.
+fn padded_to(fields: &[(String, usize)], n: usize) -> Vec<(String, usize)> {
+    let mut row = fields.to_vec();
+    while row.len() < n {
+        let col = row.last().map_or(1, |f| f.1 + 1);
+        row.push((String::new(), col));
+    }
+    row
 }

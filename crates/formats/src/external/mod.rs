@@ -1,9 +1,10 @@
 //! Results produced by another program, read as a [`Trace`] in SI, each file in the layout
 //! its program writes: a CSV (rockslide's own headers, or foreign ones with a column map),
-//! SAP2000/ETABS/CSiBridge table exports (`csi`), ANSYS POST26 `PRVAR` listings (`ansys`),
+//! SAP2000/ETABS/CSiBridge table exports (`csi`; exported to Excel: `xlsx`), ANSYS POST26 `PRVAR` listings (`ansys`),
 //! Abaqus XY reports (`abaqus`), OpenSees recorder files (`opensees`), or a state topic of
 //! a rockslide MCAP file. A program's layout is named by `format = "…"` or recognised
-//! from the file (a `TABLE:` title line, the POST26 banner).
+//! from the file (a `TABLE:` title line, the POST26 banner; an `.xlsx` workbook by its
+//! extension).
 //!
 //! The column map names the program's own objects and fields (`"Joint 2: U1"`, `"UX_2"`,
 //! `"node 2 dof 1 disp"`) and may carry a factor: a sign (SAP2000's link force `P` is
@@ -31,6 +32,7 @@ mod number;
 mod opensees;
 mod opensees_xml;
 mod sheet;
+mod xlsx;
 
 pub use csv::read_external_csv;
 
@@ -53,13 +55,23 @@ pub fn read_external(path: &Path, format: &ExternalFormat) -> Result<ExternalTra
     parse_external_bytes(path, &bytes, format)
 }
 
-/// [`read_external`] from a file's bytes: an OpenSees `-binary` recorder file when the
-/// format names OpenSees and the bytes are binary, else the text ([`parse_external`]).
+/// [`read_external`] from a file's bytes: SAP2000/ETABS/CSiBridge tables exported to
+/// Excel when `path` ends in `.xlsx`, an OpenSees `-binary` recorder file when the format
+/// names OpenSees and the bytes are binary, else the text ([`parse_external`]).
 pub fn parse_external_bytes(
     path: &Path,
     bytes: &[u8],
     format: &ExternalFormat,
 ) -> Result<ExternalTrace, InputErrors> {
+    if xlsx::is_workbook(path) {
+        if !matches!(format.layout, None | Some(ExternalLayout::CsiTables)) {
+            let why = "is an Excel workbook: rockslide reads SAP2000/ETABS/CSiBridge tables \
+                       exported to Excel (`format = \"sap2000\"`, or no format); save another \
+                       program's results as the text file it writes";
+            return Err(InputError::new(path, "format", why).into());
+        }
+        return xlsx::read(path, bytes, format);
+    }
     if format.layout == Some(ExternalLayout::OpenSeesRecorder) && opensees::is_binary(bytes) {
         return opensees::read_binary(path, bytes, format);
     }

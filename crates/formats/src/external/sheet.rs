@@ -37,8 +37,12 @@ impl Ord for Time {
     }
 }
 
-/// A line and a 1-based character column of the file.
+/// A line and a 1-based character column of the file (a workbook: a row counted across
+/// its sheets, and a cell's column).
 pub(super) type At = (usize, usize);
+
+/// The whole file, not one place of it (a text file: its line 1, column 1).
+pub(super) const FILE: At = (0, 0);
 
 /// One series of the file: its name as the map names it, its unit as the file states it.
 struct Series {
@@ -66,6 +70,9 @@ pub(super) struct Sheet {
     pub(super) commas: bool,
     /// What the reader did beyond the map (tables read, rows skipped).
     pub(super) notes: Vec<String>,
+    /// A workbook's sheets: each one's name and the row counted across the sheets before
+    /// its first row (empty for a text file).
+    worksheets: Vec<(usize, String)>,
 }
 
 impl Sheet {
@@ -81,12 +88,38 @@ impl Sheet {
             times: BTreeMap::new(),
             commas: false,
             notes: Vec::new(),
+            worksheets: Vec::new(),
         }
     }
 
-    /// An error in this file at `at`.
+    /// A workbook's sheet `name` starts: its row `r` is the place `offset + r`.
+    pub(super) fn start_worksheet(&mut self, offset: usize, name: &str) {
+        self.worksheets.push((offset, name.to_string()));
+    }
+
+    /// An error in this file at `at` (a workbook's: its sheet and cell).
     pub(super) fn error(&self, at: At, reason: impl Into<String>) -> InputError {
-        InputError::new(&self.path, "", reason).at(at.0, at.1)
+        let reason = reason.into();
+        if at == FILE {
+            let error = InputError::new(&self.path, "", reason);
+            return if self.worksheets.is_empty() {
+                error.at(1, 1)
+            } else {
+                error
+            };
+        }
+        let Some((offset, name)) = self.worksheets.iter().rev().find(|w| w.0 < at.0) else {
+            return InputError::new(&self.path, "", reason).at(at.0, at.1);
+        };
+        let row = at.0 - offset;
+        let cell = format!("{}{row}", column_letters(at.1));
+        let reason = format!("sheet \"{name}\", cell {cell}: {reason}");
+        InputError::new(&self.path, "", reason).at(row, at.1)
+    }
+
+    /// Whether the sheet has a series named `name`.
+    pub(super) fn has_series(&self, name: &str) -> bool {
+        self.index.contains_key(name)
     }
 
     /// The unit the file states for its times.
@@ -148,7 +181,7 @@ impl Sheet {
     pub(super) fn assemble(self, format: &ExternalFormat) -> Result<ExternalTrace, InputErrors> {
         if self.times.is_empty() {
             return Err(self
-                .error((1, 1), format!("has no data rows ({})", self.what))
+                .error(FILE, format!("has no data rows ({})", self.what))
                 .into());
         }
         if format.columns.is_empty() {
@@ -158,7 +191,7 @@ impl Sheet {
                 self.what,
                 self.names()
             );
-            return Err(self.error((1, 1), reason).into());
+            return Err(self.error(FILE, reason).into());
         }
         let (time_meaning, channels, mut notes) = self.channels(format)?;
         let quantities: Vec<&'static Quantity> = channels.iter().map(|c| c.quantity).collect();
@@ -182,7 +215,7 @@ impl Sheet {
         }
         if trace.is_empty() {
             let reason = "has no time at which every mapped series has a value";
-            return Err(self.error((1, 1), reason).into());
+            return Err(self.error(FILE, reason).into());
         }
         if let Some(first) = dropped.first() {
             notes.push(format!(
@@ -274,7 +307,7 @@ impl Sheet {
             None => Ok(parse_header("time [s]").expect("seconds")),
             Some(u) => meaning_in("time", u).map_err(|why| {
                 let name = &self.time_name;
-                self.error((1, 1), format!("{name}: {why}"))
+                self.error(FILE, format!("{name}: {why}"))
             }),
         }
     }
@@ -284,14 +317,14 @@ impl Sheet {
         let from = map.from.trim();
         let wants = parse_header(&map.to).map_err(|why| {
             self.error(
-                (1, 1),
+                FILE,
                 format!("the map's \"{from}\" = \"{}\": {why}", map.to),
             )
         })?;
         if from == self.time_name {
             return match wants.kind {
                 ColumnKind::Time => Ok(Mapped::Time(wants)),
-                _ => Err(self.error((1, 1), format!("\"{from}\" is the time; map it to `time`"))),
+                _ => Err(self.error(FILE, format!("\"{from}\" is the time; map it to `time`"))),
             };
         }
         let Some(&s) = self.index.get(from) else {
@@ -299,7 +332,7 @@ impl Sheet {
                 "the column map names \"{from}\", but the file has no such series; its series: {}",
                 self.names()
             );
-            return Err(self.error((1, 1), reason));
+            return Err(self.error(FILE, reason));
         };
         let series = &self.series[s];
         let ColumnKind::Quantity(quantity) = wants.kind else {
@@ -377,4 +410,16 @@ pub(super) fn meaning_in(key: &str, unit: &str) -> Result<ColumnMeaning, String>
     }
     // not read in any spelling: the reason as for the unit written
     parse_header(&format!("{key} [{u}]"))
+}
+
+/// A column's letters as a spreadsheet names it (1 → `A`, 27 → `AA`).
+fn column_letters(mut column: usize) -> String {
+    let mut letters = Vec::new();
+    while column > 0 {
+        let digit = (column - 1) % 26;
+        letters.push(b'A' + digit as u8);
+        column = (column - 1) / 26;
+    }
+    letters.reverse();
+    String::from_utf8(letters).unwrap_or_default()
 }

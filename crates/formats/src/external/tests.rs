@@ -562,3 +562,134 @@ fn an_opensees_binary_recorder_file_is_read_with_or_without_its_command() {
             .contains("is not an OpenSees -binary recorder file: no row width")
     );
 }
+
+/// Write `bytes` as `name` in a fresh folder and read it with `format`.
+fn read_file_bytes(
+    name: &str,
+    bytes: &[u8],
+    format: &ExternalFormat,
+) -> Result<rockslide_core::case::ExternalTrace, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join(name);
+    std::fs::write(&path, bytes).unwrap();
+    read_external(&path, format).map_err(|e| {
+        let prefix = format!("{}:", path.display());
+        e.to_string().replace(&prefix, &format!("{name}:"))
+    })
+}
+
+/// Workbooks written by `tests/data/external/make_sap2000_xlsx.py --malformed` (openpyxl,
+/// the layout of SAP2000's "Export to Excel"): the joints and links of three steps.
+const SMALL_XLSX: &[u8] = include_bytes!("../../testdata/xlsx/small.xlsx");
+const NO_UNITS_XLSX: &[u8] = include_bytes!("../../testdata/xlsx/no-units-row.xlsx");
+const TEXT_IN_NUMBER_XLSX: &[u8] = include_bytes!("../../testdata/xlsx/text-in-number.xlsx");
+const NO_LINK_SHEET_XLSX: &[u8] = include_bytes!("../../testdata/xlsx/no-link-sheet.xlsx");
+
+/// The small workbook's tables as the TXT export writes them.
+const SMALL_TXT: &str = "TABLE:  \"Joint Displacements\"\n\
+Joint\tOutputCase\tCaseType\tStepType\tStepNum\tU1\tU2\tU3\n\
+Text\tText\tText\tText\tSec\tm\tm\tm\n\
+1\tTH\tNonDirHist\tTime\t0\t0\t0\t0\n\
+2\tTH\tNonDirHist\tTime\t0\t0\t0\t0\n\
+1\tTH\tNonDirHist\tTime\t0.005\t0\t0\t0\n\
+2\tTH\tNonDirHist\tTime\t0.005\t0.0003267\t0\t0\n\
+1\tTH\tNonDirHist\tTime\t0.01\t0\t0\t0\n\
+2\tTH\tNonDirHist\tTime\t0.01\t0.0012\t0\t0\n\
+TABLE:  \"Element Forces - Links\"\n\
+Link\tLinkElem\tOutputCase\tCaseType\tStepType\tStepNum\tP\tV2\n\
+Text\tText\tText\tText\tText\tSec\tKN\tKN\n\
+1\t1\tTH\tNonDirHist\tTime\t0\t-1000\t0\n\
+1\t1\tTH\tNonDirHist\tTime\t0.005\t-1000\t1.652\n\
+1\t1\tTH\tNonDirHist\tTime\t0.01\t-1000\t3.1\n";
+
+#[test]
+fn a_sap2000_workbook_reads_like_its_text_export() {
+    let t = read_file_bytes("small.xlsx", SMALL_XLSX, &sap_format()).unwrap();
+    assert_eq!(t.trace.time, [0.0, 0.005, 0.01]);
+    assert_eq!(
+        t.trace.column("rel_disp").unwrap(),
+        [0.0, 0.0003267, 0.0012]
+    );
+    assert_eq!(t.trace.column("normal").unwrap(), [1e6, 1e6, 1e6]);
+    let kn = |x: f64| x * 1000.0;
+    assert_eq!(
+        t.trace.column("resistance").unwrap(),
+        [0.0, kn(1.652), kn(3.1)]
+    );
+    // the same tables as text: the same trace, the same notes but the layout's name
+    let text = read("small.txt", SMALL_TXT, &sap_format()).unwrap();
+    assert_eq!(t.trace, text.trace);
+    assert_eq!(
+        t.notes[0],
+        "SAP2000/ETABS/CSiBridge tables exported to Excel, 3 rows"
+    );
+    assert_eq!(t.notes[1..], text.notes[1..]);
+    // recognised by its extension without `format`, in any case of its letters
+    let mut f = sap_format();
+    f.layout = None;
+    assert_eq!(
+        read_file_bytes("SMALL.XLSX", SMALL_XLSX, &f).unwrap().trace,
+        t.trace
+    );
+}
+
+#[test]
+fn malformed_sap2000_workbooks_are_located_at_their_sheet_and_cell() {
+    let f = sap_format();
+    let e = |name: &str, bytes: &[u8]| read_file_bytes(name, bytes, &f).unwrap_err();
+    assert_eq!(
+        e("no-units.xlsx", NO_UNITS_XLSX),
+        "no-units.xlsx:3:1: sheet \"Joint Displacements\", cell A3: table \"Joint \
+         Displacements\": the row below the field names is not the units row (`Text, Text, \
+         …, Sec, m, …`), which an export writes there"
+    );
+    assert_eq!(
+        e("text.xlsx", TEXT_IN_NUMBER_XLSX),
+        "text.xlsx:5:8: sheet \"Element Forces - Links\", cell H5: table \"Element Forces - \
+         Links\", field \"V2\": \"1.652 kN\" is not a number"
+    );
+    assert_eq!(
+        e("joints.xlsx", NO_LINK_SHEET_XLSX),
+        "joints.xlsx: the column map names \"Link 1: P\", \"Link 1: V2\", but no sheet of the \
+         workbook has such a series (export the table that holds it); its sheets: \"Joint \
+         Displacements\""
+    );
+    assert!(
+        e("text.xlsx", SAP.as_bytes())
+            .starts_with("text.xlsx: is not a readable XLSX workbook: not a zip archive"),
+    );
+    // cut short: an error, never a panic
+    let half = &SMALL_XLSX[..SMALL_XLSX.len() / 2];
+    assert!(e("half.xlsx", half).starts_with("half.xlsx: is not a readable XLSX workbook"));
+    let ansys = format(ExternalLayout::AnsysPrvar, &[("UX_2", "rel_disp [m]", 1.0)]);
+    assert_eq!(
+        read_file_bytes("small.xlsx", SMALL_XLSX, &ansys).unwrap_err(),
+        "small.xlsx: format: is an Excel workbook: rockslide reads SAP2000/ETABS/CSiBridge \
+         tables exported to Excel (`format = \"sap2000\"`, or no format); save another \
+         program's results as the text file it writes"
+    );
+}
+
+#[test]
+fn a_workbook_that_unpacks_beyond_the_limit_is_refused_before_it_is_read() {
+    // a zip whose one part inflates to 1 GiB + 1 byte of zeros, in 1 MiB of deflate
+    let mut zip = Vec::new();
+    {
+        let mut w = zip::ZipWriter::new(std::io::Cursor::new(&mut zip));
+        let options = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Deflated)
+            .large_file(true);
+        w.start_file("xl/sharedStrings.xml", options).unwrap();
+        let block = vec![0u8; 1 << 20];
+        for _ in 0..(super::MAX_EXTERNAL_BYTES >> 20) {
+            std::io::Write::write_all(&mut w, &block).unwrap();
+        }
+        std::io::Write::write_all(&mut w, &[0]).unwrap();
+        w.finish().unwrap();
+    }
+    let why = read_file_bytes("bomb.xlsx", &zip, &sap_format()).unwrap_err();
+    assert_eq!(
+        why,
+        "bomb.xlsx: is not a readable XLSX workbook: unpacks to more than 256 MiB"
+    );
+}
