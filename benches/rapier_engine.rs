@@ -1,7 +1,9 @@
 //! Wall time of the rapier engine per simulated second, for every scene it runs, at the
-//! case files' settings (RPEPO: the paper's case, dt = 0.5 ms, inline below). Criterion
-//! reports the time of one run; the scene's duration turns it into seconds per simulated
-//! second, printed once per scene before the measurements.
+//! case files' settings (RPEPO: the paper's case, dt = 0.5 ms, inline below; the 3D
+//! rocking body: the RPEPO on 10 × 2 supports, half-depth 0.3 m, its pulse at 30°, as
+//! tests/all/rapier_space.rs builds it). Criterion reports the time of one run; the
+//! scene's duration turns it into seconds per simulated second, printed once per scene
+//! before the measurements.
 
 use std::hint::black_box;
 use std::path::Path;
@@ -57,7 +59,23 @@ fn scenes() -> Vec<(String, Case)> {
         "rpepo-mass-accel".into(),
         parse_case(Path::new("rpepo.toml"), RPEPO).expect("case parses"),
     ));
+    v.push(("rpepo-3d-10x2-azimuth30".into(), rocking_in_plan()));
     v
+}
+
+/// The shipped RPEPO as a 3D scene: two rows of its supports at half-depth 0.3 m (10 × 2),
+/// its pulse at azimuth 30°.
+fn rocking_in_plan() -> Case {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/rpepo-mass-accel.toml");
+    let text = std::fs::read_to_string(&path).expect("case reads");
+    let text = text
+        .replacen(
+            "[model]\n",
+            "[model]\nhalf_depth = 0.3\nsupport_rows = 2\n",
+            1,
+        )
+        .replacen("cycles = 5.0 ", "cycles = 5.0\nazimuth_deg = 30.0 ", 1);
+    parse_case(&path, &text).expect("case parses")
 }
 
 fn bench(c: &mut Criterion) {

@@ -37,6 +37,7 @@ mod plot_envelope;
 mod predictor_corrector;
 mod properties;
 mod rapier_block_azimuth;
+mod rapier_block_vertical_plan;
 mod rapier_options;
 mod rapier_pepo;
 mod rapier_records;

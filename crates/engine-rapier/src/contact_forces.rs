@@ -21,6 +21,8 @@ pub struct GroundForce {
     pub z: f64,
     /// Smallest contact distance, m.
     pub dist: Option<f64>,
+    /// Contact points that carried a normal impulse in the last substep.
+    pub pressed: usize,
 }
 
 /// The ground's force on `body` (through its first collider) from the contact impulses of
@@ -36,6 +38,7 @@ pub fn ground_force(
         y: 0.0,
         z: 0.0,
         dist: None,
+        pressed: 0,
     };
     let (Some(&of), Some(&on)) = (
         world.bodies[body].colliders().first(),
@@ -52,9 +55,11 @@ pub fn ground_force(
     // Impulses act on collider 1 along −normal (rapier's force direction).
     let sign = if pair.collider1 == of { 1.0 } else { -1.0 };
     let mut impulse = Vector::ZERO;
+    let mut pressed = 0;
     for m in pair.solver_manifolds() {
         for (i, p) in m.points.iter().enumerate() {
             impulse -= m.data.normal * p.data.warmstart_impulse;
+            pressed += usize::from(p.data.warmstart_impulse > 0.0);
             if !per_manifold || i == 0 {
                 impulse += p.data.warmstart_tangent_world;
             }
@@ -70,5 +75,6 @@ pub fn ground_force(
         y: sign * impulse.y / substep,
         z: sign * impulse.z / substep,
         dist,
+        pressed,
     }
 }

@@ -7,11 +7,11 @@
 
 use rapier3d_f64::prelude::*;
 
-use super::ground::GroundTable;
+use super::ground::{GroundTable, VerticalTable};
 use super::space_axes::{norm, sub, to_world};
 use super::time_loop::StepDrive;
 use super::world::GroundKind;
-use rockslide_core::case::{Excitation, Signal, Spatial};
+use rockslide_core::case::{Excitation, Signal, Spatial, Vertical};
 
 /// How the excitation enters the rapier world.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -188,6 +188,9 @@ pub(crate) struct PlanDrive<'a> {
     g1: GroundTable,
     /// The second component's.
     g2: GroundTable,
+    /// The vertical ground motion the drive moves the ground by (or pushes the body
+    /// with), if it carries one ([`PlanDrive::with_vertical`]).
+    vertical: Option<VerticalTable>,
     /// rapier's steps in the run.
     n: usize,
     /// rapier's step, s.
@@ -219,8 +222,45 @@ impl<'a> PlanDrive<'a> {
             e2,
             g1,
             g2,
+            vertical: None,
             n,
             dt,
+        }
+    }
+
+    /// The same drive carrying the vertical ground motion `vertical` (if any) by the
+    /// planar routes: the kinematic ground moved to y_g(t_{n+1}) as well, or −m·a_v on
+    /// the body over each step on a fixed ground ([`PlanDrive::vertical_force`]).
+    pub(crate) fn with_vertical(self, vertical: Option<&Vertical>) -> Self {
+        Self {
+            vertical: vertical.map(|v| VerticalTable::new(v, self.dt)),
+            ..self
+        }
+    }
+
+    /// Whether the drive carries a vertical component.
+    pub(crate) fn has_vertical(&self) -> bool {
+        self.vertical.is_some()
+    }
+
+    /// The vertical force per unit mass on a body over step k → k+1 on a fixed ground,
+    /// −(vg_y(k+1) − vg_y(k))/Δt (a_v positive upward); zero on the kinematic ground
+    /// (the ground itself moves) and without a vertical component.
+    pub(crate) fn vertical_force(&self, k: usize) -> f64 {
+        match (&self.vertical, self.drive) {
+            (Some(v), Drive::AppliedForce | Drive::InertialForce) => {
+                -(v.vel(k + 1) - v.vel(k)) / self.dt
+            }
+            _ => 0.0,
+        }
+    }
+
+    /// The ground's height at step `k` in the frame the recorder measures from: y_g on
+    /// the kinematic route, 0 on a fixed ground.
+    pub(crate) fn height(&self, k: usize) -> f64 {
+        match (&self.vertical, self.drive) {
+            (Some(v), Drive::KinematicGround) => v.disp(k),
+            _ => 0.0,
         }
     }
 
@@ -297,11 +337,16 @@ impl<'a> PlanDrive<'a> {
 }
 
 impl StepDrive for PlanDrive<'_> {
-    /// Before step k → k+1 on the kinematic route: the ground's next plan position.
+    /// Before step k → k+1 on the kinematic route: the ground's next plan position, and
+    /// with a vertical component its next height (from where it stands: the rigs place
+    /// it differently) y_g(t_{n+1}).
     fn move_ground(&self, world: &mut PhysicsWorld, ground: RigidBodyHandle, k: usize) {
         if self.drive == Drive::KinematicGround {
             let g = &mut world.bodies[ground];
-            let up = g.translation().y;
+            let mut up = g.translation().y;
+            if let Some(v) = &self.vertical {
+                up += v.disp(k + 1) - v.disp(k);
+            }
             g.set_next_kinematic_translation(to_world(self.disp(k + 1), up));
         }
     }

@@ -244,7 +244,10 @@ fn recorded_layout(case: &Case) -> Option<(usize, usize)> {
                 let grid = RockingGrid::from_scene(r, spatial.depth?, spatial.inertia);
                 (space_rocking::channels(moves).len(), grid.points.len())
             }
-            _ => (space_axes::plan_channels(moves).len(), 1),
+            _ => (
+                space_axes::plan_channels(moves, case.scene.vertical().is_some()).len(),
+                1,
+            ),
         });
     }
     Some(match model {

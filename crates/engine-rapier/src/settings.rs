@@ -345,7 +345,7 @@ impl RapierSettings {
             friction_model: self.friction,
             ..IntegrationParameters::default()
         };
-        // FIELD-NOTES: friction in the bias pass makes stuck bodies creep; keep it off.
+        // Friction in the bias pass makes stuck bodies creep; keep it off.
         p.friction_in_bias_pass = false;
         // No continuous collision detection: no body of these scenes moves a sizeable part
         // of its size in one step, so CCD never clamps a motion, and with it on rapier still

@@ -17,8 +17,11 @@
 //! The ground moves by either route of the planar engine (`Drive`): a kinematic ground
 //! moved to x_g(t_{n+1}) in plan each step, or a fixed ground with the inertial force
 //! −m·(v_g(n+1) − v_g(n))/Δt on the body. Traces keep the planar keys for x and add the
-//! catalogue's y channels, the resultant sliding and its azimuth. Vertical motion under
-//! the 3D block is not modelled ("not applicable", with why).
+//! catalogue's y channels, the resultant sliding and its azimuth. A vertical component
+//! moves the block's ground by the planar routes (the kinematic ground to y_g(t_{n+1}),
+//! or −m·a_v on the block over a fixed ground): rapier's contact carries N(t), its cone
+//! μ·N(t), and the block flies when the ground drops faster than g; the oscillator and
+//! the rocking body stand on their springs Kz (their own rigs).
 
 use rapier3d_f64::prelude::FrictionModel;
 
@@ -39,25 +42,23 @@ use rockslide_core::error::InputError;
 use rockslide_core::trace::q;
 use rockslide_engine_api::{NotApplicable, Run, Setting, StepSink, Variant, step_count};
 
-/// Why rapier does not run a 3D scene, if it does not. A vertical component is the
-/// oscillator's only ([`PlanVertical`]: its support's Kz, as in 2D).
+/// Why rapier does not run a 3D scene, if it does not. Under a vertical component the
+/// oscillator and the rocking body stand on their supports' Kz ([`PlanVertical`]: as in
+/// 2D), the block on rapier's contact.
 pub fn check(scene: &Scene) -> Result<(), NotApplicable> {
     if let Some(v) = scene.vertical() {
-        return match &scene.model {
-            Model::Oscillator(_) if v.normal_force == NormalForce::QuasiStatic => Err(NotApplicable(
+        match &scene.model {
+            Model::Oscillator(_) if v.normal_force == NormalForce::QuasiStatic => return Err(NotApplicable(
                 "rapier's oscillator in plan under vertical motion stands on its vertical stiffness Kz: a rigid vertical contact (normal_force = \"quasi-static\") is not its model".into(),
             )),
-            Model::RockingBody(_) if v.normal_force == NormalForce::QuasiStatic => Err(NotApplicable(
+            Model::RockingBody(_) if v.normal_force == NormalForce::QuasiStatic => return Err(NotApplicable(
                 "rapier's rocking body in plan stands on its supports' Kz: a rigid vertical contact (normal_force = \"quasi-static\") is not its model".into(),
             )),
-            Model::Oscillator(o) if o.double.is_some() => Err(NotApplicable(
+            Model::Oscillator(o) if o.double.is_some() => return Err(NotApplicable(
                 "rapier models vertical motion in plan on the single contact, not the double arrangement".into(),
             )),
-            Model::Oscillator(_) | Model::RockingBody(_) => Ok(()),
-            Model::RigidBlock(_) => Err(NotApplicable(
-                "vertical excitation in a bidirectional (3D) scene is not yet modelled for rapier's rigid block (the slab block in plan is not built for it)".into(),
-            )),
-        };
+            _ => {}
+        }
     }
     match &scene.model {
         Model::RigidBlock(b) if b.initial_tilt != 0.0 => Err(NotApplicable(
@@ -82,7 +83,8 @@ pub fn block_kinematic_stride(
 ) -> (usize, f64, f64, f64) {
     let ex = &case.scene.excitation;
     let n = step_count(case.run.duration, dt);
-    let pilot_drive = PlanDrive::new(Drive::InertialForce, ex, spatial, dt, n);
+    let pilot_drive = PlanDrive::new(Drive::InertialForce, ex, spatial, dt, n)
+        .with_vertical(case.scene.vertical());
     let abs_ag = pilot_drive.abs_acceleration_integral();
     let mut path = PathLength::of(q::SLIDE.key, Some(q::SLIDE_Y.key));
     run_block(b, half_depth, settings, &pilot_drive, (dt, 1), n, &mut path);
@@ -247,7 +249,8 @@ fn block_case(
         1
     };
     let dt_in = dt / stride as f64;
-    let pd = PlanDrive::new(drive, ex, spatial, dt_in, n * stride);
+    let vertical = case.scene.vertical();
+    let pd = PlanDrive::new(drive, ex, spatial, dt_in, n * stride).with_vertical(vertical);
     said.described.push(Setting::text("block", format!(
             "uniform cuboid 2b × 2h × 2d = {} × {} × {} m (x, z, y), mass {} kg, on the ground slab, free in x, y, z and yaw, its tipping rotations locked (the friction's tangent effective mass isotropic: free to tip, a 2 × 1 m slab slid 6.6° off its drive)",
             2.0 * b.half_width,
@@ -260,6 +263,12 @@ fn block_case(
         format!("{dt_in} (stride {stride}, {} substeps)", settings.substeps),
     ));
     said.described.push(Setting::text("friction cone", "circular: rapier 0.36 solves each friction constraint's two tangential impulses together and caps their magnitude at μ·N"));
+    if vertical.is_some() {
+        said.described.push(Setting::text("vertical ground motion", match drive {
+            Drive::KinematicGround => "kinematic ground moved to y_g(t_{n+1}) each step with its plan motion (a_v integrated twice, exactly between samples); uplift measured from the moving ground; N from rapier's contact (restitution 0: a landing block loses its vertical velocity), the cone's radius μ·N",
+            _ => "fixed ground; −m·(vg_y(n+1) − vg_y(n))/Δt on the block over each step (a_v positive upward); N from rapier's contact (restitution 0: a landing block loses its vertical velocity), the cone's radius μ·N",
+        }));
+    }
     said.findings.push(format!(
         "measured against the plan-motion block reference with the Simplified friction model (docs/rapier-engine.md, \"Plan motion\"): {BLOCK_MEASURED}{}",
         if settings.friction == FrictionModel::Coulomb {
@@ -268,6 +277,11 @@ fn block_case(
             ""
         }
     ));
+    if vertical.is_some() {
+        said.findings.push(format!(
+            "under a vertical component, measured (docs/rapier-engine.md, \"Plan motion\"): {BLOCK_VERTICAL_MEASURED}"
+        ));
+    }
     said.findings.push(tipping_finding(b, depth));
     Ok(run_block(b, depth, settings, &pd, (dt, stride), n, sink))
 }
@@ -330,6 +344,10 @@ const OSCILLATOR_MEASURED: &str = "peaks and residual +0.003 %, slip start −0.
 /// The vertical component's measured agreement, stated in its runs' findings
 /// (tests/all/vertical_plan.rs).
 const VERTICAL_MEASURED: &str = "; with a vertical pulse at 2/3 on its spring Kz (pepo-pulse-azimuth30-vertical) peaks and residual within 0.00003 %, slip start −0.8 ms";
+
+/// The block's measured agreement under a vertical component, stated in its runs'
+/// findings (tests/all/rapier_block_vertical_plan.rs, the case's own gates).
+const BLOCK_VERTICAL_MEASURED: &str = "three components of one station without lift-off (block-ridgecrest-ccc-xyz, against the plan-motion reference with μ·(g + a_v)): peak / residual resultant sliding +0.025 / +0.024 % (inertial force), +0.008 / +0.008 % (kinematic ground), 16 slip episodes as the reference's; lifting off (block-liftoff at 30°, against the exact planar block with its flight along the drive): residual +0.018 % (inertial force) / −0.11 % (kinematic ground), peak uplift −0.003 / +0.45 %, first full lift-off +0.86 ms on the inertial route (the kinematic ground's contact chatters before it), the slide along the drive to 6e-15 m";
 
 /// The block's measured agreement, stated in its runs' findings
 /// (tests/all/rapier_space.rs).

@@ -51,8 +51,10 @@ pub(crate) fn radial_return(k: f64, limit: f64, p: &mut [f64; 2], u: [f64; 2]) -
     }
 }
 
-/// The channels every 3D run records (the x channels keep the planar keys).
-pub(crate) fn plan_channels(moves: bool) -> Vec<&'static Quantity> {
+/// The channels every 3D run of a block or an oscillator records (the x channels keep
+/// the planar keys); `lifts`: under a vertical component, the body's uplift above the
+/// ground and its contacts (points pressed), so that a lift-off shows.
+pub(crate) fn plan_channels(moves: bool, lifts: bool) -> Vec<&'static Quantity> {
     let mut c = vec![
         &q::FORCE,
         &q::RESISTANCE,
@@ -67,6 +69,9 @@ pub(crate) fn plan_channels(moves: bool) -> Vec<&'static Quantity> {
         &q::SLIDE_AZIMUTH,
         &q::NORMAL,
     ];
+    if lifts {
+        c.extend([&q::UPLIFT, &q::CONTACTS]);
+    }
     if moves {
         c.push(&q::GROUND_DISP);
     }
@@ -82,12 +87,16 @@ pub(crate) struct PlanRow {
     pub(crate) vel: [f64; 2],
     pub(crate) acc: f64,
     pub(crate) normal: f64,
+    /// Under a vertical component: the uplift above the ground (m, ≥ 0) and the
+    /// contacts pressed.
+    pub(crate) lift: Option<(f64, f64)>,
     pub(crate) ground: f64,
 }
 
 impl PlanRow {
+    /// The row into `out`, laid out as [`plan_channels`] (`out` as long as its channels).
     pub(crate) fn write(&self, out: &mut [f64]) {
-        let vals = [
+        let head = [
             self.force[0],
             self.resistance,
             self.rel_disp[0],
@@ -100,9 +109,19 @@ impl PlanRow {
             norm(self.slide),
             azimuth_deg(self.slide),
             self.normal,
-            self.ground,
         ];
-        let len = out.len();
-        out.copy_from_slice(&vals[..len]);
+        let (first, rest) = out.split_at_mut(head.len());
+        first.copy_from_slice(&head);
+        let rest = match self.lift {
+            Some((uplift, contacts)) => {
+                rest[0] = uplift;
+                rest[1] = contacts;
+                &mut rest[2..]
+            }
+            None => rest,
+        };
+        if let Some(ground) = rest.first_mut() {
+            *ground = self.ground;
+        }
     }
 }

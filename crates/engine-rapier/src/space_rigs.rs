@@ -2,12 +2,15 @@
 //! ([`run_loop`]) drives with a [`PlanDrive`], and its recorder:
 //!
 //! - the oscillator (PEPO): one body free in the horizontal plane (and vertically on its
-//!   spring Kz under a vertical component; no collider) with its contact as an applied
+//!   spring Kz under a vertical component, its uplift recorded; no collider) with its
+//!   contact as an applied
 //!   force the engine computes after every rapier step: the spring Kx·(u − p) in series
 //!   with a massless slider p returned radially onto the circle |F| ≤ μ·N, plus the
 //!   viscous C·u̇ ([`PlanOscillator`]);
 //! - the rigid block on the ground slab, free in x, y, z and yaw, its tipping rotations
-//!   locked ([`SlabBlock`]).
+//!   locked ([`SlabBlock`]); under a vertical component the drive moves its ground
+//!   vertically too or pushes it with −m·a_v, and the recorder adds its uplift and the
+//!   contact points that carried a force.
 //!
 //! The contact block gives |T|, N and the slip accumulated along the friction force
 //! (Σ T̂·Δs, so that |T|·Δslip is the friction work T·Δs the dissipation invariant
@@ -218,7 +221,7 @@ pub fn run_oscillator(
     let dt_in = dt / stride as f64;
     let mut rig = PlanOscillator::new(osc, settings, (pd, vertical), dt_in);
     let moves = pd.first.moves_ground();
-    let channels = plan_channels(moves);
+    let channels = plan_channels(moves, vertical.is_some());
     // The one contact, |T| = |F| ≤ μ·N: compliance 0 without vertical motion, 1/Kz with.
     let trace = layout(&channels, 1, vertical.map_or(0.0, |v| 1.0 / v.kz));
     let mut row = vec![0.0; channels.len()];
@@ -239,6 +242,8 @@ pub fn run_oscillator(
             vel: v,
             acc,
             normal,
+            // the spring's opening above the ground (0 while closed) and the contact
+            lift: vertical.map(|_| (rig.height().max(0.0), f64::from(normal > 0.0))),
             ground: pd.disp(k)[0],
         }
         .write(&mut row);
@@ -318,13 +323,15 @@ impl Rig<PlanDrive<'_>> for SlabBlock {
         self.ground
     }
 
-    /// The drive's force on the block over the step (zero on the kinematic ground).
+    /// The drive's force on the block over the step, in plan and, under a vertical
+    /// component, −m·a_v up (zero on the kinematic ground: the ground itself moves).
     fn load(&mut self, pd: &PlanDrive, k: usize) {
         let a = pd.specific_force(k);
         let m = self.m;
+        let up = m * pd.vertical_force(k);
         let body = &mut self.world.bodies[self.block];
         body.reset_forces(false);
-        body.add_force(to_world([m * a[0], m * a[1]], 0.0), false);
+        body.add_force(to_world([m * a[0], m * a[1]], up), false);
     }
 
     /// Nothing: the contact is rapier's.
@@ -345,10 +352,10 @@ pub fn run_block(
     let dt_in = dt / stride as f64;
     let mut rig = SlabBlock::new(b, half_depth, settings, pd, dt_in);
     let moves = pd.first.moves_ground();
-    let channels = plan_channels(moves);
+    let channels = plan_channels(moves, pd.has_vertical());
     let trace = layout(&channels, 1, 0.0);
     let mut row = vec![0.0; channels.len()];
-    let m = b.mass;
+    let (m, hh) = (b.mass, b.half_height);
     let (block, ground) = (rig.block, rig.ground);
     let start = plan(rig.world.bodies[block].translation());
     let mut v_prev = [0.0, 0.0];
@@ -374,6 +381,14 @@ pub fn run_block(
             vel: v,
             acc,
             normal: gf.y,
+            // the base's height above the ground (its soft contact's sink at rest read as
+            // 0) and the contact points that carried a force (at the start, before any
+            // contact is solved, the four corners of the base standing on the ground)
+            lift: pd.has_vertical().then(|| {
+                let base = body.translation().y - hh - pd.height(k);
+                let pressed = if k == 0 { 4 } else { gf.pressed };
+                (base.max(0.0), pressed as f64)
+            }),
             ground: pd.disp(k)[0],
         }
         .write(&mut row);

@@ -1,4 +1,4 @@
-//! Vertical ground motion (issue 15) in the rigid-body engine, by both routes the
+//! Vertical ground motion in the rigid-body engine, by both routes the
 //! horizontal motion takes:
 //!
 //! - *kinematic ground*: the ground body is moved to (xg, yg)(t_{n+1}) each step, yg the

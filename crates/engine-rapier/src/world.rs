@@ -144,7 +144,7 @@ pub(crate) fn add_ground(world: &mut PhysicsWorld, kind: GroundKind, mu: f64) ->
 
 /// The oscillator (PEPO, linear SDOF): a point mass joined to one foot on the ground by
 /// a horizontal spring joint (stiffness Kx, viscous C = 2ζMω), locked in every other
-/// direction. Following FIELD-NOTES, the foot carries the mass's weight directly
+/// direction. The foot carries the mass's weight directly
 /// (gravity scale M/m_f, so its normal force is M·g exactly) and the mass has no gravity,
 /// so the joint carries only the horizontal spring: the vertical load path never goes
 /// through a 1000:1 mass ratio. Both bodies have their rotations locked (sliding only).
@@ -317,7 +317,8 @@ pub fn rocking_inertia(r: &RockingBody) -> f64 {
 /// as the paper's contact elements do; the body's rotation about Z is free at each foot.
 /// A foot whose spring goes into tension lifts off (compression-only support); each foot
 /// slides on its own with μ times its own normal force. The vertical load path runs
-/// through the joints: that is the hard part for rapier's solver (FIELD-NOTES).
+/// through the joints: that is the hard part for rapier's solver (a large mass ratio
+/// across a joint chain converges slowly).
 /// The springs start compressed by the static preload W/(n·Kz).
 pub fn rocking_body(r: &RockingBody, s: &RapierSettings, dt: f64, kind: GroundKind) -> Rig {
     let mu = rapier_friction(r.contact.mu);
