@@ -194,6 +194,9 @@ where
         }
     }
 
+    /// The dimension's own step, typed as this model's: the plane's is written for its
+    /// unknowns (`StepFn<3, 2, _>`), which are this impl's Q and N for the plane, so the
+    /// check is always met (once per run).
     fn own_step(&self) -> Option<StepFn<Q, N, Self>> {
         D::own_step(self)?
             .downcast_ref::<StepFn<Q, N, Self>>()
