@@ -375,7 +375,7 @@ fn a_compression_negative_normal_force_fails_until_the_map_gives_its_sign() {
 
 /// The fe run's trace as SAP2000 exports its tables to Excel:
 /// `tests/data/external/sap2000-pepo.xlsx`, written with openpyxl by `make_sap2000_xlsx.py`
-/// beside it from the fe trace of [`PEPO`] (`rockslide run` with `--full-traces`): the
+/// beside it from the fe trace of [`PEPO`] (`rockslide run` on it writes `fe-single.csv`): the
 /// sheets "Joint Displacements" (joints 1 and 2, `U1` in m) and "Element Forces - Links"
 /// (link 1, `P` −1000 kN, `V2` the resistance in kN), numbers as number cells.
 const SAP2000_XLSX: &str = concat!(

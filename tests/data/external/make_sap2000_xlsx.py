@@ -8,8 +8,8 @@ table (one row per object per output step), numbers as number cells.
 
 TRACE.csv is a trace rockslide writes (`time [s],rel_disp [m],…,resistance [N],…`); the
 fixture `sap2000-pepo.xlsx` beside this script was written from the fe engine's single
-PEPO trace of `tests/all/external_programs.rs` (`rockslide run` with `--full-traces` on
-its case): joints 1 (the ground, at rest) and 2 (the mass, `U1` its relative
+PEPO trace of `tests/all/external_programs.rs` (`rockslide run` on that case
+writes it as `fe-single.csv`): joints 1 (the ground, at rest) and 2 (the mass, `U1` its relative
 displacement, m), link 1 (`P` the weight as a tension-positive −1000 kN, `V2` the
 resistance, kN).
 """

@@ -233,6 +233,11 @@ impl<'a> Reader<'a> {
         self.table.is_some()
     }
 
+    /// Whether data rows of the output case read were found.
+    pub(super) fn read_rows(&self) -> bool {
+        self.case_read.is_some()
+    }
+
     /// The table ends (a workbook's sheet ends).
     pub(super) fn end_table(&mut self) {
         self.table = None;

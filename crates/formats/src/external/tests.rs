@@ -658,6 +658,12 @@ fn malformed_sap2000_workbooks_are_located_at_their_sheet_and_cell() {
         e("text.xlsx", SAP.as_bytes())
             .starts_with("text.xlsx: is not a readable XLSX workbook: not a zip archive"),
     );
+    let mut dead = sap_format();
+    dead.output_case = Some("DEAD".into());
+    assert_eq!(
+        read_file_bytes("small.xlsx", SMALL_XLSX, &dead).unwrap_err(),
+        "small.xlsx: has no rows of OutputCase \"DEAD\"; its output cases: TH"
+    );
     // cut short: an error, never a panic
     let half = &SMALL_XLSX[..SMALL_XLSX.len() / 2];
     assert!(e("half.xlsx", half).starts_with("half.xlsx: is not a readable XLSX workbook"));

@@ -76,7 +76,9 @@ pub(super) fn read(
             quoted(&names)
         )));
     }
-    check_map_names(&reader.sheet, format, &names)?;
+    if reader.read_rows() {
+        check_map_names(&reader.sheet, format, &names)?;
+    }
     if !skipped.is_empty() {
         let why = format!(
             "sheets without a `TABLE:` title in row 1 skipped: {}",
@@ -125,6 +127,10 @@ fn read_sheet(
         }
         if text.is_empty() {
             continue;
+        }
+        if c <= row.len() {
+            let why = "a cell repeated or out of order in the sheet's XML";
+            return Err(reader.sheet.error((first_line + r, c), why).into());
         }
         while row.len() < c - 1 {
             let col = row.len() + 1;
