@@ -1,7 +1,7 @@
 //! Markdown rendering of the document model: GitHub-flavoured tables, figures as links
 //! to the SVG files written beside the page, the case file in a collapsible block.
-//! The content itself is built by each page's document (`report/document.rs`, the sweep,
-//! stability and study documents).
+//! The content itself is built by each page's document (`report/document.rs` and
+//! `report/suite_document.rs`, the sweep, stability and study documents).
 
 use std::fmt::Write;
 

@@ -89,6 +89,18 @@ pub(crate) struct Table {
     pub rows: Vec<Vec<Cell>>,
 }
 
+impl Table {
+    /// An empty table with these columns: each one's title and whether it is numeric
+    /// (right-aligned).
+    pub(crate) fn with_columns(columns: &[(&str, bool)]) -> Self {
+        Table {
+            header: columns.iter().map(|(title, _)| title.to_string()).collect(),
+            numeric: columns.iter().map(|(_, numeric)| *numeric).collect(),
+            rows: Vec::new(),
+        }
+    }
+}
+
 /// A block of a document.
 #[derive(Debug, Clone, PartialEq)]
 pub(crate) enum Block {

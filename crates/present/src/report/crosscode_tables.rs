@@ -192,20 +192,14 @@ pub(super) fn history_table(r: &CaseResult) -> Option<Table> {
     if r.runs.is_empty() {
         return None;
     }
-    let mut t = Table {
-        header: [
-            "Run",
-            "dt [s]",
-            "max |Δ| / peak",
-            "RMS Δ / peak",
-            "status",
-            "wall time [ms]",
-        ]
-        .map(String::from)
-        .to_vec(),
-        numeric: vec![false, true, true, true, false, true],
-        rows: Vec::new(),
-    };
+    let mut t = Table::with_columns(&[
+        ("Run", false),
+        ("dt [s]", true),
+        ("max |Δ| / peak", true),
+        ("RMS Δ / peak", true),
+        ("status", false),
+        ("wall time [ms]", true),
+    ]);
     for (run, e) in r.runs.iter().zip(&r.history_errors) {
         t.rows.push(vec![
             run.label().into(),

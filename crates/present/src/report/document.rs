@@ -241,20 +241,14 @@ fn setting_text(s: &rockslide_engine_api::Setting) -> String {
 
 /// One row per invariant and run: measured worst value, where, the engine's limit, verdict.
 fn invariants_table(r: &CaseResult) -> Table {
-    let mut t = Table {
-        header: [
-            "Invariant",
-            "Run",
-            "Worst excess (0: never)",
-            "At t (s)",
-            "Limit",
-            "Verdict",
-        ]
-        .map(String::from)
-        .to_vec(),
-        numeric: vec![false, false, true, true, true, false],
-        rows: Vec::new(),
-    };
+    let mut t = Table::with_columns(&[
+        ("Invariant", false),
+        ("Run", false),
+        ("Worst excess (0: never)", true),
+        ("At t (s)", true),
+        ("Limit", true),
+        ("Verdict", false),
+    ]);
     for i in &r.invariants {
         let verdict = match (i.holds(), &i.expected) {
             (true, _) => Cell::toned("PASS: holds", Tone::Pass),

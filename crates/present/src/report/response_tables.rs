@@ -118,26 +118,18 @@ pub(super) fn response_table(r: &CaseResult) -> (Table, Vec<String>) {
 
 /// The tolerance checks, one row per check.
 pub(super) fn checks_table(r: &CaseResult) -> Table {
-    let mut t = Table {
-        header: [
-            "Quantity",
-            "Run",
-            "Against",
-            "Value",
-            "Basis",
-            "Unit",
-            "Δ %",
-            "Tolerance",
-            "Gated",
-            "Result",
-        ]
-        .map(String::from)
-        .to_vec(),
-        numeric: vec![
-            false, false, false, true, true, false, true, false, false, false,
-        ],
-        rows: Vec::new(),
-    };
+    let mut t = Table::with_columns(&[
+        ("Quantity", false),
+        ("Run", false),
+        ("Against", false),
+        ("Value", true),
+        ("Basis", true),
+        ("Unit", false),
+        ("Δ %", true),
+        ("Tolerance", false),
+        ("Gated", false),
+        ("Result", false),
+    ]);
     for ch in &r.checks {
         t.rows.push(vec![
             ch.quantity.clone().into(),

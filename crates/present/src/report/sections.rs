@@ -47,22 +47,16 @@ pub(crate) fn energy_blocks(r: &CaseResult) -> Vec<Block> {
     b.push(Block::Para(
         "Each trace is audited by the same independent arithmetic (`analysis::energy`), whatever engine wrote it: input work W = ∫F dx (plus the work of ground-velocity jumps) against kinetic ½Mv², strain ½R²/K, friction ∫R dxp and damping ∫C·v dx, all at the end of the run, in kJ. Balance error = E0 + W − (kinetic + strain + friction + damping): positive is energy the method lost, negative energy it created. Relative error = largest |balance error| over the run / largest energy. The reference's own audit is the floor set by the trapezoidal rule on its sampled trace.".into(),
     ));
-    let mut t = Table {
-        header: [
-            "Run",
-            "input E0 + W [kJ]",
-            "kinetic [kJ]",
-            "strain [kJ]",
-            "friction [kJ]",
-            "damping [kJ]",
-            "balance error at end [kJ]",
-            "relative error",
-        ]
-        .map(String::from)
-        .to_vec(),
-        numeric: vec![false, true, true, true, true, true, true, true],
-        rows: Vec::new(),
-    };
+    let mut t = Table::with_columns(&[
+        ("Run", false),
+        ("input E0 + W [kJ]", true),
+        ("kinetic [kJ]", true),
+        ("strain [kJ]", true),
+        ("friction [kJ]", true),
+        ("damping [kJ]", true),
+        ("balance error at end [kJ]", true),
+        ("relative error", true),
+    ]);
     let mut skipped = Vec::new();
     for (label, a) in &audits {
         match a {

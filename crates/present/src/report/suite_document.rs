@@ -60,23 +60,17 @@ fn verdict_blocks(results: &[CaseResult]) -> Vec<Block> {
 /// One row per case: its runs, the engines that do not apply, its reference, its checks
 /// and failures, and its gate.
 fn cases_table(results: &[CaseResult]) -> Table {
-    let mut t = Table {
-        header: [
-            "Case",
-            "Title",
-            "Runs",
-            "n/a",
-            "Reference",
-            "Checks",
-            "Failed",
-            "Informative fails",
-            "Gate",
-        ]
-        .map(String::from)
-        .to_vec(),
-        numeric: vec![false, false, true, false, false, true, true, true, false],
-        rows: Vec::new(),
-    };
+    let mut t = Table::with_columns(&[
+        ("Case", false),
+        ("Title", false),
+        ("Runs", true),
+        ("n/a", false),
+        ("Reference", false),
+        ("Checks", true),
+        ("Failed", true),
+        ("Informative fails", true),
+        ("Gate", false),
+    ]);
     for r in results {
         let failed = gated_failures(r);
         let na: Vec<String> = super::table::absent_engines(r)

@@ -10,18 +10,9 @@ use rockslide_verify::analysis::stability::Class;
 use rockslide_verify::sweep::StabilityResult;
 use rockslide_verify::sweep::stability::{Limit, StabilityRun};
 
-/// A table from its header (`true`: numeric, right-aligned).
-fn table(columns: &[(&str, bool)]) -> Table {
-    Table {
-        header: columns.iter().map(|c| c.0.to_string()).collect(),
-        numeric: columns.iter().map(|c| c.1).collect(),
-        rows: Vec::new(),
-    }
-}
-
 /// The practical stability limits, one row per engine variant; the limit in bold.
 fn limits_table(limits: &[Limit]) -> Table {
-    let mut t = table(&[
+    let mut t = Table::with_columns(&[
         ("engine/variant", false),
         ("first diverging rung Δt/T (scenes)", false),
         ("stable up to (ladder)", true),
@@ -105,7 +96,7 @@ const MAP_LEGEND: &str = "Rows: scene · engine/variant; columns: Δt/T. Cells: 
 
 /// Every run with its class, time, error and energy audit.
 fn runs_table(st: &StabilityResult) -> Table {
-    let mut t = table(&[
+    let mut t = Table::with_columns(&[
         ("scene", false),
         ("engine/variant", false),
         ("Δt/T", true),
@@ -167,7 +158,7 @@ pub(crate) fn document(r: &StabilityResult) -> Vec<Block> {
         Block::Table(limits_table(&r.limits)),
         Block::Heading(2, "Scenes".into()),
     ];
-    let mut scenes = table(&[
+    let mut scenes = Table::with_columns(&[
         ("scene", false),
         ("title", false),
         ("T [s]", true),

@@ -133,23 +133,17 @@ fn provenance_facts(c: &Study) -> Block {
 /// One row per point and run: the point's record, PGA, μ and polarity, the run, its
 /// status and its sliding in mm.
 fn runs_table(c: &Study) -> Table {
-    let mut t = Table {
-        header: [
-            "point",
-            "record",
-            "PGA [g]",
-            "μ",
-            "pol.",
-            "run",
-            "status",
-            "residual sliding [mm]",
-            "peak abs. sliding [mm]",
-        ]
-        .map(String::from)
-        .to_vec(),
-        numeric: vec![false, false, true, true, true, false, false, true, true],
-        rows: Vec::new(),
-    };
+    let mut t = Table::with_columns(&[
+        ("point", false),
+        ("record", false),
+        ("PGA [g]", true),
+        ("μ", true),
+        ("pol.", true),
+        ("run", false),
+        ("status", false),
+        ("residual sliding [mm]", true),
+        ("peak abs. sliding [mm]", true),
+    ]);
     let mm = |x: Option<f64>| {
         x.map_or_else(|| "—".into(), |v| rockslide_core::response::sig(v * 1000.0))
     };

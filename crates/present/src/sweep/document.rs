@@ -11,15 +11,6 @@ use rockslide_verify::suite::CaseResult;
 use rockslide_verify::sweep::SweepResult;
 use rockslide_verify::sweep::work_precision::{Rung, SeriesResult};
 
-/// A table from its header (`true`: numeric, right-aligned).
-fn table(columns: &[(&str, bool)]) -> Table {
-    Table {
-        header: columns.iter().map(|c| c.0.to_string()).collect(),
-        numeric: columns.iter().map(|c| c.1).collect(),
-        rows: Vec::new(),
-    }
-}
-
 /// Cells of one Richardson estimate (made with the series' one observed order): quantity,
 /// extrapolated value, GCI.
 fn richardson_cells(quantity: &str, estimate: Option<Richardson>) -> Vec<Cell> {
@@ -73,7 +64,7 @@ fn event_cell(g: &Rung) -> String {
 
 /// The full rung table of one series (the sweep's own page).
 fn rung_table(se: &SeriesResult) -> Table {
-    let mut t = table(&[
+    let mut t = Table::with_columns(&[
         ("Δt [s]", true),
         ("Δt/T", true),
         ("substep [s]", true),
@@ -345,7 +336,7 @@ fn series_blocks(r: &SweepResult, se: &SeriesResult) -> Vec<Block> {
     let extrapolations = se.extrapolations(r.ratio);
     if !extrapolations.is_empty() {
         b.push(Block::Para(richardson_sentence(r.ratio)));
-        let mut t = table(&RICHARDSON_COLUMNS);
+        let mut t = Table::with_columns(&RICHARDSON_COLUMNS);
         t.rows.extend(
             extrapolations
                 .into_iter()
@@ -358,7 +349,7 @@ fn series_blocks(r: &SweepResult, se: &SeriesResult) -> Vec<Block> {
 
 /// The case report's summary of a sweep: per series, its order and its finest rung.
 fn summary_table(s: &SweepResult) -> Table {
-    let mut summary = table(&[
+    let mut summary = Table::with_columns(&[
         ("Engine/variant", false),
         (&order_header(), true),
         ("rungs", true),
@@ -382,7 +373,7 @@ fn summary_table(s: &SweepResult) -> Table {
 
 /// Every rung of every series of a sweep, for the case report.
 fn rungs_table(s: &SweepResult) -> Table {
-    let mut t = table(&[
+    let mut t = Table::with_columns(&[
         ("Engine/variant", false),
         ("Δt [s]", true),
         ("Δt/T", true),
@@ -428,7 +419,7 @@ fn richardson_blocks(s: &SweepResult) -> Vec<Block> {
         b.push(Block::Para(richardson_sentence(s.ratio)));
         let mut columns = vec![("Engine/variant", false)];
         columns.extend(RICHARDSON_COLUMNS);
-        let mut rt = table(&columns);
+        let mut rt = Table::with_columns(&columns);
         for se in &s.series {
             for (q, e) in se.extrapolations(s.ratio) {
                 let mut cells: Vec<Cell> = vec![se.label.clone().into()];
