@@ -1,5 +1,5 @@
-//! Cost per time step of the fe model in 3D (issue 16: an RPEPO-size 3D model, 10 × 2
-//! supports with double elements, at most 5 µs per step). Each iteration runs the whole
+//! Cost per time step of the fe model in 3D (an RPEPO-size 3D model, 10 × 2
+//! supports with double elements; aim 2 µs per step). Each iteration runs the whole
 //! RPEPO mass-acceleration case (2 s at Δt = 1e-3 s, static preload and recording
 //! included) on the 3D model: the RPEPO's 10 supports split into a symmetric 10 × 2 grid
 //! (half stiffnesses each), and the same grid turned 30° under the pulse at 30°, so that

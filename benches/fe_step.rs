@@ -1,4 +1,4 @@
-//! Cost per time step of the FE engine (issue 3: RPEPO-double at most 10 µs per step on
+//! Cost per time step of the FE engine (the RPEPO double: at most 10 µs per step on
 //! one core, aim 2 µs). Each iteration runs a whole case at Δt = 1e-3 s (static preload,
 //! eigenfrequencies and trace included, sensitivity reruns off); criterion's throughput
 //! line gives steps per second, i.e. 1e9 / (ns per step).

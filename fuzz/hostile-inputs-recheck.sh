@@ -1,5 +1,5 @@
 #!/bin/sh
-# Re-check every input issue 19 lists against a release build: one Markdown table row per
+# Re-check the hostile inputs (huge sizes, devices, escaping names, …) against a release build: one Markdown table row per
 # input (exit code, wall time, first line of the answer). Run from the repository root
 # after `cargo build --release`; writes only into a temporary folder it removes.
 set -u
