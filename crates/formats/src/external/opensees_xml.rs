@@ -35,6 +35,9 @@ fn attribute<'a>(tag: &'a str, name: &str) -> Option<&'a str> {
     Some(&rest[..rest.find('"')?])
 }
 
+/// A column the header names: its name and where (line, column).
+type ColumnName = (String, usize, usize);
+
 /// Read an `-xml` recorder file (see the module docs).
 pub(super) fn read_xml(
     path: &Path,
@@ -42,59 +45,7 @@ pub(super) fn read_xml(
     format: &ExternalFormat,
 ) -> Result<ExternalTrace, InputErrors> {
     let mut sheet = Sheet::new(path, "OpenSees -xml recorder file", "time");
-    let mut names: Vec<(String, usize, usize)> = Vec::new();
-    let mut object: Option<String> = None;
-    let mut data_from = None;
-    for (index, raw) in text.lines().enumerate() {
-        let line_no = index + 1;
-        let line = raw.trim();
-        let col = raw.len() - raw.trim_start().len() + 1;
-        if line.starts_with("<Data") {
-            data_from = Some(index + 1);
-            break;
-        }
-        if line.starts_with("<TimeOutput") {
-            object = Some(String::new());
-        } else if line.starts_with("<NodeOutput") || line.starts_with("<ElementOutput") {
-            let (kind, key) = if line.starts_with("<NodeOutput") {
-                ("node", "nodeTag")
-            } else {
-                ("element", "eleTag")
-            };
-            let Some(tag) = attribute(line, key) else {
-                let why = format!(
-                    "<{}> has no {key} attribute",
-                    &line[1..line.find([' ', '>']).unwrap_or(line.len())]
-                );
-                return Err(sheet.error((line_no, col), why).into());
-            };
-            object = Some(format!("{kind} {tag}"));
-        } else if let Some(rest) = line.strip_prefix("<ResponseType>") {
-            let Some(end) = rest.find("</ResponseType>") else {
-                let why = "<ResponseType> is not closed on its line";
-                return Err(sheet.error((line_no, col), why).into());
-            };
-            let response = rest[..end].trim();
-            let name = match object.as_deref() {
-                Some("") => response.to_string(),
-                Some(o) => format!("{o} {response}"),
-                None => {
-                    let why =
-                        "a <ResponseType> outside <TimeOutput>, <NodeOutput> or <ElementOutput>";
-                    return Err(sheet.error((line_no, col), why).into());
-                }
-            };
-            names.push((name, line_no, col));
-        }
-    }
-    let Some(first) = data_from else {
-        let why = "has no <Data> element: an OpenSees -xml recorder file names its columns, then holds its rows in <Data>";
-        return Err(sheet.error((1, 1), why).into());
-    };
-    if names.first().map(|n| n.0.as_str()) != Some("time") {
-        let why = "its columns start with no <TimeOutput>: add `-time` to the recorder";
-        return Err(sheet.error((1, 1), why).into());
-    }
+    let (names, first) = column_names(&sheet, text)?;
     sheet.notes.push(format!(
         "OpenSees -xml recorder: {} columns named by the file ({})",
         names.len() - 1,
@@ -108,43 +59,119 @@ pub(super) fn read_xml(
         .iter()
         .map(|(n, l, c)| sheet.series(n, None, (*l, *c)))
         .collect();
-    let mut closed = false;
+    read_data_rows(&mut sheet, text, first, names.len(), &series)?;
+    sheet.assemble(format)
+}
+
+/// The header's column names, time first, and the index of the first line after `<Data>`.
+fn column_names(sheet: &Sheet, text: &str) -> Result<(Vec<ColumnName>, usize), InputError> {
+    let mut names: Vec<ColumnName> = Vec::new();
+    let mut object: Option<String> = None;
+    let mut data_from = None;
+    for (index, raw) in text.lines().enumerate() {
+        let at = (index + 1, raw.len() - raw.trim_start().len() + 1);
+        let line = raw.trim();
+        if line.starts_with("<Data") {
+            data_from = Some(index + 1);
+            break;
+        }
+        if line.starts_with("<TimeOutput") {
+            object = Some(String::new());
+        } else if line.starts_with("<NodeOutput") || line.starts_with("<ElementOutput") {
+            object = Some(output_object(sheet, line, at)?);
+        } else if let Some(rest) = line.strip_prefix("<ResponseType>") {
+            let name = response_name(sheet, rest, object.as_deref(), at)?;
+            names.push((name, at.0, at.1));
+        }
+    }
+    let Some(first) = data_from else {
+        let why = "has no <Data> element: an OpenSees -xml recorder file names its columns, then holds its rows in <Data>";
+        return Err(sheet.error((1, 1), why));
+    };
+    if names.first().map(|n| n.0.as_str()) != Some("time") {
+        let why = "its columns start with no <TimeOutput>: add `-time` to the recorder";
+        return Err(sheet.error((1, 1), why));
+    }
+    Ok((names, first))
+}
+
+/// `"node 2"` or `"element 1"` from a `<NodeOutput nodeTag="2" …>` or `<ElementOutput
+/// eleTag="1" …>` line.
+fn output_object(sheet: &Sheet, line: &str, at: (usize, usize)) -> Result<String, InputError> {
+    let (kind, key) = if line.starts_with("<NodeOutput") {
+        ("node", "nodeTag")
+    } else {
+        ("element", "eleTag")
+    };
+    match attribute(line, key) {
+        Some(tag) => Ok(format!("{kind} {tag}")),
+        None => {
+            let why = format!(
+                "<{}> has no {key} attribute",
+                &line[1..line.find([' ', '>']).unwrap_or(line.len())]
+            );
+            Err(sheet.error(at, why))
+        }
+    }
+}
+
+/// A column's name from the text after `<ResponseType>`, prefixed by its object.
+fn response_name(
+    sheet: &Sheet,
+    rest: &str,
+    object: Option<&str>,
+    at: (usize, usize),
+) -> Result<String, InputError> {
+    let Some(end) = rest.find("</ResponseType>") else {
+        return Err(sheet.error(at, "<ResponseType> is not closed on its line"));
+    };
+    let response = rest[..end].trim();
+    match object {
+        Some("") => Ok(response.to_string()),
+        Some(o) => Ok(format!("{o} {response}")),
+        None => {
+            let why = "a <ResponseType> outside <TimeOutput>, <NodeOutput> or <ElementOutput>";
+            Err(sheet.error(at, why))
+        }
+    }
+}
+
+/// The rows inside `<Data>`, from line index `first` to `</Data>`, into `series`.
+fn read_data_rows(
+    sheet: &mut Sheet,
+    text: &str,
+    first: usize,
+    width: usize,
+    series: &[usize],
+) -> Result<(), InputError> {
     for (index, raw) in text.lines().enumerate().skip(first) {
         let line_no = index + 1;
         let line = raw.trim_end_matches('\r');
         if line.trim_start().starts_with("</Data>") {
-            closed = true;
-            break;
+            return Ok(());
         }
         let w = words(line);
         if w.is_empty() {
             continue;
         }
-        if w.len() != names.len() {
-            let why = format!(
-                "has {} values, but the file names {} columns",
-                w.len(),
-                names.len()
-            );
-            return Err(sheet.error((line_no, w[w.len() - 1].1), why).into());
+        if w.len() != width {
+            let why = format!("has {} values, but the file names {width} columns", w.len());
+            return Err(sheet.error((line_no, w[w.len() - 1].1), why));
         }
         let number = |sheet: &Sheet, (text, col): (&str, usize)| {
             parse_number(text, Decimal::Point)
                 .map(|x| x.0)
                 .map_err(|why| sheet.error((line_no, col), why))
         };
-        let t = number(&sheet, w[0])?;
+        let t = number(sheet, w[0])?;
         for (&s, &field) in series.iter().zip(&w[1..]) {
-            let v = number(&sheet, field)?;
+            let v = number(sheet, field)?;
             sheet.push(s, t, (line_no, w[0].1), v)?;
         }
     }
-    if !closed {
-        let lines = text.lines().count();
-        let why = "<Data> is not closed (</Data>): the file ends early (did the analysis stop before the recorder was closed?)";
-        return Err(sheet.error((lines.max(1), 1), why).into());
-    }
-    sheet.assemble(format)
+    let lines = text.lines().count();
+    let why = "<Data> is not closed (</Data>): the file ends early (did the analysis stop before the recorder was closed?)";
+    Err(sheet.error((lines.max(1), 1), why))
 }
 
 /// Most values a binary row may hold.
