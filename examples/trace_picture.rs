@@ -152,6 +152,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         checks: Vec::new(),
         invariants: Vec::new(),
         envelopes: Vec::new(),
+        azimuths: None,
     };
     let bytes = mcap_bytes(&case_trace_log(&rock))?;
     let mut scene = Value::Null;

@@ -15,11 +15,13 @@
 //!   document model;
 //! - `markdown`, `html`, `summary_csv`: the renderers; `files`: writing a document and
 //!   CSV files; `format`: number formatting;
+//! - `azimuth_section`: a case run at a set of azimuths (maxima, tables, plot);
 //! - `sections`: the energy audit section; `attachments`: the typed results of `sweep`
 //!   and `stability` picked up from the output folder (never recomputed);
 //! - `mcap_log`: the MCAP trace of a case run (Foxglove).
 
 mod attachments;
+mod azimuth_section;
 mod crosscode;
 mod design;
 mod document;
