@@ -137,17 +137,19 @@ impl AzimuthSweep {
         self.maxima.iter().find(|m| m.participant == participant)
     }
 
-    /// The participants whose largest peak sliding is at another azimuth than the
-    /// basis's, with theirs: not a failure when their maxima agree within tolerance.
+    /// The participants whose largest peak sliding is along another direction than the
+    /// basis's, with their azimuth: not a failure when their maxima agree within
+    /// tolerance. Azimuths 180° apart are one direction (the other polarity, the same peak).
     pub fn governing_elsewhere(&self) -> Vec<(&str, f64)> {
         let basis = self
             .maxima_of(&self.basis)
             .and_then(|m| m.peak_sliding)
             .map(|m| m.azimuth_deg);
+        let direction = |a: f64| a.rem_euclid(180.0);
         self.maxima
             .iter()
             .filter_map(|m| Some((m.participant.as_str(), m.peak_sliding?.azimuth_deg)))
-            .filter(|&(_, a)| basis.is_some_and(|b| b != a))
+            .filter(|&(_, a)| basis.is_some_and(|b| direction(b) != direction(a)))
             .collect()
     }
 
@@ -278,6 +280,7 @@ fn gather(case: Case, set: &AzimuthSet, results: Vec<CaseResult>) -> CaseResult 
             .iter()
             .map(|c| {
                 let mut record = CheckRecord::of(c);
+                record.limit = verdict::limit_text(&main, c);
                 record.field = format!("{}{OVER_THE_SET}", record.field);
                 record
             })
@@ -340,7 +343,14 @@ fn point(
     AzimuthPoint {
         azimuth_deg: a,
         figures,
-        checks: r.checks.iter().map(CheckRecord::of).collect(),
+        checks: r
+            .checks
+            .iter()
+            .map(|c| CheckRecord {
+                limit: verdict::limit_text(r, c),
+                ..CheckRecord::of(c)
+            })
+            .collect(),
         failures: here(verdict::case_failures(r, false)),
         informative: here(verdict::informative(one)),
         notes: here(verdict::informative_notes(one)),
