@@ -151,6 +151,7 @@ fn rocking_messages() -> Result<RockMessages, Box<dyn Error>> {
         checks: Vec::new(),
         invariants: Vec::new(),
         envelopes: Vec::new(),
+        azimuths: None,
     };
     let bytes = mcap_bytes(&case_trace_log(&rock))?;
     let mut messages = RockMessages {

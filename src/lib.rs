@@ -39,8 +39,8 @@ pub use rockslide_present as present;
 pub use rockslide_present::{gate, report, stamp};
 pub use rockslide_reference as reference;
 pub use rockslide_verify::{
-    analysis, calculix, external, invariants, json, opensees, record, registry, run, study, suite,
-    sweep, verdict,
+    analysis, azimuths, calculix, external, invariants, json, opensees, record, registry, run,
+    study, suite, sweep, verdict,
 };
 
 /// Case files; [`case::load_case`] and [`case::parse_case`] validate against the engine

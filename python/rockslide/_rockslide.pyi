@@ -87,6 +87,11 @@ class Result:
     def checks(self) -> List[Dict[str, Any]]:
         """The tolerance checks as ``result.json`` lists them."""
     @property
+    def azimuths(self) -> Optional[Dict[str, Any]]:
+        """A case with ``x_azimuths_deg``: each participant's figures at every azimuth, their
+        maxima over the set and the governing azimuth (``result.json``'s ``azimuths``);
+        ``None`` otherwise. The traces and responses are the governing azimuth's."""
+    @property
     def passed(self) -> bool:
         """Whether the case passes the gate."""
     @property

@@ -191,6 +191,20 @@ impl CaseResult {
         from_json(py, &json)
     }
 
+    /// A case with a set of azimuths (`x_azimuths_deg`): every participant's figures at
+    /// each azimuth, their maxima over the set and the governing azimuth, as `result.json`
+    /// holds them under `azimuths` (a dict); `None` for any other case. The traces and
+    /// responses above are the governing azimuth's.
+    #[getter]
+    fn azimuths<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        let Some(sweep) = self.record().azimuths else {
+            return Ok(None);
+        };
+        let json =
+            serde_json::to_string(&sweep).map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        from_json(py, &json).map(Some)
+    }
+
     /// Whether the case passes the gate (`rockslide check`'s verdict).
     #[getter]
     fn passed(&self) -> bool {

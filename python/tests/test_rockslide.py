@@ -291,3 +291,62 @@ tail = 2.0
     again = rockslide.run_study(grid, tmp_path / "out")
     assert (again["executed"], again["skipped"]) == (0, 4)
     assert again["study"] == first["study"]
+
+
+def azimuth_case_text(azimuth_line):
+    """CI.CCC's 90° channel and vertical on a PEPO along one azimuth, 6 s at Δt = 1 ms."""
+    return f"""
+name = "ccc-azimuths"
+[model]
+kind = "oscillator"
+mass = 1.0e6
+gravity = 9.81
+[model.contact]
+kx = 9.8696e8
+kz = 3.94784e9
+mu = 0.3
+[excitation]
+kind = "ground-acceleration"
+[excitation.station]
+file = "../records/Ridgecrest_2019_CI.CCC.RAW"
+{azimuth_line}
+start = 30.0
+components = "xz"
+[run]
+duration = 6.0
+dt = 0.001
+[engines.predictor-corrector]
+[[tolerance]]
+quantity = "peak_abs_sliding"
+percent = 100
+"""
+
+
+def test_a_set_of_azimuths_comes_back_per_azimuth(repo, pepo_result):
+    path = repo / "cases" / "three-component" / "azimuth-test.toml"
+    sweep_case = rockslide.Case.from_toml(azimuth_case_text("x_azimuths_deg = [0, 90, 270]"), path=path)
+    result = sweep_case.run()
+    single = rockslide.Case.from_toml(azimuth_case_text("x_azimuth_deg = 90.0"), path=path).run()
+    sweep = result.azimuths
+    assert pepo_result.azimuths is None
+    assert [p["azimuth_deg"] for p in sweep["points"]] == [0.0, 90.0, 270.0]
+    assert sweep["participants"] == ["reference", "predictor-corrector/ground-accel"]
+    # at 90° the set's figures are the single case's, to the last digit
+    at_90 = {f["participant"]: f for f in sweep["points"][1]["figures"]}
+    for participant, responses in single.responses.items():
+        assert at_90[participant]["peak_sliding"] == responses["peak_abs_sliding"]
+        assert at_90[participant]["residual_sliding"] == responses["residual_sliding"]
+    # 270° is 90° in the other polarity: the same peak, the residual negated
+    at_270 = {f["participant"]: f for f in sweep["points"][2]["figures"]}
+    assert at_270["reference"]["peak_sliding"] == pytest.approx(at_90["reference"]["peak_sliding"], rel=1e-9)
+    assert at_270["reference"]["residual_sliding"] == pytest.approx(
+        -at_90["reference"]["residual_sliding"], rel=1e-9
+    )
+    # the maximum is the table's largest, at its azimuth; the reference's governs
+    for i, m in enumerate(sweep["maxima"]):
+        column = [p["figures"][i]["peak_sliding"] for p in sweep["points"]]
+        assert m["peak_sliding"]["value"] == max(column)
+        assert m["peak_sliding"]["azimuth_deg"] == sweep["points"][column.index(max(column))]["azimuth_deg"]
+    governing = sweep["points"][sweep["governing"]]["azimuth_deg"]
+    assert governing == sweep["maxima"][0]["peak_sliding"]["azimuth_deg"]
+    assert result.record_dict()["azimuths"] == sweep

@@ -2,6 +2,7 @@
 //! Shared helpers live in `common`.
 
 mod architecture;
+mod azimuths;
 mod bad_input;
 mod bidirectional_independent;
 mod bidirectional_refs;

@@ -293,6 +293,7 @@ fn grid_result(trace: Trace) -> CaseResult {
         run_responses: vec![responses(&run.trace)],
         invariants: Vec::new(),
         envelopes: Vec::new(),
+        azimuths: None,
         history_errors: vec![None],
         runs: vec![run],
         case: c,

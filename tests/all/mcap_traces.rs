@@ -557,6 +557,7 @@ fn result_with(case: Case, runs: Vec<Run>) -> CaseResult {
         run_responses: runs.iter().map(|r| responses(&r.trace)).collect(),
         invariants: Vec::new(),
         envelopes: Vec::new(),
+        azimuths: None,
         history_errors: runs.iter().map(|_| None).collect(),
         runs,
         case,

@@ -98,9 +98,12 @@ pub fn estimate(case: &Case, plan: &Plan) -> Footprint {
         held_rows,
         written_rows,
         held_values,
+        // a case with a set of azimuths holds every azimuth's runs until the governing
+        // one is known; it writes the governing one's traces only
         memory: held_values
             .saturating_mul(8)
-            .saturating_mul(COPIES_IN_MEMORY),
+            .saturating_mul(COPIES_IN_MEMORY)
+            .saturating_mul(case.azimuth_count() as u64),
         disk: written_values.saturating_mul(DISK_BYTES_PER_VALUE),
     }
 }

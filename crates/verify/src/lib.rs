@@ -9,7 +9,7 @@
 //! - [`footprint`]: the memory and disk a plan needs, refused over a limit before any work.
 //! - [`run`]: the one guarded, timed engine run every command goes through.
 //! - [`suite`]: plan a case's runs, run them, solve the reference, read responses, apply
-//!   tolerances.
+//!   tolerances; [`azimuths`]: a case run at each azimuth of its set, and the maxima.
 //! - [`analysis`]: response quantities, discrepancies, tolerance checks, the energy audit,
 //!   Δt ladders and observed orders, stability classes — numbers, no I/O.
 //! - [`disagreement`]: design quantities of each participant against the basis, declared
@@ -27,6 +27,7 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod azimuths;
 pub mod calculix;
 pub mod disagreement;
 pub mod external;

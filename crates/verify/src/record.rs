@@ -134,6 +134,24 @@ pub struct CheckRecord {
     pub field: String,
 }
 
+impl CheckRecord {
+    /// The record of a check.
+    pub fn of(c: &crate::analysis::Check) -> Self {
+        CheckRecord {
+            quantity: c.quantity.clone(),
+            run: c.run.clone(),
+            basis: c.basis.clone(),
+            value: c.value,
+            basis_value: c.basis_value,
+            percent: c.percent,
+            limit: c.limit.clone(),
+            gated: c.gated,
+            verdict: c.verdict.label().to_string(),
+            field: c.field.clone(),
+        }
+    }
+}
+
 /// A case result: the typed record of `rockslide run` / `check` for one case.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CaseRecord {
@@ -157,6 +175,11 @@ pub struct CaseRecord {
     pub gate_passed: bool,
     /// The gate's failure lines (gated and informative), as `check` prints them.
     pub failures: Vec<String>,
+    /// A case with a set of azimuths: every participant's figures at each, their maxima
+    /// over the set and the governing azimuth (the runs, reference and checks above are
+    /// the governing azimuth's).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub azimuths: Option<crate::azimuths::AzimuthSweep>,
 }
 
 impl CaseRecord {
@@ -195,28 +218,14 @@ impl CaseRecord {
                 .iter()
                 .map(|(e, why)| (e.to_string(), why.clone()))
                 .collect(),
-            checks: r
-                .checks
-                .iter()
-                .map(|c| CheckRecord {
-                    quantity: c.quantity.clone(),
-                    run: c.run.clone(),
-                    basis: c.basis.clone(),
-                    value: c.value,
-                    basis_value: c.basis_value,
-                    percent: c.percent,
-                    limit: c.limit.clone(),
-                    gated: c.gated,
-                    verdict: c.verdict.label().to_string(),
-                    field: c.field.clone(),
-                })
-                .collect(),
+            checks: r.checks.iter().map(CheckRecord::of).collect(),
             gate_passed: r.gate_passed(),
             failures: verdict::failures(one)
                 .iter()
                 .chain(&verdict::informative(one))
                 .map(|f| f.to_string())
                 .collect(),
+            azimuths: r.azimuths.as_deref().cloned(),
         }
     }
 

@@ -39,6 +39,9 @@ pub struct CaseResult {
     /// of every channel over every step of a streamed run, which the figures draw instead
     /// of its kept rows ([`crate::analysis::envelope`]).
     pub envelopes: Vec<Option<crate::analysis::envelope::Envelope>>,
+    /// A case with a set of azimuths ([`crate::azimuths`]): the figures at each azimuth
+    /// and their maxima; everything above is the governing azimuth's.
+    pub azimuths: Option<Box<crate::azimuths::AzimuthSweep>>,
 }
 
 impl CaseResult {

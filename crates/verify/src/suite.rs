@@ -52,6 +52,13 @@ pub fn plan(case: &Case, engines: &[Box<dyn Engine>]) -> Result<Plan, InputError
             native_streaming: e.streams_natively(),
         }));
     }
+    if case.azimuths.is_some() && !case.externals.is_empty() {
+        errors.push(case.field_error(
+            "excitation.station.x_azimuths_deg",
+            "runs the case at each azimuth, but an external participant's results are at one: \
+             give x_azimuth_deg (one azimuth) to compare them",
+        ));
+    }
     if errors.is_empty() {
         // refused before any work when its traces would not fit (crate::footprint)
         crate::footprint::check(case, &plan)?;
@@ -179,13 +186,17 @@ pub fn run_case_streaming_above(
     })
 }
 
-/// [`run_case_with`], streaming the planned runs `streams` selects.
-fn run_case_streaming_where(
+/// [`run_case_with`], streaming the planned runs `streams` selects; a case with a set of
+/// azimuths run at each ([`crate::azimuths`]).
+pub(crate) fn run_case_streaming_where(
     case: Case,
     engines: &[Box<dyn Engine>],
     streams: impl Fn(&Case, &PlannedRun) -> bool + Sync,
 ) -> Result<CaseResult, InputErrors> {
     let plan = plan(&case, engines)?;
+    if case.azimuths.is_some() {
+        return crate::azimuths::run_sweep(case, engines, &streams);
+    }
     let opensees = crate::opensees::prepare(&case)?;
     let calculix = crate::calculix::prepare(&case)?;
     let name = case.name.clone();
@@ -308,6 +319,7 @@ fn analyse(
         .map(|s| s.as_mut().and_then(|s| s.envelope.take()))
         .collect();
     Ok(CaseResult {
+        azimuths: None,
         envelopes,
         invariants,
         case,

@@ -13,7 +13,7 @@ use rockslide_core::response::show_value;
 
 /// One failed check: a gated one fails the gate; an informative one (`gate = false`) is
 /// only reported.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
 pub struct Failure {
     /// Case name.
     pub case: String,
@@ -94,7 +94,8 @@ pub fn fails(c: &Check) -> bool {
     c.gated && c.verdict != Verdict::Pass
 }
 
-fn failed_check(r: &CaseResult, c: &Check) -> Failure {
+/// The failure line of check `c` of result `r`.
+pub(crate) fn failed_check(r: &CaseResult, c: &Check) -> Failure {
     Failure {
         case: r.case.name.clone(),
         quantity: c.quantity.clone(),
@@ -113,10 +114,14 @@ pub fn informative(results: &[CaseResult]) -> Vec<Failure> {
     results
         .iter()
         .flat_map(|r| {
+            if let Some(sweep) = &r.azimuths {
+                return sweep.informative();
+            }
             r.checks
                 .iter()
                 .filter(|c| !c.gated && c.verdict != Verdict::Pass)
                 .map(move |c| failed_check(r, c))
+                .collect()
         })
         .collect()
 }
@@ -127,6 +132,9 @@ pub fn informative_notes(results: &[CaseResult]) -> Vec<Failure> {
     results
         .iter()
         .flat_map(|r| {
+            if let Some(sweep) = &r.azimuths {
+                return sweep.notes();
+            }
             let known = crate::disagreement::design_disagreements(r);
             r.checks
                 .iter()
@@ -140,6 +148,7 @@ pub fn informative_notes(results: &[CaseResult]) -> Vec<Failure> {
                     })
                 })
                 .map(move |c| failed_check(r, c))
+                .collect()
         })
         .collect()
 }
@@ -151,6 +160,21 @@ pub fn informative_notes(results: &[CaseResult]) -> Vec<Failure> {
 pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
     let mut out = Vec::new();
     for r in results {
+        match &r.azimuths {
+            // every azimuth's own failures, the governing one's among them
+            Some(sweep) => out.extend(sweep.failures()),
+            None => out.extend(case_failures(r, true)),
+        }
+    }
+    out
+}
+
+/// The gate failures of one case result, its stale declarations
+/// ([`stale_declaration_failures`]) only `with_stale`: a case with a set of azimuths
+/// judges those over the whole set.
+pub(crate) fn case_failures(r: &CaseResult, with_stale: bool) -> Vec<Failure> {
+    let mut out = Vec::new();
+    {
         let before = out.len();
         for c in r.checks.iter().filter(|c| fails(c)) {
             out.push(failed_check(r, c));
@@ -172,6 +196,9 @@ pub fn failures(results: &[CaseResult]) -> Vec<Failure> {
         out.extend(outcome_failures(r));
         out.extend(stale_violations(r));
         out.extend(disagreement_failures(r));
+        if with_stale {
+            out.extend(stale_declaration_failures(r));
+        }
         out.extend(
             r.invariants
                 .iter()
@@ -208,13 +235,10 @@ fn unchecked_externals(r: &CaseResult) -> Vec<Failure> {
 }
 
 /// Design-quantity disagreements beyond [`crate::disagreement::DESIGN_PERCENT`] that no
-/// gated tolerance judges and the case does not declare, and declarations whose
-/// disagreement no longer happens.
+/// gated tolerance judges and the case does not declare.
 fn disagreement_failures(r: &CaseResult) -> Vec<Failure> {
-    use crate::disagreement::{
-        DESIGN_PERCENT, design_disagreements, measured_now, stale_declarations,
-    };
-    let mut out: Vec<Failure> = design_disagreements(r)
+    use crate::disagreement::{DESIGN_PERCENT, design_disagreements};
+    design_disagreements(r)
         .into_iter()
         .filter(|d| d.declared.is_none())
         .map(|d| {
@@ -233,7 +257,13 @@ fn disagreement_failures(r: &CaseResult) -> Vec<Failure> {
                 false,
             )
         })
-        .collect();
+        .collect()
+}
+
+/// Declarations whose disagreement no longer happens.
+pub(crate) fn stale_declaration_failures(r: &CaseResult) -> Vec<Failure> {
+    use crate::disagreement::{DESIGN_PERCENT, measured_now, stale_declarations};
+    let mut out = Vec::new();
     for d in stale_declarations(r) {
         let now = measured_now(r, d).map_or_else(
             || "no run of this case matches it".to_string(),
@@ -574,6 +604,7 @@ dt = 0.1
             not_applicable: Vec::new(),
             reference: Err("none".into()),
             checks: Vec::new(),
+            azimuths: None,
             invariants,
             envelopes: Vec::new(),
         }

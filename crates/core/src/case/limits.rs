@@ -28,6 +28,11 @@ pub const MAX_SUPPORT_ROWS: u64 = 1_000;
 /// Most supports of a 3D base in all (`model.supports` × `model.support_rows`).
 pub const MAX_SUPPORT_GRID: u64 = 10_000;
 
+/// Most azimuths of a station case's set (`x_azimuths_deg`): every one is a whole run of
+/// every participant, and a step of 1° over 360° (both polarities along one axis) is the
+/// finest a sliding maximum needs.
+pub const MAX_AZIMUTHS: usize = 360;
+
 /// Largest extent of a body, m: every half size (`half_width`, `half_height`,
 /// `half_depth`) and the centre-of-mass height. rapier's broad phase sizes its regions
 /// from the colliders' extents: a 3D block of half-depth 10⁴ m took 0.67 GB and 15 s

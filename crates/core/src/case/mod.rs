@@ -6,6 +6,7 @@
 //! they see [`Case`] and [`Scene`].
 
 mod arrangement;
+mod azimuths;
 mod external;
 mod invariant;
 pub mod limits;
@@ -21,6 +22,7 @@ pub mod slug;
 mod spatial;
 
 pub use arrangement::Arrangement;
+pub use azimuths::{AzimuthSet, Coverage};
 pub use external::{
     ColumnMap, EXTERNAL_VARIANT, External, ExternalFormat, ExternalLayout, ExternalTrace,
     ReadExternal, check_label,

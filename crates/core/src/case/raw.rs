@@ -183,6 +183,9 @@ pub struct RawStation {
     pub files: Option<Vec<String>>,
     /// Compass azimuth of the scene's +x, degrees clockwise from north.
     pub x_azimuth_deg: Option<f64>,
+    /// Or a set of them, the case run at each: a list of degrees or `{ step = … }`
+    /// (validated by hand, so that each element's error is located).
+    pub x_azimuths_deg: Option<toml::Value>,
     /// The scene axes the station drives: "xyz" (default), "xy", "xz" or "x".
     pub components: Option<String>,
     /// The correction of an uncorrected record: "cubic" (default), "highpass" or "none".

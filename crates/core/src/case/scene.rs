@@ -470,6 +470,9 @@ pub struct Case {
     /// Each engine's options parsed once into its own type when the case is loaded
     /// through the registry (empty for a case read without it).
     pub parsed_options: super::ParsedOptions,
+    /// The set of azimuths a station case runs at (`x_azimuths_deg`); its scene is at the
+    /// set's first ([`Case::at_azimuth`] gives the others).
+    pub azimuths: Option<super::AzimuthSet>,
 }
 
 impl Case {

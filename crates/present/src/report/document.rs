@@ -28,6 +28,7 @@ pub(crate) fn case_document(r: &CaseResult, prov: &Provenance, att: &Attachments
     b.push(document_control(c, prov));
     b.push(case_facts(c));
     b.extend(response_blocks(r));
+    b.extend(super::azimuth_section::case_blocks(r));
 
     if !r.checks.is_empty() {
         b.push(Block::Heading(2, "Tolerance checks".into()));

@@ -18,10 +18,12 @@
 //!   `sections`: the energy audit section; `provenance`: tool, commit, machine, date;
 //!   `attachments`: the typed results of `sweep` and `stability` picked up from the output
 //!   folder (never recomputed);
+//! - `azimuth_section`: a case run at a set of azimuths (maxima, tables, plot);
 //! - `pages`: the documents rendered; `summary_csv`: the summary CSV; `mcap_log`: the
 //!   MCAP trace of a case run (Foxglove).
 
 mod attachments;
+mod azimuth_section;
 mod control;
 mod crosscode;
 mod crosscode_tables;

@@ -96,6 +96,7 @@ fn result_of(text: &str) -> CaseResult {
         run_responses,
         invariants: Vec::new(),
         envelopes: Vec::new(),
+        azimuths: None,
         history_errors: vec![None, None],
         not_applicable: vec![(
             "predictor-corrector",

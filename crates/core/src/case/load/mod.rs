@@ -34,7 +34,7 @@ mod model;
 mod record_signal;
 mod run;
 mod spatial;
-mod station;
+pub(crate) mod station;
 mod syntax;
 mod tolerances;
 mod validator;
@@ -142,12 +142,17 @@ pub fn parse_case_with(
         read_external,
     };
     let model = v.model(&raw.model);
-    let (excitation, vertical, station_y) = match &raw.excitation.station {
+    let (excitation, vertical, station_y, azimuths) = match &raw.excitation.station {
         Some(s) => {
             let signals = v.station(s, &raw.excitation, model.as_ref(), raw.run.duration, path);
             match signals {
-                Some(s) => (Some(Excitation::GroundAcceleration(s.x)), s.vertical, s.y),
-                None => (None, None, None),
+                Some(s) => (
+                    Some(Excitation::GroundAcceleration(s.x)),
+                    s.vertical,
+                    s.y,
+                    s.azimuths,
+                ),
+                None => (None, None, None, None),
             }
         }
         None => {
@@ -157,7 +162,7 @@ pub fn parse_case_with(
                 .vertical
                 .as_ref()
                 .and_then(|r| v.vertical(r, &raw.excitation, model.as_ref(), path));
-            (excitation, vertical, None)
+            (excitation, vertical, None, None)
         }
     };
     let spatial = v.spatial(&raw.model, &raw.excitation, model.as_ref(), station_y, path);
@@ -218,6 +223,7 @@ pub fn parse_case_with(
         locator,
         externals: Vec::new(),
         parsed_options: Default::default(),
+        azimuths,
     };
     for e in externals {
         case.add_external(e);

@@ -8,9 +8,15 @@
 //! an uncorrected record's pre-event mean removed, the window from `start` for the run's
 //! duration cut, then its baseline corrected — every step written in the labels the
 //! report shows, with the velocity and displacement drift before and after.
+//! `x_azimuths_deg` (a list, or `{ step = … }`) instead of `x_azimuth_deg` asks for a set
+//! of azimuths ([`crate::case::AzimuthSet`]): the prepared channels are kept and projected
+//! at each.
 
 use std::path::Path;
+use std::sync::Arc;
 
+use super::super::azimuths::{AzimuthSet, Coverage};
+use super::super::limits::MAX_AZIMUTHS;
 use super::super::raw::{RawExcitation, RawStation};
 use super::super::record::{
     Baseline, Channel, HighPass, Orientation, PreparedStation, Processing, StationRecord,
@@ -22,18 +28,23 @@ use super::validator::{Rule, Validator};
 use crate::error::InputError;
 
 /// A station's channels on the scene's axes.
-pub(super) struct StationSignals {
+pub(crate) struct StationSignals {
     /// Along +x.
     pub x: Signal,
     /// Along +y, when the station drives y.
     pub y: Option<Signal>,
     /// Upward, when the station drives z.
     pub vertical: Option<Vertical>,
+    /// The set of azimuths, when the case asks for one (the signals above are at its first).
+    pub azimuths: Option<AzimuthSet>,
 }
 
 /// The station keys, checked.
+#[derive(Debug, Clone)]
 struct StationKeys {
     x_azimuth: f64,
+    /// `x_azimuths_deg`, expanded: every azimuth of the set (`x_azimuth` is its first).
+    set: Option<Vec<f64>>,
     drives_y: bool,
     drives_z: bool,
     processing: Processing,
@@ -119,25 +130,27 @@ impl Validator<'_> {
             return None;
         }
         let normal_force = self.station_normal_force(raw, model, keys.drives_z)?;
-        Some(signals(
-            &files.join(" + "),
-            &chosen,
-            &prepared,
-            &keys,
-            normal_force,
-        ))
+        let mut signals = signals(&files.join(" + "), &chosen, &prepared, &keys, normal_force);
+        if let Some(degrees) = keys.set.clone() {
+            let coverage = set_coverage(keys.drives_y);
+            let projection = StationProjection {
+                file: files.join(" + "),
+                station: chosen,
+                prepared,
+                keys,
+                normal_force,
+            };
+            signals.azimuths = Some(AzimuthSet {
+                degrees,
+                coverage,
+                projection: Arc::new(projection),
+            });
+        }
+        Some(signals)
     }
 
     /// The keys beside `file`, checked.
     fn station_keys(&mut self, raw: &RawStation) -> Option<StationKeys> {
-        let x_azimuth = match raw.x_azimuth_deg {
-            None => 90.0,
-            x => self.number(
-                &format!("{P}.x_azimuth_deg"),
-                x,
-                Rule::range(-360.0, 360.0, "degrees clockwise from north"),
-            ),
-        };
         let (drives_y, drives_z) = match raw.components.as_deref().unwrap_or("xyz") {
             "xyz" => (true, true),
             "xy" => (true, false),
@@ -171,14 +184,166 @@ impl Validator<'_> {
             None => 0.0,
             x => self.number(&format!("{P}.start"), x, Rule::non_negative("s")),
         };
+        let set = match &raw.x_azimuths_deg {
+            None => None,
+            Some(value) => Some(self.azimuth_set(raw, value, set_coverage(drives_y))?),
+        };
+        let x_azimuth = match (raw.x_azimuth_deg, &set) {
+            (None, Some(set)) => set[0],
+            (None, None) => 90.0,
+            (x, _) => self.number(
+                &format!("{P}.x_azimuth_deg"),
+                x,
+                Rule::range(-360.0, 360.0, "degrees clockwise from north"),
+            ),
+        };
         Some(StationKeys {
             x_azimuth,
+            set,
             drives_y,
             drives_z,
             processing,
             factor: scale * polarity,
             start,
         })
+    }
+
+    /// `x_azimuths_deg`: a list of azimuths or `{ step = s }` (0, s, 2s, … up to the
+    /// coverage's span), each finite, in [0, span), given once, at most [`MAX_AZIMUTHS`];
+    /// not beside `x_azimuth_deg`. `None` (with the errors recorded) when wrong.
+    fn azimuth_set(
+        &mut self,
+        raw: &RawStation,
+        value: &toml::Value,
+        coverage: Coverage,
+    ) -> Option<Vec<f64>> {
+        let field = format!("{P}.x_azimuths_deg");
+        if raw.x_azimuth_deg.is_some() {
+            self.fail(
+                &field,
+                "cannot be given with x_azimuth_deg: give one azimuth (x_azimuth_deg) or a set of them (x_azimuths_deg)",
+            );
+            return None;
+        }
+        let span = coverage.span_deg();
+        let degrees = match value {
+            toml::Value::Array(items) => self.azimuth_list(&field, items, coverage)?,
+            toml::Value::Table(t) => self.azimuth_steps(&field, t, span)?,
+            other => {
+                self.fail(
+                    &field,
+                    format!(
+                        "is a {}, but must be a list of azimuths in degrees ([0, 30, 60]) or {{ step = 15 }} (every step from 0 up to {span}°)",
+                        other.type_str()
+                    ),
+                );
+                return None;
+            }
+        };
+        if degrees.len() > MAX_AZIMUTHS {
+            self.fail(
+                &field,
+                format!(
+                    "asks for {} azimuths, more than the {MAX_AZIMUTHS} a case runs (each is a run of every participant)",
+                    degrees.len()
+                ),
+            );
+            return None;
+        }
+        Some(degrees)
+    }
+
+    /// An explicit list of azimuths, each checked and located by its index.
+    fn azimuth_list(
+        &mut self,
+        field: &str,
+        items: &[toml::Value],
+        coverage: Coverage,
+    ) -> Option<Vec<f64>> {
+        let span = coverage.span_deg();
+        if items.is_empty() {
+            self.fail(
+                field,
+                format!("is empty: give at least one azimuth (degrees from 0 up to {span})"),
+            );
+            return None;
+        }
+        let mut degrees: Vec<f64> = Vec::with_capacity(items.len());
+        let mut ok = true;
+        for (i, item) in items.iter().enumerate() {
+            let at = format!("{field}[{i}]");
+            let a = match item {
+                toml::Value::Float(x) => *x,
+                toml::Value::Integer(n) => *n as f64,
+                other => {
+                    self.fail(
+                        &at,
+                        format!("is a {}, but must be a number of degrees", other.type_str()),
+                    );
+                    ok = false;
+                    continue;
+                }
+            };
+            let reason = if !a.is_finite() {
+                Some(format!("is {a}, but must be a finite number of degrees"))
+            } else if !(0.0..span).contains(&a) {
+                Some(format!(
+                    "is {a}°, but must be from 0 up to (not including) {span}°: {}",
+                    coverage.reason()
+                ))
+            } else {
+                degrees
+                    .iter()
+                    .position(|&b| b == a)
+                    .map(|j| format!("is {a}° again (also at [{j}]): give each azimuth once"))
+            };
+            if let Some(reason) = reason {
+                self.fail(&at, reason);
+                ok = false;
+            }
+            degrees.push(a);
+        }
+        ok.then_some(degrees)
+    }
+
+    /// `{ step = s }`: 0, s, 2s, … below `span`, `s` dividing `span` into whole steps.
+    fn azimuth_steps(&mut self, field: &str, table: &toml::Table, span: f64) -> Option<Vec<f64>> {
+        for key in table.keys().filter(|k| *k != "step") {
+            self.fail(
+                &format!("{field}.{key}"),
+                "is not a key of an azimuth set: give { step = 15 } (degrees between azimuths)",
+            );
+        }
+        let step = match table.get("step") {
+            Some(toml::Value::Float(x)) => *x,
+            Some(toml::Value::Integer(n)) => *n as f64,
+            _ => {
+                self.fail(
+                    &format!("{field}.step"),
+                    format!(
+                        "is required, a number of degrees dividing {span}° (15 gives 0, 15, 30, …)"
+                    ),
+                );
+                return None;
+            }
+        };
+        let count = span / step;
+        let whole = count.round();
+        if !(step.is_finite() && step > 0.0 && (count - whole).abs() <= 1e-9 * whole) {
+            self.fail(
+                &format!("{field}.step"),
+                format!("is {step}°, but must be a positive number of degrees that divides {span}° into whole steps (1, 5, 15, 30, 45, …)"),
+            );
+            return None;
+        }
+        if whole > MAX_AZIMUTHS as f64 {
+            self.fail(
+                &format!("{field}.step"),
+                format!("is {step}°: {whole} azimuths over {span}°, more than the {MAX_AZIMUTHS} a case runs"),
+            );
+            return None;
+        }
+        Some((0..whole as usize).map(|i| i as f64 * step).collect())
     }
 
     /// `baseline` and the high-pass's keys: what is done to an uncorrected record.
@@ -314,6 +479,44 @@ impl Validator<'_> {
     }
 }
 
+/// What a set of azimuths spans for a station driving y (`drives_y`) or x alone.
+fn set_coverage(drives_y: bool) -> Coverage {
+    if drives_y {
+        Coverage::Plan
+    } else {
+        Coverage::Axis
+    }
+}
+
+/// What projecting a station at any azimuth needs: its chosen channels as read and
+/// prepared, its checked keys and its normal force. Kept by a case with a set of azimuths.
+#[derive(Debug)]
+pub(crate) struct StationProjection {
+    file: String,
+    station: StationRecord,
+    prepared: PreparedStation,
+    keys: StationKeys,
+    normal_force: NormalForce,
+}
+
+impl StationProjection {
+    /// The channels on the scene's axes with +x at compass azimuth `degrees`: what a case
+    /// giving `x_azimuth_deg = degrees` computes, by the same function.
+    pub(crate) fn at(&self, degrees: f64) -> StationSignals {
+        let keys = StationKeys {
+            x_azimuth: degrees,
+            ..self.keys.clone()
+        };
+        signals(
+            &self.file,
+            &self.station,
+            &self.prepared,
+            &keys,
+            self.normal_force,
+        )
+    }
+}
+
 /// The indices of the two horizontal channels and the vertical one; an error when the
 /// station has not exactly that, or its horizontals are not perpendicular.
 fn pick_channels(path: &Path, s: &StationRecord) -> Result<(usize, usize, usize), InputError> {
@@ -426,6 +629,7 @@ fn signals(
             normal_force,
         }),
         x: signal(&format!("x (compass {}°)", rho.rem_euclid(360.0)), along_x),
+        azimuths: None,
     }
 }
 

@@ -1,0 +1,439 @@
+//! A case with a set of azimuths (`x_azimuths_deg`, [`rockslide_core::case::AzimuthSet`]):
+//! the whole case — every engine run and the reference — run at each azimuth, in
+//! parallel, each an ordinary case result ([`Case::at_azimuth`]); then, per participant,
+//! the sliding and uplift at each azimuth, their maximum over the set and the azimuth
+//! that gives it ([`AzimuthSweep`]).
+//!
+//! The case's own result (its traces, figures, checks and report) is the one at the
+//! governing azimuth: the azimuth of the largest peak sliding of the basis (the
+//! reference, else the first run). The other azimuths keep their figures, checks and gate
+//! failures, not their histories, so the trace files are one set, the governing one's.
+//! The gate fails when a check fails at any azimuth, or when a run's maximum over the set
+//! is outside the case's tolerance of the reference's maximum.
+//!
+//! The figures: a scene driven in plan (x and y) is read by its resultant sliding (peak
+//! and residual), a scene driven along x alone by its peak |sliding| and its signed
+//! residual sliding (the set spans both polarities, so its maximum is the largest residual
+//! in either direction); the peak uplift where the station drives z.
+
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::analysis::{Check, Responses, evaluate_tolerances};
+use crate::plan::PlannedRun;
+use crate::record::CheckRecord;
+use crate::result::CaseResult;
+use crate::verdict::{self, Failure};
+use rockslide_core::case::{AzimuthSet, Case, Coverage};
+use rockslide_core::error::InputErrors;
+use rockslide_engine_api::Engine;
+
+/// Participant name of the reference in an [`AzimuthSweep`].
+pub const REFERENCE: &str = "reference";
+
+/// What a check or failure field on the maxima over the set ends with.
+const OVER_THE_SET: &str = ", maximum over x_azimuths_deg";
+
+/// A case's participants at every azimuth of its set, and their maxima over it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AzimuthSweep {
+    /// The span the set covers, degrees (180: a scene driven in plan; 360: along x alone).
+    pub span_deg: f64,
+    /// Why that span covers every direction, in words.
+    pub span_reason: String,
+    /// Key of the peak sliding read at each azimuth (`peak_resultant_sliding` in plan,
+    /// `peak_abs_sliding` along one axis).
+    pub peak_key: String,
+    /// Key of the residual sliding (`residual_resultant_sliding`, or the signed
+    /// `residual_sliding` along one axis).
+    pub residual_key: String,
+    /// Key of the uplift (`peak_uplift`), when the station drives z.
+    pub uplift_key: Option<String>,
+    /// The participants: the reference (when there is one) first, then the runs in plan
+    /// order, `engine/variant`.
+    pub participants: Vec<String>,
+    /// The participant whose largest peak sliding names the governing azimuth.
+    pub basis: String,
+    /// Index in `points` of the governing azimuth (the case's traces and report are its).
+    pub governing: usize,
+    /// Every azimuth of the set, in the case file's order.
+    pub points: Vec<AzimuthPoint>,
+    /// Each participant's maxima over the set, in `participants` order.
+    pub maxima: Vec<ParticipantMaxima>,
+    /// The case's tolerances on the swept quantities applied to the maxima over the set.
+    pub max_checks: Vec<CheckRecord>,
+    /// Gate failures of the set as a whole: the maxima's gated checks that did not pass,
+    /// and declared disagreements that happen at no azimuth.
+    pub set_failures: Vec<Failure>,
+    /// Informative failures of the maxima (`gate = false`).
+    pub max_informative: Vec<Failure>,
+}
+
+/// The case at one azimuth.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct AzimuthPoint {
+    /// Compass azimuth of +x, degrees clockwise from north.
+    pub azimuth_deg: f64,
+    /// Each participant's figures, in the sweep's `participants` order.
+    pub figures: Vec<Figures>,
+    /// The case's tolerance checks at this azimuth.
+    pub checks: Vec<CheckRecord>,
+    /// Gate failures at this azimuth (each field names the azimuth).
+    pub failures: Vec<Failure>,
+    /// Informative failures at this azimuth.
+    pub informative: Vec<Failure>,
+    /// The informative failures no declared disagreement covers.
+    pub notes: Vec<Failure>,
+}
+
+/// One participant's figures at one azimuth, SI (`None`: not computed — a run that did
+/// not complete, a scene without uplift).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Figures {
+    /// `reference` or `engine/variant`.
+    pub participant: String,
+    /// Peak sliding (resultant, or |sliding| along one axis), m.
+    #[serde(with = "crate::json::real_opt")]
+    pub peak_sliding: Option<f64>,
+    /// Residual sliding (resultant, or signed along one axis), m.
+    #[serde(with = "crate::json::real_opt")]
+    pub residual_sliding: Option<f64>,
+    /// Peak uplift, m.
+    #[serde(with = "crate::json::real_opt")]
+    pub peak_uplift: Option<f64>,
+}
+
+/// A maximum over the set and the azimuth that gives it.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Maximum {
+    /// The largest value over the set, SI.
+    #[serde(with = "crate::json::real")]
+    pub value: f64,
+    /// Its azimuth, degrees (the first in the set's order on a tie).
+    pub azimuth_deg: f64,
+}
+
+/// One participant's maxima over the set (`None`: missing at some azimuth).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ParticipantMaxima {
+    /// `reference` or `engine/variant`.
+    pub participant: String,
+    /// Largest peak sliding.
+    pub peak_sliding: Option<Maximum>,
+    /// Largest residual sliding.
+    pub residual_sliding: Option<Maximum>,
+    /// Largest peak uplift.
+    pub peak_uplift: Option<Maximum>,
+}
+
+impl AzimuthSweep {
+    /// The governing azimuth, degrees.
+    pub fn governing_deg(&self) -> f64 {
+        self.points[self.governing].azimuth_deg
+    }
+
+    /// The maxima of `participant`.
+    pub fn maxima_of(&self, participant: &str) -> Option<&ParticipantMaxima> {
+        self.maxima.iter().find(|m| m.participant == participant)
+    }
+
+    /// The participants whose largest peak sliding is along another direction than the
+    /// basis's, with their azimuth: not a failure when their maxima agree within
+    /// tolerance. Azimuths 180° apart are one direction (the other polarity, the same peak).
+    pub fn governing_elsewhere(&self) -> Vec<(&str, f64)> {
+        let basis = self
+            .maxima_of(&self.basis)
+            .and_then(|m| m.peak_sliding)
+            .map(|m| m.azimuth_deg);
+        let direction = |a: f64| a.rem_euclid(180.0);
+        self.maxima
+            .iter()
+            .filter_map(|m| Some((m.participant.as_str(), m.peak_sliding?.azimuth_deg)))
+            .filter(|&(_, a)| basis.is_some_and(|b| direction(b) != direction(a)))
+            .collect()
+    }
+
+    /// Every gate failure over the set: at each azimuth and on the maxima.
+    pub fn failures(&self) -> Vec<Failure> {
+        let at = self.points.iter().flat_map(|p| p.failures.iter().cloned());
+        at.chain(self.set_failures.iter().cloned()).collect()
+    }
+
+    /// Every informative failure over the set.
+    pub fn informative(&self) -> Vec<Failure> {
+        let at = self
+            .points
+            .iter()
+            .flat_map(|p| p.informative.iter().cloned());
+        at.chain(self.max_informative.iter().cloned()).collect()
+    }
+
+    /// The informative failures no declared disagreement covers, over the set.
+    pub fn notes(&self) -> Vec<Failure> {
+        let at = self.points.iter().flat_map(|p| p.notes.iter().cloned());
+        at.chain(self.max_informative.iter().cloned()).collect()
+    }
+}
+
+/// The response keys read at each azimuth: peak sliding, residual sliding, uplift.
+fn swept_keys(set: &AzimuthSet, case: &Case) -> (&'static str, &'static str, Option<&'static str>) {
+    let uplift = case.scene.vertical.is_some().then_some("peak_uplift");
+    match set.coverage {
+        Coverage::Plan => (
+            "peak_resultant_sliding",
+            "residual_resultant_sliding",
+            uplift,
+        ),
+        Coverage::Axis => ("peak_abs_sliding", "residual_sliding", uplift),
+    }
+}
+
+/// Run `case` (which has a set) at every azimuth of its set, in parallel, each as a whole
+/// case (streaming the runs `streams` selects), and gather the sweep; the result returned
+/// is the governing azimuth's, carrying the sweep and the case with its set.
+pub(crate) fn run_sweep(
+    case: Case,
+    engines: &[Box<dyn Engine>],
+    streams: &(dyn Fn(&Case, &PlannedRun) -> bool + Sync),
+) -> Result<CaseResult, InputErrors> {
+    let set = case
+        .azimuths
+        .clone()
+        .expect("run_sweep is given a case with a set");
+    let results: Vec<CaseResult> = set
+        .degrees
+        .par_iter()
+        .map(|&a| {
+            let at = case.at_azimuth(a).expect("a case with a set");
+            crate::suite::run_case_streaming_where(at, engines, streams)
+        })
+        .collect::<Result<_, _>>()?;
+    Ok(gather(case, &set, results))
+}
+
+/// The sweep of per-azimuth `results` (in the set's order), returned in the governing
+/// azimuth's result; the others are dropped with their histories.
+fn gather(case: Case, set: &AzimuthSet, results: Vec<CaseResult>) -> CaseResult {
+    let keys = swept_keys(set, &case);
+    let participants = participants(&results[0]);
+    let stale: Vec<Vec<Failure>> = results
+        .iter()
+        .map(verdict::stale_declaration_failures)
+        .collect();
+    let points: Vec<AzimuthPoint> = set
+        .degrees
+        .iter()
+        .zip(&results)
+        .map(|(&a, r)| point(a, r, &participants, keys))
+        .collect();
+    // no participant reads an uplift (the planar oscillator's): no uplift column
+    let no_uplift = points
+        .iter()
+        .all(|p| p.figures.iter().all(|f| f.peak_uplift.is_none()));
+    let keys = (keys.0, keys.1, keys.2.filter(|_| !no_uplift));
+    let maxima: Vec<ParticipantMaxima> = participants
+        .iter()
+        .enumerate()
+        .map(|(i, p)| maxima(p, i, &points))
+        .collect();
+    let basis = participants
+        .iter()
+        .zip(&maxima)
+        .find(|(_, m)| m.peak_sliding.is_some())
+        .map_or_else(|| participants[0].clone(), |(p, _)| p.clone());
+    let governing = maxima
+        .iter()
+        .find(|m| m.participant == basis)
+        .and_then(|m| m.peak_sliding)
+        .and_then(|m| points.iter().position(|p| p.azimuth_deg == m.azimuth_deg))
+        .unwrap_or(0);
+    let mut main = results
+        .into_iter()
+        .nth(governing)
+        .expect("one result per azimuth");
+    let max_checks = max_checks(&main, &case, &participants, &maxima, keys);
+    let to_failure = |gated: bool| -> Vec<Failure> {
+        max_checks
+            .iter()
+            .filter(|c| c.gated == gated && c.verdict != crate::analysis::Verdict::Pass)
+            .map(|c| {
+                let mut f = verdict::failed_check(&main, c);
+                f.field = format!("{}{OVER_THE_SET}", f.field);
+                f
+            })
+            .collect()
+    };
+    let (mut set_failures, max_informative) = (to_failure(true), to_failure(false));
+    set_failures.extend(stale_everywhere(&stale));
+    let sweep = AzimuthSweep {
+        span_deg: set.coverage.span_deg(),
+        span_reason: set.coverage.reason().to_string(),
+        peak_key: keys.0.to_string(),
+        residual_key: keys.1.to_string(),
+        uplift_key: keys.2.map(str::to_string),
+        participants,
+        basis,
+        governing,
+        points,
+        maxima,
+        max_checks: max_checks
+            .iter()
+            .map(|c| {
+                let mut record = CheckRecord::of(c);
+                record.limit = verdict::limit_text(&main, c);
+                record.field = format!("{}{OVER_THE_SET}", record.field);
+                record
+            })
+            .collect(),
+        set_failures,
+        max_informative,
+    };
+    main.case.azimuths = case.azimuths;
+    main.azimuths = Some(Box::new(sweep));
+    main
+}
+
+/// The participants of a result: the reference (when solved) and every run, by label.
+fn participants(r: &CaseResult) -> Vec<String> {
+    let reference = r.reference.is_ok().then(|| REFERENCE.to_string());
+    reference
+        .into_iter()
+        .chain(r.runs.iter().map(|run| run.label()))
+        .collect()
+}
+
+/// The responses of `participant` in `r`, when it completed.
+fn responses_of<'a>(r: &'a CaseResult, participant: &str) -> Option<&'a Responses> {
+    if participant == REFERENCE {
+        return r.reference.as_ref().ok().map(|x| &x.responses);
+    }
+    let i = r.runs.iter().position(|run| run.label() == participant)?;
+    r.runs[i].status.completed().then(|| &r.run_responses[i])
+}
+
+/// The case at azimuth `a`: each participant's figures, its checks and gate lines.
+fn point(
+    a: f64,
+    r: &CaseResult,
+    participants: &[String],
+    (peak, residual, uplift): (&str, &str, Option<&str>),
+) -> AzimuthPoint {
+    let figures = participants
+        .iter()
+        .map(|p| {
+            let resp = responses_of(r, p);
+            let read = |key: &str| resp.and_then(|x| x.get(key).copied());
+            Figures {
+                participant: p.clone(),
+                peak_sliding: read(peak),
+                residual_sliding: read(residual),
+                peak_uplift: uplift.and_then(read),
+            }
+        })
+        .collect();
+    let one = std::slice::from_ref(r);
+    let here = |list: Vec<Failure>| -> Vec<Failure> {
+        list.into_iter()
+            .map(|mut f| {
+                f.field = format!("{}, at x_azimuth_deg = {a}", f.field);
+                f
+            })
+            .collect()
+    };
+    AzimuthPoint {
+        azimuth_deg: a,
+        figures,
+        checks: r
+            .checks
+            .iter()
+            .map(|c| CheckRecord {
+                limit: verdict::limit_text(r, c),
+                ..CheckRecord::of(c)
+            })
+            .collect(),
+        failures: here(verdict::case_failures(r, false)),
+        informative: here(verdict::informative(one)),
+        notes: here(verdict::informative_notes(one)),
+    }
+}
+
+/// The declared disagreements stale at every azimuth (one that happens at some azimuth
+/// is still needed there), each once, as the first azimuth words it.
+fn stale_everywhere(stale: &[Vec<Failure>]) -> Vec<Failure> {
+    let Some((first, rest)) = stale.split_first() else {
+        return Vec::new();
+    };
+    first
+        .iter()
+        .filter(|f| rest.iter().all(|s| s.iter().any(|g| g.field == f.field)))
+        .map(|f| {
+            let mut f = f.clone();
+            f.field = format!("{}, at every azimuth of x_azimuths_deg", f.field);
+            f
+        })
+        .collect()
+}
+
+/// The maxima over the set of participant `i` (`None` where it misses any azimuth).
+fn maxima(participant: &str, i: usize, points: &[AzimuthPoint]) -> ParticipantMaxima {
+    let largest = |read: &dyn Fn(&Figures) -> Option<f64>| -> Option<Maximum> {
+        let mut best: Option<Maximum> = None;
+        for p in points {
+            let value = read(&p.figures[i])?;
+            if best.is_none_or(|b| value > b.value) {
+                best = Some(Maximum {
+                    value,
+                    azimuth_deg: p.azimuth_deg,
+                });
+            }
+        }
+        best
+    };
+    ParticipantMaxima {
+        participant: participant.to_string(),
+        peak_sliding: largest(&|f| f.peak_sliding),
+        residual_sliding: largest(&|f| f.residual_sliding),
+        peak_uplift: largest(&|f| f.peak_uplift),
+    }
+}
+
+/// The case's tolerances on the swept quantities applied to each run's maxima over the
+/// set against the reference's (or the basis run's) maxima: each check's field says so.
+fn max_checks(
+    main: &CaseResult,
+    case: &Case,
+    participants: &[String],
+    maxima: &[ParticipantMaxima],
+    (peak, residual, uplift): (&'static str, &'static str, Option<&'static str>),
+) -> Vec<Check> {
+    let as_responses = |m: &ParticipantMaxima| -> Responses {
+        let mut out = Responses::new();
+        for (key, value) in [
+            (Some(peak), m.peak_sliding),
+            (Some(residual), m.residual_sliding),
+            (uplift, m.peak_uplift),
+        ] {
+            if let (Some(key), Some(value)) = (key, value) {
+                out.insert(key, value.value);
+            }
+        }
+        out
+    };
+    let of = |label: &str| {
+        participants
+            .iter()
+            .position(|p| p == label)
+            .map(|i| as_responses(&maxima[i]))
+            .unwrap_or_default()
+    };
+    let reference = main.reference.is_ok().then(|| of(REFERENCE));
+    let run_maxima: Vec<Responses> = main.runs.iter().map(|r| of(&r.label())).collect();
+    let swept = [Some(peak), Some(residual), uplift];
+    let tolerances: Vec<_> = case
+        .tolerances
+        .iter()
+        .filter(|t| swept.contains(&Some(t.quantity.as_str())))
+        .cloned()
+        .collect();
+    evaluate_tolerances(&tolerances, &main.runs, &run_maxima, reference.as_ref())
+}
