@@ -34,6 +34,10 @@ pub(crate) fn azimuth_deg(a: [f64; 2]) -> f64 {
     }
 }
 
+/// |F|²/limit² below which a spring is inside its circle whatever the round-off of |F|²
+/// (a few ulps) and of `hypot` (one): [`radial_return`] then skips the `hypot`.
+const INSIDE: f64 = 1.0 - 1e-9;
+
 /// The radial return of a spring `k` in series with a slider `p` on the circle of radius
 /// `limit` (the circular friction cone), after a step that left the spring's end at `u`:
 /// where k·|u − p| > limit the slider follows along u − p so that |F| = limit. Returns the
@@ -41,6 +45,11 @@ pub(crate) fn azimuth_deg(a: [f64; 2]) -> f64 {
 pub(crate) fn radial_return(k: f64, limit: f64, p: &mut [f64; 2], u: [f64; 2]) -> [f64; 2] {
     let e = sub(u, *p);
     let f = [k * e[0], k * e[1]];
+    // Well inside the circle (|F|² below limit² by far more than its round-off) the spring
+    // holds: the answer `norm` would give, without its cost.
+    if f[0] * f[0] + f[1] * f[1] < limit * limit * INSIDE {
+        return f;
+    }
     let size = norm(f);
     if size > limit {
         let scale = limit / size;

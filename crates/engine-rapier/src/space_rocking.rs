@@ -140,6 +140,9 @@ struct GridSupport {
     t: [f64; 2],
     /// Slip accumulated along the friction force, Σ T̂·Δp, m.
     slip_along: f64,
+    /// The support's point of the base in the world after the last step (rapier axes),
+    /// where the next step's forces act.
+    anchor: Vector,
 }
 
 impl GridSupport {
@@ -152,7 +155,10 @@ impl GridSupport {
         let p_old = self.p;
         self.t = radial_return(kx, cap, &mut self.p, [delta[0], delta[1]]);
         let ds = [self.p[0] - p_old[0], self.p[1] - p_old[1]];
-        self.slip_along += plan_slip_increment(self.t, ds);
+        // a stuck slider adds nothing (±0), so only a moved one is measured
+        if ds != [0.0, 0.0] {
+            self.slip_along += plan_slip_increment(self.t, ds);
+        }
     }
 }
 
@@ -170,6 +176,7 @@ fn anchor(body: &RigidBody, point: [f64; 2], h: f64) -> Vector {
 fn update_supports(body: &RigidBody, grid: &RockingGrid, xg: [f64; 2], sups: &mut [GridSupport]) {
     for (s, pt) in sups.iter_mut().zip(&grid.points) {
         let a = anchor(body, *pt, grid.cm_height);
+        s.anchor = a;
         let ap = plan(a);
         let delta = [ap[0] - xg[0] - pt[0], ap[1] - xg[1] - pt[1], a.y];
         s.update(delta, grid.kx, grid.kz, grid.mu);
@@ -177,20 +184,16 @@ fn update_supports(body: &RigidBody, grid: &RockingGrid, xg: [f64; 2], sups: &mu
 }
 
 /// The supports' resultant on the body (force at the CM and moment about it, rapier
-/// axes) plus the drive's force `extra` (plan, and up), applied over the next step.
-fn apply_forces(
-    body: &mut RigidBody,
-    grid: &RockingGrid,
-    sups: &[GridSupport],
-    extra: ([f64; 2], f64),
-) {
+/// axes) plus the drive's force `extra` (plan, and up), applied over the next step. The
+/// anchors are those of the body's pose after the last step (it has not moved since).
+fn apply_forces(body: &mut RigidBody, sups: &[GridSupport], extra: ([f64; 2], f64)) {
     let cm = body.translation();
     let mut force = to_world(extra.0, extra.1);
     let mut moment = Vector::ZERO;
-    for (s, pt) in sups.iter().zip(&grid.points) {
+    for s in sups {
         let f = to_world([-s.t[0], -s.t[1]], s.normal);
         force += f;
-        moment += (anchor(body, *pt, grid.cm_height) - cm).cross(f);
+        moment += (s.anchor - cm).cross(f);
     }
     body.reset_forces(false);
     body.reset_torques(false);
@@ -234,7 +237,6 @@ impl Rig<PlanDrive<'_>> for GridRig<'_> {
             .map_or(0.0, |vg| -m * (vg.vel(k + 1) - vg.vel(k)) / self.dt);
         apply_forces(
             &mut self.world.bodies[self.body],
-            self.grid,
             &self.sups,
             ([m * a[0], m * a[1]], up),
         );
@@ -288,12 +290,21 @@ pub fn run(
         delta: [0.0, 0.0, -preload],
         ..GridSupport::default()
     };
+    let at_rest = &world.bodies[handle];
+    let sups = grid
+        .points
+        .iter()
+        .map(|pt| GridSupport {
+            anchor: anchor(at_rest, *pt, grid.cm_height),
+            ..start
+        })
+        .collect();
     let mut rig = GridRig {
         world,
         ground,
         body: handle,
         grid,
-        sups: vec![start; count],
+        sups,
         vertical,
         dt: dt_in,
     };
