@@ -194,7 +194,7 @@ cycles = 0.5"#,
     let f_pdelta = lower(kz * sum_x2 - m * g * h);
     let f_small = lower(kz * sum_x2);
     println!("rapier {f_rapier} Hz, P-Delta {f_pdelta} Hz, without {f_small} Hz, {n} crossings");
-    // The applied-force supports (the default) are symplectic Euler at rapier's step h
+    // The computed supports (the default) are symplectic Euler at rapier's step h
     // (output 0.1 ms = 2 steps of 50 µs by the rule ω_r·h ≤ 1.5), whose discrete
     // frequency is 2·asin(ω·h/2)/h: measured 4.9633372355 vs 4.9633367328 Hz, +1.01296e-7,
     // against +1.01306e-7 predicted (9.6e-12 apart). (The joint-limit supports, one step ×
@@ -282,7 +282,7 @@ fn joint_limit_rpepo_matches_fe_before_liftoff() {
     );
 }
 
-/// rockslide's rapier RPEPO on applied-force supports shall cost at most docs/rapier-engine.md's
+/// rockslide's rapier RPEPO on computed supports shall cost at most docs/rapier-engine.md's
 /// 50 ms of CPU per simulated second where the joint-limit supports cost about 100:
 /// rapier steps are counted, not timed — the rule ω_r·h ≤ 1.5 with one substep gives 15
 /// steps per 1 ms output on the RPEPO (ω_r = 21,400 rad/s), against 5 steps × 4 substeps

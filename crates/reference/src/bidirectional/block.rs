@@ -441,8 +441,14 @@ impl ExactSolution for PlanBlock {
     }
 
     fn method(&self) -> String {
+        // With a vertical component the cone's radius per unit mass is μ·(g + a_v(t)).
+        let limit = if self.law.drive.has_vertical() {
+            "μ·(g + a_v)"
+        } else {
+            "μ·g"
+        };
         format!(
-            "rigid-plastic block on an isotropic friction cone (s̈ = d − μ·g·ṡ/|ṡ| while sliding, stick while |d| ≤ μ·g): three-stage Radau IIA (order 5, L-stable) with Newton on the stage equations, steps ≤ {} s with a node at every kink of the drive, slip onsets and stops located by bisection; {} slides (slip episodes of the plan slip: onset to stop). {SLIP_EPISODES_RESPONSE}",
+            "rigid-plastic block on an isotropic friction cone (s̈ = d − {limit}·ṡ/|ṡ| while sliding, stick while |d| ≤ {limit}): three-stage Radau IIA (order 5, L-stable) with Newton on the stage equations, steps ≤ {} s with a node at every kink of the drive, slip onsets and stops located by bisection; {} slides (slip episodes of the plan slip: onset to stop). {SLIP_EPISODES_RESPONSE}",
             self.step,
             self.slides.len()
         )
