@@ -104,11 +104,6 @@ impl PlanDrive {
         }
     }
 
-    /// Whether the drive has a vertical component.
-    pub fn has_vertical(&self) -> bool {
-        self.vertical.is_some()
-    }
-
     /// The vertical ground acceleration a_v(t), m/s² (0 without one).
     pub fn vertical(&self, t: f64) -> f64 {
         self.vertical.as_ref().map_or(0.0, |s| s.value(t))

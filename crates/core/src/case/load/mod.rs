@@ -24,7 +24,7 @@ use sha2::{Digest, Sha256};
 
 use super::external::{ExternalFormat, ExternalTrace, ReadExternal};
 use super::locate::Locator;
-use super::scene::{Case, Excitation, Scene};
+use super::scene::{Case, Scene};
 use crate::error::{InputError, InputErrors};
 
 mod engines;
@@ -142,29 +142,13 @@ pub fn parse_case_with(
         read_external,
     };
     let model = v.model(&raw.model);
-    let (excitation, vertical, station_y, azimuths) = match &raw.excitation.station {
-        Some(s) => {
-            let signals = v.station(s, &raw.excitation, model.as_ref(), raw.run.duration, path);
-            match signals {
-                Some(s) => (
-                    Some(Excitation::GroundAcceleration(s.x)),
-                    s.vertical,
-                    s.y,
-                    s.azimuths,
-                ),
-                None => (None, None, None, None),
-            }
-        }
-        None => {
-            let excitation = v.excitation(&raw.excitation, path);
-            let vertical = raw
-                .excitation
-                .vertical
-                .as_ref()
-                .and_then(|r| v.vertical(r, &raw.excitation, model.as_ref(), path));
-            (excitation, vertical, None, None)
-        }
-    };
+    let motion = v.ground_motion(&raw.excitation, model.as_ref(), raw.run.duration, path);
+    let (excitation, vertical, station_y, azimuths) = (
+        motion.excitation,
+        motion.vertical,
+        motion.y,
+        motion.azimuths,
+    );
     let spatial = v.spatial(&raw.model, &raw.excitation, model.as_ref(), station_y, path);
     let run = v.run(raw.run.duration, raw.run.dt, raw.run.output_dt);
     let engines = v.engines(&raw.engines, raw.run.duration, raw.run.output_dt);

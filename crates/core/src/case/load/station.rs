@@ -22,7 +22,7 @@ use super::super::record::{
     Baseline, Channel, HighPass, Orientation, PreparedStation, Processing, StationRecord,
     prepare_window, read_station,
 };
-use super::super::scene::{Model, NormalForce, Vertical};
+use super::super::scene::{Excitation, Model, NormalForce, Vertical};
 use super::super::signal::Signal;
 use super::validator::{Rule, Validator};
 use crate::error::InputError;
@@ -54,7 +54,58 @@ struct StationKeys {
 
 const P: &str = "excitation.station";
 
+/// The ground motion a case's `[excitation]` gives: a station's channels or the classic
+/// keys' excitation and vertical component.
+pub(crate) struct GroundMotion {
+    /// Along +x (`None` after an error).
+    pub excitation: Option<Excitation>,
+    /// Upward, when given.
+    pub vertical: Option<Vertical>,
+    /// Along +y, when a station drives y.
+    pub y: Option<Signal>,
+    /// The set of azimuths, when the case asks for one.
+    pub azimuths: Option<AzimuthSet>,
+}
+
 impl Validator<'_> {
+    /// The case's ground motion: a station's channels when `[excitation.station]` is
+    /// given, else the excitation and the vertical of the classic keys.
+    pub(super) fn ground_motion(
+        &mut self,
+        e: &RawExcitation,
+        model: Option<&Model>,
+        duration: f64,
+        case_path: &Path,
+    ) -> GroundMotion {
+        let Some(station) = &e.station else {
+            let excitation = self.excitation(e, case_path);
+            let vertical = e
+                .vertical
+                .as_ref()
+                .and_then(|r| self.vertical(r, e, model, case_path));
+            return GroundMotion {
+                excitation,
+                vertical,
+                y: None,
+                azimuths: None,
+            };
+        };
+        match self.station(station, e, model, duration, case_path) {
+            Some(s) => GroundMotion {
+                excitation: Some(Excitation::GroundAcceleration(s.x)),
+                vertical: s.vertical,
+                y: s.y,
+                azimuths: s.azimuths,
+            },
+            None => GroundMotion {
+                excitation: None,
+                vertical: None,
+                y: None,
+                azimuths: None,
+            },
+        }
+    }
+
     /// `[excitation.station]`: the file read, prepared and projected on x, y and z.
     /// `None` (with the errors recorded) when anything is wrong.
     pub(super) fn station(
