@@ -56,7 +56,11 @@ fn fe_uplift_is_exactly_zero_where_the_contact_never_opens() {
         "spatial/pepo-pulse-azimuth30-vertical",
     ] {
         let c = case(name);
-        assert_eq!(reference_peak_uplift(&c), None, "{name}: the reference flies");
+        assert_eq!(
+            reference_peak_uplift(&c),
+            None,
+            "{name}: the reference flies"
+        );
         let run = fe_run(&c);
         let column = uplift(&run);
         assert_eq!(column.len(), run.trace.len(), "{name}");
@@ -70,7 +74,10 @@ fn fe_uplift_in_the_plane_starts_at_the_reference_lift_off() {
     let c = case("vertical/pepo-northridge-vertical-dynamic");
     let run = fe_run(&c);
     let column = uplift(&run);
-    let first = column.iter().position(|&v| v > 0.0).expect("the contact opens");
+    let first = column
+        .iter()
+        .position(|&v| v > 0.0)
+        .expect("the contact opens");
     let t = run.trace.time[first];
     eprintln!("fe's first uplift at {t} s");
     // The first recorded opening is the step end after the lift-off: within one step.
