@@ -175,6 +175,12 @@ fn fe_pepo_in_space_allocates_nothing_per_step() {
 }
 
 #[test]
+fn fe_pepo_under_a_vertical_records_its_uplift_allocating_nothing_per_step() {
+    assert_loop_allocation_free("fe", "vertical/pepo-northridge-vertical-dynamic.toml");
+    assert_loop_allocation_free("fe", "spatial/pepo-pulse-azimuth30-vertical.toml");
+}
+
+#[test]
 fn fe_rocking_body_in_space_single_and_double_allocate_nothing_per_step() {
     assert_allocation_free_on("fe", "the 3D RPEPO", &rpepo_in_space());
 }

@@ -17,6 +17,7 @@ mod external_programs;
 mod fe_pepo;
 mod fe_rpepo;
 mod fe_space;
+mod fe_uplift;
 mod figure_legends;
 mod footprint;
 mod foxglove_layout;

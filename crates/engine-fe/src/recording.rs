@@ -94,8 +94,14 @@ pub(crate) struct SelfCheck {
     pub node_minus_slip: f64,
 }
 
-/// The channels of a scene.
-fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Quantity> {
+/// The channels of a scene; an oscillator under a vertical component (`vertical`) records
+/// its contact's uplift last.
+fn channels(
+    rocking: bool,
+    moves_ground: bool,
+    double: bool,
+    vertical: bool,
+) -> Vec<&'static Quantity> {
     let mut c = vec![&q::FORCE, &q::RESISTANCE, &q::REL_DISP, &q::SLIDE];
     if rocking {
         c.push(&q::SLIDE_SPREAD);
@@ -117,6 +123,9 @@ fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Qua
     c.push(&q::NORMAL);
     if double {
         c.push(&q::NODE_DISP);
+    }
+    if vertical && !rocking {
+        c.push(&q::UPLIFT);
     }
     if rocking {
         // Energy bookkeeping from the element states (see `EnergyBook`); last, so the
@@ -143,7 +152,8 @@ pub(crate) fn layout_of_model(case: &Case, model: &Model<Plane>) -> Trace {
     );
     let rocking = model.body.rotation;
     let double = model.nodes > 0;
-    let mut trace = Trace::with_channels(&channels(rocking, moves_ground, double), 0);
+    let vertical = case.scene.vertical().is_some();
+    let mut trace = Trace::with_channels(&channels(rocking, moves_ground, double, vertical), 0);
     let ground_kz = model.supports.first().map_or(0.0, |s| s.lower.kz);
     trace.contacts = ContactBlock::for_supports(model.supports.len(), 1.0 / ground_kz, 0);
     trace
@@ -184,6 +194,7 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
     );
     let rocking = model.body.rotation;
     let double = model.nodes > 0;
+    let uplift_channel = case.scene.vertical().is_some() && !rocking;
     let steps = step_count(case.run.duration, dt);
     sink.start(&layout_of_model(case, &model));
     let drive = Drive::new(excitation, model.body.mass)
@@ -196,8 +207,14 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
     let mut book = EnergyBook::new(model.supports.len() + model.nodes);
     if model.is_slider() && !rocking {
         let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
-            let (count, contact) =
-                slider_row(m, s, &drive, moves_ground, &mut check, sink.values());
+            let (count, contact) = slider_row(
+                m,
+                s,
+                &drive,
+                (moves_ground, uplift_channel),
+                &mut check,
+                sink.values(),
+            );
             if let Some(fields) = sink.contacts().first_mut() {
                 *fields = contact.fields();
             }
@@ -261,6 +278,9 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
             put(normal);
             if double {
                 put(node_sum / m.supports.len() as f64);
+            }
+            if uplift_channel {
+                put(uplift);
             }
             if rocking {
                 for v in book.record(m, s, (s.force, s.vertical_force)) {
@@ -371,14 +391,14 @@ fn running_min(acc: f64, v: f64) -> f64 {
 
 /// The sliding oscillator's row (`Model::is_slider`, not rocking): the general recorder's
 /// values for its one support, with its sums over supports written out (each from +0,
-/// the slide and node over one support divided by 1, so the same bits), and the support's
-/// contact state.
+/// the slide and node over one support divided by 1, so the same bits), its contact's
+/// uplift last where `uplift_channel`, and the support's contact state.
 #[inline(always)]
 fn slider_row(
     m: &Model<Plane>,
     s: &Snapshot<Plane>,
     drive: &Drive,
-    moves_ground: bool,
+    (moves_ground, uplift_channel): (bool, bool),
     check: &mut SelfCheck,
     row: &mut [f64; ROW_VALUES],
 ) -> (usize, ContactState) {
@@ -410,6 +430,10 @@ fn slider_row(
         let node = s.un[0].x - xg;
         check.node_minus_slip = check.node_minus_slip.max((node - st.slip).abs());
         row[i] = (0.0 + node) / 1.0;
+        i += 1;
+    }
+    if uplift_channel {
+        row[i] = running_max(0.0, st.delta.y);
         i += 1;
     }
     (i, contact)

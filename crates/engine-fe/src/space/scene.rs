@@ -93,20 +93,29 @@ fn body(case: &Case, spatial: &Spatial, double: bool) -> Result<(SpaceBody, Stri
     }
 }
 
-/// The channels of a 3D run: the catalogue's plan-motion set, and the double support's
-/// node displacement.
-fn channels(rocking: bool, moves_ground: bool, double: bool) -> Vec<&'static Quantity> {
+/// The channels of a 3D run: the catalogue's plan-motion set, the double support's node
+/// displacement, and an oscillator's contact uplift under a vertical component (`vertical`).
+fn channels(
+    rocking: bool,
+    moves_ground: bool,
+    double: bool,
+    vertical: bool,
+) -> Vec<&'static Quantity> {
     let mut c = q::plan_motion(moves_ground, rocking);
     if double {
         c.push(&q::NODE_DISP);
+    }
+    if vertical && !rocking {
+        c.push(&q::UPLIFT);
     }
     c
 }
 
 /// The layout of a 3D run of `body`: its channels and one contact per support (its lower
 /// element), without rows.
-fn layout(body: &SpaceBody, moves_ground: bool, double: bool) -> Trace {
-    let mut layout = Trace::with_channels(&channels(body.rotation, moves_ground, double), 0);
+fn layout(body: &SpaceBody, moves_ground: bool, double: bool, vertical: bool) -> Trace {
+    let mut layout =
+        Trace::with_channels(&channels(body.rotation, moves_ground, double, vertical), 0);
     let kz = body.double.map_or(body.contact.kz, |d| d.lower.kz);
     layout.contacts = ContactBlock::for_supports(body.supports.len(), 1.0 / kz, 0);
     layout
@@ -118,10 +127,12 @@ pub fn recorded_values_space(case: &Case, spatial: &Spatial, variant: &str) -> O
     let double = variant == variant::DOUBLE;
     let (body, _) = body(case, spatial, double).ok()?;
     let moves_ground = matches!(case.scene.excitation, Excitation::GroundDisplacement(_));
+    let vertical = case.scene.vertical().is_some();
     Some(crate::recording::values_per_row(&layout(
         &body,
         moves_ground,
         double,
+        vertical,
     )))
 }
 
@@ -144,7 +155,8 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
     let moves_ground = matches!(excitation, Excitation::GroundDisplacement(_));
     let rocking = body.rotation;
     let steps = step_count(case.run.duration, dt);
-    let layout = layout(&body, moves_ground, double);
+    let vertical = case.scene.vertical().is_some();
+    let layout = layout(&body, moves_ground, double, vertical);
     sink.begin(&layout);
     let mut states = vec![ContactState::default(); body.supports.len()];
     // each support's last slip vector and its slip accumulated along the friction force
@@ -161,7 +173,12 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
     let mut values = [0.0_f64; 32];
     let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
         let r = record(m, s, &drive, &o_offset);
-        let i = row_values(&r, s, (moves_ground, rocking, double), &mut values);
+        let i = row_values(
+            &r,
+            s,
+            (moves_ground, rocking, double, vertical),
+            &mut values,
+        );
         contact_states(m, &mut states, &mut slid);
         sink.row(s.t, &values[..i], &states);
     });
@@ -188,7 +205,7 @@ pub fn simulate_space_into<S: StepSink + ?Sized>(
 fn row_values(
     r: &SpaceRow,
     s: &Snapshot<Space>,
-    (moves_ground, rocking, double): (bool, bool, bool),
+    (moves_ground, rocking, double, vertical): (bool, bool, bool, bool),
     values: &mut [f64; 32],
 ) -> usize {
     let mut i = 0;
@@ -223,6 +240,9 @@ fn row_values(
     put(r.normal);
     if double {
         put(r.node_disp.x);
+    }
+    if vertical && !rocking {
+        put(r.uplift);
     }
     i
 }
