@@ -22,7 +22,7 @@ pub mod slug;
 mod spatial;
 
 pub use arrangement::Arrangement;
-pub use azimuths::{AzimuthSet, Coverage};
+pub use load::station::{AzimuthSet, Coverage};
 pub use external::{
     ColumnMap, EXTERNAL_VARIANT, External, ExternalFormat, ExternalLayout, ExternalTrace,
     ReadExternal, check_label,

@@ -15,7 +15,6 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use super::super::azimuths::{AzimuthSet, Coverage};
 use super::super::limits::MAX_AZIMUTHS;
 use super::super::raw::{RawExcitation, RawStation};
 use super::super::record::{
@@ -721,4 +720,48 @@ fn provenance(name: &str, s: &StationRecord, p: &PreparedStation, keys: &Station
         p.notes.join("; "),
         drift.join("; ")
     )
+}
+
+/// The azimuths a case is run at and how to project its station at any of them.
+#[derive(Debug, Clone)]
+pub struct AzimuthSet {
+    /// Compass azimuths of +x, degrees clockwise from north, in the case file's order.
+    pub degrees: Vec<f64>,
+    /// What the set must span to cover every direction.
+    pub coverage: Coverage,
+    /// The station's prepared channels, projected at each azimuth.
+    pub(crate) projection: Arc<StationProjection>,
+}
+
+/// What a set of azimuths spans, following the axes the station drives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Coverage {
+    /// Both horizontals drive x and y: 0 up to 180° (a + 180° is a mirrored).
+    Plan,
+    /// One horizontal drives x: 0 up to 360° (a + 180° is the other polarity).
+    Axis,
+}
+
+impl Coverage {
+    /// The span of azimuths that covers every direction, degrees (180 or 360).
+    pub fn span_deg(self) -> f64 {
+        match self {
+            Coverage::Plan => 180.0,
+            Coverage::Axis => 360.0,
+        }
+    }
+
+    /// Why the span is what it is, in words.
+    pub fn reason(self) -> &'static str {
+        match self {
+            Coverage::Plan => {
+                "the station drives x and y: an azimuth a + 180° inverts both horizontals, \
+                 which mirrors the motion and leaves the resultant sliding and uplift as at a"
+            }
+            Coverage::Axis => {
+                "the station drives x alone: an azimuth a + 180° is the other polarity, \
+                 which changes the sign of the residual sliding, so both are in the set"
+            }
+        }
+    }
 }
