@@ -732,7 +732,10 @@ fn no_crate_has_an_import_circle_between_its_modules() {
     assert!(
         new.is_empty(),
         "import circles inside crates (a module that uses another which, directly or through others, uses it back):\n{}",
-        new.iter().map(|l| l.as_str()).collect::<Vec<_>>().join("\n")
+        new.iter()
+            .map(|l| l.as_str())
+            .collect::<Vec<_>>()
+            .join("\n")
     );
     let gone: Vec<&&str> = KNOWN_CIRCLES
         .iter()

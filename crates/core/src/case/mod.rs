@@ -22,12 +22,12 @@ pub mod slug;
 mod spatial;
 
 pub use arrangement::Arrangement;
-pub use load::station::{AzimuthSet, Coverage};
 pub use external::{
     ColumnMap, EXTERNAL_VARIANT, External, ExternalFormat, ExternalLayout, ExternalTrace,
     ReadExternal, check_label,
 };
 pub use invariant::Invariant;
+pub use load::station::{AzimuthSet, Coverage};
 pub use load::{
     MAX_CASE_BYTES, discover, load_case, load_case_with, parse_case, parse_case_with,
     read_input_text,
