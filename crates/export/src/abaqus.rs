@@ -21,7 +21,7 @@ use std::fmt::Write as _;
 use rockslide_core::case::{Case, Model, Oscillator, RockingBody};
 use rockslide_core::error::InputError;
 
-use crate::deck::{DeckSettings, check_scene, num, one_line};
+use crate::deck::{DeckSettings, check_scene, num};
 use crate::inp::{self, Dialect, GROUND_NODE, Layout, SET_BODY, SET_GROUND, list};
 use crate::{Export, ExportFile, ExportResult};
 
@@ -85,19 +85,7 @@ pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
 
 /// What the deck is, that rockslide does not run it, how to run it.
 fn header(case: &Case, settings: &DeckSettings, script: &str) -> String {
-    let mut h = String::new();
-    let _ = writeln!(
-        h,
-        "** Abaqus/Standard model of the rockslide case \"{}\": {}",
-        case.name,
-        one_line(&case.title)
-    );
-    let _ = writeln!(h, "** Source: {}", one_line(&case.source));
-    let _ = writeln!(
-        h,
-        "** Written by rockslide {} (`rockslide export CASE --to abaqus`). Units: SI (kg, N, m, s).",
-        env!("CARGO_PKG_VERSION")
-    );
+    let mut h = inp::title_lines("Abaqus/Standard", "abaqus", case);
     h.push_str(
         "** NOT EXECUTED BY ROCKSLIDE: Abaqus cannot run where rockslide is tested. Written from the\n\
          ** Abaqus Keywords Reference (*CONTACT PAIR, *SURFACE INTERACTION, *SURFACE BEHAVIOR,\n\

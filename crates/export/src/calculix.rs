@@ -20,7 +20,7 @@ use std::fmt::Write as _;
 use rockslide_core::case::{Case, Contact, Excitation, Model, Oscillator};
 use rockslide_core::error::InputError;
 
-use crate::deck::{DeckSettings, check_scene, num, one_line};
+use crate::deck::{DeckSettings, check_scene, num};
 use crate::inp::{self, Dialect, Layout, list};
 use crate::{Export, ExportFile, ExportResult};
 
@@ -137,19 +137,7 @@ fn arrangement<'a>(
 
 /// What the deck is, how to run it, the scene's numbers, the model chosen and why.
 fn header(case: &Case, o: &Oscillator, settings: &DeckSettings) -> String {
-    let mut h = String::new();
-    let _ = writeln!(
-        h,
-        "** CalculiX (ccx) model of the rockslide case \"{}\": {}",
-        case.name,
-        one_line(&case.title)
-    );
-    let _ = writeln!(h, "** Source: {}", one_line(&case.source));
-    let _ = writeln!(
-        h,
-        "** Written by rockslide {} (`rockslide export CASE --to calculix`). Units: SI (kg, N, m, s).",
-        env!("CARGO_PKG_VERSION")
-    );
+    let mut h = inp::title_lines("CalculiX (ccx)", "calculix", case);
     h.push_str(
         "** Run: ccx -i JOB (JOB = this file's name without .inp; Debian: apt-get install calculix-ccx).\n\
          **      The *NODE PRINT requests write the body's U and V and the ground's total RF to JOB.dat,\n\

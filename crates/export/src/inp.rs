@@ -14,7 +14,7 @@ use std::fmt::Write as _;
 
 use rockslide_core::case::{Case, Contact, Excitation, Oscillator, Signal};
 
-use crate::deck::{DeckSettings, num};
+use crate::deck::{DeckSettings, num, one_line};
 
 /// The slave faces' area, m²: the penalty slopes per square metre are the stiffnesses.
 pub const SLAVE_AREA: f64 = 1.0;
@@ -345,4 +345,24 @@ pub fn excitation_load(deck: &mut String, case: &Case, mass: f64, body: &str, gr
 /// Whether the ground moves (a ground displacement is imposed on it).
 pub fn moving_ground(case: &Case) -> bool {
     matches!(case.scene.excitation, Excitation::GroundDisplacement(_))
+}
+
+/// A deck's first three comment lines: which program's model of which case, its source,
+/// the rockslide version and command that wrote it (`program` as the header names it,
+/// `to` as `rockslide export --to` spells it).
+pub fn title_lines(program: &str, to: &str, case: &Case) -> String {
+    let mut h = String::new();
+    let _ = writeln!(
+        h,
+        "** {program} model of the rockslide case \"{}\": {}",
+        case.name,
+        one_line(&case.title)
+    );
+    let _ = writeln!(h, "** Source: {}", one_line(&case.source));
+    let _ = writeln!(
+        h,
+        "** Written by rockslide {} (`rockslide export CASE --to {to}`). Units: SI (kg, N, m, s).",
+        env!("CARGO_PKG_VERSION")
+    );
+    h
 }
