@@ -26,12 +26,14 @@ pub fn sentence(h: &Headline) -> String {
         ),
         Headline::Against {
             label,
+            quantity,
             basis,
             median,
             largest,
             points,
         } => format!(
-            "{label} against {basis}, residual sliding: median |Δ| {median:.2} %, largest {largest:.2} % over {points} points with |sliding| > 0.1 mm"
+            "{label} against {basis}, {}: median |Δ| {median:.2} %, largest {largest:.2} % over {points} points with |sliding| > 0.1 mm",
+            quantity.name()
         ),
         Headline::OverRigid {
             label,
@@ -67,10 +69,24 @@ pub fn statistics_sentence(s: &Statistics) -> String {
         g.pga / STANDARD_GRAVITY,
         g.mu,
         g.point.polarity,
-        g.point
-            .x_azimuth_deg
-            .map_or_else(String::new, |a| format!(", +x at compass {a}°"))
+        governing_azimuths(s)
     )
+}
+
+/// The governing azimuth of a statistic, or every azimuth that reaches its maximum alike.
+fn governing_azimuths(s: &Statistics) -> String {
+    match s.governing_azimuths.as_slice() {
+        [] => String::new(),
+        [a] => format!(", +x at compass {a}°"),
+        all => format!(
+            ", +x at compass {}° alike (to {:.0e}: no azimuth governs)",
+            all.iter()
+                .map(|a| a.to_string())
+                .collect::<Vec<_>>()
+                .join("°, "),
+            rockslide_verify::study::SAME_TO
+        ),
+    }
 }
 
 /// The headline of a study as sentences.

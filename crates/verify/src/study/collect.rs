@@ -147,9 +147,49 @@ pub fn collect(grid: &Grid, from: &[PathBuf], out: &Path) -> Result<Study, Error
 /// where it and `basis` both have one and |basis| > 0.1 mm: the relative differences
 /// 100·(label/basis − 1), in point order.
 pub fn agreement(c: &Study, label: &str, basis: &str) -> Vec<f64> {
+    agreement_on(c, Compared::ResidualSliding, label, basis)
+}
+
+/// A quantity engines are compared on, point by point, in a study's headline.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Compared {
+    /// Residual sliding: signed along x for a planar scene, the resultant in plan for a
+    /// 3D one.
+    ResidualSliding,
+    /// Peak |sliding| (the resultant in plan for a 3D scene).
+    PeakSliding,
+}
+
+impl Compared {
+    /// The quantity's name in the summary.
+    pub fn name(self) -> &'static str {
+        match self {
+            Compared::ResidualSliding => "residual sliding",
+            Compared::PeakSliding => "peak |sliding|",
+        }
+    }
+
+    /// The quantity of one run, m.
+    fn of(self, run: &RunSummary) -> Option<f64> {
+        match self {
+            Compared::ResidualSliding => run.residual_resultant_sliding.or(run.residual_sliding),
+            Compared::PeakSliding => run.peak_magnitude(),
+        }
+    }
+}
+
+/// `quantity` of run `label` against `basis` at every point where both have it and
+/// |basis| > 0.1 mm: the relative differences 100·(label/basis − 1), in point order.
+pub fn agreement_on(c: &Study, quantity: Compared, label: &str, basis: &str) -> Vec<f64> {
+    let of = |r: &PointResult, l: &str| {
+        r.runs
+            .iter()
+            .find(|x| self::label(x) == l)
+            .and_then(|x| quantity.of(x))
+    };
     c.results
         .iter()
-        .filter_map(|r| match (residual(r, label), residual(r, basis)) {
+        .filter_map(|r| match (of(r, label), of(r, basis)) {
             (Some(a), Some(b)) if b.abs() > 1e-4 => Some(100.0 * (a / b - 1.0)),
             _ => None,
         })
@@ -162,7 +202,7 @@ fn residual(r: &PointResult, l: &str) -> Option<f64> {
     r.runs
         .iter()
         .find(|x| label(x) == l)
-        .and_then(|x| x.residual_resultant_sliding.or(x.residual_sliding))
+        .and_then(|x| Compared::ResidualSliding.of(x))
 }
 
 /// One line of a study's headline, as numbers.
@@ -178,10 +218,12 @@ pub enum Headline {
         point: PointResult,
     },
     /// One engine against the exact reference where it ran (else the first engine
-    /// planned), point by point (residual sliding, points where |basis| > 0.1 mm).
+    /// planned), point by point on one quantity (points where |basis| > 0.1 mm).
     Against {
         /// `engine/variant`.
         label: String,
+        /// The quantity compared.
+        quantity: Compared,
         /// The exact reference's label, or the first engine planned.
         basis: String,
         /// Median |Δ|, %.
@@ -231,6 +273,34 @@ pub struct Statistics {
     pub max: f64,
     /// The point of the maximum: record, PGA, μ, polarity.
     pub governing: PointResult,
+    /// The compass azimuths of +x at which the governing record, amplitude, μ and
+    /// polarity reach the maximum to within [`SAME_TO`]: one azimuth when the azimuth
+    /// governs, several when the scene answers alike in every direction (a scene
+    /// isotropic in plan), none when the study has no azimuth axis.
+    pub governing_azimuths: Vec<f64>,
+}
+
+/// Relative difference below which two values of a quantity at different azimuths are
+/// the same answer (round-off of rotating the record), not a governing azimuth.
+pub const SAME_TO: f64 = 1e-9;
+
+/// The azimuths at which the points like `governing` (same record, amplitude, μ,
+/// polarity) reach `max` to within [`SAME_TO`].
+fn azimuths_at_max(rows: &[(f64, &PointResult)], governing: &PointResult, max: f64) -> Vec<f64> {
+    let like = |r: &PointResult| {
+        r.record == governing.record
+            && r.pga == governing.pga
+            && r.mu == governing.mu
+            && r.point.polarity == governing.point.polarity
+    };
+    let mut out: Vec<f64> = rows
+        .iter()
+        .filter(|(v, r)| like(r) && (max - v).abs() <= SAME_TO * max.abs())
+        .filter_map(|(_, r)| r.point.x_azimuth_deg)
+        .collect();
+    out.sort_by(f64::total_cmp);
+    out.dedup();
+    out
 }
 
 /// Mean, median, 84th percentile and maximum of `values` (not empty), sorted in place.
@@ -273,6 +343,11 @@ pub fn statistics(c: &Study) -> Vec<Statistics> {
             let Some(&(_, governing)) = rows.iter().max_by(|a, b| a.0.total_cmp(&b.0)) else {
                 continue;
             };
+            let governing_azimuths = azimuths_at_max(&rows, governing, {
+                rows.iter()
+                    .map(|(v, _)| *v)
+                    .fold(f64::NEG_INFINITY, f64::max)
+            });
             let mut values: Vec<f64> = rows.iter().map(|(v, _)| *v).collect();
             let [mean, median, p84, max] = summary_statistics(&mut values);
             out.push(Statistics {
@@ -285,6 +360,7 @@ pub fn statistics(c: &Study) -> Vec<Statistics> {
                 p84,
                 max,
                 governing: governing.clone(),
+                governing_azimuths,
             });
         }
     }
@@ -303,9 +379,28 @@ fn basis(c: &Study) -> Option<String> {
         .cloned()
 }
 
+/// One engine against the basis on one quantity: the median and largest |Δ| of the
+/// point-by-point differences `d` (%), or nothing when no point was compared.
+fn against(label: &str, basis: &str, quantity: Compared, d: Vec<f64>) -> Option<Headline> {
+    let mut d: Vec<f64> = d.iter().map(|x| x.abs()).collect();
+    if d.is_empty() {
+        return None;
+    }
+    d.sort_by(f64::total_cmp);
+    Some(Headline::Against {
+        label: label.to_string(),
+        quantity,
+        basis: basis.to_string(),
+        median: d[d.len() / 2],
+        largest: d[d.len() - 1],
+        points: d.len(),
+    })
+}
+
 /// The headline: per run label the largest |residual sliding| and where; each engine
-/// against the exact reference (or the first engine planned when no reference ran); and
-/// engine-to-rigid-block ratios when both are present.
+/// against the exact reference (or the first engine planned when no reference ran) on
+/// the residual sliding, then on the peak sliding; and engine-to-rigid-block ratios when
+/// both are present.
 pub fn headline(c: &Study) -> Vec<Headline> {
     let mut out = Vec::new();
     for l in c.run_labels() {
@@ -324,19 +419,13 @@ pub fn headline(c: &Study) -> Vec<Headline> {
     }
     let engines = c.engine_labels();
     if let Some(basis) = basis(c) {
-        for l in engines.iter().filter(|l| **l != basis) {
-            let mut d: Vec<f64> = agreement(c, l, &basis).iter().map(|x| x.abs()).collect();
-            if d.is_empty() {
-                continue;
+        for quantity in [Compared::ResidualSliding, Compared::PeakSliding] {
+            for l in engines.iter().filter(|l| **l != basis) {
+                let d = agreement_on(c, quantity, l, &basis);
+                if let Some(h) = against(l, &basis, quantity, d) {
+                    out.push(h);
+                }
             }
-            d.sort_by(f64::total_cmp);
-            out.push(Headline::Against {
-                label: l.clone(),
-                basis: basis.clone(),
-                median: d[d.len() / 2],
-                largest: d[d.len() - 1],
-                points: d.len(),
-            });
         }
     }
     for l in &engines {
@@ -365,4 +454,57 @@ pub fn headline(c: &Study) -> Vec<Headline> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rockslide_core::study_grid::{Amplitude, GridPoint};
+
+    fn point(record: &str, polarity: f64, azimuth: f64) -> PointResult {
+        PointResult {
+            hash: String::new(),
+            point: GridPoint {
+                index: 0,
+                record: 0,
+                amplitude: Amplitude::Scale(1.0),
+                mu: Some(0.3),
+                polarity,
+                x_azimuth_deg: Some(azimuth),
+            },
+            record: record.into(),
+            pga: 5.0,
+            scale_factor: 1.0,
+            mu: 0.3,
+            excitation: String::new(),
+            not_applicable: Vec::new(),
+            runs: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn an_azimuth_governs_only_beyond_round_off() {
+        let p: Vec<PointResult> = [0.0, 45.0, 90.0, 135.0]
+            .iter()
+            .map(|&a| point("A", 1.0, a))
+            .chain([point("A", -1.0, 0.0), point("B", 1.0, 0.0)])
+            .collect();
+        // An isotropic scene: the four azimuths equal to 1e-13; the other polarity and
+        // record, at the same value, are other points, not other azimuths.
+        let v = [
+            0.07,
+            0.07 * (1.0 - 1e-13),
+            0.07 * (1.0 + 1e-13),
+            0.07,
+            0.07,
+            0.07,
+        ];
+        let rows: Vec<(f64, &PointResult)> = v.iter().copied().zip(&p).collect();
+        let max = 0.07 * (1.0 + 1e-13);
+        assert_eq!(azimuths_at_max(&rows, &p[2], max), [0.0, 45.0, 90.0, 135.0]);
+        // A directional scene: 45° is larger by 1e-6, beyond round-off: it alone governs.
+        let v = [0.07, 0.07 * (1.0 + 1e-6), 0.07, 0.07, 0.07, 0.07];
+        let rows: Vec<(f64, &PointResult)> = v.iter().copied().zip(&p).collect();
+        assert_eq!(azimuths_at_max(&rows, &p[1], v[1]), [45.0]);
+    }
 }

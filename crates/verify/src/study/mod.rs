@@ -11,8 +11,8 @@ mod newmark;
 mod runner;
 
 pub use collect::{
-    FILE, Headline, RIGID, Stamp, Statistics, Study, agreement, collect, headline, label,
-    statistics, summary_statistics,
+    Compared, FILE, Headline, RIGID, SAME_TO, Stamp, Statistics, Study, agreement, agreement_on,
+    collect, headline, label, statistics, summary_statistics,
 };
 pub use grid::{Amplitude, DEFAULT_TAIL, Grid, GridPoint, GridRecord, load_grid, short_name};
 pub use newmark::{NewmarkArgs, newmark_command};
