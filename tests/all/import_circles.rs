@@ -751,10 +751,6 @@ fn no_crate_has_an_import_circle_between_its_modules() {
 /// check fails on any other circle, and on a listed one that is gone. The finder reports
 /// one circle per tangle, so fixing one may show the next of the same tangle.
 const KNOWN_CIRCLES: &[&str] = &[
-    // fe's model generic over the dimension: the model's default dimension is the plane,
-    // and the dimensions' ground sums live in the shared assembly
-    "rockslide-engine-fe, top level: energy → model → space → recording → energy",
-    "rockslide-engine-fe, model: assembly → body → plane → assembly",
     // a case run at a set of azimuths: the set is part of the case, read with the station
     "rockslide-core, case: load → scene → load",
     // the azimuth sweep runs whole cases and is recorded with them

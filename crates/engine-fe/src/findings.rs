@@ -5,7 +5,7 @@
 //! numbers for those findings are read as it runs ([`Summary`], a [`StepSink`]), so
 //! neither the run nor its alternatives keep a trace for them.
 
-use super::model::{Model, PlaneKinematics};
+use super::model::{Model, Plane, PlaneKinematics};
 use super::modes::eigenfrequencies;
 use super::options::{FeOptions, Kinematics};
 use super::recording::{FIELDS, ROW_VALUES, RowSink, Rows, SelfCheck, run_model};
@@ -19,7 +19,7 @@ const PI: f64 = std::f64::consts::PI;
 /// A finished run, as the findings need it.
 pub(crate) struct Findings<'a> {
     pub case: &'a Case,
-    pub model: &'a Model,
+    pub model: &'a Model<Plane>,
     pub double: Option<&'a DoubleContact>,
     pub opts: &'a FeOptions,
     pub dt: f64,
@@ -122,13 +122,13 @@ pub(crate) fn findings(run: &Findings) -> Vec<String> {
 /// run with the rotational inertia scaled, and with small-rotation kinematics.
 fn sensitivity(
     case: &Case,
-    model: &Model,
+    model: &Model<Plane>,
     opts: &FeOptions,
     dt: f64,
     base: &Summary,
 ) -> Vec<String> {
     let mut out = vec![format!("this run: {}", base.describe())];
-    let mut alternatives: Vec<(String, Model)> = Vec::new();
+    let mut alternatives: Vec<(String, Model<Plane>)> = Vec::new();
     for factor in [0.1, 10.0, 100.0] {
         let mut m = model.clone();
         m.body.inertia *= factor;

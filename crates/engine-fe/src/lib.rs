@@ -18,6 +18,8 @@
 //! - `modes`: the model's own eigenfrequencies.
 //! - `options`: the `[engines.fe]` options.
 //! - `simulate`: one run: build the model, integrate, gather settings and findings.
+//! - `run_parts`: what a run states alike in either dimension (variant, errors, solver
+//!   statistics, integrator settings).
 //! - `recording`: the trace channels and the row handed to a sink at every step (the
 //!   engine streams natively: a whole run is the same loop into a trace sized up front).
 //! - `energy`: the energy bookkeeping of rocking runs.
@@ -36,6 +38,7 @@ mod model;
 mod modes;
 mod options;
 mod recording;
+mod run_parts;
 mod series;
 mod simulate;
 pub mod space;

@@ -5,7 +5,7 @@
 
 use nalgebra::{Matrix2, Matrix3, SymmetricEigen, Vector3};
 
-use super::model::{Assembly, Model};
+use super::model::{Assembly, Model, Plane};
 use super::stepper::preload;
 
 /// Eigenfrequencies of a model, rad/s.
@@ -20,7 +20,7 @@ pub struct Modes {
 }
 
 /// Eigenfrequencies of `model` about its static equilibrium.
-pub fn eigenfrequencies(model: &Model) -> Result<Modes, String> {
+pub fn eigenfrequencies(model: &Model<Plane>) -> Result<Modes, String> {
     let mut m = model.clone();
     let (q, mut un) = preload(&mut m)?;
     let mut a = Assembly::new(&m);

@@ -222,75 +222,103 @@ pub(crate) fn run_model<S: RowSink + ?Sized>(
         });
         return (status, counters, check);
     }
-    let (status, counters) = integrate(
-        &mut model,
-        &drive,
-        opts,
-        dt,
-        steps,
-        |m, s: &Snapshot<Plane>| {
-            let (xg, vg, ag) = s.ground;
-            // The self-check's running maximum in a local over the loop, stored once after it.
-            let sums = support_sums(m, s, sink.contacts(), check.node_minus_slip);
-            let SupportSums {
-                shear,
-                normal,
-                slip_sum,
-                slip_min,
-                slip_max,
-                uplift,
-                contacts,
-                node_sum,
-                node_minus_slip,
-            } = sums;
-            check.node_minus_slip = node_minus_slip;
-            let slide = slip_sum / m.supports.len() as f64;
-            let row = sink.values();
-            let mut i = 0;
-            let mut put = |v: f64| {
-                row[i] = v;
-                i += 1;
-            };
-            put(drive.equivalent_force::<Plane>(s.t, s.force));
-            put(shear);
-            if rocking {
-                put(m.displacement_at(&s.pose, *s.at, &o_offset).x - xg);
-            } else {
-                put(s.pose.x - xg);
-            }
-            put(slide);
-            if rocking {
-                put(slip_max - slip_min);
-            }
-            put(s.v.x - vg);
-            put(s.a.x - ag);
-            if moves_ground {
-                put(xg);
-            }
-            if rocking {
-                put(s.pose.x - xg);
-                put(s.pose.y - s.statics.y);
-                put(s.pose.z);
-                put(uplift.max(0.0));
-                put(contacts);
-                put(shear);
-            }
-            put(normal);
-            if double {
-                put(node_sum / m.supports.len() as f64);
-            }
-            if uplift_channel {
-                put(uplift);
-            }
-            if rocking {
-                for v in book.record(m, s, (s.force, s.vertical_force)) {
-                    put(v);
-                }
-            }
-            sink.end_row(s.t, i);
-        },
-    );
+    let row = RowSwitches {
+        moves_ground,
+        rocking,
+        double,
+        uplift: uplift_channel,
+        o_offset,
+    };
+    let (status, counters) = integrate(&mut model, &drive, opts, dt, steps, |m, s| {
+        let count = general_row(m, s, &drive, &row, (&mut check, &mut book), sink);
+        sink.end_row(s.t, count);
+    });
     (status, counters, check)
+}
+
+/// Which channels a row of the general recorder holds (`channels`), and the base
+/// centre O's body offset.
+#[derive(Debug, Clone, Copy)]
+struct RowSwitches {
+    moves_ground: bool,
+    rocking: bool,
+    double: bool,
+    uplift: bool,
+    o_offset: Vector2<f64>,
+}
+
+/// The general recorder's row of snapshot `s` of `m` (any body, any arrangement): the
+/// channels into `sink`'s values, each support's contact fields into its contacts, the
+/// self-check and the energy book (rocking bodies) brought up to date; returns the count
+/// of values written.
+#[inline(always)]
+fn general_row<S: RowSink + ?Sized>(
+    m: &Model<Plane>,
+    s: &Snapshot<Plane>,
+    drive: &Drive,
+    sw: &RowSwitches,
+    (check, book): (&mut SelfCheck, &mut EnergyBook),
+    sink: &mut S,
+) -> usize {
+    let (xg, vg, ag) = s.ground;
+    // The self-check's running maximum in a local over the loop, stored once after it.
+    let sums = support_sums(m, s, sink.contacts(), check.node_minus_slip);
+    let SupportSums {
+        shear,
+        normal,
+        slip_sum,
+        slip_min,
+        slip_max,
+        uplift,
+        contacts,
+        node_sum,
+        node_minus_slip,
+    } = sums;
+    check.node_minus_slip = node_minus_slip;
+    let slide = slip_sum / m.supports.len() as f64;
+    let row = sink.values();
+    let mut i = 0;
+    let mut put = |v: f64| {
+        row[i] = v;
+        i += 1;
+    };
+    put(drive.equivalent_force::<Plane>(s.t, s.force));
+    put(shear);
+    if sw.rocking {
+        put(m.displacement_at(&s.pose, *s.at, &sw.o_offset).x - xg);
+    } else {
+        put(s.pose.x - xg);
+    }
+    put(slide);
+    if sw.rocking {
+        put(slip_max - slip_min);
+    }
+    put(s.v.x - vg);
+    put(s.a.x - ag);
+    if sw.moves_ground {
+        put(xg);
+    }
+    if sw.rocking {
+        put(s.pose.x - xg);
+        put(s.pose.y - s.statics.y);
+        put(s.pose.z);
+        put(uplift.max(0.0));
+        put(contacts);
+        put(shear);
+    }
+    put(normal);
+    if sw.double {
+        put(node_sum / m.supports.len() as f64);
+    }
+    if sw.uplift {
+        put(uplift);
+    }
+    if sw.rocking {
+        for v in book.record(m, s, (s.force, s.vertical_force)) {
+            put(v);
+        }
+    }
+    i
 }
 
 /// The sums over the supports of a snapshot `s` of `m`, each support's contact fields

@@ -6,16 +6,15 @@
 //! of the rows is a running summary).
 
 use super::findings::{Findings, Summarised, findings};
-use super::model::{Model, default_rotational_inertia};
+use super::model::{Model, Plane, default_rotational_inertia};
 use super::options::FeOptions;
 use super::recording::{RowSink, Rows, run_model};
+use super::run_parts::{integrator_settings, is_double, no_double, rigid_block, solver_stats};
 use super::space;
-use super::stepper::Counters;
-use super::variant;
 use super::whole_run::WholeRun;
 use rockslide_core::case::{Case, DoubleContact, Model as SceneModel};
 use rockslide_core::error::InputError;
-use rockslide_engine_api::{Run, Setting, SolverStats, StepSink, step_count};
+use rockslide_engine_api::{Run, Setting, StepSink, step_count};
 
 /// Run `variant` of the case's scene at time step `dt` with `opts`: the whole run, its
 /// trace sized for the run up front.
@@ -55,58 +54,6 @@ pub(crate) fn recorded_values(case: &Case, variant: &str, opts: &FeOptions) -> O
     Some(super::recording::values_per_row(
         &super::recording::layout_of_model(case, &model),
     ))
-}
-
-/// Whether `variant` is the double arrangement, or the located error of a name fe does
-/// not declare.
-pub(crate) fn is_double(case: &Case, variant: &str) -> Result<bool, InputError> {
-    match variant {
-        variant::SINGLE => Ok(false),
-        variant::DOUBLE => Ok(true),
-        other => Err(case.field_error(
-            "engines.fe.variants",
-            format!("\"{other}\" is not a variant of fe; variants: single, double"),
-        )),
-    }
-}
-
-/// The error of the double variant on a scene without double elements.
-pub(crate) fn no_double(case: &Case) -> InputError {
-    case.field_error(
-        "model.double",
-        "is required for the fe engine's \"double\" variant",
-    )
-}
-
-/// The error of a rigid block (no contact stiffness).
-pub(crate) fn rigid_block(case: &Case) -> InputError {
-    case.field_error(
-        "model.kind",
-        "the fe engine does not run rigid blocks (no contact stiffness)",
-    )
-}
-
-/// The solver statistics of a run's counters.
-pub(crate) fn solver_stats(counters: &Counters) -> SolverStats {
-    SolverStats {
-        steps: counters.steps,
-        substeps_per_step: None,
-        newton_iterations: Some(counters.iterations),
-        max_step_iterations: Some(counters.max_step_iterations),
-        static_iterations: Some(counters.static_iterations),
-        step_cuts: Some(counters.step_cuts),
-        roundoff_accepted: Some(counters.roundoff_accepted),
-    }
-}
-
-/// The settings every run states first: Δt, the integrator and its (α, β, γ).
-pub(crate) fn integrator_settings(dt: f64, opts: &FeOptions) -> Vec<Setting> {
-    let (alpha, beta, gamma) = opts.integrator.parameters();
-    vec![
-        Setting::number("dt", "s", dt),
-        Setting::choice("integrator", opts.integrator.label()),
-        Setting::text("α, β, γ", format!("{alpha}, {beta:.6}, {gamma:.6}")),
-    ]
 }
 
 /// [`simulate_into`] for the recorder's own sink: the whole run's, or any [`StepSink`]
@@ -162,12 +109,12 @@ fn build_model(
     case: &Case,
     variant: &str,
     opts: &FeOptions,
-) -> Result<(Model, Option<DoubleContact>, String), InputError> {
+) -> Result<(Model<Plane>, Option<DoubleContact>, String), InputError> {
     let scene = &case.scene;
     let want_double = is_double(case, variant)?;
     let no_double = || no_double(case);
     let mut inertia_note = String::new();
-    let (model, double): (Model, Option<DoubleContact>) = match &scene.model {
+    let (model, double): (Model<Plane>, Option<DoubleContact>) = match &scene.model {
         SceneModel::Oscillator(o) => {
             let d = if want_double {
                 Some(o.double.ok_or_else(no_double)?)
@@ -269,6 +216,7 @@ fn settings(
 mod tests {
     use super::*;
     use crate::recording::run_whole;
+    use crate::variant;
     use std::path::Path;
 
     fn case(name: &str) -> Case {
@@ -350,7 +298,7 @@ mod tests {
         let (model, _, _) = build_model(&case, variant::DOUBLE, &opts).expect("builds");
         let mut nodes = model.clone();
         nodes.condensed = false;
-        let peaks = |m: Model| {
+        let peaks = |m: Model<Plane>| {
             let (trace, status, _, _) = run_whole(&case, m, 1e-3, &opts);
             assert!(status.completed());
             let peak = |key: &str| {

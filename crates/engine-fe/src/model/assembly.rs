@@ -11,8 +11,7 @@
 //! its support enters the body's tangent through the series tangent
 //! D2 − D2·(D1 + D2)⁻¹·D2, and its residual through the solve (`solve`).
 
-use super::body::Model;
-use super::dimension::{Dimension, GroundSums, Tangent, Vector};
+use super::dimension::{Dimension, GroundSums, Model, Tangent, Vector};
 use crate::element::{Contact, Element, Status, Tangential};
 use crate::series::{node_equilibrium, split_equivalent};
 

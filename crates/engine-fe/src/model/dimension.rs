@@ -1,10 +1,10 @@
 //! What the one model leaves to its dimension ([`Dimension`]): the body's generalized
 //! coordinates and their update, a support point's displacement and how its force and
 //! tangent enter the body's unknowns (G at the point's offset), the inertia, the contact's
-//! tangential part and the vector types. Everything else — the supports and their
-//! elements, the assembly's loops, the nodes' condensation, the Newton solve, commit and
-//! restore, the time loop — is written once over it (`body`, `assembly`, `solve`,
-//! `mechanics`). Two implementations: [`Plane`](super::Plane) and
+//! tangential part and the vector types; and the model's parts over it ([`Model`]: the
+//! [`Body`] and its [`Support`]s). Everything else — building a scene's model, the
+//! assembly's loops, the nodes' condensation, the Newton solve, commit and restore, the
+//! time loop — is written once over it (`build`, `assembly`, `solve`, `mechanics`). Two implementations: [`Plane`](super::Plane) and
 //! [`Space`](super::Space). Statically dispatched: each model is compiled for its
 //! dimension.
 
@@ -14,7 +14,6 @@ use std::ops::AddAssign;
 
 use nalgebra::Vector3;
 
-use super::body::{Body, Model};
 use crate::element::{Contact, Status, Tangential};
 
 /// A point's displacement (and an element's force) in dimension `D`: (x, z) in the plane,
@@ -48,6 +47,55 @@ impl<U> System<U> {
             v: None,
         }
     }
+}
+
+/// The rigid body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Body<D: Dimension> {
+    /// Mass, kg.
+    pub mass: f64,
+    /// Gravity, m/s² (along −z).
+    pub gravity: f64,
+    /// Rotational inertia about the centre of mass (unused when the rotation is locked).
+    pub inertia: D::Inertia,
+    /// Whether the body rotates (else its rotation is locked: a sliding oscillator).
+    pub rotation: bool,
+    /// Support points in the body frame, relative to the centre of mass, m.
+    pub offsets: Vec<Vector<D>>,
+    /// Horizontal viscous damping on the body relative to the ground, N·s/m.
+    pub damping: f64,
+}
+
+/// One support: element 1 from the ground (to the body, or to the support's massless
+/// node) and, in the double arrangement, element 2 from the node to the body.
+#[derive(Debug, Clone)]
+pub struct Support<D: Dimension> {
+    /// The element touching the ground.
+    pub lower: Contact<D::Tangential>,
+    /// Element 2 (bonded), double arrangement only.
+    pub upper: Option<Contact<D::Tangential>>,
+}
+
+/// The penalty FE model of a rigid body on contact supports, in the plane
+/// ([`Plane`](super::Plane)) or in space ([`Space`](super::Space)).
+#[derive(Debug, Clone)]
+pub struct Model<D: Dimension> {
+    /// The body.
+    pub body: Body<D>,
+    /// Supports, one per body offset (node k belongs to support k).
+    pub supports: Vec<Support<D>>,
+    /// Massless nodes (0, or one per support in the double arrangement).
+    pub nodes: usize,
+    /// How the support points follow the body.
+    pub kinematics: D::Kinematics,
+    /// The double arrangement's supports as single series-equivalent elements, ground to
+    /// body (`series_equivalent`); empty for the single arrangement.
+    pub equivalents: Vec<Contact<D::Tangential>>,
+    /// Whether the time loop iterates on the body alone (the single arrangement, or the
+    /// double one with every support condensed into its `equivalents`). `false` carries
+    /// the node unknowns (element 2 with finite friction, or set by a test to compare
+    /// with the uncondensed model).
+    pub condensed: bool,
 }
 
 /// The sums one assembly accumulates over the elements joining the ground to the body

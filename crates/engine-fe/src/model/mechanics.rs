@@ -5,8 +5,7 @@
 use nalgebra::SVector;
 
 use super::assembly::Assembly;
-use super::body::Model;
-use super::dimension::{Dimension, System};
+use super::dimension::{Dimension, Model, System};
 use super::drive::{Drive, Snapshot};
 use super::solve::solve;
 use crate::element::Tangential;

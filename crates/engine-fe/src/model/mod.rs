@@ -7,30 +7,30 @@
 //! Gravity is a constant load −M·g; the run starts from the static equilibrium under it
 //! (`stepper`).
 //!
-//! - `dimension`: what a dimension provides ([`Dimension`]).
-//! - `plane`, `space`: the two (`rotation`: SO(3); `ground_sums`: the 3D assembly's sums).
-//! - `body`: the body, supports and nodes; building a scene's model.
+//! - `dimension`: what a dimension provides ([`Dimension`]); the model's parts over it
+//!   (body, supports, nodes).
+//! - `plane`, `space`: the two (`plane::slider`: the plane's sliding oscillator, the PEPO,
+//!   stepped in scalars; `rotation`: SO(3); `ground_sums`: the 3D assembly's sums).
+//! - `build`: building a scene's model.
 //! - `assembly`: internal forces and tangents; commit and restore.
 //! - `solve`: the condensed Newton solve.
 //! - `drive`: the excitation's loads; what an observer is shown.
 //! - `mechanics`: the model in the time loop (`stepper::Mechanics`).
-//! - `slider`: the plane's sliding oscillator (the PEPO) stepped in scalars.
 
 mod assembly;
-mod body;
+mod build;
 mod dimension;
 mod drive;
 mod ground_sums;
 mod mechanics;
 mod plane;
 mod rotation;
-mod slider;
 mod solve;
 mod space;
 
 pub use assembly::Assembly;
-pub use body::{Model, default_rotational_inertia};
-pub use dimension::Dimension;
+pub use build::default_rotational_inertia;
+pub use dimension::{Body, Dimension, Model};
 pub use drive::{Drive, Snapshot};
 pub use plane::{Plane, PlaneKinematics};
 pub use rotation::{exp as rotation_exp, log as rotation_log, right_jacobian};

@@ -4,8 +4,7 @@
 //! bit for bit the same.
 
 use super::assembly::Assembly;
-use super::body::Model;
-use super::dimension::{Dimension, System, Vector};
+use super::dimension::{Dimension, Model, System, Vector};
 
 /// Solve the Newton system of `sys`: writes the body's correction `dq` and the nodes'
 /// `dun`; false if singular. Each node's residual rn enters the right-hand side as the

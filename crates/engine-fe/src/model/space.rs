@@ -25,8 +25,7 @@ use std::any::Any;
 use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
 use super::assembly::sum_ground_elements;
-use super::body::{Body, Model};
-use super::dimension::{Dimension, GroundSums, System};
+use super::dimension::{Body, Dimension, GroundSums, Model, System};
 use super::ground_sums::{M3, SpaceSums};
 use super::rotation::{exp, log, right_jacobian, skew};
 use crate::element::{ConeContact, Status};
@@ -423,6 +422,15 @@ impl Dimension for Space {
 
     fn own_step(_model: &Model<Space>) -> Option<&'static (dyn Any + Send + Sync)> {
         None
+    }
+}
+
+impl Model<Space> {
+    /// Displacement of the body-frame point `d` at centre of mass `x`, rotation `r`:
+    /// X + (R − I)·d.
+    #[inline]
+    pub fn displacement_of(x: &Vector3<f64>, r: &Matrix3<f64>, d: &Vector3<f64>) -> Vector3<f64> {
+        x + (r * d - d)
     }
 }
 

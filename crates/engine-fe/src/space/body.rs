@@ -4,6 +4,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use crate::model::{Body, Model, Space};
 use rockslide_core::case::{Contact, DoubleContact, Oscillator, RockingBody};
 
 /// A rigid body on supports, as the 3D model is built from it.
@@ -128,5 +129,20 @@ impl SpaceBody {
             },
             double,
         )
+    }
+}
+
+impl Model<Space> {
+    /// The 3D model of `b`: one element per support, or two through a node.
+    pub fn space(b: &SpaceBody) -> Self {
+        let body = Body {
+            mass: b.mass,
+            gravity: b.gravity,
+            inertia: b.inertia,
+            rotation: b.rotation,
+            offsets: b.supports.clone(),
+            damping: b.damping,
+        };
+        Self::new(body, &b.contact, b.double.as_ref(), ())
     }
 }

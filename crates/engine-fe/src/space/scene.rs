@@ -12,7 +12,7 @@ use super::body::{BlockGrid, SpaceBody};
 use super::run::{SpaceRow, record};
 use crate::model::{Drive, Model, Snapshot, Space, default_rotational_inertia};
 use crate::options::FeOptions;
-use crate::simulate::{integrator_settings, is_double, no_double, rigid_block, solver_stats};
+use crate::run_parts::{integrator_settings, is_double, no_double, rigid_block, solver_stats};
 use crate::stepper::integrate;
 use crate::variant;
 use rockslide_core::case::{Case, Excitation, Model as SceneModel, Scene, Spatial};

@@ -4,14 +4,17 @@
 //! G = ∂u/∂q = [I₂ | g] and h = ∂²u/∂θ² — exact rotations u = (R(θ) − I)·d (P-Delta
 //! included), small rotations u = (−θ·dz, θ·dx), or small rotations with the second-order
 //! (P-Delta) terms. The internal force is Gᵀf and its tangent GᵀDG + f·h on θθ.
+//!
+//! - `slider`: the sliding oscillator (the PEPO) stepped in scalars.
+
+mod slider;
 
 use std::any::Any;
 
 use nalgebra::{Matrix2, Matrix3, Vector2, Vector3};
 
 use super::assembly::sum_ground_elements;
-use super::body::{Body, Model};
-use super::dimension::{Dimension, GroundSums, System};
+use super::dimension::{Body, Dimension, GroundSums, Model, System};
 use crate::element::{Contact178, Status};
 use crate::lu::{Lu2, Lu3};
 use crate::options::Kinematics;
@@ -144,7 +147,7 @@ impl GroundSums<Plane> for PlaneSums {
 }
 
 /// The sliding oscillator's step in scalars (`slider`), as the time loop takes it.
-static SLIDER: crate::stepper::StepFn<3, 2, Model<Plane>> = super::slider::step;
+static SLIDER: crate::stepper::StepFn<3, 2, Model<Plane>> = slider::step;
 
 impl Dimension for Plane {
     type Tangential = f64;

@@ -1,69 +1,16 @@
-//! The model's parts in either dimension: the rigid body (mass and inertia at the centre
-//! of mass, a rigid massless base with its support points), the supports (element 1 from
-//! the ground, and in the double arrangement element 2 from a massless node to the body),
-//! and the double supports condensed into their series equivalents where that is exact
-//! (`series`). How a scene builds them: the plane's oscillator and rocking body, the 3D
-//! body (`space::SpaceBody`).
+//! Building the model of a scene (its parts are `dimension`'s): the supports' elements,
+//! the double supports condensed into their series equivalents where that is exact
+//! (`series`), and the plane's oscillator and rocking body. The 3D body is built by
+//! `space::SpaceBody`.
 
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector2;
 
-use super::dimension::{Dimension, Vector};
+use super::dimension::{Body, Dimension, Model, Support};
 use super::plane::{Plane, PlaneKinematics};
-use super::space::Space;
 use crate::element::Contact;
 use crate::options::Kinematics;
 use crate::series::series_equivalent;
-use crate::space::SpaceBody;
 use rockslide_core::case::{Contact as SceneContact, DoubleContact, Oscillator, RockingBody};
-
-/// The rigid body.
-#[derive(Debug, Clone, PartialEq)]
-pub struct Body<D: Dimension> {
-    /// Mass, kg.
-    pub mass: f64,
-    /// Gravity, m/s² (along −z).
-    pub gravity: f64,
-    /// Rotational inertia about the centre of mass (unused when the rotation is locked).
-    pub inertia: D::Inertia,
-    /// Whether the body rotates (else its rotation is locked: a sliding oscillator).
-    pub rotation: bool,
-    /// Support points in the body frame, relative to the centre of mass, m.
-    pub offsets: Vec<Vector<D>>,
-    /// Horizontal viscous damping on the body relative to the ground, N·s/m.
-    pub damping: f64,
-}
-
-/// One support: element 1 from the ground (to the body, or to the support's massless
-/// node) and, in the double arrangement, element 2 from the node to the body.
-#[derive(Debug, Clone)]
-pub struct Support<D: Dimension> {
-    /// The element touching the ground.
-    pub lower: Contact<D::Tangential>,
-    /// Element 2 (bonded), double arrangement only.
-    pub upper: Option<Contact<D::Tangential>>,
-}
-
-/// The penalty FE model of a rigid body on contact supports, in the plane
-/// ([`Plane`], the default) or in space ([`Space`]).
-#[derive(Debug, Clone)]
-pub struct Model<D: Dimension = Plane> {
-    /// The body.
-    pub body: Body<D>,
-    /// Supports, one per body offset (node k belongs to support k).
-    pub supports: Vec<Support<D>>,
-    /// Massless nodes (0, or one per support in the double arrangement).
-    pub nodes: usize,
-    /// How the support points follow the body.
-    pub kinematics: D::Kinematics,
-    /// The double arrangement's supports as single series-equivalent elements, ground to
-    /// body (`series_equivalent`); empty for the single arrangement.
-    pub equivalents: Vec<Contact<D::Tangential>>,
-    /// Whether the time loop iterates on the body alone (the single arrangement, or the
-    /// double one with every support condensed into its `equivalents`). `false` carries
-    /// the node unknowns (element 2 with finite friction, or set by a test to compare
-    /// with the uncondensed model).
-    pub condensed: bool,
-}
 
 /// The engine's stated rotational inertia when a case gives none: 0.01 % of that of a
 /// uniform solid block 2b wide and 2h tall about its centre, I = 1e-4·M(b² + h²)/3
@@ -181,31 +128,5 @@ impl Model<Plane> {
             p_delta,
         };
         Self::new(body, &r.contact, double, kinematics)
-    }
-}
-
-impl Model<Space> {
-    /// The 3D model of a body: one element per support, or two through a node.
-    pub fn space(b: &SpaceBody) -> Self {
-        let body = Body {
-            mass: b.mass,
-            gravity: b.gravity,
-            inertia: b.inertia,
-            rotation: b.rotation,
-            offsets: b.supports.clone(),
-            damping: b.damping,
-        };
-        Self::new(body, &b.contact, b.double.as_ref(), ())
-    }
-
-    /// Displacement of the body-frame point `d` at centre of mass `x`, rotation `r`:
-    /// X + (R − I)·d.
-    #[inline]
-    pub fn displacement_of(
-        x: &Vector3<f64>,
-        r: &nalgebra::Matrix3<f64>,
-        d: &Vector3<f64>,
-    ) -> Vector3<f64> {
-        x + (r * d - d)
     }
 }

@@ -10,10 +10,9 @@
 
 use nalgebra::{Vector2, Vector3};
 
-use super::body::Model;
-use super::drive::Drive;
-use super::plane::Plane;
+use super::Plane;
 use crate::lu::Lu2;
+use crate::model::{Drive, Model};
 use crate::options::FeOptions;
 use crate::stepper::{
     Counters, FailureReason, LastIteration, LineSearch, Newmark, State, StepFailure, StepState,
