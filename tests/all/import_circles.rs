@@ -755,11 +755,6 @@ const KNOWN_CIRCLES: &[&str] = &[
     // and the dimensions' ground sums live in the shared assembly
     "rockslide-engine-fe, top level: energy → model → space → recording → energy",
     "rockslide-engine-fe, model: assembly → body → plane → assembly",
-    // a case run at a set of azimuths: the set is part of the case, read with the station
-    "rockslide-core, case: load → scene → load",
-    // the azimuth sweep runs whole cases and is recorded with them
-    "rockslide-verify, top level: azimuths → suite → azimuths",
-    "rockslide-verify, top level: disagreement → result → record → verdict → disagreement",
 ];
 
 /// A crate of files held in memory, for the unit tests.
