@@ -19,13 +19,12 @@
 use rayon::prelude::*;
 
 use crate::analysis::{Check, Responses, evaluate_tolerances};
-use crate::plan::PlannedRun;
-use crate::record::CheckRecord;
+use crate::check_record::CheckRecord;
+use crate::failure::Failure;
 use crate::result::CaseResult;
-use crate::verdict::{self, Failure};
+use crate::verdict;
 use rockslide_core::case::{AzimuthSet, Case, Coverage};
 use rockslide_core::error::InputErrors;
-use rockslide_engine_api::Engine;
 
 /// Participant name of the reference in an [`AzimuthSweep`].
 pub const REFERENCE: &str = "reference";
@@ -33,56 +32,7 @@ pub const REFERENCE: &str = "reference";
 /// What a check or failure field on the maxima over the set ends with.
 const OVER_THE_SET: &str = ", maximum over x_azimuths_deg";
 
-pub use crate::record::{AzimuthPoint, AzimuthSweep, Figures, Maximum, ParticipantMaxima};
-
-impl AzimuthSweep {
-    /// The governing azimuth, degrees.
-    pub fn governing_deg(&self) -> f64 {
-        self.points[self.governing].azimuth_deg
-    }
-
-    /// The maxima of `participant`.
-    pub fn maxima_of(&self, participant: &str) -> Option<&ParticipantMaxima> {
-        self.maxima.iter().find(|m| m.participant == participant)
-    }
-
-    /// The participants whose largest peak sliding is along another direction than the
-    /// basis's, with their azimuth: not a failure when their maxima agree within
-    /// tolerance. Azimuths 180° apart are one direction (the other polarity, the same peak).
-    pub fn governing_elsewhere(&self) -> Vec<(&str, f64)> {
-        let basis = self
-            .maxima_of(&self.basis)
-            .and_then(|m| m.peak_sliding)
-            .map(|m| m.azimuth_deg);
-        let direction = |a: f64| a.rem_euclid(180.0);
-        self.maxima
-            .iter()
-            .filter_map(|m| Some((m.participant.as_str(), m.peak_sliding?.azimuth_deg)))
-            .filter(|&(_, a)| basis.is_some_and(|b| direction(b) != direction(a)))
-            .collect()
-    }
-
-    /// Every gate failure over the set: at each azimuth and on the maxima.
-    pub fn failures(&self) -> Vec<Failure> {
-        let at = self.points.iter().flat_map(|p| p.failures.iter().cloned());
-        at.chain(self.set_failures.iter().cloned()).collect()
-    }
-
-    /// Every informative failure over the set.
-    pub fn informative(&self) -> Vec<Failure> {
-        let at = self
-            .points
-            .iter()
-            .flat_map(|p| p.informative.iter().cloned());
-        at.chain(self.max_informative.iter().cloned()).collect()
-    }
-
-    /// The informative failures no declared disagreement covers, over the set.
-    pub fn notes(&self) -> Vec<Failure> {
-        let at = self.points.iter().flat_map(|p| p.notes.iter().cloned());
-        at.chain(self.max_informative.iter().cloned()).collect()
-    }
-}
+pub use crate::azimuth_record::{AzimuthPoint, AzimuthSweep, Figures, Maximum, ParticipantMaxima};
 
 /// The response keys read at each azimuth: peak sliding, residual sliding, uplift.
 fn swept_keys(set: &AzimuthSet, case: &Case) -> (&'static str, &'static str, Option<&'static str>) {
@@ -98,12 +48,12 @@ fn swept_keys(set: &AzimuthSet, case: &Case) -> (&'static str, &'static str, Opt
 }
 
 /// Run `case` (which has a set) at every azimuth of its set, in parallel, each as a whole
-/// case (streaming the runs `streams` selects), and gather the sweep; the result returned
-/// is the governing azimuth's, carrying the sweep and the case with its set.
+/// case by `run_case` (the suite's run of a case without a set), and gather the sweep;
+/// the result returned is the governing azimuth's, carrying the sweep and the case with
+/// its set.
 pub(crate) fn run_sweep(
     case: Case,
-    engines: &[Box<dyn Engine>],
-    streams: &(dyn Fn(&Case, &PlannedRun) -> bool + Sync),
+    run_case: impl Fn(Case) -> Result<CaseResult, InputErrors> + Sync,
 ) -> Result<CaseResult, InputErrors> {
     let set = case
         .azimuths
@@ -112,10 +62,7 @@ pub(crate) fn run_sweep(
     let results: Vec<CaseResult> = set
         .degrees
         .par_iter()
-        .map(|&a| {
-            let at = case.at_azimuth(a).expect("a case with a set");
-            crate::suite::run_case_streaming_where(at, engines, streams)
-        })
+        .map(|&a| run_case(case.at_azimuth(a).expect("a case with a set")))
         .collect::<Result<_, _>>()?;
     Ok(gather(case, &set, results))
 }

@@ -17,8 +17,9 @@
 //! - [`external`]: other programs' results as runs, gated like an engine's;
 //!   [`opensees`] and [`calculix`]: those programs run live on the exported scene, what
 //!   they share in [`live`].
-//! - [`verdict`]: the one pass/fail rule; [`record`]: a case result as a typed record
-//!   (`result.json`).
+//! - [`verdict`]: the one pass/fail rule, its lines [`failure::Failure`]; [`record`]: a
+//!   case result as a typed record (`result.json`), a check in it [`check_record`], a set
+//!   of azimuths in it [`azimuth_record`].
 //! - [`timings`]: opt-in wall and CPU time of a command's stages (`--timings`).
 //! - [`sweep`]: work-precision sweeps and stability studies; [`study`]: record/PGA/μ grids.
 //!   Their results are typed serde structs, saved and read back as JSON ([`json`]);
@@ -27,10 +28,13 @@
 #![warn(missing_docs)]
 
 pub mod analysis;
+pub mod azimuth_record;
 pub mod azimuths;
 pub mod calculix;
+pub mod check_record;
 pub mod disagreement;
 pub mod external;
+pub mod failure;
 pub mod footprint;
 pub mod invariants;
 pub mod json;

@@ -9,9 +9,11 @@ use std::path::Path;
 use serde::{Deserialize, Serialize};
 
 use crate::analysis::Responses;
+use crate::azimuth_record::AzimuthSweep;
+use crate::check_record::CheckRecord;
 use crate::run::Outcome;
 use crate::suite::CaseResult;
-use crate::verdict::{self, Failure};
+use crate::verdict;
 use rockslide_core::error::Error;
 use rockslide_engine_api::{Run, SolverStats};
 
@@ -106,52 +108,6 @@ pub struct ReferenceRecord {
     pub responses: Vec<Quantity>,
 }
 
-/// One tolerance applied to one run.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct CheckRecord {
-    /// Quantity key.
-    pub quantity: String,
-    /// The run checked, `engine/variant`.
-    pub run: String,
-    /// What it is compared with (`reference` or `engine/variant`).
-    pub basis: String,
-    /// The run's value, SI.
-    #[serde(with = "crate::json::real_opt")]
-    pub value: Option<f64>,
-    /// The basis value, SI.
-    #[serde(with = "crate::json::real_opt")]
-    pub basis_value: Option<f64>,
-    /// Discrepancy, %.
-    #[serde(with = "crate::json::real_opt")]
-    pub percent: Option<f64>,
-    /// The tolerance in words.
-    pub limit: String,
-    /// Whether a failure fails the gate.
-    pub gated: bool,
-    /// `PASS`, `FAIL`, `MISSING`.
-    pub verdict: String,
-    /// Where the tolerance is in the case file.
-    pub field: String,
-}
-
-impl CheckRecord {
-    /// The record of a check.
-    pub fn of(c: &crate::analysis::Check) -> Self {
-        CheckRecord {
-            quantity: c.quantity.clone(),
-            run: c.run.clone(),
-            basis: c.basis.clone(),
-            value: c.value,
-            basis_value: c.basis_value,
-            percent: c.percent,
-            limit: c.limit.clone(),
-            gated: c.gated,
-            verdict: c.verdict.label().to_string(),
-            field: c.field.clone(),
-        }
-    }
-}
-
 /// A case result: the typed record of `rockslide run` / `check` for one case.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct CaseRecord {
@@ -238,96 +194,4 @@ impl CaseRecord {
     pub fn load(dir: &Path) -> Result<CaseRecord, String> {
         crate::json::read(&dir.join(FILE))
     }
-}
-
-/// A case's participants at every azimuth of its set, and their maxima over it.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct AzimuthSweep {
-    /// The span the set covers, degrees (180: a scene driven in plan; 360: along x alone).
-    pub span_deg: f64,
-    /// Why that span covers every direction, in words.
-    pub span_reason: String,
-    /// Key of the peak sliding read at each azimuth (`peak_resultant_sliding` in plan,
-    /// `peak_abs_sliding` along one axis).
-    pub peak_key: String,
-    /// Key of the residual sliding (`residual_resultant_sliding`, or the signed
-    /// `residual_sliding` along one axis).
-    pub residual_key: String,
-    /// Key of the uplift (`peak_uplift`), when the station drives z.
-    pub uplift_key: Option<String>,
-    /// The participants: the reference (when there is one) first, then the runs in plan
-    /// order, `engine/variant`.
-    pub participants: Vec<String>,
-    /// The participant whose largest peak sliding names the governing azimuth.
-    pub basis: String,
-    /// Index in `points` of the governing azimuth (the case's traces and report are its).
-    pub governing: usize,
-    /// Every azimuth of the set, in the case file's order.
-    pub points: Vec<AzimuthPoint>,
-    /// Each participant's maxima over the set, in `participants` order.
-    pub maxima: Vec<ParticipantMaxima>,
-    /// The case's tolerances on the swept quantities applied to the maxima over the set.
-    pub max_checks: Vec<CheckRecord>,
-    /// Gate failures of the set as a whole: the maxima's gated checks that did not pass,
-    /// and declared disagreements that happen at no azimuth.
-    pub set_failures: Vec<Failure>,
-    /// Informative failures of the maxima (`gate = false`).
-    pub max_informative: Vec<Failure>,
-}
-
-/// The case at one azimuth.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct AzimuthPoint {
-    /// Compass azimuth of +x, degrees clockwise from north.
-    pub azimuth_deg: f64,
-    /// Each participant's figures, in the sweep's `participants` order.
-    pub figures: Vec<Figures>,
-    /// The case's tolerance checks at this azimuth.
-    pub checks: Vec<CheckRecord>,
-    /// Gate failures at this azimuth (each field names the azimuth).
-    pub failures: Vec<Failure>,
-    /// Informative failures at this azimuth.
-    pub informative: Vec<Failure>,
-    /// The informative failures no declared disagreement covers.
-    pub notes: Vec<Failure>,
-}
-
-/// One participant's figures at one azimuth, SI (`None`: not computed — a run that did
-/// not complete, a scene without uplift).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct Figures {
-    /// `reference` or `engine/variant`.
-    pub participant: String,
-    /// Peak sliding (resultant, or |sliding| along one axis), m.
-    #[serde(with = "crate::json::real_opt")]
-    pub peak_sliding: Option<f64>,
-    /// Residual sliding (resultant, or signed along one axis), m.
-    #[serde(with = "crate::json::real_opt")]
-    pub residual_sliding: Option<f64>,
-    /// Peak uplift, m.
-    #[serde(with = "crate::json::real_opt")]
-    pub peak_uplift: Option<f64>,
-}
-
-/// A maximum over the set and the azimuth that gives it.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-pub struct Maximum {
-    /// The largest value over the set, SI.
-    #[serde(with = "crate::json::real")]
-    pub value: f64,
-    /// Its azimuth, degrees (the first in the set's order on a tie).
-    pub azimuth_deg: f64,
-}
-
-/// One participant's maxima over the set (`None`: missing at some azimuth).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-pub struct ParticipantMaxima {
-    /// `reference` or `engine/variant`.
-    pub participant: String,
-    /// Largest peak sliding.
-    pub peak_sliding: Option<Maximum>,
-    /// Largest residual sliding.
-    pub residual_sliding: Option<Maximum>,
-    /// Largest peak uplift.
-    pub peak_uplift: Option<Maximum>,
 }

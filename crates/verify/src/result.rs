@@ -3,6 +3,7 @@
 //! Whether it passes the gate is the verdict's ([`crate::verdict`]).
 
 use crate::analysis::{Check, Responses};
+use crate::azimuth_record::AzimuthSweep;
 use crate::reference::ReferenceResult;
 use rockslide_core::case::Case;
 use rockslide_core::trace::Trace;
@@ -41,7 +42,7 @@ pub struct CaseResult {
     pub envelopes: Vec<Option<crate::analysis::envelope::Envelope>>,
     /// A case with a set of azimuths ([`crate::azimuths`]): the figures at each azimuth
     /// and their maxima; everything above is the governing azimuth's.
-    pub azimuths: Option<Box<crate::azimuths::AzimuthSweep>>,
+    pub azimuths: Option<Box<AzimuthSweep>>,
 }
 
 impl CaseResult {

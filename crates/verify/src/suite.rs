@@ -195,7 +195,11 @@ pub(crate) fn run_case_streaming_where(
 ) -> Result<CaseResult, InputErrors> {
     let plan = plan(&case, engines)?;
     if case.azimuths.is_some() {
-        return crate::azimuths::run_sweep(case, engines, &streams);
+        // one instance for every azimuth: the selection passed on as a trait object
+        let streams: &(dyn Fn(&Case, &PlannedRun) -> bool + Sync) = &streams;
+        return crate::azimuths::run_sweep(case, |at| {
+            run_case_streaming_where(at, engines, streams)
+        });
     }
     let opensees = crate::opensees::prepare(&case)?;
     let calculix = crate::calculix::prepare(&case)?;

@@ -2,52 +2,13 @@
 //! with a one-line rendering for logs. The one pass/fail rule; `rockslide check`, the
 //! reports and the JUnit all ask it.
 
-use std::fmt;
-
 use crate::analysis::{Check, Verdict};
 use crate::disagreement::difference_words;
+use crate::failure::Failure;
 use crate::invariants::InvariantCheck;
 use crate::result::CaseResult;
 use rockslide_core::case::Tolerance;
 use rockslide_core::response::show_value;
-
-/// One failed check: a gated one fails the gate; an informative one (`gate = false`) is
-/// only reported.
-#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
-pub struct Failure {
-    /// Case name.
-    pub case: String,
-    /// Quantity key.
-    pub quantity: String,
-    /// `run vs basis` (`predictor-corrector/paper vs reference`).
-    pub engines: String,
-    /// What was found, in words (`Δ -0.65 % (8.699 mm vs 8.756 mm)`).
-    pub value: String,
-    /// The tolerance in words (`≤ 0.1 %`).
-    pub tolerance: String,
-    /// Where the tolerance is in the case file (`cases/x.toml: tolerance[2]`).
-    pub field: String,
-    /// A gated tolerance that matched no run (rather than a check that failed).
-    pub checks_nothing: bool,
-    /// Whether the check is gated (informative failures come from [`informative`]).
-    pub gated: bool,
-}
-
-impl fmt::Display for Failure {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{} {}: {}: {}: {} (tolerance {}) [{}]",
-            if self.gated { "FAIL" } else { "INFO" },
-            self.case,
-            self.quantity,
-            self.engines,
-            self.value,
-            self.tolerance,
-            self.field
-        )
-    }
-}
 
 /// What a check found, in words: the discrepancy and both values in display units.
 pub fn describe(c: &Check) -> String {

@@ -11,7 +11,9 @@
 //!   and turning +x by 180° changes its sign. Azimuths from 0 up to 360° cover every
 //!   direction in both polarities, so the largest residual in either direction is found.
 //!
-//! The set's types (`AzimuthSet`, `Coverage`) are read with the station (`load::station`).
+//! The set's types (`AzimuthSet`, `Coverage`) are part of the case (`scene`), which keeps
+//! the station's projection behind the trait it owns; the station's reading
+//! (`load::station`) builds the set and implements the projection.
 //! [`Case::at_azimuth`] is the case at one azimuth, built by the very projection a case
 //! with that `x_azimuth_deg` uses, so its runs are those of that case bit for bit.
 

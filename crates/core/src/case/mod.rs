@@ -27,7 +27,6 @@ pub use external::{
     ReadExternal, check_label,
 };
 pub use invariant::Invariant;
-pub use load::station::{AzimuthSet, Coverage};
 pub use load::{
     MAX_CASE_BYTES, discover, load_case, load_case_with, parse_case, parse_case_with,
     read_input_text,
@@ -35,10 +34,10 @@ pub use load::{
 pub use locate::Locator;
 pub use parsed_options::{EngineOptions, ParsedOptions};
 pub use scene::{
-    Case, Contact, DESIGN_QUANTITIES, DoubleContact, EXPECTED_STATUSES, EngineRequest, Excitation,
-    ExpectedDisagreement, ExpectedOutcome, ExpectedViolation, INVARIANT_KEYS, Model, NormalForce,
-    OptionValue, Oscillator, RigidBlock, RockingBody, RunSettings, Scene, Tolerance,
-    ToleranceBasis, Vertical,
+    AzimuthSet, Case, Contact, Coverage, DESIGN_QUANTITIES, DoubleContact, EXPECTED_STATUSES,
+    EngineRequest, Excitation, ExpectedDisagreement, ExpectedOutcome, ExpectedViolation,
+    INVARIANT_KEYS, Model, NormalForce, OptionValue, Oscillator, RigidBlock, RockingBody,
+    RunSettings, Scene, Tolerance, ToleranceBasis, Vertical,
 };
 pub use signal::{Jump, Signal};
 pub use spatial::{Depth, Spatial};

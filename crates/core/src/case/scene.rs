@@ -3,7 +3,9 @@
 
 pub use super::invariant::INVARIANT_KEYS;
 use std::collections::BTreeMap;
+use std::fmt;
 use std::path::PathBuf;
+use std::sync::Arc;
 
 use super::external::{EXTERNAL_VARIANT, External};
 use super::locate::Locator;
@@ -472,7 +474,70 @@ pub struct Case {
     pub parsed_options: super::ParsedOptions,
     /// The set of azimuths a station case runs at (`x_azimuths_deg`); its scene is at the
     /// set's first ([`Case::at_azimuth`] gives the others).
-    pub azimuths: Option<super::AzimuthSet>,
+    pub azimuths: Option<AzimuthSet>,
+}
+
+/// The azimuths a case is run at and how to project its station at any of them
+/// ([`Case::at_azimuth`]).
+#[derive(Debug, Clone)]
+pub struct AzimuthSet {
+    /// Compass azimuths of +x, degrees clockwise from north, in the case file's order.
+    pub degrees: Vec<f64>,
+    /// What the set must span to cover every direction.
+    pub coverage: Coverage,
+    /// The station's prepared channels, projected at each azimuth.
+    pub(crate) projection: Arc<dyn AzimuthProjection>,
+}
+
+/// A station's ground motion projected on the scene's axes with +x at any compass
+/// azimuth: what a case with a set keeps. The station's reading implements it (the very
+/// projection a case with one `x_azimuth_deg` uses).
+pub(crate) trait AzimuthProjection: fmt::Debug + Send + Sync {
+    /// The ground motion with +x at compass azimuth `degrees`.
+    fn at(&self, degrees: f64) -> AzimuthSignals;
+}
+
+/// A station's ground motion on the scene's axes at one azimuth.
+pub(crate) struct AzimuthSignals {
+    /// Along +x.
+    pub x: Signal,
+    /// Along +y, when the station drives y.
+    pub y: Option<Signal>,
+    /// Upward, when the station drives z.
+    pub vertical: Option<Vertical>,
+}
+
+/// What a set of azimuths spans, following the axes the station drives.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Coverage {
+    /// Both horizontals drive x and y: 0 up to 180° (a + 180° is a mirrored).
+    Plan,
+    /// One horizontal drives x: 0 up to 360° (a + 180° is the other polarity).
+    Axis,
+}
+
+impl Coverage {
+    /// The span of azimuths that covers every direction, degrees (180 or 360).
+    pub fn span_deg(self) -> f64 {
+        match self {
+            Coverage::Plan => 180.0,
+            Coverage::Axis => 360.0,
+        }
+    }
+
+    /// Why the span is what it is, in words.
+    pub fn reason(self) -> &'static str {
+        match self {
+            Coverage::Plan => {
+                "the station drives x and y: an azimuth a + 180° inverts both horizontals, \
+                 which mirrors the motion and leaves the resultant sliding and uplift as at a"
+            }
+            Coverage::Axis => {
+                "the station drives x alone: an azimuth a + 180° is the other polarity, \
+                 which changes the sign of the residual sliding, so both are in the set"
+            }
+        }
+    }
 }
 
 impl Case {

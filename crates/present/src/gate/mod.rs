@@ -11,5 +11,6 @@ mod junit;
 mod step_summary;
 
 pub use junit::{junit_report, write_junit};
-pub use rockslide_verify::verdict::{Failure, failures, informative, limit_text};
+pub use rockslide_verify::failure::Failure;
+pub use rockslide_verify::verdict::{failures, informative, limit_text};
 pub use step_summary::{REPORTS_URL, step_summary_links, write_step_summary};

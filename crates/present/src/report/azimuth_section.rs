@@ -12,7 +12,7 @@ use crate::doc::format::pct;
 use crate::doc::{Block, Cell, Table, Tone};
 use rockslide_core::response::{display_unit, show};
 use rockslide_verify::azimuths::{AzimuthSweep, Figures, Maximum, REFERENCE as REFERENCE_LABEL};
-use rockslide_verify::record::CheckRecord;
+use rockslide_verify::check_record::CheckRecord;
 use rockslide_verify::suite::CaseResult;
 
 /// How one quantity is read off a participant's figures.

@@ -21,7 +21,10 @@ use super::super::record::{
     Baseline, Channel, HighPass, Orientation, PreparedStation, Processing, StationRecord,
     prepare_window, read_station,
 };
-use super::super::scene::{Excitation, Model, NormalForce, Vertical};
+use super::super::scene::{
+    AzimuthProjection, AzimuthSet, AzimuthSignals, Coverage, Excitation, Model, NormalForce,
+    Vertical,
+};
 use super::super::signal::Signal;
 use super::validator::{Rule, Validator};
 use crate::error::InputError;
@@ -549,21 +552,26 @@ pub(crate) struct StationProjection {
     normal_force: NormalForce,
 }
 
-impl StationProjection {
+impl AzimuthProjection for StationProjection {
     /// The channels on the scene's axes with +x at compass azimuth `degrees`: what a case
     /// giving `x_azimuth_deg = degrees` computes, by the same function.
-    pub(crate) fn at(&self, degrees: f64) -> StationSignals {
+    fn at(&self, degrees: f64) -> AzimuthSignals {
         let keys = StationKeys {
             x_azimuth: degrees,
             ..self.keys.clone()
         };
-        signals(
+        let s = signals(
             &self.file,
             &self.station,
             &self.prepared,
             &keys,
             self.normal_force,
-        )
+        );
+        AzimuthSignals {
+            x: s.x,
+            y: s.y,
+            vertical: s.vertical,
+        }
     }
 }
 
@@ -720,48 +728,4 @@ fn provenance(name: &str, s: &StationRecord, p: &PreparedStation, keys: &Station
         p.notes.join("; "),
         drift.join("; ")
     )
-}
-
-/// The azimuths a case is run at and how to project its station at any of them.
-#[derive(Debug, Clone)]
-pub struct AzimuthSet {
-    /// Compass azimuths of +x, degrees clockwise from north, in the case file's order.
-    pub degrees: Vec<f64>,
-    /// What the set must span to cover every direction.
-    pub coverage: Coverage,
-    /// The station's prepared channels, projected at each azimuth.
-    pub(crate) projection: Arc<StationProjection>,
-}
-
-/// What a set of azimuths spans, following the axes the station drives.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Coverage {
-    /// Both horizontals drive x and y: 0 up to 180° (a + 180° is a mirrored).
-    Plan,
-    /// One horizontal drives x: 0 up to 360° (a + 180° is the other polarity).
-    Axis,
-}
-
-impl Coverage {
-    /// The span of azimuths that covers every direction, degrees (180 or 360).
-    pub fn span_deg(self) -> f64 {
-        match self {
-            Coverage::Plan => 180.0,
-            Coverage::Axis => 360.0,
-        }
-    }
-
-    /// Why the span is what it is, in words.
-    pub fn reason(self) -> &'static str {
-        match self {
-            Coverage::Plan => {
-                "the station drives x and y: an azimuth a + 180° inverts both horizontals, \
-                 which mirrors the motion and leaves the resultant sliding and uplift as at a"
-            }
-            Coverage::Axis => {
-                "the station drives x alone: an azimuth a + 180° is the other polarity, \
-                 which changes the sign of the residual sliding, so both are in the set"
-            }
-        }
-    }
 }
