@@ -27,7 +27,7 @@ use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 use super::assembly::sum_ground_elements;
 use super::dimension::{Body, Dimension, GroundSums, Model, System};
 use super::ground_sums::{M3, SpaceSums};
-use super::rotation::{exp, log, right_jacobian, skew};
+use super::rotation::{exp_and_right_jacobian, log, skew};
 use crate::element::{ConeContact, Status};
 use crate::lu::Lu6;
 
@@ -56,13 +56,16 @@ pub struct Pose {
     pub r: Matrix3<f64>,
     /// Incremental rotation vector Θ.
     pub theta: Vector3<f64>,
+    /// J_r(Θ) of a rotating body whose Θ is not zero (`None`: the identity), taken with
+    /// exp(Θ̂) from the same coefficients.
+    jacobian: Option<Matrix3<f64>>,
 }
 
 impl Pose {
     /// J_r(Θ) of a rotating body whose Θ is not zero (`None`: the identity).
     #[inline]
     fn jr(&self, rotates: bool) -> Option<Matrix3<f64>> {
-        (rotates && self.theta != Vector3::zeros()).then(|| right_jacobian(&self.theta))
+        self.jacobian.filter(|_| rotates)
     }
 }
 
@@ -212,16 +215,19 @@ impl Dimension for Space {
     }
     /// The pose of unknowns q = (X, Θ) from the rotation of the step's start.
     #[inline]
-    fn iterate(_kin: &(), _rotates: bool, q: &Vector6<f64>, from: &Placement) -> Pose {
+    fn iterate(_kin: &(), rotates: bool, q: &Vector6<f64>, from: &Placement) -> Pose {
         let theta = q.fixed_rows::<3>(3).into_owned();
+        let (r, jr) = if theta == Vector3::zeros() {
+            (from.r, None)
+        } else {
+            let (turn, jr) = exp_and_right_jacobian(&theta, rotates);
+            (from.r * turn, jr)
+        };
         Pose {
             x: q.fixed_rows::<3>(0).into_owned(),
-            r: if theta == Vector3::zeros() {
-                from.r
-            } else {
-                from.r * exp(&theta)
-            },
+            r,
             theta,
+            jacobian: jr,
         }
     }
     #[inline]
@@ -436,6 +442,7 @@ impl Model<Space> {
 
 #[cfg(test)]
 mod tests {
+    use super::super::rotation::exp;
     use super::*;
     use crate::model::Assembly;
     use crate::space::{BlockGrid, SpaceBody};
