@@ -3,7 +3,10 @@
 //! rocking body: the RPEPO on 10 × 2 supports, half-depth 0.3 m, its pulse at 30°, as
 //! tests/all/rapier_space.rs builds it). Criterion reports the time of one run; the
 //! scene's duration turns it into seconds per simulated second, printed once per scene
-//! before the measurements.
+//! before the measurements. Each measurement is named `rapier/<scene>/<variant>`, the
+//! variant being how the excitation drives the scene (`applied-force`: the mass
+//! acceleration as a force on the body over a fixed ground), not the contact model (the
+//! rocking bodies run their default, the computed supports).
 
 use std::hint::black_box;
 use std::path::Path;

@@ -57,6 +57,12 @@ impl time_loop::Rig<LineDrive<'_>> for Rig {
     fn respond(&mut self, drive: &LineDrive, k1: usize) {
         slip_after_step(self, drive.height(k1));
     }
+
+    /// The computed supports' structure (no collider, no joint, no feet); every other
+    /// rig keeps rapier's tracking.
+    fn forces_only_body(&self) -> Option<RigidBodyHandle> {
+        (self.applied_supports && self.feet.is_empty()).then_some(self.structure)
+    }
 }
 
 /// The computed supports' resultant on the structure for the next step: each

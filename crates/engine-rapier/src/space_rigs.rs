@@ -206,6 +206,11 @@ impl Rig<PlanDrive<'_>> for PlanOscillator<'_> {
         let (u, _) = self.relative(pd, k1);
         self.spring = self.slider.update(u);
     }
+
+    /// The mass: no collider, no joint, only its force set between steps.
+    fn forces_only_body(&self) -> Option<RigidBodyHandle> {
+        Some(self.mass)
+    }
 }
 
 /// Run the oscillator (PEPO) in plan: `n` output steps of `dt`, each `stride` rapier

@@ -11,7 +11,10 @@
 //! 5. the rig reads the new pose back into its own state, [`Rig::respond`];
 //! 6. every `stride`-th step the recorder writes one row to the sink.
 //!
-//! The loop holds no rows (they go to the sink as recorded) and allocates nothing.
+//! After the first step, a rig whose only change between steps is the force on one body
+//! ([`Rig::forces_only_body`]) has that body taken out of rapier's change tracking
+//! ([`untrack`]). The loop holds no rows (they go to the sink as recorded) and allocates
+//! nothing.
 
 use rapier3d_f64::prelude::*;
 
@@ -32,6 +35,13 @@ pub(crate) trait Rig<D: StepDrive> {
     /// After step k → k+1 (`k1` = k + 1): the engine's state from the new pose
     /// (return mapping of sliders and supports, the plan contact's force).
     fn respond(&mut self, drive: &D, k1: usize);
+    /// The body whose force and torque are all the rig changes between steps — a dynamic
+    /// body that cannot sleep, with no collider and no joint, no pose or velocity set
+    /// after the start — if the rig has one: rapier need not track it ([`untrack`]).
+    /// `None` (the default) keeps rapier's tracking.
+    fn forces_only_body(&self) -> Option<RigidBodyHandle> {
+        None
+    }
 }
 
 /// How the ground moves, step by step.
@@ -117,6 +127,11 @@ pub(crate) fn run_loop<D: StepDrive, R: Rig<D>>(
         let ground = rig.ground();
         drive.move_ground(rig.world_mut(), ground, k);
         rig.world_mut().step();
+        if k == 0
+            && let Some(body) = rig.forces_only_body()
+        {
+            untrack(rig.world_mut(), body);
+        }
         taken += 1;
         if let Some(d) = diverged(rig.world(), k + 1, steps.dt) {
             status = d;
@@ -137,6 +152,25 @@ pub(crate) fn run_loop<D: StepDrive, R: Rig<D>>(
         status,
         steps: steps as u64,
     }
+}
+
+/// Takes `body` out of rapier's change tracking, right after a step (rapier has just
+/// emptied its list of modified bodies).
+///
+/// Every mutable lookup of a body in rapier 0.36 (`RigidBodySet::index_mut`, `get_mut`)
+/// lists it as modified unless its `IN_MODIFIED_SET` flag says it is listed already, and
+/// a listed body makes the next step bump the active set's epoch: the solver's contact
+/// graph, body tables and joint colouring are rebuilt (≈ 2,500 instructions a step for
+/// one body). A force needs none of that: the step reads every awake body's force. Here
+/// the body is looked up once (flagged and listed), then `RigidBodySet::iter_mut` empties
+/// the list where it is called, before visiting any body; the body keeps its flag, which
+/// rapier clears only for the bodies on its list, so no later lookup lists it. The step's
+/// arithmetic is unchanged: the same bits (this module's tests). A kinematic ground stays
+/// tracked: untracked, one held still for a few steps leaves the awake set and no later
+/// move wakes it (measured: it stayed where it stopped).
+fn untrack(world: &mut PhysicsWorld, body: RigidBodyHandle) {
+    let _ = &mut world.bodies[body];
+    let _ = world.bodies.iter_mut();
 }
 
 /// After step k → k+1 (`k1` = k + 1): `Diverged` when a body's pose is not finite.
@@ -244,6 +278,126 @@ mod tests {
             &mut rows,
         );
         (outcome, rows.0)
+    }
+
+    /// A kinematic ground moved along x for 60 steps, held still for 60, moved again.
+    struct Shaken;
+
+    impl StepDrive for Shaken {
+        fn move_ground(&self, world: &mut PhysicsWorld, ground: RigidBodyHandle, k: usize) {
+            if !(60..120).contains(&k) {
+                let x = 1e-3 * (0.1 * (k + 1) as f64).sin();
+                world.bodies[ground].set_next_kinematic_translation(Vector::new(x, 0.0, 0.0));
+            }
+        }
+    }
+
+    /// A body at rest, then pushed and turned by a force and a torque that change every
+    /// step, over the shaken ground (neither with a collider or a joint), the body taken
+    /// out of rapier's tracking after the first step or not.
+    struct Turned {
+        world: PhysicsWorld,
+        ground: RigidBodyHandle,
+        body: RigidBodyHandle,
+        untracked: bool,
+    }
+
+    impl Rig<Shaken> for Turned {
+        fn world(&self) -> &PhysicsWorld {
+            &self.world
+        }
+        fn world_mut(&mut self) -> &mut PhysicsWorld {
+            &mut self.world
+        }
+        fn ground(&self) -> RigidBodyHandle {
+            self.ground
+        }
+        /// At rest (no gravity, no force) for 80 steps, then pushed and turned.
+        fn load(&mut self, _: &Shaken, k: usize) {
+            let b = &mut self.world.bodies[self.body];
+            b.reset_forces(false);
+            b.reset_torques(false);
+            if k >= 80 {
+                let k = k as f64;
+                b.add_force(Vector::new(1.0 + k, 2.0 - 0.5 * k, 0.25 * k), false);
+                b.add_torque(Vector::new(0.1 * k, 0.3, -0.2 * k), false);
+            }
+        }
+        fn respond(&mut self, _: &Shaken, _: usize) {}
+        fn forces_only_body(&self) -> Option<RigidBodyHandle> {
+            self.untracked.then_some(self.body)
+        }
+    }
+
+    /// Every row's values, bit for bit.
+    #[derive(Default)]
+    struct AllRows(Vec<Vec<u64>>);
+
+    impl StepSink for AllRows {
+        fn begin(&mut self, _: &Trace) {}
+        fn row(&mut self, _: f64, values: &[f64], _: &[ContactState]) {
+            self.0.push(values.iter().map(|v| v.to_bits()).collect());
+        }
+    }
+
+    fn turned_rows(untracked: bool) -> Vec<Vec<u64>> {
+        let mut world = PhysicsWorld {
+            gravity: Vector::ZERO,
+            ..PhysicsWorld::default()
+        };
+        let ground = world.insert_body(RigidBodyBuilder::kinematic_position_based());
+        let inertia = Vector::new(2.0, 3.0, 5.0);
+        let body = world.insert_body(
+            RigidBodyBuilder::dynamic()
+                .additional_mass_properties(MassProperties::new(Vector::ZERO, 1.0, inertia))
+                .can_sleep(false),
+        );
+        let dt = world.integration_parameters.dt;
+        let mut rig = Turned {
+            world,
+            ground,
+            body,
+            untracked,
+        };
+        let record = |out: &mut dyn StepSink, rig: &Turned, k: usize| {
+            let b = &rig.world.bodies[body];
+            let (x, q, v, w) = (b.translation(), b.rotation(), b.linvel(), b.angvel());
+            let g = rig.world.bodies[ground].translation().x;
+            let row = [
+                x.x, x.y, x.z, q.x, q.y, q.z, q.w, v.x, v.y, v.z, w.x, w.y, w.z, g,
+            ];
+            out.row(k as f64 * dt, &row, &[]);
+        };
+        let mut rows = AllRows::default();
+        let steps = Steps::new(200, dt, 1, StepCount::Taken);
+        run_loop(
+            &mut rig,
+            &Shaken,
+            (Trace::default(), record),
+            steps,
+            &mut rows,
+        );
+        rows.0
+    }
+
+    #[test]
+    fn a_body_out_of_rapiers_tracking_moves_by_the_same_bits() {
+        let (tracked, untracked) = (turned_rows(false), turned_rows(true));
+        assert_eq!(tracked.len(), 201);
+        assert_eq!(
+            untracked[80][..13],
+            untracked[0][..13],
+            "at rest for 80 steps"
+        );
+        let last = &untracked[200];
+        assert!(
+            last[3] != 0.0_f64.to_bits() && last[10] != 0.0_f64.to_bits(),
+            "it turned"
+        );
+        // the ground where the drive put it after its pause
+        let x_ground = f64::from_bits(untracked[200][13]);
+        assert_eq!(x_ground, 1e-3 * (0.1 * 200.0_f64).sin());
+        assert_eq!(tracked, untracked);
     }
 
     #[test]
