@@ -94,9 +94,9 @@ pub(crate) fn rocking_validity(omega_r: f64, dt_in: f64, settings: &RapierSettin
     let bound = rocking_omega_h(settings);
     if omega_h <= bound * (1.0 + 1e-9) {
         let measured = if settings.oscillator_contact == OscillatorContact::ComputedSupports {
-            "computed supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 3.4 %, lift-off within 2 ms, at 31–35 ms of CPU per simulated second"
+            "computed supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 3.4 %, lift-off within 2 ms"
         } else {
-            "joint-limit supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 2.9 %, lift-off within 2 ms, at 99–110 ms of CPU per simulated second"
+            "joint-limit supports, measured on the shipped RPEPO cases against the FE engine: peaks before the first full lift-off within 2.9 %, lift-off within 2 ms"
         };
         format!(
             "within the engine's validity for the rocking body before the first full lift-off (docs/rapier-engine.md): rocking mode of the rotational inertia on the supports √((n·Kx·h² + Kz·Σx²)/I) = {omega_r:.0} rad/s, ω·h = {omega_h:.3} per substep (rule ≤ {bound}); {measured}"
