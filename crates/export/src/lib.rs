@@ -24,6 +24,7 @@
 pub mod abaqus;
 pub mod ansys;
 pub mod calculix;
+pub mod calculix_rocking;
 pub mod deck;
 pub mod inp;
 pub mod opensees;
