@@ -1,14 +1,14 @@
 //! The CalculiX (`ccx`) export: the PEPO, single or double, as a runnable `.inp` deck of
 //! penalty contact with Coulomb friction (the model in [`crate::inp`], shared with the
-//! Abaqus deck) whose `*NODE PRINT` requests write to the `.dat` file what rockslide reads
-//! back (`rockslide-formats`' `calculix_dat`), so that CalculiX takes part live as
-//! `calculix`.
+//! Abaqus deck), and the RPEPO's single arrangement ([`crate::calculix_rocking`]), whose
+//! `*NODE PRINT` requests write to the `.dat` file what rockslide reads back
+//! (`rockslide-formats`' `calculix_dat`), so that CalculiX takes part live as `calculix`.
 //!
-//! Implicit dynamics (`*DYNAMIC, DIRECT, ALPHA=0.0`: Newmark average acceleration at the
-//! case's Δt). CalculiX 2.20 judges an implicit dynamic step with contact by energy rules
-//! relative to the model's largest energy so far (`checkimpacts`, a tolerance fixed at 0.02
-//! in its source): a model at rest has none, so the first increments of contact fail
-//! them and a fixed-increment run stops as diverging. The deck adds an energy reference: a
+//! The PEPO: implicit dynamics (`*DYNAMIC, DIRECT, ALPHA=0.0`: Newmark average
+//! acceleration at the case's Δt). CalculiX 2.20 judges an implicit dynamic step with
+//! contact by energy rules relative to the model's largest energy so far (`checkimpacts`,
+//! a tolerance fixed at 0.02 in its source): a model at rest has none, so the first
+//! increments of contact fail them and a fixed-increment run stops as diverging. The deck adds an energy reference: a
 //! free body of constant kinetic energy (5e11 J), coupled to nothing and loaded by
 //! nothing, so that the rules are relative to a large constant energy. Measured on
 //! `pepo-mass-accel`: residual sliding within 0.01 % of the exact solution (docs/decks.md).

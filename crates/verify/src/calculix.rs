@@ -2,7 +2,8 @@
 //! for it: the scene is exported ([`rockslide_export::calculix`]) into a fresh temporary
 //! folder, `ccx` runs it there bounded in time (`timeout`, default 600 s), its `.dat`
 //! results are read ([`rockslide_formats::calculix_dat`]) into rockslide's trace columns
-//! and the folder is removed; the run takes part as the external participant `calculix`,
+//! (the PEPO's, or the rocking trace's with the weight's ramp taken off) and the folder is
+//! removed; the run takes part as the external participant `calculix`,
 //! gated like any external run (by the tolerances that name it, else at the SAP2000
 //! "Acceptable" limit).
 //!
@@ -497,6 +498,78 @@ mod tests {
         assert_eq!(on_grid(0.9999999, 1e-4), 10000.0 * 1e-4);
         // off the grid: kept as printed
         assert_eq!(on_grid(0.12345, 1e-3), 0.12345);
+    }
+
+    /// The RPEPO's `.dat` as CalculiX prints it: the rows of the ramp (0.1 s) dropped, its
+    /// time taken off, the columns from the centre of mass, θ and the ground's totals.
+    #[test]
+    fn a_rocking_dat_becomes_the_rocking_trace_after_the_ramp() {
+        let path = Path::new("cases/rpepo-mass-accel.toml");
+        let text = include_str!("../../../cases/rpepo-mass-accel.toml");
+        let case = crate::registry::parse_case(path, text).unwrap();
+        let settings = DeckSettings {
+            dt: 1e-3,
+            output_every: 1,
+            steps: 2000,
+            arrangement: rockslide_core::case::Arrangement::Single,
+            timeout: 600.0,
+        };
+        let block = |t: &str, u: &str, v: &str, theta: &str, rf: &str| {
+            format!(
+                " displacements (vx,vy,vz) for set BODY and time  {t}\n\n      1000 {u}\n\n \
+                 velocities (vx,vy,vz) for set BODY and time  {t}\n\n      1000 {v}\n\n \
+                 displacements (vx,vy,vz) for set ROTATION and time  {t}\n\n      1001 {theta}\n\n \
+                 total force (fx,fy,fz) for set GROUND and time  {t}\n\n        {rf}\n\n"
+            )
+        };
+        let rest = "0.0 0.0 -2.484914E-03";
+        let dat = block("0.9900000E-01", rest, "0 0 0", "0 0 0", "0 0 9.7E+06")
+            + &block("0.1000000E+00", rest, "0 0 0", "0 0 0", "0 0 9.810043E+06")
+            + &block(
+                "0.1010000E+00",
+                "1.0E-03 0.0 2.0E-04",
+                "0.5 0.0 0.0",
+                "0.0 -2.0E-03 0.0",
+                "-1.0E+06 0.0 9.0E+06",
+            );
+        let csv = read_dat(Path::new("x.dat"), &dat, &case, &settings).unwrap();
+        let rows: Vec<Vec<f64>> = csv
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|f| f.parse().unwrap()).collect())
+            .collect();
+        assert_eq!(rows.len(), 2, "{csv}");
+        // at the ramp's end: t = 0, at the static overclosure, all ten supports closed
+        assert_eq!(rows[0][0], 0.0);
+        assert!(rows[0][6].abs() < 2e-8, "cm_z {}", rows[0][6]);
+        assert_eq!((rows[0][8], rows[0][9]), (0.0, 10.0));
+        // 1 ms later: θ = −2 mrad about Y lifts the +x edge (rotation +2 mrad); the base
+        // centre 0.625·sin(2 mrad) ahead of the centre of mass; shear 1 MN over 10·Kx
+        let r = &rows[1];
+        let s = 2.0e-3f64.sin();
+        let c = 2.0e-3f64.cos();
+        assert!((r[0] - 0.001).abs() < 1e-15);
+        let base = 1.0e-3 + 0.625 * s;
+        assert!((r[1] - base).abs() < 1e-15, "rel_disp {}", r[1]);
+        assert!(
+            (r[2] - (base - 1.0e6 / 2.4e10)).abs() < 1e-15,
+            "slide {}",
+            r[2]
+        );
+        assert_eq!((r[3], r[10], r[11]), (1.0e6, 1.0e6, 9.0e6));
+        assert_eq!((r[4], r[5], r[7]), (0.5, 1.0e-3, 2.0e-3));
+        assert!((r[6] - (2.0e-4 + 9.81e6 / 3.94784e9)).abs() < 1e-15);
+        // the +x support 0.5·sin θ + w + h(1 − cos θ) up (a point h below the centre of
+        // mass rises as the body turns about it); four supports x < −0.1006 m closed
+        let uplift = 2.0e-4 + 0.5 * s + 0.625 * (1.0 - c);
+        assert!((r[8] - uplift).abs() < 1e-15, "uplift {}", r[8]);
+        assert_eq!(r[9], 4.0);
+        // a file without the rotation blocks: refused, saying what it lacks
+        let partial = dat.replace("set ROTATION", "set OTHER");
+        let e = read_dat(Path::new("x.dat"), &partial, &case, &settings)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("0 rotation"), "{e}");
     }
 
     #[test]
