@@ -301,7 +301,10 @@ fn the_calculix_export_writes_its_decks_and_refuses_what_it_cannot_model() {
     assert!(
         double.contains("kx1 = 1.01e11") && double.contains("*SURFACE INTERACTION, NAME=ELEMENT2")
     );
-    for (name, field) in [("rigid-sliding-block", "model.kind")] {
+    for (name, field) in [
+        ("rigid-sliding-block", "model.kind"),
+        ("vertical/pepo-mass-accel-vertical", "excitation.vertical"),
+    ] {
         let out = tempfile::tempdir().unwrap();
         let p = rockslide(&[
             "export",
