@@ -66,7 +66,8 @@ fn export(case_path: &Path, target: Target, out: &Path, quiet: bool) -> Result<E
 
 /// Whether the double arrangement is written after the single one: when the case has one
 /// and `[engines.<section>] variants` names none (for a rocking body only in the ANSYS
-/// deck: OpenSees does not converge with it, and CalculiX's deck is the PEPO's).
+/// deck: OpenSees does not converge with it, and the CalculiX and Abaqus decks write the
+/// RPEPO's single arrangement).
 fn with_double(case: &Case, section: &str) -> bool {
     let asked = case
         .engine(section)

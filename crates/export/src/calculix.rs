@@ -1,14 +1,14 @@
 //! The CalculiX (`ccx`) export: the PEPO, single or double, as a runnable `.inp` deck of
 //! penalty contact with Coulomb friction (the model in [`crate::inp`], shared with the
-//! Abaqus deck) whose `*NODE PRINT` requests write to the `.dat` file what rockslide reads
-//! back (`rockslide-formats`' `calculix_dat`), so that CalculiX takes part live as
-//! `calculix`.
+//! Abaqus deck), and the RPEPO's single arrangement ([`crate::calculix_rocking`]), whose
+//! `*NODE PRINT` requests write to the `.dat` file what rockslide reads back
+//! (`rockslide-formats`' `calculix_dat`), so that CalculiX takes part live as `calculix`.
 //!
-//! Implicit dynamics (`*DYNAMIC, DIRECT, ALPHA=0.0`: Newmark average acceleration at the
-//! case's Δt). CalculiX 2.20 judges an implicit dynamic step with contact by energy rules
-//! relative to the model's largest energy so far (`checkimpacts`, a tolerance fixed at 0.02
-//! in its source): a model at rest has none, so the first increments of contact fail
-//! them and a fixed-increment run stops as diverging. The deck adds an energy reference: a
+//! The PEPO: implicit dynamics (`*DYNAMIC, DIRECT, ALPHA=0.0`: Newmark average
+//! acceleration at the case's Δt). CalculiX 2.20 judges an implicit dynamic step with
+//! contact by energy rules relative to the model's largest energy so far (`checkimpacts`,
+//! a tolerance fixed at 0.02 in its source): a model at rest has none, so the first
+//! increments of contact fail them and a fixed-increment run stops as diverging. The deck adds an energy reference: a
 //! free body of constant kinetic energy (5e11 J), coupled to nothing and loaded by
 //! nothing, so that the rules are relative to a large constant energy. Measured on
 //! `pepo-mass-accel`: residual sliding within 0.01 % of the exact solution (docs/decks.md).
@@ -17,9 +17,10 @@
 
 use std::fmt::Write as _;
 
-use rockslide_core::case::{Case, Contact, Excitation, Model, Oscillator};
+use rockslide_core::case::{Case, Contact, Excitation, Model, Oscillator, RockingBody};
 use rockslide_core::error::InputError;
 
+use crate::calculix_rocking;
 use crate::deck::{DeckSettings, check_scene, num};
 use crate::inp::{self, Dialect, Layout, list};
 use crate::{Export, ExportFile, ExportResult};
@@ -84,19 +85,29 @@ pub fn export(case: &Case) -> ExportResult {
 /// The deck of a case with the given settings.
 pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
     check_scene(case, "CalculiX", settings.double())?;
-    let o = match &case.scene.model {
-        Model::Oscillator(o) => o,
-        _ => {
-            return Err(case.field_error(
-                "model.kind",
-                "is \"rocking-body\": the CalculiX deck writes the PEPO (single and double); the RPEPO is not written for CalculiX (docs/decks.md); `--to abaqus` and `--to ansys` write it",
-            ));
-        }
+    let deck = match &case.scene.model {
+        Model::Oscillator(o) => oscillator(case, o, settings)?,
+        Model::RockingBody(r) => rocking(case, r, settings)?,
+        Model::RigidBlock(_) => unreachable!("refused by check_scene"),
     };
+    let (name, results) = names(settings.double());
+    Ok(Export {
+        files: vec![ExportFile {
+            name,
+            bytes: deck.into_bytes(),
+        }],
+        results,
+    })
+}
+
+/// The PEPO's deck (single or double).
+fn oscillator(case: &Case, o: &Oscillator, settings: &DeckSettings) -> Result<String, InputError> {
     let (lower, upper) = arrangement(case, o, settings.double())?;
     let layout = Layout::pepo(o, lower, upper);
     debug_assert_eq!(layout.body_node(), body_node(settings.double()));
-    let mut deck = header(case, o, settings);
+    let mut deck = header(case);
+    deck.push_str(&oscillator_scene(o, settings));
+    deck.push_str(MODEL);
     inp::plates(&mut deck, &layout);
     inp::constraints(&mut deck, o.mass, &layout);
     if settings.double() {
@@ -106,14 +117,37 @@ pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
     inp::contact_pairs(&mut deck, &layout, o.mass * o.gravity, Dialect::Calculix);
     inp::amplitude(&mut deck, case, settings);
     step(&mut deck, case, o, settings);
-    let (name, results) = names(settings.double());
-    Ok(Export {
-        files: vec![ExportFile {
-            name,
-            bytes: deck.into_bytes(),
-        }],
-        results,
-    })
+    Ok(deck)
+}
+
+/// The RPEPO's deck ([`calculix_rocking`]).
+fn rocking(case: &Case, r: &RockingBody, settings: &DeckSettings) -> Result<String, InputError> {
+    let mut deck = header(case);
+    let _ = writeln!(
+        deck,
+        "** scene: mass = {}, gravity = {}, cm_height = {}, half_width = {}, supports = {}, rotational_inertia = {}, kx = {}, kz = {}, mu = {}",
+        num(r.mass),
+        num(r.gravity),
+        num(r.cm_height),
+        num(r.half_width),
+        r.supports,
+        num(crate::opensees::rotational_inertia(r)),
+        num(r.contact.kx),
+        num(r.contact.kz),
+        num(r.contact.mu)
+    );
+    let _ = writeln!(
+        deck,
+        "** settings: dt = {} s, output every {} increment(s), {} increments after a ramp of {} s, {} arrangement",
+        num(settings.dt),
+        settings.output_every,
+        settings.steps,
+        num(calculix_rocking::ramp(case, r, settings)),
+        settings.arrangement.name()
+    );
+    deck.push_str(calculix_rocking::MODEL);
+    calculix_rocking::deck(&mut deck, case, r, settings, energy_reference)?;
+    Ok(deck)
 }
 
 /// Element 1 (the slider) and element 2 (μ = ∞, the double arrangement's upper one).
@@ -135,14 +169,20 @@ fn arrangement<'a>(
     Ok((&d.lower, Some(&d.upper)))
 }
 
-/// What the deck is, how to run it, the scene's numbers, the model chosen and why.
-fn header(case: &Case, o: &Oscillator, settings: &DeckSettings) -> String {
+/// What the deck is and how to run it.
+fn header(case: &Case) -> String {
     let mut h = inp::title_lines("CalculiX (ccx)", "calculix", case);
     h.push_str(
         "** Run: ccx -i JOB (JOB = this file's name without .inp; Debian: apt-get install calculix-ccx).\n\
          **      The *NODE PRINT requests write the body's U and V and the ground's total RF to JOB.dat,\n\
          **      which rockslide reads back (a case with [engines.calculix] runs this deck live).\n",
     );
+    h
+}
+
+/// The PEPO's numbers and settings, two comment lines.
+fn oscillator_scene(o: &Oscillator, settings: &DeckSettings) -> String {
+    let mut h = String::new();
     let _ = write!(
         h,
         "** scene: mass = {}, gravity = {}, kx = {}, kz = {}, mu = {}",
@@ -173,7 +213,6 @@ fn header(case: &Case, o: &Oscillator, settings: &DeckSettings) -> String {
         settings.steps,
         settings.arrangement.name()
     );
-    h.push_str(MODEL);
     h
 }
 

@@ -289,10 +289,20 @@ pub fn contact_pairs(deck: &mut String, layout: &Layout, normal: f64, dialect: D
 /// The amplitude `EXCITATION` of the case's signal, sampled where the program
 /// interpolates it (nothing without a signal).
 pub fn amplitude(deck: &mut String, case: &Case, settings: &DeckSettings) {
+    amplitude_after(deck, case, settings, 0.0);
+}
+
+/// [`amplitude`] with the signal's times shifted by `start`, s (a whole number of steps):
+/// zero until one step before `start`, so that the increments see the signal from
+/// `start` on, as a run starting there sees it from zero.
+pub fn amplitude_after(deck: &mut String, case: &Case, settings: &DeckSettings, start: f64) {
     let Some(signal) = case.scene.excitation.signal() else {
         return;
     };
     deck.push_str("*AMPLITUDE, NAME=EXCITATION\n");
+    if start > 0.0 {
+        let _ = writeln!(deck, "0.0, 0.0\n{}, 0.0", num(start - settings.dt));
+    }
     let points: Vec<(f64, f64)> = match signal {
         // a pulse sampled at every step (Newmark sees the load at the step ends only)
         Signal::SinePulse { .. } => {
@@ -313,7 +323,7 @@ pub fn amplitude(deck: &mut String, case: &Case, settings: &DeckSettings) {
             .collect(),
     };
     for (t, v) in points {
-        let _ = writeln!(deck, "{}, {}", num(t), num(v));
+        let _ = writeln!(deck, "{}, {}", num(start + t), num(v));
     }
 }
 

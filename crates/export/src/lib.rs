@@ -7,9 +7,9 @@
 //!   pulses and records) that writes a CSV in rockslide's own trace format.
 //! - [`ansys`]: an ANSYS APDL deck of the paper's CONTA178 models (PEPO single and
 //!   double, RPEPO on its supports) that writes rockslide's CSV; not executed by rockslide.
-//! - [`calculix`]: a CalculiX `.inp` deck of the PEPO (single and double), penalty
-//!   contact with Coulomb friction, whose `.dat` output rockslide reads back (CalculiX
-//!   live).
+//! - [`calculix`]: a CalculiX `.inp` deck of the PEPO (single and double) and the RPEPO
+//!   (single, [`calculix_rocking`]), penalty contact with Coulomb friction, whose `.dat`
+//!   output rockslide reads back (CalculiX live).
 //! - [`abaqus`]: an Abaqus/Standard deck of the PEPO (single and double) and the RPEPO,
 //!   penalty contact with Coulomb friction, and a script that writes rockslide's CSV from
 //!   its results; not executed by rockslide.
@@ -24,6 +24,7 @@
 pub mod abaqus;
 pub mod ansys;
 pub mod calculix;
+pub mod calculix_rocking;
 pub mod deck;
 pub mod inp;
 pub mod opensees;
