@@ -333,3 +333,27 @@ fn summary_statistics_of_a_known_list() {
     let [_, median, _, _] = summary_statistics(&mut [1.0, 2.0, 3.0, 10.0]);
     assert_eq!(median, 2.5);
 }
+
+#[test]
+fn the_three_component_study_grid_expands_stations_mu_scale_and_polarity() {
+    use rockslide::study::{Amplitude, load_grid};
+    let grid = load_grid(&repo("studies/ridgecrest-three-component.toml")).unwrap();
+    // 3 stations × 3 μ × 2 scales × 2 polarities, no azimuth axis (the scene is isotropic
+    // in plan).
+    assert_eq!(grid.points.len(), 36);
+    assert!(grid.points.iter().all(|p| p.x_azimuth_deg.is_none()));
+    let scales: std::collections::BTreeSet<u64> = grid
+        .points
+        .iter()
+        .map(|p| match p.amplitude {
+            Amplitude::Scale(f) => f.to_bits(),
+            Amplitude::Pga(_) => panic!("the study scales the records as recorded"),
+        })
+        .collect();
+    assert_eq!(scales, [1.0f64.to_bits(), 1.5f64.to_bits()].into());
+    // fe and both rapier routes run every point beside the plan-motion reference.
+    assert_eq!(
+        grid.plan_signature,
+        "fe/single@0.00025,rapier/kinematic-ground@0.00025,rapier/inertial-force@0.00025"
+    );
+}
