@@ -20,5 +20,5 @@ pub use failure::Counters;
 pub(crate) use failure::{FailureReason, LastIteration, StepFailure};
 pub(crate) use mechanics::{Mechanics, State, StepFn, StepState, Workspace};
 pub(crate) use newmark::Newmark;
-pub(crate) use newton::{LineSearch, Verdict, failed, not_converged, verdict};
+pub(crate) use newton::{LineSearch, failed, judge, not_converged};
 pub(crate) use time_loop::{integrate, preload};

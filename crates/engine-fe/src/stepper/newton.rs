@@ -96,6 +96,34 @@ pub(crate) fn verdict(
     }
 }
 
+/// One iteration's measures kept in `last` (what a step that fails reports) and judged by
+/// [`verdict`]; when the step ends here (converged, or accepted at the round-off floor)
+/// its `it` iterations are counted. True when the step ends.
+#[inline]
+pub(crate) fn judge(
+    newton: &Newton,
+    (rn, fref): (f64, f64),
+    (d2, inc2, u2): (f64, f64, f64),
+    r_prev: f64,
+    last: &mut LastIteration,
+    counters: &mut Counters,
+    it: usize,
+) -> bool {
+    *last = LastIteration {
+        residual: rn,
+        force_scale: fref,
+        correction_squared: d2,
+        increment_squared: inc2,
+    };
+    let verdict = verdict(newton, (rn, fref), (d2, inc2, u2), r_prev);
+    if verdict == Verdict::Continue {
+        return false;
+    }
+    counters.roundoff_accepted += u64::from(verdict == Verdict::RoundOff);
+    counters.add_step_iterations(it);
+    true
+}
+
 /// A failed step after `it` iterations (counted).
 #[inline]
 pub(crate) fn failed(
@@ -247,16 +275,16 @@ pub(crate) fn step<const Q: usize, const N: usize, M: Mechanics<Q, N>>(
         );
         let (d2, inc2, u2) = with_nodes(body, w, nodes);
         let rn = r2.sqrt();
-        last = LastIteration {
-            residual: rn,
-            force_scale: fref,
-            correction_squared: d2,
-            increment_squared: inc2,
-        };
-        let verdict = verdict(&newton, (rn, fref), (d2, inc2, u2), search.r_prev);
-        if verdict != Verdict::Continue {
-            counters.roundoff_accepted += u64::from(verdict == Verdict::RoundOff);
-            counters.add_step_iterations(it);
+        let (measures, r_prev) = ((d2, inc2, u2), search.r_prev);
+        if judge(
+            &newton,
+            (rn, fref),
+            measures,
+            r_prev,
+            &mut last,
+            counters,
+            it,
+        ) {
             *next = accept();
             return Ok(());
         }

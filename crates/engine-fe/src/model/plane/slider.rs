@@ -16,7 +16,7 @@ use crate::model::{Drive, Model};
 use crate::options::FeOptions;
 use crate::stepper::{
     Counters, FailureReason, LastIteration, LineSearch, Newmark, State, StepFailure, StepState,
-    Verdict, Workspace, failed, not_converged, verdict,
+    Workspace, failed, judge, not_converged,
 };
 
 /// The factors of `m`, cached in `cache` (new ones unless `m` is the cached matrix).
@@ -150,16 +150,16 @@ pub(crate) fn step(
             q.norm_squared(),
         );
         let rn = r2.sqrt();
-        last = LastIteration {
-            residual: rn,
-            force_scale: fref,
-            correction_squared: d2,
-            increment_squared: inc2,
-        };
-        let verdict = verdict(&newton, (rn, fref), (d2, inc2, u2), search.r_prev);
-        if verdict != Verdict::Continue {
-            counters.roundoff_accepted += u64::from(verdict == Verdict::RoundOff);
-            counters.add_step_iterations(it);
+        let (measures, r_prev) = ((d2, inc2, u2), search.r_prev);
+        if judge(
+            &newton,
+            (rn, fref),
+            measures,
+            r_prev,
+            &mut last,
+            counters,
+            it,
+        ) {
             *next = accept(q, v, a, pb, damp);
             return Ok(());
         }
