@@ -21,7 +21,7 @@ use crate::arrays::trace_dict;
 use crate::errors::{input_error, to_py};
 
 /// The label of the reference among the participants.
-const REFERENCE: &str = "reference";
+use rockslide_core::case::REFERENCE_LABEL as REFERENCE;
 
 /// Everything known about a case after running it.
 #[pyclass(module = "rockslide", frozen, name = "Result")]

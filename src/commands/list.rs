@@ -2,6 +2,7 @@
 //! to it with their variants and time step, and its reference. Checks the cases as `run`
 //! does first.
 
+use rockslide_core::case::REFERENCE_LABEL;
 use std::process::ExitCode;
 
 use rockslide_core::error::Error;
@@ -43,8 +44,8 @@ pub fn run(args: &ListArgs) -> Result<ExitCode, Error> {
             }
         }
         match rockslide_reference::for_case(c) {
-            Ok(r) => say!("    {:<20} {}", "reference", r.name()),
-            Err(why) => say!("    {:<20} none — {why}", "reference"),
+            Ok(r) => say!("    {:<20} {}", REFERENCE_LABEL, r.name()),
+            Err(why) => say!("    {:<20} none — {why}", REFERENCE_LABEL),
         }
     }
     Ok(ExitCode::SUCCESS)

@@ -27,7 +27,7 @@ use rockslide_core::case::{AzimuthSet, Case, Coverage};
 use rockslide_core::error::InputErrors;
 
 /// Participant name of the reference in an [`AzimuthSweep`].
-pub const REFERENCE: &str = "reference";
+pub use rockslide_core::case::REFERENCE_LABEL as REFERENCE;
 
 /// What a check or failure field on the maxima over the set ends with.
 const OVER_THE_SET: &str = ", maximum over x_azimuths_deg";

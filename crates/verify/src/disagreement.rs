@@ -4,6 +4,7 @@
 //! must be declared (`[[expected_disagreement]]`, with its reason and evidence) or it
 //! fails the gate; a declaration whose disagreement no longer happens fails it too.
 
+use rockslide_core::case::REFERENCE_LABEL;
 use rockslide_core::case::{DESIGN_QUANTITIES, ExpectedDisagreement};
 use rockslide_core::response::show_value;
 
@@ -40,7 +41,7 @@ pub struct Disagreement {
 /// The basis of the design comparison: its label and its responses.
 pub fn basis(r: &CaseResult) -> Option<(String, &Responses)> {
     if let Ok(x) = &r.reference {
-        return Some(("reference".into(), &x.responses));
+        return Some((REFERENCE_LABEL.into(), &x.responses));
     }
     r.runs
         .iter()

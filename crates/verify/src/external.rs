@@ -18,6 +18,7 @@
 //! file on event times. Physical invariants are measured on the channels the file
 //! provides, with [`INVARIANT_LIMIT`].
 
+use rockslide_core::case::REFERENCE_LABEL;
 use std::collections::BTreeSet;
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -201,7 +202,7 @@ fn default_basis<'a>(
     reference: Option<&'a Responses>,
 ) -> Option<(String, &'a Responses)> {
     if let Some(r) = reference {
-        return Some(("reference".into(), r));
+        return Some((REFERENCE_LABEL.into(), r));
     }
     runs.iter()
         .zip(run_responses)

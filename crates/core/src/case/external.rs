@@ -146,7 +146,7 @@ pub fn check_label(label: &str, engine_ids: &[&str]) -> Result<(), String> {
              starting with a letter or a digit"
         ));
     }
-    if engine_ids.contains(&label) || label == "reference" {
+    if engine_ids.contains(&label) || label == super::REFERENCE_LABEL {
         return Err(format!(
             "is \"{label}\", which is an engine or the reference; choose another label"
         ));

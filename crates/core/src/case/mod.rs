@@ -41,3 +41,7 @@ pub use scene::{
 };
 pub use signal::{Jump, Signal};
 pub use spatial::{Depth, Spatial};
+
+/// The exact reference's label wherever a participant is named: a tolerance's `against`,
+/// reports, result files, traces and Python's results.
+pub const REFERENCE_LABEL: &str = "reference";

@@ -4,7 +4,7 @@
 use serde_json::{Value, json};
 
 /// The label of the reference's run, drawn as a ghost.
-const REFERENCE_LABEL: &str = "reference";
+use rockslide_core::case::REFERENCE_LABEL;
 
 /// Foxglove time `{sec, nsec}` from nanoseconds (the JSON `foxglove.Log`).
 pub fn time_json(ns: u64) -> Value {

@@ -10,8 +10,9 @@ use plotters::prelude::*;
 use crate::doc::figure::{GRID, NOTE, REFERENCE, draw_legend, failed_svg, legend_height, palette};
 use crate::doc::format::pct;
 use crate::doc::{Block, Cell, Table, Tone};
+use rockslide_core::case::REFERENCE_LABEL;
 use rockslide_core::response::{display_unit, show};
-use rockslide_verify::azimuths::{AzimuthSweep, Figures, Maximum, REFERENCE as REFERENCE_LABEL};
+use rockslide_verify::azimuths::{AzimuthSweep, Figures, Maximum};
 use rockslide_verify::check_record::CheckRecord;
 use rockslide_verify::suite::CaseResult;
 

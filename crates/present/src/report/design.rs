@@ -4,6 +4,7 @@
 
 use crate::doc::format::{display_unit, pct, show};
 use crate::doc::{Block, Cell, Table, Tone};
+use rockslide_core::case::REFERENCE_LABEL;
 use rockslide_core::case::{DESIGN_QUANTITIES, Model};
 use rockslide_verify::analysis::{Responses, quantity_def};
 use rockslide_verify::disagreement::{Disagreement, basis, design_disagreements};
@@ -83,7 +84,13 @@ pub(crate) fn case_design_blocks(r: &CaseResult) -> Vec<Block> {
         .collect();
     let mut rows = Vec::new();
     if let Ok(x) = &r.reference {
-        rows.push(row("reference", &x.responses, None, &quantities, &found));
+        rows.push(row(
+            REFERENCE_LABEL,
+            &x.responses,
+            None,
+            &quantities,
+            &found,
+        ));
     }
     for (run, resp) in r.runs.iter().zip(&r.run_responses) {
         let label = run.label();

@@ -4,6 +4,7 @@
 //! writes `<case>.mcap`, with its Foxglove layout `<case>.layout.json` beside it. The format
 //! itself lives in `rockslide-formats` (`mcap_file`).
 
+use rockslide_core::case::REFERENCE_LABEL;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -54,7 +55,7 @@ pub fn case_trace_log_of<'a>(
     match &result.reference {
         Ok(r) => {
             metadata.push((
-                "reference".to_string(),
+                REFERENCE_LABEL.to_string(),
                 map([
                     ("solution", r.solution.name().to_string()),
                     ("method", r.solution.method()),
@@ -62,14 +63,14 @@ pub fn case_trace_log_of<'a>(
                 ]),
             ));
             runs.push(LoggedRun {
-                label: "reference".to_string(),
+                label: REFERENCE_LABEL.to_string(),
                 trace: reference_trace.unwrap_or(&r.output),
                 status: "completed".to_string(),
                 stop: None,
                 metadata: map([("solution", r.solution.name().to_string())]),
             });
         }
-        Err(why) => metadata.push(("reference".to_string(), map([("none", why.clone())]))),
+        Err(why) => metadata.push((REFERENCE_LABEL.to_string(), map([("none", why.clone())]))),
     }
     if let Some(g) = &geometry {
         metadata.push(("scene3d".to_string(), scene_metadata(g, c.run.duration)));
@@ -186,7 +187,7 @@ fn scene_metadata(g: &Geometry, duration: f64) -> BTreeMap<String, String> {
             "green: total normal force, red: total tangential force on the body (its horizontal resultant in a 3D scene), drawn ending at base centre O".to_string(),
         ),
         (
-            "reference",
+            REFERENCE_LABEL,
             "drawn as a translucent grey ghost in its own lane".to_string(),
         ),
         ("period_ns", scene_period_ns(duration).to_string()),

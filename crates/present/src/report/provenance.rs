@@ -3,6 +3,7 @@
 //! case file's SHA-256, every engine setting, the machine and the date. Machine facts are
 //! gathered once per process.
 
+use rockslide_core::case::REFERENCE_LABEL;
 use std::sync::OnceLock;
 
 use rockslide_verify::suite::CaseResult;
@@ -59,8 +60,8 @@ impl Provenance {
             ),
         ];
         match &r.reference {
-            Ok(x) => v.push(("reference".into(), x.solution.method())),
-            Err(why) => v.push(("reference".into(), format!("none — {why}"))),
+            Ok(x) => v.push((REFERENCE_LABEL.into(), x.solution.method())),
+            Err(why) => v.push((REFERENCE_LABEL.into(), format!("none — {why}"))),
         }
         for run in &r.runs {
             let settings: Vec<String> = run

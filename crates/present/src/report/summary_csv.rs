@@ -3,6 +3,7 @@
 //! when several apply) — plus one row per run for the whole-history error. Written per
 //! case and for the suite, for spreadsheets and dashboards that track drift over commits.
 
+use rockslide_core::case::REFERENCE_LABEL;
 use rockslide_core::error::Error;
 use rockslide_verify::analysis::quantity_def;
 use rockslide_verify::suite::CaseResult;
@@ -84,7 +85,7 @@ pub(crate) fn case_rows(r: &CaseResult) -> Vec<Vec<String>> {
                 num(Some(e.rms)),
                 String::new(),
                 String::new(),
-                "reference".into(),
+                REFERENCE_LABEL.into(),
                 String::new(),
                 String::new(),
                 String::new(),

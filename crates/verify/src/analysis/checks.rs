@@ -1,6 +1,7 @@
 //! Tolerance checks: each tolerance of a case applied to each run it names, against the
 //! reference or another run, giving PASS/FAIL lines for reports and the gate.
 
+use rockslide_core::case::REFERENCE_LABEL;
 use rockslide_core::case::{Tolerance, ToleranceBasis};
 use rockslide_engine_api::Run;
 
@@ -68,7 +69,7 @@ pub fn evaluate_tolerances(
                 continue;
             }
             let (basis_name, basis) = match &tol.basis {
-                ToleranceBasis::Reference => ("reference".to_string(), reference),
+                ToleranceBasis::Reference => (REFERENCE_LABEL.to_string(), reference),
                 ToleranceBasis::Run(label) => {
                     if *label == run.label() {
                         continue;

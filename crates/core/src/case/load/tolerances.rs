@@ -100,7 +100,10 @@ impl Validator<'_> {
         ExpectedDisagreement {
             quantity: o.quantity.clone(),
             runs: o.engine.clone(),
-            against: o.against.clone().unwrap_or_else(|| "reference".into()),
+            against: o
+                .against
+                .clone()
+                .unwrap_or_else(|| crate::case::REFERENCE_LABEL.into()),
             reason: o.reason.clone(),
             evidence: o.evidence.clone(),
             field,
@@ -137,7 +140,7 @@ impl Validator<'_> {
             );
         }
         let basis = match t.against.as_deref() {
-            None | Some("reference") => ToleranceBasis::Reference,
+            None | Some(crate::case::REFERENCE_LABEL) => ToleranceBasis::Reference,
             Some(run) => ToleranceBasis::Run(run.to_string()),
         };
         Some(Tolerance {
