@@ -31,6 +31,27 @@ fn run_index(r: &CaseResult, label: &str) -> usize {
         .unwrap_or_else(|| panic!("no run {label}"))
 }
 
+/// A case run live with its CalculiX participant completed: the result and that run's
+/// index.
+fn run_calculix(name: &str) -> (CaseResult, usize) {
+    let r = run_case(case(name)).unwrap();
+    let i = run_index(&r, "calculix/external");
+    assert!(r.runs[i].status.completed(), "{:?}", r.runs[i].findings);
+    (r, i)
+}
+
+/// Every gated check of the case passes (and there is at least one).
+fn assert_gate_passes(r: &CaseResult) {
+    let gated: Vec<_> = r.checks.iter().filter(|c| c.gated).collect();
+    assert!(!gated.is_empty(), "the case gates nothing");
+    assert!(
+        gated
+            .iter()
+            .all(|c| c.verdict == rockslide::analysis::Verdict::Pass),
+        "{gated:?}"
+    );
+}
+
 /// The `name = value` pairs of a deck's comment line that starts with `prefix`.
 fn pairs(deck: &str, prefix: &str) -> HashMap<String, f64> {
     let line = deck
@@ -617,9 +638,7 @@ fn calculix_pepo_matches_the_exact_solution() {
     if !live("calculix_pepo_matches_the_exact_solution") {
         return;
     }
-    let r = run_case(case("calculix/pepo-single-calculix")).unwrap();
-    let i = run_index(&r, "calculix/external");
-    assert!(r.runs[i].status.completed(), "{:?}", r.runs[i].findings);
+    let (r, i) = run_calculix("calculix/pepo-single-calculix");
     let exact = &r.reference.as_ref().unwrap().responses;
     let mine = &r.run_responses[i];
     let d = |k: &str| 100.0 * (mine[k] / exact[k] - 1.0);
@@ -636,12 +655,7 @@ fn calculix_pepo_matches_the_exact_solution() {
         d("peak_relative_displacement")
     );
     assert!((mine["slip_end"] - exact["slip_end"]).abs() <= 1e-3,);
-    assert!(
-        r.checks
-            .iter()
-            .filter(|c| c.gated)
-            .all(|c| c.verdict == rockslide::analysis::Verdict::Pass),
-    );
+    assert_gate_passes(&r);
 }
 
 /// PEPO, the paper's double arrangement: CalculiX (element 1 slides, element 2 elastic,
@@ -656,9 +670,7 @@ fn calculix_pepo_double_matches_the_exact_solution() {
     if !live("calculix_pepo_double_matches_the_exact_solution") {
         return;
     }
-    let r = run_case(case("calculix/pepo-double-calculix")).unwrap();
-    let i = run_index(&r, "calculix/external");
-    assert!(r.runs[i].status.completed(), "{:?}", r.runs[i].findings);
+    let (r, i) = run_calculix("calculix/pepo-double-calculix");
     let exact = &r.reference.as_ref().unwrap().responses;
     let mine = &r.run_responses[i];
     let d = |k: &str| 100.0 * (mine[k] / exact[k] - 1.0);
@@ -680,12 +692,7 @@ fn calculix_pepo_double_matches_the_exact_solution() {
     assert!(mine["slip_episodes"] >= 2.0, "{}", mine["slip_episodes"]);
     let early = exact["slip_end"] - mine["slip_end"];
     assert!((0.001..0.004).contains(&early), "{early}");
-    assert!(
-        r.checks
-            .iter()
-            .filter(|c| c.gated)
-            .all(|c| c.verdict == rockslide::analysis::Verdict::Pass),
-    );
+    assert_gate_passes(&r);
 }
 
 /// RPEPO: CalculiX (a rigid body on ten penalty faces, the weight ramped over the vertical
@@ -701,11 +708,9 @@ fn calculix_rpepo_matches_fe_at_matched_settings() {
     if !live("calculix_rpepo_matches_fe_at_matched_settings") {
         return;
     }
-    let r = run_case(case("calculix/rpepo-mass-accel-calculix")).unwrap();
-    let i = run_index(&r, "calculix/external");
+    let (r, i) = run_calculix("calculix/rpepo-mass-accel-calculix");
     let fe = run_index(&r, "fe/single");
     let run = &r.runs[i];
-    assert!(run.status.completed(), "{:?}", run.findings);
     // the ramp's 0.1 s taken off: 0 to 0.56 s every increment, at rest on the static
     // overclosure at t = 0 (cm_z from M·g/(n·Kz): within 1 µm)
     let time = &run.trace.time;
@@ -737,12 +742,7 @@ fn calculix_rpepo_matches_fe_at_matched_settings() {
         .collect();
     assert!(invariants.len() >= 2, "{invariants:?}");
     assert!(invariants.iter().all(|c| c.holds()), "{invariants:?}");
-    assert!(
-        r.checks
-            .iter()
-            .filter(|c| c.gated)
-            .all(|c| c.verdict == rockslide::analysis::Verdict::Pass),
-    );
+    assert_gate_passes(&r);
 }
 
 /// A live run past its time limit is a run that did not converge, saying why.
