@@ -340,14 +340,10 @@ pub fn statistics(c: &Study) -> Vec<Statistics> {
                 .filter(|(_, run)| label(run) == l)
                 .filter_map(|(r, run)| pick(run).map(|v| (v, r)))
                 .collect();
-            let Some(&(_, governing)) = rows.iter().max_by(|a, b| a.0.total_cmp(&b.0)) else {
+            let Some(&(max, governing)) = rows.iter().max_by(|a, b| a.0.total_cmp(&b.0)) else {
                 continue;
             };
-            let governing_azimuths = azimuths_at_max(&rows, governing, {
-                rows.iter()
-                    .map(|(v, _)| *v)
-                    .fold(f64::NEG_INFINITY, f64::max)
-            });
+            let governing_azimuths = azimuths_at_max(&rows, governing, max);
             let mut values: Vec<f64> = rows.iter().map(|(v, _)| *v).collect();
             let [mean, median, p84, max] = summary_statistics(&mut values);
             out.push(Statistics {
