@@ -15,7 +15,7 @@ use nalgebra::{Matrix3, Matrix6, Vector3, Vector6};
 /// algorithm written out for 3×3 — the first largest |pivot| of the column, the
 /// multipliers times the pivot's reciprocal, the same updates in the same order — so the
 /// factors and solutions are the same bits (unit test) at a fraction of the instructions.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 pub struct Lu3 {
     lu: [[f64; 3]; 3],
     /// Row swapped with row `i` at step `i`.
@@ -154,7 +154,7 @@ impl Lu2 {
 const N6: usize = 6;
 
 /// LU factors, `lu[row][column]`, and the row swapped with row `i` at step `i`.
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone, Copy, Default)]
 pub struct Lu6 {
     lu: [[f64; N6]; N6],
     swaps: [usize; N6],
@@ -163,14 +163,20 @@ pub struct Lu6 {
 impl Lu6 {
     /// Factor `m`.
     pub fn new(m: &Matrix6<f64>) -> Self {
+        let mut lu = Self::default();
+        lu.refactor(m);
+        lu
+    }
+
+    /// Factor `m` in place of these factors (no copy of the factors).
+    pub fn refactor(&mut self, m: &Matrix6<f64>) {
         let s = m.as_slice(); // column-major
-        let mut a = [[0.0; N6]; N6];
+        let Self { lu: a, swaps } = self;
         for (i, row) in a.iter_mut().enumerate() {
             for (j, x) in row.iter_mut().enumerate() {
                 *x = s[j * N6 + i];
             }
         }
-        let mut swaps = [0; N6];
         for i in 0..N6 {
             swaps[i] = i;
             let mut piv = i;
@@ -203,7 +209,6 @@ impl Lu6 {
                 }
             }
         }
-        Self { lu: a, swaps }
     }
 
     /// Solve `m·x = b`; `None` if `m` is singular.

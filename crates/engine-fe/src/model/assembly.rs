@@ -11,7 +11,7 @@
 //! its support enters the body's tangent through the series tangent
 //! D2 − D2·(D1 + D2)⁻¹·D2, and its residual through the solve (`solve`).
 
-use super::dimension::{Dimension, GroundSums, Model, Tangent, Vector};
+use super::dimension::{Dimension, ForceSums, GroundSums, Model, Tangent, Touch, Vector};
 use crate::element::{Contact, Element, Status, Tangential};
 use crate::series::{node_equilibrium, split_equivalent};
 
@@ -34,11 +34,23 @@ pub struct Assembly<D: Dimension> {
     pub(crate) singular: bool,
     /// The iterate of the last assembly.
     pub(crate) at: D::Iterate,
-    /// The last Newton matrix and its LU factors, reused while the matrix is bit for bit
-    /// the same (a contact state that does not change, a rotation that does not enter).
-    pub(crate) factors: Option<(D::Matrix, D::Lu)>,
+    /// The last Newton matrix factored (none before the first solve) and its LU factors,
+    /// reused while the matrix is bit for bit the same (a contact state that does not
+    /// change, a rotation that does not enter); factored in place.
+    pub(crate) factored: Option<D::Matrix>,
+    pub(crate) lu: D::Lu,
     /// The dimension's own room (the plane oscillator's scalar factors).
     pub(crate) extra: D::Extra,
+    /// The condensed supports' force sums of the last assembly.
+    pub(crate) force: ForceSums<D>,
+    /// Their tangent's sums.
+    pub(crate) sums: D::Sums,
+    /// What each touching support leaves for the tangent, while it is deferred: room for
+    /// every support, the first `touching` in use.
+    pub(crate) touches: Vec<Touch<D>>,
+    pub(crate) touching: usize,
+    /// The last assembly's tangent `kbb` is not yet summed (`Model::finish_tangent`).
+    pub(crate) tangent_pending: bool,
 }
 
 impl<D: Dimension> Assembly<D> {
@@ -54,8 +66,14 @@ impl<D: Dimension> Assembly<D> {
             points: vec![D::Point::default(); n],
             singular: false,
             at: D::iterate(&model.kinematics, false, &D::zero(), &D::rest_pose()),
-            factors: None,
+            factored: None,
+            lu: D::Lu::default(),
             extra: D::Extra::default(),
+            force: ForceSums::<D>::default(),
+            sums: D::Sums::default(),
+            touches: vec![Touch::<D>::default(); model.supports.len()],
+            touching: 0,
+            tangent_pending: false,
         }
     }
 
@@ -68,20 +86,49 @@ impl<D: Dimension> Assembly<D> {
 /// The sums of `elements` (each a ground-to-body element at its body offset) at the
 /// iterate whose support points `point` gives, ground at `ground`: each element's return
 /// mapping read as force and status, an open element left out (it adds nothing: zero
-/// force, zero tangent).
+/// force, zero tangent). Returns the force's sums and the number of touching elements;
+/// the tangent's sums go to `sums`, or, when the dimension defers them, each touching
+/// element's part to `touches` (room for every element) and `sums` is left for
+/// `Model::finish_tangent`.
 #[inline(always)]
 pub(crate) fn sum_ground_elements<'e, D: Dimension>(
     elements: impl Iterator<Item = (&'e Vector<D>, &'e mut Contact<D::Tangential>)>,
     ground: &Vector<D>,
     point: impl Fn(&Vector<D>) -> D::Point,
-) -> D::Sums {
-    let mut sums = D::Sums::default();
+    sums: &mut D::Sums,
+    touches: &mut [Touch<D>],
+) -> (ForceSums<D>, usize) {
+    // Summed in locals: the sums stay in registers, out of the assembly's memory.
+    let mut force = ForceSums::<D>::default();
+    let mut tangent = D::Sums::default();
+    let mut touching = 0;
+    let deferred = <D::Sums as GroundSums<D>>::DEFERRED_TANGENT;
     for (d, e) in elements {
         let p = point(d);
         let (f, status, slip) = e.trial_ground(D::displacement(&p) - *ground);
         if status != Status::Open {
-            sums.add(&p, &f, e, status, slip);
+            let touch = D::Sums::add_force(&mut force, &p, &f, e, status, slip);
+            if deferred {
+                touches[touching] = touch;
+                touching += 1;
+            } else {
+                tangent.add_tangent(&touch);
+            }
         }
+    }
+    if !deferred {
+        *sums = tangent;
+    }
+    (force, touching)
+}
+
+/// The tangent's sums of the kept touching elements, in the elements' order.
+#[inline]
+fn tangent_sums<D: Dimension>(touches: &[Touch<D>]) -> D::Sums {
+    // Summed in a local: the sums stay in registers, out of the assembly's memory.
+    let mut sums = D::Sums::default();
+    for touch in touches {
+        sums.add_tangent(touch);
     }
     sums
 }
@@ -100,25 +147,60 @@ impl<D: Dimension> Model<D> {
         g: &D::Ground,
         a: &mut Assembly<D>,
     ) -> D::Iterate {
+        let at = self.assemble_force(q, from, un, g, a);
+        self.finish_tangent(a);
+        at
+    }
+
+    /// [`Self::assemble`] with the condensed supports' tangent left for
+    /// [`Self::finish_tangent`] when the dimension defers it: a Newton iteration whose
+    /// residual ends the step, or is backtracked from, never needs it.
+    #[inline]
+    pub(crate) fn assemble_force(
+        &mut self,
+        q: &D::Unknowns,
+        from: &D::Pose,
+        un: &mut [Vector<D>],
+        g: &D::Ground,
+        a: &mut Assembly<D>,
+    ) -> D::Iterate {
         let at = D::iterate(&self.kinematics, self.body.rotation, q, from);
         a.at = at;
         a.singular = false;
         let ground = D::ground_point(g);
         if self.condensed {
+            let (sums, touches) = (&mut a.sums, &mut a.touches);
             let offsets = self.body.offsets.iter();
-            let sums = if self.nodes == 0 {
+            let kin = &self.kinematics;
+            (a.force, a.touching) = if self.nodes == 0 {
                 let elements = offsets.zip(self.supports.iter_mut().map(|s| &mut s.lower));
-                D::sum_ground_elements(&self.kinematics, q, &at, elements, &ground)
+                D::sum_ground_elements(kin, q, &at, elements, &ground, sums, touches)
             } else {
                 let elements = offsets.zip(self.equivalents.iter_mut());
-                D::sum_ground_elements(&self.kinematics, q, &at, elements, &ground)
+                D::sum_ground_elements(kin, q, &at, elements, &ground, sums, touches)
             };
-            sums.write(&at, &mut a.pb, &mut a.kbb);
+            D::Sums::write_force(&a.force, &at, &mut a.pb);
+            a.tangent_pending = true;
         } else {
             self.assemble_with_nodes(q, &at, un, &ground, a);
+            D::to_unknowns(&at, self.body.rotation, &mut a.kbb);
+            a.tangent_pending = false;
         }
-        D::to_unknowns(&at, self.body.rotation, &mut a.kbb);
         at
+    }
+
+    /// Sum the last assembly's deferred tangent, if it is pending, into `a.kbb`.
+    #[inline]
+    pub(crate) fn finish_tangent(&self, a: &mut Assembly<D>) {
+        if !a.tangent_pending {
+            return;
+        }
+        if <D::Sums as GroundSums<D>>::DEFERRED_TANGENT {
+            a.sums = tangent_sums::<D>(&a.touches[..a.touching]);
+        }
+        a.sums.write_tangent(&a.force, &a.at, &mut a.kbb);
+        D::to_unknowns(&a.at, self.body.rotation, &mut a.kbb);
+        a.tangent_pending = false;
     }
 
     /// The uncondensed assembly: the nodes relaxed and condensed into series tangents.

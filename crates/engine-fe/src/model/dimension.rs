@@ -20,6 +20,12 @@ use crate::element::{Contact, Status, Tangential};
 /// (x, y, z) in space.
 pub type Vector<D> = <<D as Dimension>::Tangential as Tangential>::Vector;
 
+/// What a touching element leaves for the tangent's sums in dimension `D`.
+pub type Touch<D> = <<D as Dimension>::Sums as GroundSums<D>>::Touch;
+
+/// The force's sums of an assembly in dimension `D`.
+pub type ForceSums<D> = <<D as Dimension>::Sums as GroundSums<D>>::Force;
+
 /// An element's tangent in dimension `D`.
 pub type Tangent<D> = <<D as Dimension>::Tangential as Tangential>::Tangent;
 
@@ -99,21 +105,36 @@ pub struct Model<D: Dimension> {
 }
 
 /// The sums one assembly accumulates over the elements joining the ground to the body
-/// (`Model::assemble`), each dimension in its own order.
-pub trait GroundSums<D: Dimension>: Default {
-    /// Add a closed element's force `f` at the support point `p`, the element sticking
-    /// or (`slip`: μN/|T*|·kt and the direction n) slipping.
-    fn add(
-        &mut self,
+/// (`Model::assemble`), each dimension in its own order, in two parts: the force's sums
+/// ([`Self::Force`]), which every Newton iteration needs, and the tangent's (`Self`),
+/// which only an iteration that solves needs. Each sum is its own accumulator, taken over
+/// the elements in their order, so the bits do not depend on when the tangent is summed.
+pub trait GroundSums<D: Dimension>: Default + Clone + Debug {
+    /// The sums of the body's internal force.
+    type Force: Copy + Default + Debug;
+    /// What one touching element leaves for the tangent's sums.
+    type Touch: Copy + Debug + Default;
+    /// Whether the tangent waits until a solve needs it (`Model::finish_tangent`), each
+    /// element's [`Self::Touch`] kept until then; otherwise it is summed with the force.
+    const DEFERRED_TANGENT: bool;
+    /// Add a closed element's force `f` at the support point `p` to `force`, the element
+    /// sticking or (`slip`: μN/|T*|·kt and the direction n) slipping; returns what its
+    /// tangent needs.
+    fn add_force(
+        force: &mut Self::Force,
         p: &D::Point,
         f: &Vector<D>,
         e: &Contact<D::Tangential>,
         status: Status,
         slip: (f64, D::Tangential),
-    );
-    /// The body's internal force and its tangent with respect to the body's virtual
-    /// displacement (before `Dimension::to_unknowns`).
-    fn write(self, at: &D::Iterate, pb: &mut D::Unknowns, kbb: &mut D::Matrix);
+    ) -> Self::Touch;
+    /// Add a touching element's tangent.
+    fn add_tangent(&mut self, touch: &Self::Touch);
+    /// The body's internal force.
+    fn write_force(force: &Self::Force, at: &D::Iterate, pb: &mut D::Unknowns);
+    /// The tangent with respect to the body's virtual displacement (before
+    /// `Dimension::to_unknowns`), once every touching element's tangent is added.
+    fn write_tangent(&mut self, force: &Self::Force, at: &D::Iterate, kbb: &mut D::Matrix);
 }
 
 /// What is specific to the dimension of the one model (see the module docs).
@@ -125,7 +146,7 @@ pub trait Dimension: Copy + Debug + PartialEq + 'static {
     /// A matrix on the body's unknowns.
     type Matrix: Copy + Debug;
     /// The LU factors of a [`Self::Matrix`].
-    type Lu: Copy + Debug;
+    type Lu: Copy + Debug + Default;
     /// The body's rotational inertia about its centre of mass.
     type Inertia: Copy + Debug + PartialEq;
     /// How a support point follows the body (the plane's exact or small rotations).
@@ -193,14 +214,18 @@ pub trait Dimension: Copy + Debug + PartialEq + 'static {
     fn displacement(p: &Self::Point) -> Vector<Self>;
     /// The ground-to-body elements' sums of one assembly: `elements` (each at its body
     /// offset) evaluated at the iterate and the ground point `ground`
-    /// (`assembly::sum_ground_elements` with this dimension's point kinematics).
+    /// (`assembly::sum_ground_elements` with this dimension's point kinematics); returns
+    /// the force's sums and the number of touching elements, the tangent's sums in `sums`
+    /// (from zero) or, deferred, the touching elements' parts in `touches`.
     fn sum_ground_elements<'e>(
         kin: &Self::Kinematics,
         q: &Self::Unknowns,
         at: &Self::Iterate,
         elements: impl Iterator<Item = (&'e Vector<Self>, &'e mut Contact<Self::Tangential>)>,
         ground: &Vector<Self>,
-    ) -> Self::Sums;
+        sums: &mut Self::Sums,
+        touches: &mut [Touch<Self>],
+    ) -> (ForceSums<Self>, usize);
     /// Add an element's force `f` and tangent `k` at the support point `p` to the body's
     /// internal force and tangent (the uncondensed assembly).
     fn add_support(
@@ -236,8 +261,8 @@ pub trait Dimension: Copy + Debug + PartialEq + 'static {
     fn lock_rotation_rows(s: &mut Self::Matrix, rhs: &mut Self::Unknowns);
     /// Whether two matrices are the same bit for bit.
     fn same_bits(a: &Self::Matrix, b: &Self::Matrix) -> bool;
-    /// Factor a Newton matrix.
-    fn factor(m: &Self::Matrix) -> Self::Lu;
+    /// Factor a Newton matrix into `lu`.
+    fn factor(m: &Self::Matrix, lu: &mut Self::Lu);
     /// Solve with the factors; `None` if singular.
     fn solve(lu: &Self::Lu, b: &Self::Unknowns) -> Option<Self::Unknowns>;
 

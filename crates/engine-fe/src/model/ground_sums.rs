@@ -1,8 +1,9 @@
 //! The 3D assembly's sums over the elements joining the ground to the body (the single
 //! arrangement, or condensed double supports), taken in the ground frame and turned into
-//! the body frame once ([`SpaceSums`]): a sticking element adds its moments of its offset,
-//! a slipping one the same and a rank-one correction (an open one is left out by the
-//! assembly's loop).
+//! the body frame once: the force's ([`SpaceForceSums`]), and the tangent's
+//! ([`SpaceSums`]), where a sticking element adds its moments of its offset, a slipping
+//! one the same and a rank-one correction (an open one is left out by the assembly's
+//! loop).
 
 use nalgebra::{Matrix6, Vector2, Vector6};
 
@@ -25,17 +26,49 @@ fn tr_mul(a: &M3, b: &M3) -> M3 {
     })
 }
 
-/// The ground-frame sums of one assembly over the supports that touch (`Model::assemble`),
-/// with c = R·d each support's offset turned into the ground frame:
-/// Σf, Σc × f, Σf·dᵀ, Σc·f and, for the tangent, ΣD, ΣD·ĉ, Σĉ·D, Σĉ·D·ĉ — the sticking
-/// supports (D = diag(a, a, b)) through moments of c, the slipping ones through the same
-/// moments and a rank-one correction.
-#[derive(Debug, Default)]
-pub struct SpaceSums {
+/// The ground-frame force sums of one assembly over the supports that touch
+/// (`Model::assemble`), with c = R·d each support's offset turned into the ground frame:
+/// Σf, Σc × f, Σf·dᵀ and Σc·f.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct SpaceForceSums {
     f: [f64; 3],
     c_cross_f: [f64; 3],
     f_dt: M3,
     c_dot_f: f64,
+}
+
+impl SpaceForceSums {
+    /// Add the force `f` of the support at body offset `d`, ground offset `c` = R·d.
+    #[inline]
+    pub(crate) fn add(&mut self, f: &[f64; 3], d: &[f64; 3], c: &[f64; 3]) {
+        for ((sum, row), fi) in self.f.iter_mut().zip(&mut self.f_dt).zip(f) {
+            *sum += fi;
+            for (x, dj) in row.iter_mut().zip(d) {
+                *x += fi * dj;
+            }
+        }
+        self.c_cross_f[0] += c[1] * f[2] - c[2] * f[1];
+        self.c_cross_f[1] += c[2] * f[0] - c[0] * f[2];
+        self.c_cross_f[2] += c[0] * f[1] - c[1] * f[0];
+        self.c_dot_f += c[0] * f[0] + c[1] * f[1] + c[2] * f[2];
+    }
+
+    /// The body's internal force: the force and the body-frame moment Rᵀ·Σc × f.
+    pub(crate) fn write(&self, rm: &M3, p: &mut Vector6<f64>) {
+        let m = &self.c_cross_f;
+        let moment: [f64; 3] =
+            std::array::from_fn(|j| rm[0][j] * m[0] + rm[1][j] * m[1] + rm[2][j] * m[2]);
+        *p = Vector6::new(
+            self.f[0], self.f[1], self.f[2], moment[0], moment[1], moment[2],
+        );
+    }
+}
+
+/// The ground-frame tangent sums of one assembly over the supports that touch: ΣD, ΣD·ĉ,
+/// Σĉ·D, Σĉ·D·ĉ — the sticking supports (D = diag(a, a, b)) through moments of c, the
+/// slipping ones through the same moments and a rank-one correction.
+#[derive(Debug, Default, Clone)]
+pub struct SpaceSums {
     d: M3,
     d_c: M3,
     c_d: M3,
@@ -49,21 +82,6 @@ pub struct SpaceSums {
 }
 
 impl SpaceSums {
-    /// Add the force `f` of the support at body offset `d`, ground offset `c` = R·d.
-    #[inline]
-    pub(crate) fn add_force(&mut self, f: &[f64; 3], d: &[f64; 3], c: &[f64; 3]) {
-        for ((sum, row), fi) in self.f.iter_mut().zip(&mut self.f_dt).zip(f) {
-            *sum += fi;
-            for (x, dj) in row.iter_mut().zip(d) {
-                *x += fi * dj;
-            }
-        }
-        self.c_cross_f[0] += c[1] * f[2] - c[2] * f[1];
-        self.c_cross_f[1] += c[2] * f[0] - c[0] * f[2];
-        self.c_cross_f[2] += c[0] * f[1] - c[1] * f[0];
-        self.c_dot_f += c[0] * f[0] + c[1] * f[1] + c[2] * f[2];
-    }
-
     /// Add a sticking support's tangent D = diag(a, a, b) through the moments of c.
     #[inline]
     pub(crate) fn add_sticking(&mut self, a: f64, b: f64, c: &[f64; 3]) {
@@ -149,18 +167,15 @@ impl SpaceSums {
         }
     }
 
-    /// The body's internal force (force, body-frame moment Rᵀ·Σc × f) and its tangent with
-    /// respect to (X, W): with G = −R·d̂ = −ĉ·R,
+    /// The tangent of the internal force (`force` its sums) with respect to (X, W), once
+    /// every touching support's tangent is added: with G = −R·d̂ = −ĉ·R,
     /// [[ΣD, −ΣD·ĉ·R], [Rᵀ·Σĉ·D, −Rᵀ·Σĉ·D·ĉ·R + Rᵀ·Σf·dᵀ − (Σc·f)·I]].
-    pub(crate) fn write_matrices(&mut self, rm: &M3, p: &mut Vector6<f64>, k: &mut Matrix6<f64>) {
+    pub(crate) fn write_tangent(&mut self, force: &SpaceForceSums, rm: &M3, k: &mut Matrix6<f64>) {
         self.fold_sticking();
-        let m = &self.c_cross_f;
-        let moment: [f64; 3] =
-            std::array::from_fn(|j| rm[0][j] * m[0] + rm[1][j] * m[1] + rm[2][j] * m[2]);
         let k01 = mul(&self.d_c, rm);
         let k10 = tr_mul(rm, &self.c_d);
         let rt_cdc_r = tr_mul(rm, &mul(&self.c_d_c, rm));
-        let rt_fdt = tr_mul(rm, &self.f_dt);
+        let rt_fdt = tr_mul(rm, &force.f_dt);
         for i in 0..3 {
             for j in 0..3 {
                 k[(i, j)] = self.d[i][j];
@@ -168,10 +183,7 @@ impl SpaceSums {
                 k[(3 + i, j)] = k10[i][j];
                 k[(3 + i, 3 + j)] = rt_fdt[i][j] - rt_cdc_r[i][j];
             }
-            k[(3 + i, 3 + i)] -= self.c_dot_f;
+            k[(3 + i, 3 + i)] -= force.c_dot_f;
         }
-        *p = Vector6::new(
-            self.f[0], self.f[1], self.f[2], moment[0], moment[1], moment[2],
-        );
     }
 }

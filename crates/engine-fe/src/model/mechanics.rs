@@ -110,7 +110,7 @@ where
         g: &D::Ground,
         asm: &mut Assembly<D>,
     ) -> D::Iterate {
-        Model::assemble(self, q, from, un, g, asm)
+        Model::assemble_force(self, q, from, un, g, asm)
     }
 
     #[inline]

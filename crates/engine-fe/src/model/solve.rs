@@ -9,7 +9,8 @@ use super::dimension::{Dimension, Model, System, Vector};
 /// Solve the Newton system of `sys`: writes the body's correction `dq` and the nodes'
 /// `dun`; false if singular. Each node's residual rn enters the right-hand side as the
 /// generalized force Gᵀ·v of v = D2·(D1 + D2)⁻¹·rn and its correction is recovered after
-/// the body's, Δun = (D1 + D2)⁻¹·(rn/s + D2·G·Δq).
+/// the body's, Δun = (D1 + D2)⁻¹·(rn/s + D2·G·Δq). A tangent the assembly deferred is
+/// summed first.
 pub(crate) fn solve<D: Dimension>(
     model: &Model<D>,
     sys: &System<D::Unknowns>,
@@ -22,6 +23,7 @@ pub(crate) fn solve<D: Dimension>(
     if a.singular {
         return false;
     }
+    model.finish_tangent(a);
     let nodes = model.loop_nodes();
     let mut s_mat = D::newton_matrix(&model.body, sys, &a.kbb);
     let mut rhs = *rb;
@@ -32,10 +34,11 @@ pub(crate) fn solve<D: Dimension>(
     if !model.body.rotation {
         D::lock_rotation_rows(&mut s_mat, &mut rhs);
     }
-    if !matches!(&a.factors, Some((m, _)) if D::same_bits(m, &s_mat)) {
-        a.factors = Some((s_mat, D::factor(&s_mat)));
+    if !matches!(&a.factored, Some(m) if D::same_bits(m, &s_mat)) {
+        D::factor(&s_mat, &mut a.lu);
+        a.factored = Some(s_mat);
     }
-    let Some(x) = a.factors.as_ref().and_then(|(_, lu)| D::solve(lu, &rhs)) else {
+    let Some(x) = D::solve(&a.lu, &rhs) else {
         return false;
     };
     *dq = x;

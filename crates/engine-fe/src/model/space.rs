@@ -26,7 +26,7 @@ use nalgebra::{Matrix3, Matrix6, Vector2, Vector3, Vector6};
 
 use super::assembly::sum_ground_elements;
 use super::dimension::{Body, Dimension, GroundSums, Model, System};
-use super::ground_sums::{M3, SpaceSums};
+use super::ground_sums::{M3, SpaceForceSums, SpaceSums};
 use super::rotation::{exp_and_right_jacobian, log, skew};
 use crate::element::{ConeContact, Status};
 use crate::lu::Lu6;
@@ -102,28 +102,69 @@ fn g_of(p: &SpacePoint, at: &Pose) -> Matrix3<f64> {
     -(at.r * skew(&Vector3::from(p.d)))
 }
 
+/// What a touching support leaves for the tangent: c = R·d and its tangent's terms,
+/// D = diag(a, a, b) sticking, and slipping minus the rank-one v·wᵀ of v = (n, 0),
+/// w = (a·n, μ·kz) (`SpaceSums::add_slipping`).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SpaceTouch {
+    c: [f64; 3],
+    a: f64,
+    b: f64,
+    /// Slipping: the direction n and μ·kz.
+    slip: Option<(Vector2<f64>, f64)>,
+}
+
 impl GroundSums<Space> for SpaceSums {
+    type Force = SpaceForceSums;
+    type Touch = SpaceTouch;
+    /// A step's last iteration (its residual at round-off) and a backtracked one need
+    /// the force only: the tangent waits for the solve.
+    const DEFERRED_TANGENT: bool = true;
+
     #[inline(always)]
-    fn add(
-        &mut self,
+    fn add_force(
+        force: &mut SpaceForceSums,
         p: &SpacePoint,
         f: &Vector3<f64>,
         e: &ConeContact,
         status: Status,
         (rho, n): (f64, Vector2<f64>),
-    ) {
-        self.add_force(&[f.x, f.y, f.z], &p.d, &p.c);
+    ) -> SpaceTouch {
+        force.add(&[f.x, f.y, f.z], &p.d, &p.c);
         if status == Status::Stick {
             // Sticking: D = diag(kt, kt, kz).
-            self.add_sticking(e.kt, e.kz, &p.c);
+            SpaceTouch {
+                c: p.c,
+                a: e.kt,
+                b: e.kz,
+                slip: None,
+            }
         } else {
-            self.add_slipping(rho, e.kz, &n, e.mu * e.kz, &p.c);
+            SpaceTouch {
+                c: p.c,
+                a: rho,
+                b: e.kz,
+                slip: Some((n, e.mu * e.kz)),
+            }
+        }
+    }
+
+    #[inline(always)]
+    fn add_tangent(&mut self, t: &SpaceTouch) {
+        match t.slip {
+            None => self.add_sticking(t.a, t.b, &t.c),
+            Some((n, mu_kz)) => self.add_slipping(t.a, t.b, &n, mu_kz, &t.c),
         }
     }
 
     #[inline]
-    fn write(mut self, at: &Pose, pb: &mut Vector6<f64>, kbb: &mut Matrix6<f64>) {
-        self.write_matrices(&rows(&at.r), pb, kbb);
+    fn write_force(force: &SpaceForceSums, at: &Pose, pb: &mut Vector6<f64>) {
+        force.write(&rows(&at.r), pb);
+    }
+
+    #[inline]
+    fn write_tangent(&mut self, force: &SpaceForceSums, at: &Pose, kbb: &mut Matrix6<f64>) {
+        self.write_tangent(force, &rows(&at.r), kbb);
     }
 }
 
@@ -260,9 +301,11 @@ impl Dimension for Space {
         at: &Pose,
         elements: impl Iterator<Item = (&'e Vector3<f64>, &'e mut ConeContact)>,
         ground: &Vector3<f64>,
-    ) -> SpaceSums {
+        sums: &mut SpaceSums,
+        touches: &mut [SpaceTouch],
+    ) -> (SpaceForceSums, usize) {
         let rm = rows(&at.r);
-        sum_ground_elements::<Space>(elements, ground, |d| point_at(&at.x, &rm, d))
+        sum_ground_elements::<Space>(elements, ground, |d| point_at(&at.x, &rm, d), sums, touches)
     }
     fn add_support(
         p: &SpacePoint,
@@ -357,10 +400,10 @@ impl Dimension for Space {
             .zip(b.iter())
             .all(|(x, y)| x.to_bits() == y.to_bits())
     }
-    /// LU with partial pivoting (`Lu6`, nalgebra's algorithm written out).
+    /// LU with partial pivoting (`Lu6`, nalgebra's algorithm written out), in place.
     #[inline]
-    fn factor(m: &Matrix6<f64>) -> Lu6 {
-        Lu6::new(m)
+    fn factor(m: &Matrix6<f64>, lu: &mut Lu6) {
+        lu.refactor(m);
     }
     #[inline]
     fn solve(lu: &Lu6, b: &Vector6<f64>) -> Option<Vector6<f64>> {

@@ -111,7 +111,8 @@ pub(crate) trait Mechanics<const Q: usize, const N: usize>: Sized {
     /// Newton cycle.
     fn predict_nodes(&self, un: &mut [SVector<f64, N>], to: &Self::Ground, from: &Self::Ground);
     /// Evaluate every element at the unknowns `q` of a step from pose `from` (nodes `un`,
-    /// ground `g`) and assemble internal forces and the consistent tangent into `asm`.
+    /// ground `g`) and assemble internal forces and the consistent tangent into `asm`
+    /// (the tangent may be summed only when a solve needs it).
     fn assemble(
         &mut self,
         q: &SVector<f64, Q>,

@@ -93,39 +93,63 @@ pub(crate) fn point_kin(
     }
 }
 
-/// The plane assembly's sums: Gᵀf and GᵀDG + f·h in plain scalars, each element's terms
-/// in the same order (`k[1][0]` stays +0: ∂N/∂δx is +0 in every state of the element).
-#[derive(Debug, Default)]
+/// The plane assembly's tangent sums: GᵀDG + f·h in plain scalars, each element's terms
+/// in the same order (`k[1][0]` stays +0: ∂N/∂δx is +0 in every state of the element);
+/// its force sums Gᵀf, `[f64; 3]`.
+#[derive(Debug, Default, Clone)]
 pub struct PlaneSums {
-    p: [f64; 3],
     k: [[f64; 3]; 3],
 }
 
+/// What a touching element leaves for the plane's tangent: G's (x, z), the element's
+/// tangent [[d00, d01], [+0, d11]] and f·h.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct PlaneTouch {
+    g: (f64, f64),
+    d: (f64, f64, f64),
+    fh: f64,
+}
+
 impl GroundSums<Plane> for PlaneSums {
+    type Force = [f64; 3];
+    type Touch = PlaneTouch;
+    /// Summed with the force: the plane's tangent is a few sums.
+    const DEFERRED_TANGENT: bool = false;
+
     #[inline(always)]
-    fn add(
-        &mut self,
+    fn add_force(
+        p: &mut [f64; 3],
         pk: &PointKin,
         f: &Vector2<f64>,
         e: &Contact178,
         status: Status,
         (_, n): (f64, f64),
-    ) {
+    ) -> PlaneTouch {
         // The element's tangent [[d00, d01], [+0, d11]] (`Tangential::stick_tangent`,
         // `slip_tangent`): d10 is +0, its products ±0, and every sum they entered starts
         // from +0, where a ±0 term changes no bit.
-        let (d00, d01, d11) = if status == Status::Stick {
+        let d = if status == Status::Stick {
             (e.kt, 0.0, e.kz)
         } else {
             (0.0, -n * e.mu * e.kz, e.kz)
         };
         let (gx, gz) = (pk.g.x, pk.g.y);
-        let (dgx, dgy) = (d00 * gx + d01 * gz, d11 * gz);
-        let (gtdx, gtdy) = (d00 * gx, d01 * gx + d11 * gz);
-        let (p, k) = (&mut self.p, &mut self.k);
         p[0] += f.x;
         p[1] += f.y;
         p[2] += gx * f.x + gz * f.y;
+        PlaneTouch {
+            g: (gx, gz),
+            d,
+            fh: f.x * pk.h.x + f.y * pk.h.y,
+        }
+    }
+
+    #[inline(always)]
+    fn add_tangent(&mut self, t: &PlaneTouch) {
+        let ((gx, gz), (d00, d01, d11)) = (t.g, t.d);
+        let (dgx, dgy) = (d00 * gx + d01 * gz, d11 * gz);
+        let (gtdx, gtdy) = (d00 * gx, d01 * gx + d11 * gz);
+        let k = &mut self.k;
         k[0][0] += d00;
         k[0][1] += d01;
         k[1][1] += d11;
@@ -133,13 +157,17 @@ impl GroundSums<Plane> for PlaneSums {
         k[1][2] += dgy;
         k[2][0] += gtdx;
         k[2][1] += gtdy;
-        k[2][2] += (gx * dgx + gz * dgy) + (f.x * pk.h.x + f.y * pk.h.y);
+        k[2][2] += (gx * dgx + gz * dgy) + t.fh;
     }
 
     #[inline(always)]
-    fn write(self, _at: &(f64, f64), pb: &mut Vector3<f64>, kbb: &mut Matrix3<f64>) {
-        let (p, k) = (self.p, self.k);
+    fn write_force(p: &[f64; 3], _at: &(f64, f64), pb: &mut Vector3<f64>) {
         *pb = Vector3::new(p[0], p[1], p[2]);
+    }
+
+    #[inline(always)]
+    fn write_tangent(&mut self, _p: &[f64; 3], _at: &(f64, f64), kbb: &mut Matrix3<f64>) {
+        let k = self.k;
         *kbb = Matrix3::new(
             k[0][0], k[0][1], k[0][2], k[1][0], k[1][1], k[1][2], k[2][0], k[2][1], k[2][2],
         );
@@ -242,11 +270,19 @@ impl Dimension for Plane {
         at: &(f64, f64),
         elements: impl Iterator<Item = (&'e Vector2<f64>, &'e mut Contact178)>,
         ground: &Vector2<f64>,
-    ) -> PlaneSums {
+        sums: &mut PlaneSums,
+        touches: &mut [PlaneTouch],
+    ) -> ([f64; 3], usize) {
         let cs = *at;
         macro_rules! with_kinematics {
             ($kin:expr, $pd:expr) => {
-                sum_ground_elements::<Plane>(elements, ground, |d| point_kin($kin, $pd, q, cs, d))
+                sum_ground_elements::<Plane>(
+                    elements,
+                    ground,
+                    |d| point_kin($kin, $pd, q, cs, d),
+                    sums,
+                    touches,
+                )
             };
         }
         match (kin.kind, kin.p_delta) {
@@ -329,8 +365,8 @@ impl Dimension for Plane {
     /// LU with partial pivoting (`Lu3`): the closed-form 3×3 inverse is a little cheaper
     /// but loses digits, and the tight preset then needs more iterations.
     #[inline]
-    fn factor(m: &Matrix3<f64>) -> Lu3 {
-        Lu3::new(m)
+    fn factor(m: &Matrix3<f64>, lu: &mut Lu3) {
+        *lu = Lu3::new(m);
     }
     #[inline]
     fn solve(lu: &Lu3, b: &Vector3<f64>) -> Option<Vector3<f64>> {
