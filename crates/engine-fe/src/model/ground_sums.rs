@@ -28,29 +28,23 @@ fn tr_mul(a: &M3, b: &M3) -> M3 {
 
 /// The ground-frame force sums of one assembly over the supports that touch
 /// (`Model::assemble`), with c = R·d each support's offset turned into the ground frame:
-/// Σf, Σc × f, Σf·dᵀ and Σc·f.
+/// Σf and Σc × f.
 #[derive(Debug, Default, Clone, Copy)]
 pub struct SpaceForceSums {
     f: [f64; 3],
     c_cross_f: [f64; 3],
-    f_dt: M3,
-    c_dot_f: f64,
 }
 
 impl SpaceForceSums {
-    /// Add the force `f` of the support at body offset `d`, ground offset `c` = R·d.
+    /// Add the force `f` of the support at ground offset `c` = R·d.
     #[inline]
-    pub(crate) fn add(&mut self, f: &[f64; 3], d: &[f64; 3], c: &[f64; 3]) {
-        for ((sum, row), fi) in self.f.iter_mut().zip(&mut self.f_dt).zip(f) {
+    pub(crate) fn add(&mut self, f: &[f64; 3], c: &[f64; 3]) {
+        for (sum, fi) in self.f.iter_mut().zip(f) {
             *sum += fi;
-            for (x, dj) in row.iter_mut().zip(d) {
-                *x += fi * dj;
-            }
         }
         self.c_cross_f[0] += c[1] * f[2] - c[2] * f[1];
         self.c_cross_f[1] += c[2] * f[0] - c[0] * f[2];
         self.c_cross_f[2] += c[0] * f[1] - c[1] * f[0];
-        self.c_dot_f += c[0] * f[0] + c[1] * f[1] + c[2] * f[2];
     }
 
     /// The body's internal force: the force and the body-frame moment Rᵀ·Σc × f.
@@ -64,11 +58,14 @@ impl SpaceForceSums {
     }
 }
 
-/// The ground-frame tangent sums of one assembly over the supports that touch: ΣD, ΣD·ĉ,
-/// Σĉ·D, Σĉ·D·ĉ — the sticking supports (D = diag(a, a, b)) through moments of c, the
-/// slipping ones through the same moments and a rank-one correction.
+/// The ground-frame tangent sums of one assembly over the supports that touch: the
+/// geometric terms Σf·dᵀ and Σc·f, and ΣD, ΣD·ĉ, Σĉ·D, Σĉ·D·ĉ — the sticking supports
+/// (D = diag(a, a, b)) through moments of c, the slipping ones through the same moments
+/// and a rank-one correction.
 #[derive(Debug, Default, Clone)]
 pub struct SpaceSums {
+    f_dt: M3,
+    c_dot_f: f64,
     d: M3,
     d_c: M3,
     c_d: M3,
@@ -82,6 +79,18 @@ pub struct SpaceSums {
 }
 
 impl SpaceSums {
+    /// Add the geometric terms of the force `f` of the support at body offset `d`,
+    /// ground offset `c` = R·d.
+    #[inline]
+    pub(crate) fn add_geometric(&mut self, f: &[f64; 3], d: &[f64; 3], c: &[f64; 3]) {
+        for (row, fi) in self.f_dt.iter_mut().zip(f) {
+            for (x, dj) in row.iter_mut().zip(d) {
+                *x += fi * dj;
+            }
+        }
+        self.c_dot_f += c[0] * f[0] + c[1] * f[1] + c[2] * f[2];
+    }
+
     /// Add a sticking support's tangent D = diag(a, a, b) through the moments of c.
     #[inline]
     pub(crate) fn add_sticking(&mut self, a: f64, b: f64, c: &[f64; 3]) {
@@ -167,15 +176,15 @@ impl SpaceSums {
         }
     }
 
-    /// The tangent of the internal force (`force` its sums) with respect to (X, W), once
+    /// The tangent of the internal force with respect to (X, W), once
     /// every touching support's tangent is added: with G = −R·d̂ = −ĉ·R,
     /// [[ΣD, −ΣD·ĉ·R], [Rᵀ·Σĉ·D, −Rᵀ·Σĉ·D·ĉ·R + Rᵀ·Σf·dᵀ − (Σc·f)·I]].
-    pub(crate) fn write_tangent(&mut self, force: &SpaceForceSums, rm: &M3, k: &mut Matrix6<f64>) {
+    pub(crate) fn write_tangent(&mut self, rm: &M3, k: &mut Matrix6<f64>) {
         self.fold_sticking();
         let k01 = mul(&self.d_c, rm);
         let k10 = tr_mul(rm, &self.c_d);
         let rt_cdc_r = tr_mul(rm, &mul(&self.c_d_c, rm));
-        let rt_fdt = tr_mul(rm, &force.f_dt);
+        let rt_fdt = tr_mul(rm, &self.f_dt);
         for i in 0..3 {
             for j in 0..3 {
                 k[(i, j)] = self.d[i][j];
@@ -183,7 +192,7 @@ impl SpaceSums {
                 k[(3 + i, j)] = k10[i][j];
                 k[(3 + i, 3 + j)] = rt_fdt[i][j] - rt_cdc_r[i][j];
             }
-            k[(3 + i, 3 + i)] -= force.c_dot_f;
+            k[(3 + i, 3 + i)] -= self.c_dot_f;
         }
     }
 }

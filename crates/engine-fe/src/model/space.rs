@@ -102,11 +102,13 @@ fn g_of(p: &SpacePoint, at: &Pose) -> Matrix3<f64> {
     -(at.r * skew(&Vector3::from(p.d)))
 }
 
-/// What a touching support leaves for the tangent: c = R·d and its tangent's terms,
-/// D = diag(a, a, b) sticking, and slipping minus the rank-one v·wᵀ of v = (n, 0),
-/// w = (a·n, μ·kz) (`SpaceSums::add_slipping`).
+/// What a touching support leaves for the tangent: its force f, its offset d and
+/// c = R·d, and its tangent's terms, D = diag(a, a, b) sticking, and slipping minus the
+/// rank-one v·wᵀ of v = (n, 0), w = (a·n, μ·kz) (`SpaceSums::add_slipping`).
 #[derive(Debug, Clone, Copy, Default)]
 pub struct SpaceTouch {
+    f: [f64; 3],
+    d: [f64; 3],
     c: [f64; 3],
     a: f64,
     b: f64,
@@ -130,27 +132,27 @@ impl GroundSums<Space> for SpaceSums {
         status: Status,
         (rho, n): (f64, Vector2<f64>),
     ) -> SpaceTouch {
-        force.add(&[f.x, f.y, f.z], &p.d, &p.c);
-        if status == Status::Stick {
+        let f = [f.x, f.y, f.z];
+        force.add(&f, &p.c);
+        let (a, slip) = if status == Status::Stick {
             // Sticking: D = diag(kt, kt, kz).
-            SpaceTouch {
-                c: p.c,
-                a: e.kt,
-                b: e.kz,
-                slip: None,
-            }
+            (e.kt, None)
         } else {
-            SpaceTouch {
-                c: p.c,
-                a: rho,
-                b: e.kz,
-                slip: Some((n, e.mu * e.kz)),
-            }
+            (rho, Some((n, e.mu * e.kz)))
+        };
+        SpaceTouch {
+            f,
+            d: p.d,
+            c: p.c,
+            a,
+            b: e.kz,
+            slip,
         }
     }
 
     #[inline(always)]
     fn add_tangent(&mut self, t: &SpaceTouch) {
+        self.add_geometric(&t.f, &t.d, &t.c);
         match t.slip {
             None => self.add_sticking(t.a, t.b, &t.c),
             Some((n, mu_kz)) => self.add_slipping(t.a, t.b, &n, mu_kz, &t.c),
@@ -163,8 +165,8 @@ impl GroundSums<Space> for SpaceSums {
     }
 
     #[inline]
-    fn write_tangent(&mut self, force: &SpaceForceSums, at: &Pose, kbb: &mut Matrix6<f64>) {
-        self.write_tangent(force, &rows(&at.r), kbb);
+    fn write_tangent(&mut self, _force: &SpaceForceSums, at: &Pose, kbb: &mut Matrix6<f64>) {
+        self.write_tangent(&rows(&at.r), kbb);
     }
 }
 
