@@ -31,33 +31,9 @@ impl Lu3 {
             [m[(2, 0)], m[(2, 1)], m[(2, 2)]],
         ];
         let mut swaps = [0, 1, 2];
-        for i in 0..3 {
-            let mut piv = i;
-            let mut max = a[i][i].abs();
-            for (j, row) in a.iter().enumerate().skip(i + 1) {
-                if row[i].abs() > max {
-                    max = row[i].abs();
-                    piv = j;
-                }
-            }
-            let diag = a[piv][i];
-            if diag == 0.0 {
-                continue;
-            }
-            swaps[i] = piv;
-            // A row swapped with itself is left alone (no copy): the same factors.
-            if piv != i {
-                a.swap(i, piv);
-            }
-            let inv = 1.0 / diag;
-            let pivot_row = a[i];
-            for row in a.iter_mut().skip(i + 1) {
-                row[i] *= inv;
-                for k in i + 1..3 {
-                    row[k] += -pivot_row[k] * row[i];
-                }
-            }
-        }
+        eliminate::<3, 0>(&mut a, &mut swaps);
+        eliminate::<3, 1>(&mut a, &mut swaps);
+        eliminate::<3, 2>(&mut a, &mut swaps);
         Self { lu: a, swaps }
     }
 
@@ -153,11 +129,12 @@ impl Lu2 {
 /// The matrix order.
 const N6: usize = 6;
 
-/// Column `I`'s step of the factorisation of `a`: the first largest |pivot| of the column
-/// (none if it is zero), rows swapped, the multipliers times the pivot's reciprocal and the
-/// updates of the rows below.
+/// Column `I`'s step of the factorisation of the N × N `a` (nalgebra's): the first
+/// largest |pivot| of the column (none if it is zero), rows swapped (a row swapped with
+/// itself is left alone: the same factors), the multipliers times the pivot's reciprocal
+/// and the updates of the rows below. With `I` a constant every loop unrolls.
 #[inline(always)]
-fn eliminate<const I: usize>(a: &mut [[f64; N6]; N6], swaps: &mut [usize; N6]) {
+fn eliminate<const N: usize, const I: usize>(a: &mut [[f64; N]; N], swaps: &mut [usize; N]) {
     swaps[I] = I;
     let mut piv = I;
     let mut max = a[I][I].abs();
@@ -181,7 +158,7 @@ fn eliminate<const I: usize>(a: &mut [[f64; N6]; N6], swaps: &mut [usize; N6]) {
     for row in a.iter_mut().skip(I + 1) {
         let c = row[I] * inv;
         row[I] = c;
-        for k in I + 1..N6 {
+        for k in I + 1..N {
             row[k] += -pivot_row[k] * c;
         }
     }
@@ -211,13 +188,12 @@ impl Lu6 {
                 *x = s[j * N6 + i];
             }
         }
-        // Each column's step with its index a constant: every loop unrolled.
-        eliminate::<0>(a, swaps);
-        eliminate::<1>(a, swaps);
-        eliminate::<2>(a, swaps);
-        eliminate::<3>(a, swaps);
-        eliminate::<4>(a, swaps);
-        eliminate::<5>(a, swaps);
+        eliminate::<N6, 0>(a, swaps);
+        eliminate::<N6, 1>(a, swaps);
+        eliminate::<N6, 2>(a, swaps);
+        eliminate::<N6, 3>(a, swaps);
+        eliminate::<N6, 4>(a, swaps);
+        eliminate::<N6, 5>(a, swaps);
     }
 
     /// Solve `m·x = b`; `None` if `m` is singular.
