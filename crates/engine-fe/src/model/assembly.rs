@@ -46,7 +46,8 @@ pub struct Assembly<D: Dimension> {
     /// Their tangent's sums.
     pub(crate) sums: D::Sums,
     /// What each touching support leaves for the tangent, while it is deferred: room for
-    /// every support, the first `touching` in use.
+    /// one a body offset (none where the dimension sums its tangent at once), the first
+    /// `touching` in use.
     pub(crate) touches: Vec<Touch<D>>,
     pub(crate) touching: usize,
     /// The last assembly's tangent `kbb` is not yet summed (`Model::finish_tangent`).
@@ -57,6 +58,12 @@ impl<D: Dimension> Assembly<D> {
     /// Room for a model's nodes.
     pub fn new(model: &Model<D>) -> Self {
         let n = model.nodes;
+        let deferred = <D::Sums as GroundSums<D>>::DEFERRED_TANGENT;
+        let deferred_room = if deferred {
+            model.body.offsets.len()
+        } else {
+            0
+        };
         Self {
             pb: D::zero(),
             kbb: D::zero_matrix(),
@@ -71,7 +78,8 @@ impl<D: Dimension> Assembly<D> {
             extra: D::Extra::default(),
             force: ForceSums::<D>::default(),
             sums: D::Sums::default(),
-            touches: vec![Touch::<D>::default(); model.supports.len()],
+            // The condensed loop visits one element per body offset at most.
+            touches: vec![Touch::<D>::default(); deferred_room],
             touching: 0,
             tangent_pending: false,
         }
@@ -88,7 +96,7 @@ impl<D: Dimension> Assembly<D> {
 /// mapping read as force and status, an open element left out (it adds nothing: zero
 /// force, zero tangent). Returns the force's sums and the number of touching elements;
 /// the tangent's sums go to `sums`, or, when the dimension defers them, each touching
-/// element's part to `touches` (room for every element) and `sums` is left for
+/// element's part to `touches` (room for one an element) and `sums` is left for
 /// `Model::finish_tangent`.
 #[inline(always)]
 pub(crate) fn sum_ground_elements<'e, D: Dimension>(
