@@ -41,9 +41,7 @@ pub struct Assembly<D: Dimension> {
     pub(crate) lu: D::Lu,
     /// The dimension's own room (the plane oscillator's scalar factors).
     pub(crate) extra: D::Extra,
-    /// The condensed supports' force sums of the last assembly.
-    pub(crate) force: ForceSums<D>,
-    /// Their tangent's sums.
+    /// The condensed supports' tangent sums of the last assembly.
     pub(crate) sums: D::Sums,
     /// What each touching support leaves for the tangent, while it is deferred: room for
     /// one a body offset (none where the dimension sums its tangent at once), the first
@@ -76,7 +74,6 @@ impl<D: Dimension> Assembly<D> {
             factored: None,
             lu: D::Lu::default(),
             extra: D::Extra::default(),
-            force: ForceSums::<D>::default(),
             sums: D::Sums::default(),
             // The condensed loop visits one element per body offset at most.
             touches: vec![Touch::<D>::default(); deferred_room],
@@ -180,14 +177,15 @@ impl<D: Dimension> Model<D> {
             let (sums, touches) = (&mut a.sums, &mut a.touches);
             let offsets = self.body.offsets.iter();
             let kin = &self.kinematics;
-            (a.force, a.touching) = if self.nodes == 0 {
+            let (force, touching) = if self.nodes == 0 {
                 let elements = offsets.zip(self.supports.iter_mut().map(|s| &mut s.lower));
                 D::sum_ground_elements(kin, q, &at, elements, &ground, sums, touches)
             } else {
                 let elements = offsets.zip(self.equivalents.iter_mut());
                 D::sum_ground_elements(kin, q, &at, elements, &ground, sums, touches)
             };
-            D::Sums::write_force(&a.force, &at, &mut a.pb);
+            a.touching = touching;
+            D::Sums::write_force(&force, &at, &mut a.pb);
             a.tangent_pending = true;
         } else {
             self.assemble_with_nodes(q, &at, un, &ground, a);
@@ -206,7 +204,7 @@ impl<D: Dimension> Model<D> {
         if <D::Sums as GroundSums<D>>::DEFERRED_TANGENT {
             a.sums = tangent_sums::<D>(&a.touches[..a.touching]);
         }
-        a.sums.write_tangent(&a.force, &a.at, &mut a.kbb);
+        a.sums.write_tangent(&a.at, &mut a.kbb);
         D::to_unknowns(&a.at, self.body.rotation, &mut a.kbb);
         a.tangent_pending = false;
     }

@@ -134,7 +134,7 @@ pub trait GroundSums<D: Dimension>: Default + Clone + Debug {
     fn write_force(force: &Self::Force, at: &D::Iterate, pb: &mut D::Unknowns);
     /// The tangent with respect to the body's virtual displacement (before
     /// `Dimension::to_unknowns`), once every touching element's tangent is added.
-    fn write_tangent(&mut self, force: &Self::Force, at: &D::Iterate, kbb: &mut D::Matrix);
+    fn write_tangent(&mut self, at: &D::Iterate, kbb: &mut D::Matrix);
 }
 
 /// What is specific to the dimension of the one model (see the module docs).

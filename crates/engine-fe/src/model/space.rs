@@ -165,7 +165,7 @@ impl GroundSums<Space> for SpaceSums {
     }
 
     #[inline]
-    fn write_tangent(&mut self, _force: &SpaceForceSums, at: &Pose, kbb: &mut Matrix6<f64>) {
+    fn write_tangent(&mut self, at: &Pose, kbb: &mut Matrix6<f64>) {
         self.write_tangent(&rows(&at.r), kbb);
     }
 }

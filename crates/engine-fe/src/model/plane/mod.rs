@@ -166,7 +166,7 @@ impl GroundSums<Plane> for PlaneSums {
     }
 
     #[inline(always)]
-    fn write_tangent(&mut self, _p: &[f64; 3], _at: &(f64, f64), kbb: &mut Matrix3<f64>) {
+    fn write_tangent(&mut self, _at: &(f64, f64), kbb: &mut Matrix3<f64>) {
         let k = self.k;
         *kbb = Matrix3::new(
             k[0][0], k[0][1], k[0][2], k[1][0], k[1][1], k[1][2], k[2][0], k[2][1], k[2][2],
