@@ -127,17 +127,6 @@ pub(crate) fn sum_ground_elements<'e, D: Dimension>(
     (force, touching)
 }
 
-/// The tangent's sums of the kept touching elements, in the elements' order.
-#[inline]
-fn tangent_sums<D: Dimension>(touches: &[Touch<D>]) -> D::Sums {
-    // Summed in a local: the sums stay in registers, out of the assembly's memory.
-    let mut sums = D::Sums::default();
-    for touch in touches {
-        sums.add_tangent(touch);
-    }
-    sums
-}
-
 impl<D: Dimension> Model<D> {
     /// Evaluate every element at the unknowns `q` of a step from `from` (nodes `un`,
     /// ground `g`) and assemble internal forces and the consistent tangent into `a`;
@@ -202,7 +191,7 @@ impl<D: Dimension> Model<D> {
             return;
         }
         if <D::Sums as GroundSums<D>>::DEFERRED_TANGENT {
-            a.sums = tangent_sums::<D>(&a.touches[..a.touching]);
+            a.sums = D::Sums::from_touches(&a.touches[..a.touching]);
         }
         a.sums.write_tangent(&a.at, &mut a.kbb);
         D::to_unknowns(&a.at, self.body.rotation, &mut a.kbb);

@@ -130,6 +130,16 @@ pub trait GroundSums<D: Dimension>: Default + Clone + Debug {
     ) -> Self::Touch;
     /// Add a touching element's tangent.
     fn add_tangent(&mut self, touch: &Self::Touch);
+    /// The tangent's sums of the touching elements `touches`, each sum taking its terms
+    /// in their order.
+    #[inline]
+    fn from_touches(touches: &[Self::Touch]) -> Self {
+        let mut sums = Self::default();
+        for touch in touches {
+            sums.add_tangent(touch);
+        }
+        sums
+    }
     /// The body's internal force.
     fn write_force(force: &Self::Force, at: &D::Iterate, pb: &mut D::Unknowns);
     /// The tangent with respect to the body's virtual displacement (before

@@ -159,6 +159,23 @@ impl GroundSums<Space> for SpaceSums {
         }
     }
 
+    /// The geometric sums in a pass of their own (ten sums, held in registers), then the
+    /// D sums: each sum still takes its terms in the supports' order.
+    #[inline]
+    fn from_touches(touches: &[SpaceTouch]) -> Self {
+        let mut sums = Self::default();
+        for t in touches {
+            sums.add_geometric(&t.f, &t.d, &t.c);
+        }
+        for t in touches {
+            match t.slip {
+                None => sums.add_sticking(t.a, t.b, &t.c),
+                Some((n, mu_kz)) => sums.add_slipping(t.a, t.b, &n, mu_kz, &t.c),
+            }
+        }
+        sums
+    }
+
     #[inline]
     fn write_force(force: &SpaceForceSums, at: &Pose, pb: &mut Vector6<f64>) {
         force.write(&rows(&at.r), pb);
