@@ -175,6 +175,10 @@ pub trait Dimension: Copy + Debug + PartialEq + 'static {
     type Sums: GroundSums<Self>;
     /// The model's own room in an assembly (the plane oscillator's scalar factors).
     type Extra: Copy + Debug + Default;
+    /// Whether a rotating body's Newton matrix can repeat bit for bit from one solve to
+    /// the next (the plane's small-rotation kinematics), so that its factors are worth
+    /// keeping; in space the matrix turns with R at every iteration.
+    const ROTATING_MATRIX_REPEATS: bool;
     /// The unit of a failed step's correction and increment (" m", or nothing for the
     /// space model's mixed metres and radians).
     const CORRECTION_UNIT: &'static str;

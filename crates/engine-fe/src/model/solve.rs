@@ -34,7 +34,11 @@ pub(crate) fn solve<D: Dimension>(
     if !model.body.rotation {
         D::lock_rotation_rows(&mut s_mat, &mut rhs);
     }
-    if !matches!(&a.factored, Some(m) if D::same_bits(m, &s_mat)) {
+    if model.body.rotation && !D::ROTATING_MATRIX_REPEATS {
+        // The matrix moves with the pose at every iteration: nothing to look up (a
+        // matrix factored again gives the same factors).
+        D::factor(&s_mat, &mut a.lu);
+    } else if !matches!(&a.factored, Some(m) if D::same_bits(m, &s_mat)) {
         D::factor(&s_mat, &mut a.lu);
         a.factored = Some(s_mat);
     }

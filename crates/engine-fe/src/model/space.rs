@@ -224,6 +224,7 @@ impl Dimension for Space {
     type Ground = [Vector3<f64>; 3];
     type Sums = SpaceSums;
     type Extra = ();
+    const ROTATING_MATRIX_REPEATS: bool = false;
     // A correction mixes metres and radians: no unit.
     const CORRECTION_UNIT: &'static str = "";
 

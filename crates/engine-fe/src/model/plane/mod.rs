@@ -193,6 +193,7 @@ impl Dimension for Plane {
     type Ground = (f64, f64, f64);
     type Sums = PlaneSums;
     type Extra = Option<Lu2>;
+    const ROTATING_MATRIX_REPEATS: bool = true;
     const CORRECTION_UNIT: &'static str = " m";
 
     #[inline]
