@@ -5,7 +5,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 
 use rockslide::case::{Case, load_case, parse_case};
-use rockslide::engine::Run;
+use rockslide::engine::{Engine, Run};
 
 /// Path of a file in the repository.
 pub fn repo(rel: &str) -> PathBuf {
@@ -103,4 +103,13 @@ pub fn present_or_skip(test: &str, found: bool, require_var: &str, missing: &str
         eprintln!("{test}: SKIPPED, not passed — {missing}");
     }
     found
+}
+
+/// The registry's entry for `engine`, found by the engine type's own id: a test that runs
+/// an engine "through the registry" names the type, never its id.
+pub fn registered(engine: &dyn Engine) -> Box<dyn Engine> {
+    rockslide::engine::all()
+        .into_iter()
+        .find(|e| e.id() == engine.id())
+        .unwrap_or_else(|| panic!("{} is not in the registry", engine.id()))
 }

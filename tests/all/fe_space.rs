@@ -4,6 +4,9 @@
 //! and it converges at second order as Δt falls under a bidirectional motion.
 //! Tolerances are the measured differences (stated at each assert) with a small margin.
 
+use crate::common::registered;
+use rockslide::engine::fe::Fe;
+use rockslide::engine::rigid_body::Rapier;
 use std::path::Path;
 
 use nalgebra::{Matrix3, Rotation3, Vector2, Vector3};
@@ -356,10 +359,7 @@ fn pepo_scene(azimuth_deg: f64) -> Case {
 fn fe_runs_a_3d_scene_through_the_registry() {
     let c = pepo_scene(30.0);
     assert!(c.scene.spatial.is_some());
-    let fe = rockslide::engine::all()
-        .into_iter()
-        .find(|e| e.id() == "fe")
-        .unwrap();
+    let fe = registered(&Fe);
     assert!(fe.models_plan_motion());
     assert_eq!(
         fe.variants(&c.scene).unwrap(),
@@ -412,10 +412,7 @@ fn fe_runs_a_rocking_body_on_a_support_grid_from_the_scene() {
     };
     let s = c.scene.spatial.as_ref().expect("a 3D scene");
     assert_eq!(s.azimuth_deg, 30.0);
-    let fe = rockslide::engine::all()
-        .into_iter()
-        .find(|e| e.id() == "fe")
-        .unwrap();
+    let fe = registered(&Fe);
     for variant in [SINGLE_ELEMENT, DOUBLE_ELEMENT] {
         let run = fe.run(&c, variant, 1e-3).unwrap();
         assert!(run.status.completed(), "{}", run.status);
@@ -458,10 +455,7 @@ fn the_3d_oscillator_under_two_components_matches_the_plan_motion_reference() {
         "cycles = 0.5\nazimuth_deg = 30.0\n\n[excitation.y]\nshape = \"sine-pulse\"\namplitude = 0.5\nomega = 31.41592653589793\ncycles = 1.0\n",
     );
     let sol = reference::for_case(&c).unwrap();
-    let fe = rockslide::engine::all()
-        .into_iter()
-        .find(|e| e.id() == "fe")
-        .unwrap();
+    let fe = registered(&Fe);
     for (variant, dt) in [
         (SINGLE_ELEMENT, 1e-3),
         (SINGLE_ELEMENT, 5e-4),
@@ -512,10 +506,7 @@ fn vertical_pepo_scene(azimuth_deg: f64) -> Case {
 #[test]
 fn the_3d_model_takes_a_vertical_component_as_the_2d_model_does() {
     let plane = case("cases/vertical/pepo-mass-accel-vertical.toml");
-    let fe = rockslide::engine::all()
-        .into_iter()
-        .find(|e| e.id() == "fe")
-        .unwrap();
+    let fe = registered(&Fe);
     let sol = reference::for_case(&plane).unwrap();
     let (cs, sn) = (30f64.to_radians().cos(), 30f64.to_radians().sin());
     // the case has no double arrangement: the single contact
@@ -556,10 +547,7 @@ fn the_3d_model_takes_a_vertical_component_as_the_2d_model_does() {
     }
     // rapier's oscillator in plan and the plan-motion oscillator reference take it too
     // (measured against each other in tests/all/vertical_plan.rs)
-    let rapier = rockslide::engine::all()
-        .into_iter()
-        .find(|e| e.id() == "rapier")
-        .unwrap();
+    let rapier = registered(&Rapier);
     assert!(rapier.variants(&vertical_pepo_scene(30.0).scene).is_ok());
     assert!(reference::for_case(&vertical_pepo_scene(30.0)).is_ok());
 }
@@ -585,10 +573,7 @@ fn vertical_from_nonzero(mut c: Case) -> Case {
 /// model under a vertical that starts away from zero is its 2D model rotated.
 #[test]
 fn the_3d_model_takes_the_vertical_at_t0_as_the_2d_model_does() {
-    let fe = rockslide::engine::all()
-        .into_iter()
-        .find(|e| e.id() == "fe")
-        .unwrap();
+    let fe = registered(&Fe);
     let plane = vertical_from_nonzero(case("cases/vertical/pepo-mass-accel-vertical.toml"));
     let turned = vertical_from_nonzero(vertical_pepo_scene(30.0));
     let (cs, sn) = (30f64.to_radians().cos(), 30f64.to_radians().sin());

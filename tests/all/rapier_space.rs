@@ -5,6 +5,8 @@
 //! cone |T| ≤ μ·N in 3D on every step. Tolerances are the measured errors (2026-11-24),
 //! stated at each assert, with a small margin.
 
+use crate::common::registered;
+use rockslide::engine::fe::Fe;
 use std::path::Path;
 
 use rockslide::analysis::{history_difference, responses};
@@ -485,10 +487,7 @@ fn peak_until(r: &Run, key: &str, until: f64) -> f64 {
 #[test]
 fn rocking_grid_at_30_degrees_against_the_fe_3d_model() {
     let c = rpepo_3d(2, 0.3, ("kx = 2.4e9 ", "kz = 3.94784e8 "), 30.0, 2.0);
-    let fe = rockslide::engine::all()
-        .into_iter()
-        .find(|e| e.id() == "fe")
-        .unwrap()
+    let fe = registered(&Fe)
         .run(&c, fe_variant::SINGLE_ELEMENT, 1e-3)
         .unwrap();
     assert!(fe.status.completed(), "{}", fe.status);
@@ -640,10 +639,7 @@ fn rocking_grid_under_a_strong_pulse_against_the_fe_3d_model() {
         text = text.replacen(from, to, 1);
     }
     let c = parse_case(Path::new(RPEPO), &text).unwrap();
-    let fe = rockslide::engine::all()
-        .into_iter()
-        .find(|e| e.id() == "fe")
-        .unwrap()
+    let fe = registered(&Fe)
         .run(&c, fe_variant::SINGLE_ELEMENT, 1e-3)
         .unwrap();
     assert!(fe.status.completed(), "{}", fe.status);

@@ -7,6 +7,9 @@
 //! energy growth) or not converged (Newton), with the time and reason. A diverging run is
 //! a result, never a crash."
 
+use crate::common::registered;
+use rockslide::engine::fe::Fe;
+use rockslide::engine::predictor_corrector::PredictorCorrector;
 use std::path::Path;
 
 use rockslide::analysis::energy::audit;
@@ -22,10 +25,7 @@ use rockslide::sweep::stability::study;
 use rockslide::sweep::{Options, characteristic_period};
 
 fn pc() -> Box<dyn Engine> {
-    engine::all()
-        .into_iter()
-        .find(|e| e.id() == "predictor-corrector")
-        .unwrap()
+    registered(&PredictorCorrector)
 }
 
 /// Classify the predictor-corrector on `case` at Δt = `ratio`·T.
@@ -141,7 +141,7 @@ fn a_panicking_engine_is_a_diverged_result() {
 #[test]
 fn starved_newton_is_not_converged_with_time_and_residual() {
     let case = load_case(Path::new("cases/stability/stiff-ratio-1e6-newton-2.toml")).unwrap();
-    let fe = engine::all().into_iter().find(|e| e.id() == "fe").unwrap();
+    let fe = registered(&Fe);
     let t = characteristic_period(&case).0;
     let exact = reference::for_case(&case).unwrap();
     let class = |ratio: f64| {
