@@ -18,7 +18,7 @@ use rockslide_core::case::{Case, Contact, Excitation, Model, Oscillator, Rocking
 use rockslide_core::error::InputError;
 
 use crate::deck::{DeckSettings, check_scene, num, one_line};
-use crate::{Export, ExportFile, ExportResult};
+use crate::{Export, ExportResult};
 
 /// The case section whose `dt` and `variants` the deck follows.
 pub const SECTION: &str = "ansys";
@@ -41,21 +41,14 @@ pub fn settings(case: &Case) -> Result<DeckSettings, InputError> {
 /// The deck of a case with the given settings.
 pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
     check_scene(case, "ANSYS", settings.double())?;
-    let (_, results) = names(settings.double());
+    let (name, results) = names(settings.double());
     let mut deck = header(case, settings, &results);
     match &case.scene.model {
         Model::Oscillator(o) => oscillator(&mut deck, case, o, settings)?,
         Model::RockingBody(r) => rocking(&mut deck, case, r, settings)?,
         Model::RigidBlock(_) => unreachable!("refused by check_scene"),
     }
-    let (name, results) = names(settings.double());
-    Ok(Export {
-        files: vec![ExportFile {
-            name,
-            bytes: deck.into_bytes(),
-        }],
-        results,
-    })
+    Ok(Export::deck(name, deck, results))
 }
 
 /// What the deck is, that rockslide does not run it, the scene's numbers, the settings.

@@ -23,7 +23,7 @@ use rockslide_core::error::InputError;
 use crate::calculix_rocking;
 use crate::deck::{DeckSettings, check_scene, num};
 use crate::inp::{self, Dialect, Layout, list};
-use crate::{Export, ExportFile, ExportResult};
+use crate::{Export, ExportResult};
 
 pub use crate::inp::{SET_BODY, SET_GROUND, SET_GROUND_REF, SET_MIDDLE};
 
@@ -91,13 +91,7 @@ pub fn export_with(case: &Case, settings: &DeckSettings) -> ExportResult {
         Model::RigidBlock(_) => unreachable!("refused by check_scene"),
     };
     let (name, results) = names(settings.double());
-    Ok(Export {
-        files: vec![ExportFile {
-            name,
-            bytes: deck.into_bytes(),
-        }],
-        results,
-    })
+    Ok(Export::deck(name, deck, results))
 }
 
 /// The PEPO's deck (single or double).

@@ -49,5 +49,18 @@ pub struct Export {
     pub results: String,
 }
 
+impl Export {
+    /// An export of one deck file, `name`, whose run writes `results` beside it.
+    pub fn deck(name: String, text: String, results: String) -> Export {
+        Export {
+            files: vec![ExportFile {
+                name,
+                bytes: text.into_bytes(),
+            }],
+            results,
+        }
+    }
+}
+
 /// Result of an export: the files, or why the scene cannot be exported.
 pub type ExportResult = Result<Export, InputError>;
