@@ -8,7 +8,7 @@ use std::collections::HashMap;
 use std::process::Command;
 
 use rockslide::calculix::{NOT_FOUND, available};
-use rockslide::case::{Model, parse_case};
+use rockslide::case::{Model, RockingBody, parse_case};
 use rockslide::export::{ansys, calculix};
 use rockslide::suite::{CaseResult, run_case};
 
@@ -29,6 +29,25 @@ fn run_index(r: &CaseResult, label: &str) -> usize {
         .iter()
         .position(|x| x.label() == label)
         .unwrap_or_else(|| panic!("no run {label}"))
+}
+
+/// The deck's `** scene:` comment line carries the rocking body's numbers exactly.
+fn assert_rocking_scene_line(deck: &str, r: &RockingBody) {
+    let scene = pairs(deck, "** scene:");
+    let inertia = rockslide::export::opensees::rotational_inertia(r);
+    for (k, v) in [
+        ("mass", r.mass),
+        ("gravity", r.gravity),
+        ("cm_height", r.cm_height),
+        ("half_width", r.half_width),
+        ("supports", r.supports as f64),
+        ("rotational_inertia", inertia),
+        ("kx", r.contact.kx),
+        ("kz", r.contact.kz),
+        ("mu", r.contact.mu),
+    ] {
+        assert_eq!(scene[k], v, "{k}");
+    }
 }
 
 /// A case run live with its CalculiX participant completed: the result and that run's
@@ -181,21 +200,8 @@ fn the_calculix_rpepo_deck_carries_the_scenes_numbers_exactly() {
     let Model::RockingBody(r) = &c.scene.model else {
         panic!("a rocking body")
     };
+    assert_rocking_scene_line(&deck, r);
     let inertia = rockslide::export::opensees::rotational_inertia(r);
-    let scene = pairs(&deck, "** scene:");
-    for (k, v) in [
-        ("mass", r.mass),
-        ("gravity", r.gravity),
-        ("cm_height", r.cm_height),
-        ("half_width", r.half_width),
-        ("supports", r.supports as f64),
-        ("rotational_inertia", inertia),
-        ("kx", r.contact.kx),
-        ("kz", r.contact.kz),
-        ("mu", r.contact.mu),
-    ] {
-        assert_eq!(scene[k], v, "{k}");
-    }
     let lines: Vec<&str> = deck.lines().collect();
     let numbers =
         |line: &str| -> Vec<f64> { line.split(',').map(|f| f.trim().parse().unwrap()).collect() };
@@ -435,21 +441,8 @@ fn the_abaqus_decks_carry_the_scenes_numbers_exactly() {
         panic!("a rocking body")
     };
     let deck = read("rpepo-mass-accel", "abaqus_model.inp");
-    let scene = pairs(&deck, "** scene:");
+    assert_rocking_scene_line(&deck, r);
     let inertia = rockslide::export::opensees::rotational_inertia(r);
-    for (k, v) in [
-        ("mass", r.mass),
-        ("gravity", r.gravity),
-        ("cm_height", r.cm_height),
-        ("half_width", r.half_width),
-        ("supports", r.supports as f64),
-        ("rotational_inertia", inertia),
-        ("kx", r.contact.kx),
-        ("kz", r.contact.kz),
-        ("mu", r.contact.mu),
-    ] {
-        assert_eq!(scene[k], v, "{k}");
-    }
     assert_eq!(
         after(&deck, "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR"),
         [r.contact.kz]
