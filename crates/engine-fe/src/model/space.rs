@@ -116,6 +116,16 @@ pub struct SpaceTouch {
     slip: Option<(Vector2<f64>, f64)>,
 }
 
+/// A touching support's D terms: a sticking one's moments of c, a slipping one's with its
+/// rank-one correction.
+#[inline(always)]
+fn add_d_terms(sums: &mut SpaceSums, t: &SpaceTouch) {
+    match t.slip {
+        None => sums.add_sticking(t.a, t.b, &t.c),
+        Some((n, mu_kz)) => sums.add_slipping(t.a, t.b, &n, mu_kz, &t.c),
+    }
+}
+
 impl GroundSums<Space> for SpaceSums {
     type Force = SpaceForceSums;
     type Touch = SpaceTouch;
@@ -153,10 +163,7 @@ impl GroundSums<Space> for SpaceSums {
     #[inline(always)]
     fn add_tangent(&mut self, t: &SpaceTouch) {
         self.add_geometric(&t.f, &t.d, &t.c);
-        match t.slip {
-            None => self.add_sticking(t.a, t.b, &t.c),
-            Some((n, mu_kz)) => self.add_slipping(t.a, t.b, &n, mu_kz, &t.c),
-        }
+        add_d_terms(self, t);
     }
 
     /// The geometric sums in a pass of their own (ten sums, held in registers), then the
@@ -168,10 +175,7 @@ impl GroundSums<Space> for SpaceSums {
             sums.add_geometric(&t.f, &t.d, &t.c);
         }
         for t in touches {
-            match t.slip {
-                None => sums.add_sticking(t.a, t.b, &t.c),
-                Some((n, mu_kz)) => sums.add_slipping(t.a, t.b, &n, mu_kz, &t.c),
-            }
+            add_d_terms(&mut sums, t);
         }
         sums
     }
